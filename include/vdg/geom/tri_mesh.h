@@ -1,0 +1,50 @@
+// TriMesh — the triangle mesh every vdg module works on.
+//
+// A struct of flat arrays (no per-vertex structs), so that a whole attribute can be handed to a
+// blend kernel, a GPU buffer or a file writer as one span:
+//   positions  #V x 3 floats, row-major (x0 y0 z0 x1 y1 z1 ...), model units (metres by convention)
+//   triangles  #F x 3 vertex indices, counter-clockwise seen from outside (right-handed, Y up)
+//   uvs        empty or #T x 2 floats: texture coordinates, as many as the file has (seams keep
+//              their own coordinates, so the vertex list is never split or reordered)
+//   uv_triangles  empty or #F x 3 indices into uvs, one per triangle corner
+// Normals are derived data: computeVertexNormals() fills a caller-owned #V x 3 buffer.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace vdg {
+
+struct TriMesh {
+  std::vector<float> positions;     // #V x 3
+  std::vector<std::int32_t> triangles;  // #F x 3
+  std::vector<float> uvs;               // empty or #T x 2
+  std::vector<std::int32_t> uv_triangles;  // empty or #F x 3 (indices into uvs)
+
+  std::size_t vertexCount() const { return positions.size() / 3; }
+  std::size_t triangleCount() const { return triangles.size() / 3; }
+};
+
+// Axis-aligned bounds of a #V x 3 position array. Empty input gives min = max = 0.
+struct Bounds {
+  std::array<float, 3> min{0, 0, 0};
+  std::array<float, 3> max{0, 0, 0};
+  std::array<float, 3> center() const;
+  float diagonal() const;
+};
+Bounds computeBounds(std::span<const float> positions);
+
+// Area-weighted vertex normals: each triangle adds its (unnormalised) cross product, whose length
+// is twice its area, to its three vertices; the sums are then normalised. A vertex touched only by
+// degenerate triangles gets (0, 0, 0). `normals` must hold #V x 3 floats. Allocates nothing.
+void computeVertexNormals(std::span<const float> positions, std::span<const std::int32_t> triangles,
+                          std::span<float> normals);
+
+// Checks the mesh's own consistency (array sizes, indices in range, finite coordinates) and
+// throws vdg::Error naming `what` (usually the file) and the first offending vertex or triangle.
+void validateMesh(const TriMesh& mesh, const std::string& what);
+
+}  // namespace vdg

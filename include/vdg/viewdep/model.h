@@ -1,0 +1,114 @@
+// View-dependent models: the raw description (what a manifest file or the editor holds), its
+// validation, and the immutable run-time ViewDependentModel with allocation-free evaluation.
+//
+// Rademacher 99: a view-dependent model is a base model, key deformations (same connectivity,
+// moved vertices) and key viewpoints (section 3.1). Evaluation at a view (section 3.2):
+// locate the view on the ViewSphere, take up to three keys' weights, and blend positions
+// v = sum_i w_i * v^i (3.2.3). Keys are stored as deltas from the base, sparse when few vertices
+// move, so v = base + sum_i w_i * (v^i - base) costs a copy of the base plus the moved vertices.
+//
+// Normals of the blended mesh are recomputed from the blended positions (area-weighted), not
+// blended: a weighted sum of key normals is not the normal of the weighted sum of key shapes once
+// a key shears or bends the surface, and the NPR shading and silhouettes need the true normals.
+#pragma once
+
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "vdg/geom/camera.h"
+#include "vdg/geom/tri_mesh.h"
+#include "vdg/viewdep/view_sphere.h"
+
+namespace vdg {
+
+// Current manifest format version (the "version" field of *.vdg.json).
+inline constexpr int kManifestVersion = 1;
+
+struct RawKey {
+  std::string name;       // unique within the model; defaults to the mesh file's stem
+  std::string mesh_path;  // as written in the manifest (relative to the manifest's folder)
+  TriMesh mesh;           // the key deformation: the base's triangles, moved positions
+  // Direction from the model centre towards the eye, model space. When `camera` is set, this is
+  // normalize(camera.eye - centre) and is filled in by resolveViews().
+  Eigen::Vector3d view = Eigen::Vector3d::Zero();
+  std::optional<Camera> camera;  // the aligned key camera, when the key was made from a drawing
+};
+
+struct RawViewDependentModel {
+  std::string source;     // manifest path, used in messages (may be empty)
+  std::string base_path;  // as written in the manifest
+  TriMesh base;
+  std::vector<RawKey> keys;
+  double sharpness = 1.0;  // alpha of section 3.2.2, > 0
+  ViewSphereSettings sphere;
+  std::optional<Eigen::Vector3d> center;  // default: the base's bounding-box centre
+
+  // The centre the views are measured from.
+  Eigen::Vector3d resolvedCenter() const;
+  // Sets view = normalize(camera.eye - centre) for every key given by a camera.
+  void resolveViews();
+  // Throws vdg::Error naming the manifest, key and vertex for: no keys, a key whose vertex count
+  // or triangles differ from the base, non-finite coordinates, a zero or non-finite view, two keys
+  // with the same view (within 1e-6 rad), duplicate names, sharpness <= 0, a bad falloff angle.
+  void validate() const;
+};
+
+// Reads a *.vdg.json manifest and every mesh it names (paths relative to the manifest), resolves
+// camera keys' views and validates. Throws vdg::Error naming the file and key for missing files,
+// unknown fields, a wrong or missing version, bad values, and everything validate() checks.
+RawViewDependentModel loadManifest(const std::string& path);
+// Writes the manifest (not the meshes) atomically, with mesh paths as stored in the raw model.
+void saveManifest(const std::string& path, const RawViewDependentModel& model);
+
+class ViewDependentModel {
+ public:
+  // Validates `raw` and builds the viewing sphere and the (sparse) key deltas.
+  static ViewDependentModel build(const RawViewDependentModel& raw);
+
+  const TriMesh& base() const { return base_; }
+  std::size_t vertexCount() const { return base_.vertexCount(); }
+  std::size_t keyCount() const { return keys_.size(); }
+  const std::string& keyName(std::size_t key) const { return keys_[key].name; }
+  const Eigen::Vector3d& keyView(std::size_t key) const { return sphere_.points()[key]; }
+  const std::optional<Camera>& keyCamera(std::size_t key) const { return keys_[key].camera; }
+  // Number of vertices key `key` moves (its delta is stored sparse when this is small).
+  std::size_t keyMovedCount(std::size_t key) const { return keys_[key].moved_count; }
+  const Eigen::Vector3d& center() const { return center_; }
+  double sharpness() const { return sharpness_; }
+  const ViewSphere& sphere() const { return sphere_; }
+
+  // normalize(eye - centre), the view direction for an eye position in model space.
+  Eigen::Vector3d viewFromEye(const Eigen::Vector3d& eye) const { return (eye - center_).normalized(); }
+
+  // Weights of a view direction; sharpness <= 0 means "the model's own".
+  ViewWeights weights(const Eigen::Vector3d& view, double sharpness = 0.0, int* hint = nullptr) const;
+
+  // Blended positions for `w` into `out_positions` (#V x 3, caller-owned). No allocation, no throw.
+  void blend(const ViewWeights& w, std::span<float> out_positions) const;
+  // Positions of key `key` (its full mesh) into `out_positions` (#V x 3).
+  void keyPositions(std::size_t key, std::span<float> out_positions) const;
+  // weights + blend + (optional, when out_normals is non-empty) recomputed normals.
+  void evaluate(const Eigen::Vector3d& view, double sharpness, std::span<float> out_positions,
+                std::span<float> out_normals = {}, int* hint = nullptr) const;
+
+ private:
+  struct Key {
+    std::string name;
+    std::optional<Camera> camera;
+    std::size_t moved_count = 0;
+    std::vector<std::uint32_t> indices;  // sparse: moved vertex indices (empty when dense)
+    std::vector<float> deltas;           // sparse: moved_count x 3; dense: #V x 3
+    bool dense = false;
+  };
+  TriMesh base_;
+  std::vector<Key> keys_;
+  ViewSphere sphere_;
+  Eigen::Vector3d center_ = Eigen::Vector3d::Zero();
+  double sharpness_ = 1.0;
+};
+
+}  // namespace vdg

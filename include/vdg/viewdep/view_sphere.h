@@ -1,0 +1,96 @@
+// ViewSphere — key viewpoints on the unit viewing sphere, triangulated by their convex hull, and
+// the blending weights of any view direction (Rademacher 99, sections 3.2.1-3.2.2 and 3.3).
+//
+// Built once from the key directions (an immutable run-time object); weights() is then a pure,
+// allocation-free, non-throwing query that a renderer calls every frame.
+//
+// Uncovered regions (section 3.3), for key sets whose hull does not enclose the sphere's centre:
+//  - Uncovered::Base: dummy "base" points are added on the sphere wherever no key lies within
+//    `base_falloff_deg`, so the hull of keys + dummies always encloses the centre; a view then
+//    always falls in one hull triangle, and the dummies' weights go to the base model. The
+//    dummies come from a fixed, evenly spread set of kDummyCandidates directions; any key set gets
+//    the same dummies wherever it is rotated to, up to that set's spacing.
+//  - Uncovered::Cosine / Cosine2: no dummies. Let R be the part of the sphere covered by the
+//    keys' hull triangles (with 2 keys the arc between them, with 1 key the key itself). A view v
+//    inside R gets the plain barycentric weights. Outside R, let p be the point of R nearest to v
+//    (geodesic distance) and c = max(0, v.p): the keys get f * b_i(p), the base 1 - f, with
+//    f = c (Cosine) or c^2 (Cosine2), where b_i(p) are the barycentric weights at p. For a single
+//    key this is exactly the paper's max(0, Vkey.Veye) blend (with the base weight taken as
+//    1 - w, so that the weights sum to 1 even behind the key); weights are continuous because p
+//    moves continuously wherever c > 0 and f reaches 0 where p may jump.
+// Sharpness alpha (section 3.2.2): the (up to three) triangle weights become w^a / sum w^a. In
+// the cosine modes the sharpening applies among the keys, before the falloff f.
+#pragma once
+
+#include <array>
+#include <span>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace vdg {
+
+enum class Uncovered { Base, Cosine, Cosine2 };
+
+struct ViewSphereSettings {
+  Uncovered uncovered = Uncovered::Base;
+  // Base mode: a dummy base point is placed only where every key is farther than this angle.
+  double base_falloff_deg = 60.0;
+};
+
+// Weights of one view: up to three real keys plus the base model; key[i] < 0 marks an unused slot.
+// weight[0] + weight[1] + weight[2] + base == 1 (to float rounding).
+struct ViewWeights {
+  std::array<int, 3> key{-1, -1, -1};
+  std::array<float, 3> weight{0.0f, 0.0f, 0.0f};
+  float base = 0.0f;
+  // Hull triangle that the view falls in (index into ViewSphere::triangles()), or -1 when the view
+  // is in an uncovered region (cosine modes only).
+  int triangle = -1;
+};
+
+class ViewSphere {
+ public:
+  static constexpr int kDummyCandidates = 64;
+
+  // key_directions: one direction per key, towards the eye, any non-zero length. Throws vdg::Error
+  // when there are no keys, a direction is zero or not finite, or two directions coincide
+  // (within 1e-6 rad). Messages name the key by index; callers add names.
+  static ViewSphere build(std::span<const Eigen::Vector3d> key_directions, const ViewSphereSettings& settings = {});
+
+  // Weights of the view direction `view` (towards the eye; any non-zero length; a zero or
+  // non-finite vector gives the base model). sharpness > 0 (values <= 0 are treated as 1).
+  // `hint` (optional, in/out) remembers the last triangle to speed up coherent queries.
+  ViewWeights weights(const Eigen::Vector3d& view, double sharpness = 1.0, int* hint = nullptr) const;
+
+  std::size_t keyCount() const { return key_count_; }
+  // Unit directions of all points: the keys first (in input order), then the dummy base points.
+  std::span<const Eigen::Vector3d> points() const { return points_; }
+  bool isDummy(int point) const { return point >= static_cast<int>(key_count_); }
+  // Hull triangles (indices into points()), counter-clockwise seen from outside the sphere.
+  std::span<const std::array<int, 3>> triangles() const { return triangles_; }
+  // Cosine modes: great-circle arcs bounding the covered region (indices into points()).
+  std::span<const std::array<int, 2>> boundaryArcs() const { return arcs_; }
+  // Fraction of the sphere's area covered by triangles whose three corners are all real keys.
+  double coveredFraction() const { return covered_fraction_; }
+  const ViewSphereSettings& settings() const { return settings_; }
+
+ private:
+  struct Cone {
+    Eigen::Matrix3d inverse;  // inverse of [a b c]: lambda = inverse * v
+  };
+  ViewWeights locateInTriangle(int t, const Eigen::Vector3d& lambda) const;
+  ViewWeights falloff(const Eigen::Vector3d& v, double& nearest_cos) const;
+  void finishWeights(ViewWeights& w, double sharpness) const;
+
+  ViewSphereSettings settings_;
+  std::size_t key_count_ = 0;
+  std::vector<Eigen::Vector3d> points_;
+  std::vector<std::array<int, 3>> triangles_;
+  std::vector<Cone> cones_;
+  std::vector<std::array<int, 2>> arcs_;
+  std::vector<int> isolated_;  // cosine modes: keys that belong to no triangle and no arc
+  double covered_fraction_ = 0.0;
+};
+
+}  // namespace vdg

@@ -1,0 +1,168 @@
+// View-dependent model: validation, build and evaluation (Rademacher 99, sections 3.1-3.2.3).
+#include "vdg/viewdep/model.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cstring>
+#include <filesystem>
+#include <set>
+
+#include "vdg/geom/error.h"
+
+namespace vdg {
+namespace {
+
+std::string where(const RawViewDependentModel& model) { return model.source.empty() ? std::string("model") : model.source; }
+
+std::string keyLabel(const RawViewDependentModel& model, std::size_t k) {
+  return where(model) + ": key '" + model.keys[k].name + "' (keys[" + std::to_string(k) + "])";
+}
+
+}  // namespace
+
+Eigen::Vector3d RawViewDependentModel::resolvedCenter() const {
+  if (center) return *center;
+  const auto c = computeBounds(base.positions).center();
+  return {c[0], c[1], c[2]};
+}
+
+void RawViewDependentModel::resolveViews() {
+  const Eigen::Vector3d c = resolvedCenter();
+  for (RawKey& key : keys) {
+    if (key.camera) key.view = (key.camera->eye - c).normalized();
+  }
+}
+
+void RawViewDependentModel::validate() const {
+  validateMesh(base, where(*this) + ": base mesh" + (base_path.empty() ? std::string() : " '" + base_path + "'"));
+  if (keys.empty()) throw Error(where(*this) + ": the model has no keys (add at least one key deformation)");
+  if (!(sharpness > 0.0) || !std::isfinite(sharpness))
+    throw Error(where(*this) + ": 'sharpness' must be a positive number, got " + std::to_string(sharpness));
+  if (!(sphere.base_falloff_deg > 0.0 && sphere.base_falloff_deg <= 70.0))
+    throw Error(where(*this) + ": 'base_falloff_deg' must be in (0, 70] degrees, got " +
+                std::to_string(sphere.base_falloff_deg));
+  if (center && !center->allFinite()) throw Error(where(*this) + ": 'center' is not finite");
+  std::set<std::string> names;
+  for (std::size_t k = 0; k < keys.size(); ++k) {
+    const RawKey& key = keys[k];
+    const std::string label = keyLabel(*this, k);
+    if (key.name.empty()) throw Error(where(*this) + ": keys[" + std::to_string(k) + "] has an empty name");
+    if (!names.insert(key.name).second) throw Error(label + ": another key has the same name");
+    if (key.mesh.vertexCount() != base.vertexCount())
+      throw Error(label + ": mesh has " + std::to_string(key.mesh.vertexCount()) + " vertices but the base has " +
+                  std::to_string(base.vertexCount()) + " (a key deformation only moves the base's vertices)");
+    if (key.mesh.triangles.size() != base.triangles.size())
+      throw Error(label + ": mesh has " + std::to_string(key.mesh.triangleCount()) + " triangles but the base has " +
+                  std::to_string(base.triangleCount()) + " (the connectivity must not change)");
+    for (std::size_t i = 0; i < base.triangles.size(); ++i) {
+      if (key.mesh.triangles[i] != base.triangles[i]) {
+        const std::size_t t = i / 3;
+        throw Error(label + ": triangle " + std::to_string(t) + " differs from the base's (" +
+                    std::to_string(key.mesh.triangles[3 * t]) + " " + std::to_string(key.mesh.triangles[3 * t + 1]) +
+                    " " + std::to_string(key.mesh.triangles[3 * t + 2]) + " vs " +
+                    std::to_string(base.triangles[3 * t]) + " " + std::to_string(base.triangles[3 * t + 1]) + " " +
+                    std::to_string(base.triangles[3 * t + 2]) + "); the connectivity must not change");
+      }
+    }
+    for (std::size_t i = 0; i < key.mesh.positions.size(); ++i) {
+      if (!std::isfinite(key.mesh.positions[i]))
+        throw Error(label + ": vertex " + std::to_string(i / 3) + " has a non-finite coordinate (NaN or Inf)");
+    }
+    if (!key.view.allFinite()) throw Error(label + ": view direction is not finite");
+    if (!(key.view.norm() > 0.0))
+      throw Error(label + (key.camera ? ": camera eye is at the model centre, so it gives no view direction"
+                                      : ": view direction has zero length"));
+    for (std::size_t j = 0; j < k; ++j) {
+      const Eigen::Vector3d a = key.view.normalized(), b = keys[j].view.normalized();
+      if (std::atan2(a.cross(b).norm(), a.dot(b)) < 1e-6)
+        throw Error(label + ": same view direction as key '" + keys[j].name + "' (within 1e-6 rad)");
+    }
+  }
+}
+
+ViewDependentModel ViewDependentModel::build(const RawViewDependentModel& raw) {
+  raw.validate();
+  ViewDependentModel model;
+  model.base_ = raw.base;
+  model.center_ = raw.resolvedCenter();
+  model.sharpness_ = raw.sharpness;
+  std::vector<Eigen::Vector3d> views;
+  for (const RawKey& key : raw.keys) views.push_back(key.view);
+  try {
+    model.sphere_ = ViewSphere::build(views, raw.sphere);
+  } catch (const Error& e) {
+    throw Error(where(raw) + ": " + e.what());
+  }
+  const std::size_t nv = raw.base.vertexCount();
+  for (const RawKey& raw_key : raw.keys) {
+    Key key;
+    key.name = raw_key.name;
+    key.camera = raw_key.camera;
+    std::vector<std::uint32_t> moved;
+    for (std::size_t v = 0; v < nv; ++v) {
+      const float* b = &raw.base.positions[3 * v];
+      const float* k = &raw_key.mesh.positions[3 * v];
+      if (b[0] != k[0] || b[1] != k[1] || b[2] != k[2]) moved.push_back(static_cast<std::uint32_t>(v));
+    }
+    key.moved_count = moved.size();
+    // Sparse storage pays an index per moved vertex; past half the vertices dense is cheaper.
+    key.dense = moved.size() * 2 > nv;
+    if (key.dense) {
+      key.deltas.resize(3 * nv);
+      for (std::size_t i = 0; i < 3 * nv; ++i) key.deltas[i] = raw_key.mesh.positions[i] - raw.base.positions[i];
+    } else {
+      key.indices = std::move(moved);
+      key.deltas.reserve(3 * key.indices.size());
+      for (const std::uint32_t v : key.indices)
+        for (int c = 0; c < 3; ++c) key.deltas.push_back(raw_key.mesh.positions[3 * v + c] - raw.base.positions[3 * v + c]);
+    }
+    model.keys_.push_back(std::move(key));
+  }
+  return model;
+}
+
+ViewWeights ViewDependentModel::weights(const Eigen::Vector3d& view, double sharpness, int* hint) const {
+  return sphere_.weights(view, sharpness > 0.0 ? sharpness : sharpness_, hint);
+}
+
+// Section 3.2.3: v = sum_i w_i v^i, written as base + sum_i w_i (v^i - base) because the weights,
+// base included, sum to 1. Only the moved vertices of sparse keys are touched.
+void ViewDependentModel::blend(const ViewWeights& w, std::span<float> out) const {
+  const std::size_t n = base_.positions.size();
+  if (out.size() < n) return;  // contract violation; never write past the caller's buffer
+  std::memcpy(out.data(), base_.positions.data(), n * sizeof(float));
+  for (int slot = 0; slot < 3; ++slot) {
+    const int k = w.key[slot];
+    const float weight = w.weight[slot];
+    if (k < 0 || weight == 0.0f) continue;
+    const Key& key = keys_[static_cast<std::size_t>(k)];
+    const float* d = key.deltas.data();
+    if (key.dense) {
+      float* o = out.data();
+      for (std::size_t i = 0; i < n; ++i) o[i] += weight * d[i];
+    } else {
+      const std::size_t m = key.indices.size();
+      for (std::size_t i = 0; i < m; ++i) {
+        float* o = out.data() + 3 * static_cast<std::size_t>(key.indices[i]);
+        o[0] += weight * d[3 * i];
+        o[1] += weight * d[3 * i + 1];
+        o[2] += weight * d[3 * i + 2];
+      }
+    }
+  }
+}
+
+void ViewDependentModel::keyPositions(std::size_t key, std::span<float> out) const {
+  ViewWeights w;
+  w.key[0] = static_cast<int>(key);
+  w.weight[0] = 1.0f;
+  blend(w, out);
+}
+
+void ViewDependentModel::evaluate(const Eigen::Vector3d& view, double sharpness, std::span<float> out_positions,
+                                  std::span<float> out_normals, int* hint) const {
+  blend(weights(view, sharpness, hint), out_positions);
+  if (!out_normals.empty()) computeVertexNormals(out_positions, base_.triangles, out_normals);
+}
+
+}  // namespace vdg
