@@ -1,0 +1,103 @@
+// vdg info MODEL [--json]
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <numbers>
+
+#include "cli.h"
+#include "vdg/viewdep/model.h"
+
+namespace vdg::cli {
+namespace {
+
+const char* uncoveredName(Uncovered u) {
+  switch (u) {
+    case Uncovered::Cosine: return "cosine";
+    case Uncovered::Cosine2: return "cosine2";
+    default: return "base";
+  }
+}
+
+// Things an artist should know about a model that still loads.
+std::vector<std::string> modelWarnings(const ViewDependentModel& model) {
+  std::vector<std::string> warnings;
+  constexpr double kCloseKeysDeg = 5.0;      // keys closer than this make abrupt transitions
+  constexpr double kLowCoverage = 0.25;      // below this, most views show the plain base model
+  for (std::size_t k = 0; k < model.keyCount(); ++k) {
+    if (model.keyMovedCount(k) == 0)
+      warnings.push_back("key '" + model.keyName(k) + "' moves no vertex (it is identical to the base)");
+    for (std::size_t j = 0; j < k; ++j) {
+      const double deg = std::acos(std::clamp(model.keyView(k).dot(model.keyView(j)), -1.0, 1.0)) * 180.0 / std::numbers::pi;
+      if (deg < kCloseKeysDeg)
+        warnings.push_back("keys '" + model.keyName(j) + "' and '" + model.keyName(k) + "' are only " +
+                           std::to_string(deg).substr(0, 4) + " degrees apart: the blend between them will be abrupt");
+    }
+  }
+  if (model.sphere().coveredFraction() < kLowCoverage)
+    warnings.push_back("real keys cover only " + std::to_string(static_cast<int>(std::lround(100 * model.sphere().coveredFraction()))) +
+                       "% of the viewing sphere; elsewhere the model blends towards the base");
+  return warnings;
+}
+
+}  // namespace
+
+void addInfoCommand(CLI::App& app) {
+  struct Options {
+    std::string model;
+    bool json = false;
+  };
+  auto opt = std::make_shared<Options>();
+  CLI::App* sub = app.add_subcommand("info", "Describe a view-dependent model: mesh, keys, viewing-sphere hull, warnings");
+  sub->add_option("MODEL", opt->model, "Model manifest (*.vdg.json)")->required();
+  sub->add_flag("--json", opt->json, "Print one JSON object instead of text");
+  sub->callback([opt] {
+    const RawViewDependentModel raw = loadManifest(opt->model);
+    const ViewDependentModel model = ViewDependentModel::build(raw);
+    const ViewSphere& sphere = model.sphere();
+    const std::size_t dummies = sphere.points().size() - sphere.keyCount();
+    const auto warnings = modelWarnings(model);
+    if (opt->json) {
+      nlohmann::ordered_json out;
+      out["model"] = opt->model;
+      out["base"] = raw.base_path;
+      out["vertices"] = model.vertexCount();
+      out["triangles"] = model.base().triangleCount();
+      out["center"] = {model.center().x(), model.center().y(), model.center().z()};
+      out["sharpness"] = model.sharpness();
+      out["uncovered"] = uncoveredName(sphere.settings().uncovered);
+      out["keys"] = nlohmann::ordered_json::array();
+      for (std::size_t k = 0; k < model.keyCount(); ++k) {
+        const auto& v = model.keyView(k);
+        out["keys"].push_back({{"name", model.keyName(k)},
+                               {"mesh", raw.keys[k].mesh_path},
+                               {"view", {v.x(), v.y(), v.z()}},
+                               {"moved_vertices", model.keyMovedCount(k)}});
+      }
+      out["dummy_base_keys"] = dummies;
+      out["hull_triangles"] = sphere.triangles().size();
+      out["covered_fraction"] = sphere.coveredFraction();
+      out["warnings"] = warnings;
+      std::cout << out.dump(2) << "\n";
+      return;
+    }
+    std::printf("model      %s\n", opt->model.c_str());
+    std::printf("base       %s: %zu vertices, %zu triangles\n", raw.base_path.c_str(), model.vertexCount(),
+                model.base().triangleCount());
+    std::printf("centre     (%.4g, %.4g, %.4g)\n", model.center().x(), model.center().y(), model.center().z());
+    std::printf("sharpness  %g\n", model.sharpness());
+    std::printf("uncovered  %s\n", uncoveredName(sphere.settings().uncovered));
+    std::printf("keys       %zu\n", model.keyCount());
+    for (std::size_t k = 0; k < model.keyCount(); ++k) {
+      const auto& v = model.keyView(k);
+      std::printf("  %-16s view (%7.4f, %7.4f, %7.4f)  moves %zu vertices  (%s)\n", model.keyName(k).c_str(), v.x(), v.y(),
+                  v.z(), model.keyMovedCount(k), raw.keys[k].mesh_path.c_str());
+    }
+    std::printf("hull       %zu triangles, %zu dummy base keys\n", sphere.triangles().size(), dummies);
+    std::printf("coverage   %.1f%% of the viewing sphere lies in triangles of real keys\n", 100.0 * sphere.coveredFraction());
+    for (const auto& w : warnings) std::printf("warning: %s\n", w.c_str());
+  });
+}
+
+}  // namespace vdg::cli

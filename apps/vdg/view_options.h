@@ -1,0 +1,40 @@
+// Options shared by the subcommands that evaluate a model at one view (weights, eval).
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "cli.h"
+#include "vdg/viewdep/model.h"
+
+namespace vdg::cli {
+
+struct ViewOptions {
+  std::string view_text;
+  std::string eye_text;
+  double sharpness = 0.0;  // 0: the model's own
+
+  void add(CLI::App& sub) {
+    auto* view = sub.add_option("--view", view_text, "View direction X,Y,Z from the model centre towards the eye");
+    auto* eye = sub.add_option("--eye", eye_text, "Eye position X,Y,Z in model space (view = eye - centre)");
+    view->excludes(eye);
+    sub.add_option("--sharpness", sharpness, "Sharpness alpha of the blend (default: the model's)")
+        ->check(CLI::PositiveNumber);
+  }
+
+  // The view direction; throws UsageError unless exactly one of --view / --eye was given.
+  Eigen::Vector3d resolve(const ViewDependentModel& model) const {
+    if (view_text.empty() == eye_text.empty()) throw UsageError("give exactly one of --view X,Y,Z or --eye X,Y,Z");
+    if (!view_text.empty()) {
+      const Eigen::Vector3d v = parseVec3(view_text, "--view");
+      if (!(v.norm() > 0.0)) throw UsageError("--view: the view direction must not be zero");
+      return v.normalized();
+    }
+    const Eigen::Vector3d eye = parseVec3(eye_text, "--eye");
+    const Eigen::Vector3d v = model.viewFromEye(eye);
+    if (!(v.norm() > 0.0)) throw UsageError("--eye: the eye is at the model centre, so there is no view direction");
+    return v;
+  }
+};
+
+}  // namespace vdg::cli
