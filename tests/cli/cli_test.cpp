@@ -1,0 +1,136 @@
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <sys/wait.h>
+
+#include "support/test_meshes.h"
+
+namespace {
+
+struct Result {
+  int code;
+  std::string out;
+  std::string err;
+};
+
+// Runs `vdg ARGS` through the shell, capturing stdout and stderr separately.
+Result run(const std::string& args, const std::string& binary = VDG_BINARY) {
+  vdg::testing::TempDir dir;
+  const std::string out = dir.file("out"), err = dir.file("err");
+  const std::string cmd = "cd '" VDG_SOURCE_DIR "' && '" + binary + "' " + args + " >'" + out + "' 2>'" + err + "'";
+  const int status = std::system(cmd.c_str());
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, vdg::testing::readText(out), vdg::testing::readText(err)};
+}
+
+const std::string kSpot = "examples/spot/spot.vdg.json";
+constexpr double kSumTol = 1e-6;
+
+int lineCount(const std::string& s) { return static_cast<int>(std::count(s.begin(), s.end(), '\n')); }
+
+TEST(Cli, HelpAndUsage) {
+  EXPECT_EQ(run("--help").code, 0);
+  for (const char* sub : {"info", "weights", "eval"}) {
+    const Result r = run(std::string(sub) + " --help");
+    EXPECT_EQ(r.code, 0) << sub;
+    EXPECT_NE(r.out.find("MODEL"), std::string::npos) << sub;
+  }
+  EXPECT_EQ(run("").code, 2);
+  EXPECT_EQ(run("frobnicate").code, 2);
+  EXPECT_EQ(run("weights " + kSpot).code, 2) << "neither --view nor --eye";
+  EXPECT_EQ(run("weights " + kSpot + " --view 1,2").code, 2);
+  EXPECT_EQ(run("weights " + kSpot + " --view 1,2,3 --eye 1,2,3").code, 2);
+  EXPECT_EQ(run("weights " + kSpot + " --view 0,0,0").code, 2);
+  EXPECT_EQ(run("weights " + kSpot + " --view 1,0,0 --sharpness -1").code, 2);
+}
+
+TEST(Cli, WeightsJsonIsOneObjectSummingToOne) {
+  for (const char* view : {"0,0.15,-1", "1,1,1", "0,-1,0", "0.3,0.2,-0.9", "-1,0.5,0.5"}) {
+    const Result r = run("weights " + kSpot + " --view " + view + " --json");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(lineCount(r.out), 1);
+    const auto j = nlohmann::json::parse(r.out);
+    double sum = j.at("base").get<double>();
+    for (const auto& [name, w] : j.at("keys").items()) {
+      EXPECT_GT(w.get<double>(), 0.0) << name;
+      sum += w.get<double>();
+    }
+    EXPECT_NEAR(sum, 1.0, kSumTol) << view;
+  }
+  const auto at_key = nlohmann::json::parse(run("weights " + kSpot + " --view 0,0.15,-1 --json").out);
+  EXPECT_NEAR(at_key["keys"]["front"].get<double>(), 1.0, kSumTol);
+  EXPECT_EQ(at_key["keys"].size(), 1u);
+  EXPECT_NEAR(at_key["base"].get<double>(), 0.0, kSumTol);
+  // Far below the cow, no key is near: the base model alone.
+  const auto below = nlohmann::json::parse(run("weights " + kSpot + " --view 0,-1,0 --json").out);
+  EXPECT_NEAR(below["base"].get<double>(), 1.0, kSumTol);
+}
+
+TEST(Cli, EyeIsMeasuredFromTheModelCentre) {
+  const auto info = nlohmann::json::parse(run("info " + kSpot + " --json").out);
+  const auto c = info["center"];
+  // The eye straight in front of the centre, along the front key's view, gives that key alone.
+  const double x = c[0].get<double>(), y = c[1].get<double>() + 0.15 * 4, z = c[2].get<double>() - 4;
+  const Result r = run("weights " + kSpot + " --json --eye " + std::to_string(x) + "," + std::to_string(y) + "," + std::to_string(z));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NEAR(nlohmann::json::parse(r.out)["keys"]["front"].get<double>(), 1.0, 1e-5);
+}
+
+TEST(Cli, InfoDescribesTheModel) {
+  const Result text = run("info " + kSpot);
+  ASSERT_EQ(text.code, 0) << text.err;
+  EXPECT_NE(text.out.find("2930 vertices"), std::string::npos);
+  const auto j = nlohmann::json::parse(run("info " + kSpot + " --json").out);
+  EXPECT_EQ(j["vertices"], 2930);
+  EXPECT_EQ(j["triangles"], 5856);
+  EXPECT_EQ(j["keys"].size(), 5u);
+  EXPECT_GT(j["hull_triangles"].get<int>(), 0);
+  EXPECT_GT(j["covered_fraction"].get<double>(), 0.0);
+  EXPECT_LE(j["covered_fraction"].get<double>(), 1.0);
+}
+
+TEST(Cli, EvalWritesTheBlendedMeshWithTheBaseTopology) {
+  vdg::testing::TempDir dir;
+  const std::string out = dir.file("front.obj");
+  const Result r = run("eval " + kSpot + " --view 0,0.15,-1 -o " + out);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(vdg::testing::readText(out).substr(vdg::testing::readText(out).find("\nv ")),
+            vdg::testing::readText(VDG_SOURCE_DIR "/examples/spot/keys/front.obj")
+                .substr(vdg::testing::readText(VDG_SOURCE_DIR "/examples/spot/keys/front.obj").find("\nv ")))
+      << "at a key's view, eval writes that key's mesh";
+}
+
+TEST(Cli, BadInputIsOneLineAndExitOneAndLeavesFilesAlone) {
+  vdg::testing::TempDir dir;
+  const std::string keep = dir.file("keep.obj");
+  vdg::testing::writeText(keep, "precious");
+  Result r = run("eval " + dir.file("missing.vdg.json") + " --view 0,0,1 -o " + keep);
+  EXPECT_EQ(r.code, 1);
+  EXPECT_EQ(lineCount(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("missing.vdg.json"), std::string::npos) << r.err;
+  EXPECT_EQ(vdg::testing::readText(keep), "precious");
+
+  vdg::testing::writeText(dir.file("bad.vdg.json"), "{\"version\": 1, \"base\": \"nowhere.obj\", \"keys\": []}");
+  r = run("info " + dir.file("bad.vdg.json"));
+  EXPECT_EQ(r.code, 1);
+  EXPECT_EQ(lineCount(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("nowhere.obj"), std::string::npos) << r.err;
+
+  r = run("eval " + kSpot + " --view 0,0,1 -o " + dir.file("no/such/dir/out.obj"));
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("out.obj"), std::string::npos) << r.err;
+}
+
+TEST(Examples, SpotExampleIsReproducible) {
+  vdg::testing::TempDir dir;
+  const Result r = run("examples/spot/spot.obj '" + dir.path().string() + "'", VDG_MAKE_SPOT_EXAMPLE);
+  ASSERT_EQ(r.code, 0) << r.err;
+  for (const char* file : {"spot.vdg.json", "keys/front.obj", "keys/left.obj", "keys/right.obj", "keys/back.obj", "keys/top.obj"}) {
+    EXPECT_EQ(vdg::testing::readText(dir.file(file)), vdg::testing::readText(std::string(VDG_SOURCE_DIR "/examples/spot/") + file))
+        << file << " differs from what make_spot_example writes";
+  }
+}
+
+}  // namespace

@@ -1,0 +1,154 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "support/test_meshes.h"
+#include "vdg/geom/error.h"
+#include "vdg/geom/obj_io.h"
+#include "vdg/viewdep/model.h"
+
+namespace vdg {
+namespace {
+
+using Eigen::Vector3d;
+
+// A folder with base.obj, a.obj and b.obj (a, b: moved copies of the base) and a manifest.
+class ManifestTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    base_ = testing::uvSphere(6, 8);
+    writeObj(dir_.file("base.obj"), base_);
+    TriMesh a = base_, b = base_;
+    a.positions[1] += 0.25f;
+    b.positions[4] -= 0.25f;
+    writeObj(dir_.file("a.obj"), a);
+    writeObj(dir_.file("b.obj"), b);
+  }
+  std::string write(const std::string& json) {
+    const std::string path = dir_.file("m.vdg.json");
+    testing::writeText(path, json);
+    return path;
+  }
+  std::string loadError(const std::string& json) {
+    const std::string path = write(json);
+    try {
+      loadManifest(path);
+    } catch (const Error& e) {
+      return e.what();
+    }
+    return "(no error)";
+  }
+  testing::TempDir dir_;
+  TriMesh base_;
+};
+
+constexpr const char* kGood = R"({
+  "version": 1, "base": "base.obj", "sharpness": 1.5, "uncovered": "cosine2",
+  "keys": [
+    {"mesh": "a.obj", "view": [0, 0, 2]},
+    {"name": "side", "mesh": "b.obj", "camera": {"eye": [3, 0, 0], "target": [0, 0, 0], "fov_deg": 30}}
+  ]})";
+
+TEST_F(ManifestTest, LoadsKeysViewsAndSettings) {
+  const RawViewDependentModel raw = loadManifest(write(kGood));
+  ASSERT_EQ(raw.keys.size(), 2u);
+  EXPECT_EQ(raw.keys[0].name, "a");  // default: the mesh file's stem
+  EXPECT_EQ(raw.keys[1].name, "side");
+  EXPECT_DOUBLE_EQ(raw.sharpness, 1.5);
+  EXPECT_EQ(raw.sphere.uncovered, Uncovered::Cosine2);
+  // A camera key's view is normalize(eye - centre); the centre is the base's bounding-box centre.
+  const Vector3d c = raw.resolvedCenter();
+  EXPECT_NEAR((raw.keys[1].view - (Vector3d(3, 0, 0) - c).normalized()).norm(), 0.0, 1e-12);
+  ASSERT_TRUE(raw.keys[1].camera.has_value());
+  EXPECT_DOUBLE_EQ(raw.keys[1].camera->fov_deg, 30.0);
+}
+
+TEST_F(ManifestTest, SaveThenLoadGivesTheSameModel) {
+  RawViewDependentModel raw = loadManifest(write(kGood));
+  raw.center = Vector3d(0.1, 0.2, 0.3);
+  raw.resolveViews();  // camera keys measure their view from the new centre
+  saveManifest(dir_.file("copy.vdg.json"), raw);
+  const RawViewDependentModel back = loadManifest(dir_.file("copy.vdg.json"));
+  ASSERT_EQ(back.keys.size(), raw.keys.size());
+  EXPECT_EQ(back.sphere.uncovered, raw.sphere.uncovered);
+  EXPECT_EQ(back.sharpness, raw.sharpness);
+  ASSERT_TRUE(back.center.has_value());
+  for (std::size_t k = 0; k < raw.keys.size(); ++k) {
+    EXPECT_EQ(back.keys[k].name, raw.keys[k].name);
+    EXPECT_NEAR((back.keys[k].view.normalized() - raw.keys[k].view.normalized()).norm(), 0.0, 1e-12);
+    EXPECT_EQ(back.keys[k].mesh.positions, raw.keys[k].mesh.positions);
+  }
+}
+
+TEST_F(ManifestTest, EveryValidationErrorNamesTheFileAndTheKey) {
+  struct Case {
+    std::string json;
+    std::string expected;
+  };
+  const std::vector<Case> cases = {
+      {"{", "m.vdg.json: not valid JSON"},
+      {"[]", "m.vdg.json: expected a JSON object"},
+      {R"({"base": "base.obj", "keys": []})", "m.vdg.json: missing 'version'"},
+      {R"({"version": 2, "base": "base.obj", "keys": []})", "m.vdg.json: 'version' is 2, but this vdg reads version 1"},
+      {R"({"version": 1, "base": "base.obj", "keys": [], "colour": 1})", "m.vdg.json: unknown field 'colour'"},
+      {R"({"version": 1, "base": "nope.obj", "keys": []})", "m.vdg.json: base: "},
+      {R"({"version": 1, "base": "base.obj", "keys": []})", "the model has no keys"},
+      {R"({"version": 1, "base": "base.obj", "keys": [{"mesh": "missing.obj", "view": [0,0,1]}]})",
+       "key 'missing' (keys[0]): "},
+      {R"({"version": 1, "base": "base.obj", "keys": [{"mesh": "a.obj", "view": [0,0,1], "weight": 2}]})",
+       "keys[0]: unknown field 'weight'"},
+      {R"({"version": 1, "base": "base.obj", "keys": [{"mesh": "a.obj", "view": [0,0,0]}]})",
+       "key 'a' (keys[0]): view direction has zero length"},
+      {R"({"version": 1, "base": "base.obj", "keys": [{"mesh": "a.obj", "view": [0,0,1]}, {"mesh": "b.obj", "view": [0,0,3]}]})",
+       "key 'b' (keys[1]): same view direction as key 'a'"},
+      {R"({"version": 1, "base": "base.obj", "keys": [{"mesh": "a.obj", "view": [0,0,1]}, {"name": "a", "mesh": "b.obj", "view": [0,1,0]}]})",
+       "another key has the same name"},
+      {R"({"version": 1, "base": "base.obj", "keys": [{"mesh": "a.obj"}]})", "give exactly one of 'view'"},
+      {R"({"version": 1, "base": "base.obj", "keys": [{"mesh": "a.obj", "view": [0,1]}]})", "view: expected an array of 3 numbers"},
+      {R"({"version": 1, "base": "base.obj", "keys": [{"mesh": "a.obj", "camera": {"eye": [0,0,3]}}]})",
+       "give exactly one of 'fov_deg' (perspective) or 'ortho_height'"},
+      {R"({"version": 1, "base": "base.obj", "keys": [{"mesh": "a.obj", "camera": {"eye": [0,0,0], "ortho_height": 2}}]})",
+       "eye and target are the same point"},
+      {R"({"version": 1, "base": "base.obj", "uncovered": "nearest", "keys": [{"mesh": "a.obj", "view": [0,0,1]}]})",
+       "'uncovered': unknown value 'nearest'"},
+      {R"({"version": 1, "base": "base.obj", "sharpness": 0, "keys": [{"mesh": "a.obj", "view": [0,0,1]}]})",
+       "'sharpness' must be a positive number"},
+      {R"({"version": 1, "base": "base.obj", "keys": [{"mesh": "a.obj", "view": [0,0,1], "frame": 3}]})",
+       "'frame' needs an animated base model"},
+  };
+  for (const Case& c : cases) {
+    const std::string message = loadError(c.json);
+    EXPECT_NE(message.find(c.expected), std::string::npos) << "expected '" << c.expected << "' in '" << message << "'";
+    EXPECT_NE(message.find("m.vdg.json"), std::string::npos) << message;
+  }
+}
+
+TEST_F(ManifestTest, KeysMustKeepTheBaseConnectivity) {
+  TriMesh fewer = testing::uvSphere(5, 8);
+  writeObj(dir_.file("fewer.obj"), fewer);
+  EXPECT_NE(loadError(R"({"version": 1, "base": "base.obj", "keys": [{"mesh": "fewer.obj", "view": [0,0,1]}]})")
+                .find("key 'fewer' (keys[0]): mesh has " + std::to_string(fewer.vertexCount()) + " vertices but the base has " +
+                      std::to_string(base_.vertexCount())),
+            std::string::npos);
+  TriMesh flipped = base_;
+  std::swap(flipped.triangles[4], flipped.triangles[5]);
+  writeObj(dir_.file("flipped.obj"), flipped);
+  EXPECT_NE(loadError(R"({"version": 1, "base": "base.obj", "keys": [{"mesh": "flipped.obj", "view": [0,0,1]}]})")
+                .find("key 'flipped' (keys[0]): triangle 1 differs from the base's"),
+            std::string::npos);
+}
+
+TEST_F(ManifestTest, NonFiniteKeyCoordinatesAreRejected) {
+  RawViewDependentModel raw = loadManifest(write(kGood));
+  raw.keys[1].mesh.positions[3 * 5 + 2] = std::numeric_limits<float>::infinity();
+  try {
+    raw.validate();
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("key 'side' (keys[1]): vertex 5 has a non-finite coordinate"), std::string::npos)
+        << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace vdg

@@ -1,0 +1,149 @@
+#include "vdg/viewdep/model.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <numbers>
+
+#include "support/test_meshes.h"
+#include "vdg/geom/error.h"
+
+namespace vdg {
+namespace {
+
+using Eigen::Vector3d;
+
+constexpr float kPositionTol = 1e-6f;  // float rounding of base + (key - base)
+constexpr double kPathStep = 1e-3;     // radians between samples along a camera path
+constexpr double kMeshLipschitz = 60.0;  // max vertex motion per radian of view, per unit of key delta
+
+// A sphere with one key per octahedron direction, each bulging the sphere towards its view.
+RawViewDependentModel bulgeModel(const std::vector<Vector3d>& views, Uncovered mode = Uncovered::Base) {
+  RawViewDependentModel raw;
+  raw.base = testing::uvSphere(12, 16);
+  raw.sphere.uncovered = mode;
+  for (std::size_t k = 0; k < views.size(); ++k) {
+    RawKey key;
+    key.name = "k" + std::to_string(k);
+    key.mesh = raw.base;
+    key.view = views[k];
+    const Vector3d dir = views[k].normalized();
+    for (std::size_t v = 0; v < key.mesh.vertexCount(); ++v) {
+      const Vector3d p(key.mesh.positions[3 * v], key.mesh.positions[3 * v + 1], key.mesh.positions[3 * v + 2]);
+      const double s = std::max(0.0, p.dot(dir) - 0.5);  // only the cap facing the view moves: sparse
+      for (int c = 0; c < 3; ++c) key.mesh.positions[3 * v + c] += static_cast<float>(0.4 * s * dir[c]);
+    }
+    raw.keys.push_back(std::move(key));
+  }
+  return raw;
+}
+
+const std::vector<Vector3d> kOctahedron = {Vector3d(1, 0, 0), Vector3d(-1, 0, 0), Vector3d(0, 1, 0),
+                                           Vector3d(0, -1, 0), Vector3d(0, 0, 1), Vector3d(0, 0, -1)};
+
+TEST(ViewDependentModel, KeyViewReproducesTheKeyMesh) {
+  for (Uncovered mode : {Uncovered::Base, Uncovered::Cosine}) {
+    const RawViewDependentModel raw = bulgeModel(kOctahedron, mode);
+    const ViewDependentModel model = ViewDependentModel::build(raw);
+    std::vector<float> out(raw.base.positions.size());
+    for (std::size_t k = 0; k < raw.keys.size(); ++k) {
+      EXPECT_LT(model.keyMovedCount(k), raw.base.vertexCount() / 2) << "bulges are sparse";
+      model.evaluate(raw.keys[k].view, 0.0, out);
+      for (std::size_t i = 0; i < out.size(); ++i) ASSERT_NEAR(out[i], raw.keys[k].mesh.positions[i], kPositionTol);
+    }
+  }
+}
+
+TEST(ViewDependentModel, KeyViewReproducesTheShippedExample) {
+  const RawViewDependentModel raw = loadManifest(std::string(VDG_SOURCE_DIR) + "/examples/spot/spot.vdg.json");
+  const ViewDependentModel model = ViewDependentModel::build(raw);
+  std::vector<float> out(raw.base.positions.size());
+  for (std::size_t k = 0; k < raw.keys.size(); ++k) {
+    model.evaluate(raw.keys[k].view, 0.0, out);
+    for (std::size_t i = 0; i < out.size(); ++i) ASSERT_NEAR(out[i], raw.keys[k].mesh.positions[i], kPositionTol) << k;
+  }
+}
+
+TEST(ViewDependentModel, BlendIsTheWeightedSumOfKeyMeshes) {
+  const RawViewDependentModel raw = bulgeModel(kOctahedron);
+  const ViewDependentModel model = ViewDependentModel::build(raw);
+  const Vector3d view(0.3, 0.5, 0.8);
+  const ViewWeights w = model.weights(view);
+  std::vector<float> out(raw.base.positions.size());
+  model.blend(w, out);
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    double expected = w.base * raw.base.positions[i];
+    for (int k = 0; k < 3; ++k)
+      if (w.key[k] >= 0) expected += w.weight[k] * raw.keys[static_cast<std::size_t>(w.key[k])].mesh.positions[i];
+    ASSERT_NEAR(out[i], expected, kPositionTol);
+  }
+}
+
+TEST(ViewDependentModel, DenseAndSparseKeysBlendTheSame) {
+  RawViewDependentModel raw = bulgeModel(kOctahedron);
+  // Make key 0 dense: move every vertex a little.
+  for (float& p : raw.keys[0].mesh.positions) p *= 1.01f;
+  const ViewDependentModel model = ViewDependentModel::build(raw);
+  EXPECT_EQ(model.keyMovedCount(0), raw.base.vertexCount());
+  const ViewWeights w = model.weights(Vector3d(1, 0.4, 0.4));
+  std::vector<float> out(raw.base.positions.size());
+  model.blend(w, out);
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    double expected = w.base * raw.base.positions[i];
+    for (int k = 0; k < 3; ++k)
+      if (w.key[k] >= 0) expected += w.weight[k] * raw.keys[static_cast<std::size_t>(w.key[k])].mesh.positions[i];
+    ASSERT_NEAR(out[i], expected, kPositionTol);
+  }
+}
+
+TEST(ViewDependentModel, FarFromAllKeysTheBaseModelIsBack) {
+  const RawViewDependentModel raw = bulgeModel({Vector3d(0, 0, 1), Vector3d(0.5, 0, 1), Vector3d(-0.5, 0.2, 1)});
+  const ViewDependentModel model = ViewDependentModel::build(raw);
+  std::vector<float> out(raw.base.positions.size());
+  model.evaluate(Vector3d(0, 0, -1), 0.0, out);
+  EXPECT_EQ(out, raw.base.positions);
+}
+
+TEST(ViewDependentModel, BlendedMeshIsContinuousAlongACameraPath) {
+  for (Uncovered mode : {Uncovered::Base, Uncovered::Cosine, Uncovered::Cosine2}) {
+    const RawViewDependentModel raw =
+        bulgeModel({Vector3d(0, 0, 1), Vector3d(1, 0.2, 0), Vector3d(-1, 0.1, 0.1), Vector3d(0, 1, 0.3)}, mode);
+    const ViewDependentModel model = ViewDependentModel::build(raw);
+    double max_delta = 0.0;
+    for (const RawKey& key : raw.keys)
+      for (std::size_t i = 0; i < key.mesh.positions.size(); ++i)
+        max_delta = std::max(max_delta, static_cast<double>(std::abs(key.mesh.positions[i] - raw.base.positions[i])));
+    std::vector<float> previous(raw.base.positions.size()), current(raw.base.positions.size());
+    // An orbit at 20 degrees elevation, passing near and between the keys.
+    auto view_at = [](double t) { return Vector3d(std::sin(t) * std::cos(0.35), std::sin(0.35), std::cos(t) * std::cos(0.35)); };
+    int hint = -1;
+    model.evaluate(view_at(0.0), 0.0, previous, {}, &hint);
+    double worst = 0.0;
+    for (double t = kPathStep; t < 2 * std::numbers::pi; t += kPathStep) {
+      model.evaluate(view_at(t), 0.0, current, {}, &hint);
+      for (std::size_t i = 0; i < current.size(); ++i) worst = std::max(worst, static_cast<double>(std::abs(current[i] - previous[i])));
+      std::swap(previous, current);
+    }
+    EXPECT_LE(worst, kMeshLipschitz * kPathStep * max_delta);
+  }
+}
+
+TEST(ViewDependentModel, NormalsAreRecomputedFromTheBlendedShape) {
+  const RawViewDependentModel raw = bulgeModel(kOctahedron);
+  const ViewDependentModel model = ViewDependentModel::build(raw);
+  std::vector<float> positions(raw.base.positions.size()), normals(raw.base.positions.size()), expected(normals.size());
+  model.evaluate(Vector3d(0.2, 0.9, 0.1), 0.0, positions, normals);
+  computeVertexNormals(positions, raw.base.triangles, expected);
+  EXPECT_EQ(normals, expected);
+}
+
+TEST(ViewDependentModel, EyePositionsAreMeasuredFromTheCentre) {
+  RawViewDependentModel raw = bulgeModel(kOctahedron);
+  raw.center = Vector3d(10, 0, 0);
+  const ViewDependentModel model = ViewDependentModel::build(raw);
+  EXPECT_NEAR((model.viewFromEye(Vector3d(10, 0, 5)) - Vector3d(0, 0, 1)).norm(), 0.0, 1e-12);
+}
+
+}  // namespace
+}  // namespace vdg
