@@ -130,24 +130,58 @@ ViewWeights ViewDependentModel::weights(const Eigen::Vector3d& view, double shar
 void ViewDependentModel::blend(const ViewWeights& w, std::span<float> out) const {
   const std::size_t n = base_.positions.size();
   if (out.size() < n) return;  // contract violation; never write past the caller's buffer
-  std::memcpy(out.data(), base_.positions.data(), n * sizeof(float));
+  // Dense keys are fused into one pass over the base (one read of each array, one write);
+  // sparse keys then scatter their moved vertices.
+  const float* dense_delta[3] = {nullptr, nullptr, nullptr};
+  float dense_weight[3] = {0.0f, 0.0f, 0.0f};
+  int dense_count = 0;
+  for (int slot = 0; slot < 3; ++slot) {
+    const int k = w.key[slot];
+    if (k < 0 || w.weight[slot] == 0.0f) continue;
+    const Key& key = keys_[static_cast<std::size_t>(k)];
+    if (key.dense) {
+      dense_delta[dense_count] = key.deltas.data();
+      dense_weight[dense_count++] = w.weight[slot];
+    }
+  }
+  const float* b = base_.positions.data();
+  float* o = out.data();
+  switch (dense_count) {
+    case 0:
+      std::memcpy(o, b, n * sizeof(float));
+      break;
+    case 1: {
+      const float* d0 = dense_delta[0];
+      const float w0 = dense_weight[0];
+      for (std::size_t i = 0; i < n; ++i) o[i] = b[i] + w0 * d0[i];
+      break;
+    }
+    case 2: {
+      const float *d0 = dense_delta[0], *d1 = dense_delta[1];
+      const float w0 = dense_weight[0], w1 = dense_weight[1];
+      for (std::size_t i = 0; i < n; ++i) o[i] = b[i] + w0 * d0[i] + w1 * d1[i];
+      break;
+    }
+    default: {
+      const float *d0 = dense_delta[0], *d1 = dense_delta[1], *d2 = dense_delta[2];
+      const float w0 = dense_weight[0], w1 = dense_weight[1], w2 = dense_weight[2];
+      for (std::size_t i = 0; i < n; ++i) o[i] = b[i] + w0 * d0[i] + w1 * d1[i] + w2 * d2[i];
+      break;
+    }
+  }
   for (int slot = 0; slot < 3; ++slot) {
     const int k = w.key[slot];
     const float weight = w.weight[slot];
     if (k < 0 || weight == 0.0f) continue;
     const Key& key = keys_[static_cast<std::size_t>(k)];
+    if (key.dense) continue;
     const float* d = key.deltas.data();
-    if (key.dense) {
-      float* o = out.data();
-      for (std::size_t i = 0; i < n; ++i) o[i] += weight * d[i];
-    } else {
-      const std::size_t m = key.indices.size();
-      for (std::size_t i = 0; i < m; ++i) {
-        float* o = out.data() + 3 * static_cast<std::size_t>(key.indices[i]);
-        o[0] += weight * d[3 * i];
-        o[1] += weight * d[3 * i + 1];
-        o[2] += weight * d[3 * i + 2];
-      }
+    const std::size_t m = key.indices.size();
+    for (std::size_t i = 0; i < m; ++i) {
+      float* v = o + 3 * static_cast<std::size_t>(key.indices[i]);
+      v[0] += weight * d[3 * i];
+      v[1] += weight * d[3 * i + 1];
+      v[2] += weight * d[3 * i + 2];
     }
   }
 }
