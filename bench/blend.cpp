@@ -22,9 +22,9 @@ vdg::TriMesh bigSphere() {
     const double theta = std::numbers::pi * (r + 0.5) / kRings;
     for (int s = 0; s < kSegments; ++s) {
       const double phi = 2 * std::numbers::pi * s / kSegments;
-      m.positions.insert(m.positions.end(), {static_cast<float>(std::sin(theta) * std::cos(phi)),
-                                             static_cast<float>(std::cos(theta)),
-                                             static_cast<float>(std::sin(theta) * std::sin(phi))});
+      m.positions.insert(m.positions.end(),
+                         {static_cast<float>(std::sin(theta) * std::cos(phi)), static_cast<float>(std::cos(theta)),
+                          static_cast<float>(std::sin(theta) * std::sin(phi))});
     }
   }
   for (int r = 0; r + 1 < kRings; ++r)

@@ -1,7 +1,7 @@
 #include "cli.h"
 
-#include <charconv>
 #include <unistd.h>
+#include <charconv>
 
 namespace vdg::cli {
 

@@ -16,7 +16,8 @@ void addEvalCommand(CLI::App& app) {
     bool quiet = false;
   };
   auto opt = std::make_shared<Options>();
-  CLI::App* sub = app.add_subcommand("eval", "Write the blended mesh for one view (same vertices and faces as the base)");
+  CLI::App* sub =
+      app.add_subcommand("eval", "Write the blended mesh for one view (same vertices and faces as the base)");
   sub->add_option("MODEL", opt->model, "Model manifest (*.vdg.json)")->required();
   opt->view.add(*sub);
   sub->add_option("-o,--output", opt->output, "Output mesh (.obj)")->required();
@@ -31,10 +32,13 @@ void addEvalCommand(CLI::App& app) {
     std::string header = "vdg eval " + opt->model + "\nview " + std::to_string(view.x()) + " " +
                          std::to_string(view.y()) + " " + std::to_string(view.z()) + "\nweights:";
     for (int k = 0; k < 3; ++k)
-      if (w.key[k] >= 0) header += " " + model.keyName(static_cast<std::size_t>(w.key[k])) + "=" + std::to_string(w.weight[k]);
+      if (w.key[k] >= 0)
+        header += " " + model.keyName(static_cast<std::size_t>(w.key[k])) + "=" + std::to_string(w.weight[k]);
     header += " base=" + std::to_string(w.base);
     writeObj(opt->output, out, header);
-    if (!opt->quiet) std::printf("wrote %s (%zu vertices, %zu triangles)\n", opt->output.c_str(), out.vertexCount(), out.triangleCount());
+    if (!opt->quiet)
+      std::printf("wrote %s (%zu vertices, %zu triangles)\n", opt->output.c_str(), out.vertexCount(),
+                  out.triangleCount());
   });
 }
 

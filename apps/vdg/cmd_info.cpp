@@ -14,29 +14,34 @@ namespace {
 
 const char* uncoveredName(Uncovered u) {
   switch (u) {
-    case Uncovered::Cosine: return "cosine";
-    case Uncovered::Cosine2: return "cosine2";
-    default: return "base";
+    case Uncovered::Cosine:
+      return "cosine";
+    case Uncovered::Cosine2:
+      return "cosine2";
+    default:
+      return "base";
   }
 }
 
 // Things an artist should know about a model that still loads.
 std::vector<std::string> modelWarnings(const ViewDependentModel& model) {
   std::vector<std::string> warnings;
-  constexpr double kCloseKeysDeg = 5.0;      // keys closer than this make abrupt transitions
-  constexpr double kLowCoverage = 0.25;      // below this, most views show the plain base model
+  constexpr double kCloseKeysDeg = 5.0;  // keys closer than this make abrupt transitions
+  constexpr double kLowCoverage = 0.25;  // below this, most views show the plain base model
   for (std::size_t k = 0; k < model.keyCount(); ++k) {
     if (model.keyMovedCount(k) == 0)
       warnings.push_back("key '" + model.keyName(k) + "' moves no vertex (it is identical to the base)");
     for (std::size_t j = 0; j < k; ++j) {
-      const double deg = std::acos(std::clamp(model.keyView(k).dot(model.keyView(j)), -1.0, 1.0)) * 180.0 / std::numbers::pi;
+      const double deg =
+          std::acos(std::clamp(model.keyView(k).dot(model.keyView(j)), -1.0, 1.0)) * 180.0 / std::numbers::pi;
       if (deg < kCloseKeysDeg)
         warnings.push_back("keys '" + model.keyName(j) + "' and '" + model.keyName(k) + "' are only " +
                            std::to_string(deg).substr(0, 4) + " degrees apart: the blend between them will be abrupt");
     }
   }
   if (model.sphere().coveredFraction() < kLowCoverage)
-    warnings.push_back("real keys cover only " + std::to_string(static_cast<int>(std::lround(100 * model.sphere().coveredFraction()))) +
+    warnings.push_back("real keys cover only " +
+                       std::to_string(static_cast<int>(std::lround(100 * model.sphere().coveredFraction()))) +
                        "% of the viewing sphere; elsewhere the model blends towards the base");
   return warnings;
 }
@@ -49,7 +54,8 @@ void addInfoCommand(CLI::App& app) {
     bool json = false;
   };
   auto opt = std::make_shared<Options>();
-  CLI::App* sub = app.add_subcommand("info", "Describe a view-dependent model: mesh, keys, viewing-sphere hull, warnings");
+  CLI::App* sub =
+      app.add_subcommand("info", "Describe a view-dependent model: mesh, keys, viewing-sphere hull, warnings");
   sub->add_option("MODEL", opt->model, "Model manifest (*.vdg.json)")->required();
   sub->add_flag("--json", opt->json, "Print one JSON object instead of text");
   sub->callback([opt] {
@@ -91,11 +97,12 @@ void addInfoCommand(CLI::App& app) {
     std::printf("keys       %zu\n", model.keyCount());
     for (std::size_t k = 0; k < model.keyCount(); ++k) {
       const auto& v = model.keyView(k);
-      std::printf("  %-16s view (%7.4f, %7.4f, %7.4f)  moves %zu vertices  (%s)\n", model.keyName(k).c_str(), v.x(), v.y(),
-                  v.z(), model.keyMovedCount(k), raw.keys[k].mesh_path.c_str());
+      std::printf("  %-16s view (%7.4f, %7.4f, %7.4f)  moves %zu vertices  (%s)\n", model.keyName(k).c_str(), v.x(),
+                  v.y(), v.z(), model.keyMovedCount(k), raw.keys[k].mesh_path.c_str());
     }
     std::printf("hull       %zu triangles, %zu dummy base keys\n", sphere.triangles().size(), dummies);
-    std::printf("coverage   %.1f%% of the viewing sphere lies in triangles of real keys\n", 100.0 * sphere.coveredFraction());
+    std::printf("coverage   %.1f%% of the viewing sphere lies in triangles of real keys\n",
+                100.0 * sphere.coveredFraction());
     for (const auto& w : warnings) std::printf("warning: %s\n", w.c_str());
   });
 }

@@ -27,7 +27,8 @@ void addWeightsCommand(CLI::App& app) {
       nlohmann::ordered_json out;
       out["keys"] = nlohmann::ordered_json::object();
       for (int k = 0; k < 3; ++k)
-        if (w.key[k] >= 0 && w.weight[k] > 0.0f) out["keys"][model.keyName(static_cast<std::size_t>(w.key[k]))] = w.weight[k];
+        if (w.key[k] >= 0 && w.weight[k] > 0.0f)
+          out["keys"][model.keyName(static_cast<std::size_t>(w.key[k]))] = w.weight[k];
       out["base"] = w.base;
       std::cout << out.dump() << "\n";
       return;

@@ -1,10 +1,10 @@
 #include "vdg/geom/atomic_file.h"
 
+#include <unistd.h>
 #include <atomic>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <unistd.h>
 
 #include "vdg/geom/error.h"
 

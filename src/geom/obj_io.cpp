@@ -1,9 +1,9 @@
 #include "vdg/geom/obj_io.h"
 
+#include <tiny_obj_loader.h>
 #include <charconv>
 #include <filesystem>
 #include <sstream>
-#include <tiny_obj_loader.h>
 
 #include "vdg/geom/atomic_file.h"
 #include "vdg/geom/error.h"
@@ -49,12 +49,13 @@ TriMesh readObj(const std::string& path) {
     std::size_t offset = 0;
     for (std::size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f) {
       const std::size_t n = shape.mesh.num_face_vertices[f];
-      if (n != 3) throw Error(path + ": face " + std::to_string(f) + " of '" + shape.name + "' could not be triangulated");
+      if (n != 3)
+        throw Error(path + ": face " + std::to_string(f) + " of '" + shape.name + "' could not be triangulated");
       for (std::size_t k = 0; k < 3; ++k) {
         const auto& idx = shape.mesh.indices[offset + k];
         if (idx.vertex_index < 0 || static_cast<std::size_t>(idx.vertex_index) >= nv)
-          throw Error(path + ": a face refers to vertex " + std::to_string(idx.vertex_index + 1) + " but the file has " +
-                      std::to_string(nv) + " vertices");
+          throw Error(path + ": a face refers to vertex " + std::to_string(idx.vertex_index + 1) +
+                      " but the file has " + std::to_string(nv) + " vertices");
         mesh.triangles.push_back(idx.vertex_index);
         if (idx.texcoord_index < 0) all_have_uv = false;
         mesh.uv_triangles.push_back(idx.texcoord_index);
@@ -109,7 +110,8 @@ void writeObj(const std::string& path, const TriMesh& mesh, const std::string& h
     }
     text += '\n';
   }
-  writeFileAtomically(path, [&](std::ostream& out) { out.write(text.data(), static_cast<std::streamsize>(text.size())); });
+  writeFileAtomically(path,
+                      [&](std::ostream& out) { out.write(text.data(), static_cast<std::streamsize>(text.size())); });
 }
 
 TriMesh readMesh(const std::string& path) {

@@ -49,7 +49,8 @@ void computeVertexNormals(std::span<const float> positions, std::span<const std:
     }
   }
   for (std::size_t v = 0; v + 2 < normals.size(); v += 3) {
-    const float len = std::sqrt(normals[v] * normals[v] + normals[v + 1] * normals[v + 1] + normals[v + 2] * normals[v + 2]);
+    const float len =
+        std::sqrt(normals[v] * normals[v] + normals[v + 1] * normals[v + 1] + normals[v + 2] * normals[v + 2]);
     if (len > 0.0f) {
       const float inv = 1.0f / len;
       normals[v] *= inv;
@@ -72,8 +73,8 @@ void validateMesh(const TriMesh& mesh, const std::string& what) {
   for (std::size_t i = 0; i < mesh.uv_triangles.size(); ++i) {
     const auto t = mesh.uv_triangles[i];
     if (t < 0 || static_cast<std::size_t>(t) >= mesh.uvs.size() / 2)
-      throw Error(what + ": triangle " + std::to_string(i / 3) + " refers to texture coordinate " +
-                  std::to_string(t) + ", but the mesh has " + std::to_string(mesh.uvs.size() / 2));
+      throw Error(what + ": triangle " + std::to_string(i / 3) + " refers to texture coordinate " + std::to_string(t) +
+                  ", but the mesh has " + std::to_string(mesh.uvs.size() / 2));
   }
   for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
     if (!std::isfinite(mesh.positions[i]))

@@ -52,8 +52,8 @@ std::vector<HullFacet> convexHull3d(const std::vector<double>& coords) {
   std::free(message_buffer);
   if (exit_code != 0) {
     const auto line_end = text.find('\n', text.find_first_not_of('\n'));
-    throw Error("convex hull (Qhull) failed: " + (text.empty() ? std::string("error ") + std::to_string(exit_code)
-                                                                : text.substr(0, line_end)));
+    throw Error("convex hull (Qhull) failed: " +
+                (text.empty() ? std::string("error ") + std::to_string(exit_code) : text.substr(0, line_end)));
   }
   return facets;
 }

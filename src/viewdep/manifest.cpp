@@ -58,7 +58,8 @@ Camera parseCamera(const json& value, const std::string& where) {
   if (value.contains("target")) camera.target = vec3(value["target"], where + ".target");
   if (value.contains("up")) camera.up = vec3(value["up"], where + ".up");
   const bool has_fov = value.contains("fov_deg"), has_ortho = value.contains("ortho_height");
-  if (has_fov == has_ortho) throw Error(where + ": give exactly one of 'fov_deg' (perspective) or 'ortho_height' (parallel)");
+  if (has_fov == has_ortho)
+    throw Error(where + ": give exactly one of 'fov_deg' (perspective) or 'ortho_height' (parallel)");
   if (has_fov) {
     camera.fov_deg = number(value["fov_deg"], where + ".fov_deg");
     if (!(camera.fov_deg > 0.0 && camera.fov_deg < 180.0)) throw Error(where + ".fov_deg: must be in (0, 180) degrees");
@@ -96,9 +97,12 @@ Uncovered parseUncovered(const json& value, const std::string& where) {
 
 const char* uncoveredName(Uncovered u) {
   switch (u) {
-    case Uncovered::Cosine: return "cosine";
-    case Uncovered::Cosine2: return "cosine2";
-    default: return "base";
+    case Uncovered::Cosine:
+      return "cosine";
+    case Uncovered::Cosine2:
+      return "cosine2";
+    default:
+      return "base";
   }
 }
 
@@ -123,8 +127,10 @@ RawViewDependentModel loadManifest(const std::string& path) {
     throw Error(path + ": not valid JSON: " + cleanJsonMessage(e.what()));
   }
   if (!doc.is_object()) throw Error(path + ": expected a JSON object at the top level");
-  checkFields(doc, {"version", "base", "keys", "sharpness", "uncovered", "base_falloff_deg", "center", "comment"}, path);
-  if (!doc.contains("version")) throw Error(path + ": missing 'version' (this vdg reads version " + std::to_string(kManifestVersion) + ")");
+  checkFields(doc, {"version", "base", "keys", "sharpness", "uncovered", "base_falloff_deg", "center", "comment"},
+              path);
+  if (!doc.contains("version"))
+    throw Error(path + ": missing 'version' (this vdg reads version " + std::to_string(kManifestVersion) + ")");
   if (!doc["version"].is_number_integer() || doc["version"].get<int>() != kManifestVersion)
     throw Error(path + ": 'version' is " + doc["version"].dump() + ", but this vdg reads version " +
                 std::to_string(kManifestVersion));
@@ -152,12 +158,14 @@ RawViewDependentModel loadManifest(const std::string& path) {
     RawKey key;
     if (!entry.contains("mesh")) throw Error(where + ": missing 'mesh'");
     key.mesh_path = string(entry["mesh"], where + ".mesh");
-    key.name = entry.contains("name") ? string(entry["name"], where + ".name") : fs::path(key.mesh_path).stem().string();
+    key.name =
+        entry.contains("name") ? string(entry["name"], where + ".name") : fs::path(key.mesh_path).stem().string();
     where = path + ": key '" + key.name + "' (keys[" + std::to_string(k) + "])";
     if (entry.contains("frame"))
       throw Error(where + ": 'frame' needs an animated base model, which this version of vdg does not read yet");
     const bool has_view = entry.contains("view"), has_camera = entry.contains("camera");
-    if (has_view == has_camera) throw Error(where + ": give exactly one of 'view' [x, y, z] or 'camera' {eye, target, ...}");
+    if (has_view == has_camera)
+      throw Error(where + ": give exactly one of 'view' [x, y, z] or 'camera' {eye, target, ...}");
     if (has_view) key.view = vec3(entry["view"], where + ".view");
     if (has_camera) key.camera = parseCamera(entry["camera"], where + ".camera");
     key.mesh = readReferencedMesh(folder, key.mesh_path, where);

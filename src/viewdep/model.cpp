@@ -12,7 +12,9 @@
 namespace vdg {
 namespace {
 
-std::string where(const RawViewDependentModel& model) { return model.source.empty() ? std::string("model") : model.source; }
+std::string where(const RawViewDependentModel& model) {
+  return model.source.empty() ? std::string("model") : model.source;
+}
 
 std::string keyLabel(const RawViewDependentModel& model, std::size_t k) {
   return where(model) + ": key '" + model.keys[k].name + "' (keys[" + std::to_string(k) + "])";
@@ -114,7 +116,8 @@ ViewDependentModel ViewDependentModel::build(const RawViewDependentModel& raw) {
       key.indices = std::move(moved);
       key.deltas.reserve(3 * key.indices.size());
       for (const std::uint32_t v : key.indices)
-        for (int c = 0; c < 3; ++c) key.deltas.push_back(raw_key.mesh.positions[3 * v + c] - raw.base.positions[3 * v + c]);
+        for (int c = 0; c < 3; ++c)
+          key.deltas.push_back(raw_key.mesh.positions[3 * v + c] - raw.base.positions[3 * v + c]);
     }
     model.keys_.push_back(std::move(key));
   }

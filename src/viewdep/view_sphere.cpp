@@ -156,7 +156,8 @@ ViewSphere ViewSphere::build(std::span<const Eigen::Vector3d> key_directions, co
       // Section 3.3: insert dummy base keys where no key is near, so the hull encloses the centre.
       const double min_cos = std::cos(settings.base_falloff_deg * std::numbers::pi / 180.0);
       for (const Vector3d& c : dummyCandidates()) {
-        const bool near_key = std::any_of(keys.begin(), keys.end(), [&](const Vector3d& k) { return k.dot(c) >= min_cos; });
+        const bool near_key =
+            std::any_of(keys.begin(), keys.end(), [&](const Vector3d& k) { return k.dot(c) >= min_cos; });
         if (!near_key) sphere.points_.push_back(c);
       }
       facets = hullFacets(sphere.points_);
@@ -183,8 +184,7 @@ ViewSphere ViewSphere::build(std::span<const Eigen::Vector3d> key_directions, co
     Vector3d axis = fit.normal.dot(fit.centroid) > 0 ? fit.normal : Vector3d(-fit.normal);
     const std::vector<int> order = angularOrder(keys, axis, fit.centroid);
     for (std::size_t i = 1; i + 1 < order.size(); ++i) facets.push_back({{order[0], order[i], order[i + 1]}, 1.0});
-    for (std::size_t i = 0; i < order.size(); ++i)
-      sphere.arcs_.push_back({order[i], order[(i + 1) % order.size()]});
+    for (std::size_t i = 0; i < order.size(); ++i) sphere.arcs_.push_back({order[i], order[(i + 1) % order.size()]});
   } else if (n >= 3) {
     // All keys on one great circle: the covered region is a chain of arcs, or the whole circle
     // when no gap between neighbours reaches half a turn.

@@ -1,10 +1,10 @@
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
 #include <array>
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
-#include <sys/wait.h>
 
 #include "support/test_meshes.h"
 
@@ -73,7 +73,8 @@ TEST(Cli, EyeIsMeasuredFromTheModelCentre) {
   const auto c = info["center"];
   // The eye straight in front of the centre, along the front key's view, gives that key alone.
   const double x = c[0].get<double>(), y = c[1].get<double>() + 0.15 * 4, z = c[2].get<double>() - 4;
-  const Result r = run("weights " + kSpot + " --json --eye " + std::to_string(x) + "," + std::to_string(y) + "," + std::to_string(z));
+  const Result r = run("weights " + kSpot + " --json --eye " + std::to_string(x) + "," + std::to_string(y) + "," +
+                       std::to_string(z));
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_NEAR(nlohmann::json::parse(r.out)["keys"]["front"].get<double>(), 1.0, 1e-5);
 }
@@ -127,8 +128,10 @@ TEST(Examples, SpotExampleIsReproducible) {
   vdg::testing::TempDir dir;
   const Result r = run("examples/spot/spot.obj '" + dir.path().string() + "'", VDG_MAKE_SPOT_EXAMPLE);
   ASSERT_EQ(r.code, 0) << r.err;
-  for (const char* file : {"spot.vdg.json", "keys/front.obj", "keys/left.obj", "keys/right.obj", "keys/back.obj", "keys/top.obj"}) {
-    EXPECT_EQ(vdg::testing::readText(dir.file(file)), vdg::testing::readText(std::string(VDG_SOURCE_DIR "/examples/spot/") + file))
+  for (const char* file :
+       {"spot.vdg.json", "keys/front.obj", "keys/left.obj", "keys/right.obj", "keys/back.obj", "keys/top.obj"}) {
+    EXPECT_EQ(vdg::testing::readText(dir.file(file)),
+              vdg::testing::readText(std::string(VDG_SOURCE_DIR "/examples/spot/") + file))
         << file << " differs from what make_spot_example writes";
   }
 }

@@ -60,7 +60,8 @@ TEST(ObjIo, BadInputNamesTheFile) {
   testing::TempDir dir;
   EXPECT_NE(errorOf([&] { readObj(dir.file("missing.obj")); }).find("missing.obj: no such file"), std::string::npos);
   testing::writeText(dir.file("empty.obj"), "v 0 0 0\n");
-  EXPECT_NE(errorOf([&] { readObj(dir.file("empty.obj")); }).find("empty.obj: OBJ file has no faces"), std::string::npos);
+  EXPECT_NE(errorOf([&] { readObj(dir.file("empty.obj")); }).find("empty.obj: OBJ file has no faces"),
+            std::string::npos);
   testing::writeText(dir.file("range.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n");
   const std::string range = errorOf([&] { readObj(dir.file("range.obj")); });
   EXPECT_NE(range.find("range.obj"), std::string::npos) << range;

@@ -19,7 +19,8 @@ TEST(TriMesh, NormalsOfSphereAreUnitAndPointOutwards) {
   for (std::size_t v = 0; v < m.vertexCount(); ++v) {
     const float len = std::sqrt(n[3 * v] * n[3 * v] + n[3 * v + 1] * n[3 * v + 1] + n[3 * v + 2] * n[3 * v + 2]);
     EXPECT_NEAR(len, 1.0f, kNormalTol);
-    const float dot = n[3 * v] * m.positions[3 * v] + n[3 * v + 1] * m.positions[3 * v + 1] + n[3 * v + 2] * m.positions[3 * v + 2];
+    const float dot =
+        n[3 * v] * m.positions[3 * v] + n[3 * v + 1] * m.positions[3 * v + 1] + n[3 * v + 2] * m.positions[3 * v + 2];
     EXPECT_GT(dot, 0.95f) << "vertex " << v;
   }
 }
@@ -64,7 +65,8 @@ TEST(TriMesh, ValidateNamesTheProblem) {
         try {
           validateMesh(bad_index, "m.obj");
         } catch (const Error& e) {
-          EXPECT_NE(std::string(e.what()).find("m.obj: triangle 1 refers to vertex 9999"), std::string::npos) << e.what();
+          EXPECT_NE(std::string(e.what()).find("m.obj: triangle 1 refers to vertex 9999"), std::string::npos)
+              << e.what();
           throw;
         }
       },

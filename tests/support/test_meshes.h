@@ -19,9 +19,9 @@ inline TriMesh uvSphere(int rings = 8, int segments = 12) {
     const double theta = M_PI * r / rings;
     for (int s = 0; s < segments; ++s) {
       const double phi = 2.0 * M_PI * s / segments;
-      m.positions.insert(m.positions.end(), {static_cast<float>(std::sin(theta) * std::cos(phi)),
-                                             static_cast<float>(std::cos(theta)),
-                                             static_cast<float>(-std::sin(theta) * std::sin(phi))});
+      m.positions.insert(m.positions.end(),
+                         {static_cast<float>(std::sin(theta) * std::cos(phi)), static_cast<float>(std::cos(theta)),
+                          static_cast<float>(-std::sin(theta) * std::sin(phi))});
     }
   }
   m.positions.insert(m.positions.end(), {0.0f, -1.0f, 0.0f});
@@ -33,7 +33,8 @@ inline TriMesh uvSphere(int rings = 8, int segments = 12) {
       m.triangles.insert(m.triangles.end(), {ring(r, s), ring(r + 1, s), ring(r + 1, s + 1)});
       m.triangles.insert(m.triangles.end(), {ring(r, s), ring(r + 1, s + 1), ring(r, s + 1)});
     }
-  for (int s = 0; s < segments; ++s) m.triangles.insert(m.triangles.end(), {ring(rings - 1, s), south, ring(rings - 1, s + 1)});
+  for (int s = 0; s < segments; ++s)
+    m.triangles.insert(m.triangles.end(), {ring(rings - 1, s), south, ring(rings - 1, s + 1)});
   return m;
 }
 

@@ -104,7 +104,8 @@ TEST_F(ManifestTest, EveryValidationErrorNamesTheFileAndTheKey) {
       {R"({"version": 1, "base": "base.obj", "keys": [{"mesh": "a.obj", "view": [0,0,1]}, {"name": "a", "mesh": "b.obj", "view": [0,1,0]}]})",
        "another key has the same name"},
       {R"({"version": 1, "base": "base.obj", "keys": [{"mesh": "a.obj"}]})", "give exactly one of 'view'"},
-      {R"({"version": 1, "base": "base.obj", "keys": [{"mesh": "a.obj", "view": [0,1]}]})", "view: expected an array of 3 numbers"},
+      {R"({"version": 1, "base": "base.obj", "keys": [{"mesh": "a.obj", "view": [0,1]}]})",
+       "view: expected an array of 3 numbers"},
       {R"({"version": 1, "base": "base.obj", "keys": [{"mesh": "a.obj", "camera": {"eye": [0,0,3]}}]})",
        "give exactly one of 'fov_deg' (perspective) or 'ortho_height'"},
       {R"({"version": 1, "base": "base.obj", "keys": [{"mesh": "a.obj", "camera": {"eye": [0,0,0], "ortho_height": 2}}]})",
@@ -127,8 +128,8 @@ TEST_F(ManifestTest, KeysMustKeepTheBaseConnectivity) {
   TriMesh fewer = testing::uvSphere(5, 8);
   writeObj(dir_.file("fewer.obj"), fewer);
   EXPECT_NE(loadError(R"({"version": 1, "base": "base.obj", "keys": [{"mesh": "fewer.obj", "view": [0,0,1]}]})")
-                .find("key 'fewer' (keys[0]): mesh has " + std::to_string(fewer.vertexCount()) + " vertices but the base has " +
-                      std::to_string(base_.vertexCount())),
+                .find("key 'fewer' (keys[0]): mesh has " + std::to_string(fewer.vertexCount()) +
+                      " vertices but the base has " + std::to_string(base_.vertexCount())),
             std::string::npos);
   TriMesh flipped = base_;
   std::swap(flipped.triangles[4], flipped.triangles[5]);
@@ -145,7 +146,8 @@ TEST_F(ManifestTest, NonFiniteKeyCoordinatesAreRejected) {
     raw.validate();
     FAIL();
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("key 'side' (keys[1]): vertex 5 has a non-finite coordinate"), std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("key 'side' (keys[1]): vertex 5 has a non-finite coordinate"),
+              std::string::npos)
         << e.what();
   }
 }

@@ -14,8 +14,8 @@ namespace {
 
 using Eigen::Vector3d;
 
-constexpr float kPositionTol = 1e-6f;  // float rounding of base + (key - base)
-constexpr double kPathStep = 1e-3;     // radians between samples along a camera path
+constexpr float kPositionTol = 1e-6f;    // float rounding of base + (key - base)
+constexpr double kPathStep = 1e-3;       // radians between samples along a camera path
 constexpr double kMeshLipschitz = 60.0;  // max vertex motion per radian of view, per unit of key delta
 
 // A sphere with one key per octahedron direction, each bulging the sphere towards its view.
@@ -39,8 +39,8 @@ RawViewDependentModel bulgeModel(const std::vector<Vector3d>& views, Uncovered m
   return raw;
 }
 
-const std::vector<Vector3d> kOctahedron = {Vector3d(1, 0, 0), Vector3d(-1, 0, 0), Vector3d(0, 1, 0),
-                                           Vector3d(0, -1, 0), Vector3d(0, 0, 1), Vector3d(0, 0, -1)};
+const std::vector<Vector3d> kOctahedron = {Vector3d(1, 0, 0),  Vector3d(-1, 0, 0), Vector3d(0, 1, 0),
+                                           Vector3d(0, -1, 0), Vector3d(0, 0, 1),  Vector3d(0, 0, -1)};
 
 TEST(ViewDependentModel, KeyViewReproducesTheKeyMesh) {
   for (Uncovered mode : {Uncovered::Base, Uncovered::Cosine}) {
@@ -116,13 +116,16 @@ TEST(ViewDependentModel, BlendedMeshIsContinuousAlongACameraPath) {
         max_delta = std::max(max_delta, static_cast<double>(std::abs(key.mesh.positions[i] - raw.base.positions[i])));
     std::vector<float> previous(raw.base.positions.size()), current(raw.base.positions.size());
     // An orbit at 20 degrees elevation, passing near and between the keys.
-    auto view_at = [](double t) { return Vector3d(std::sin(t) * std::cos(0.35), std::sin(0.35), std::cos(t) * std::cos(0.35)); };
+    auto view_at = [](double t) {
+      return Vector3d(std::sin(t) * std::cos(0.35), std::sin(0.35), std::cos(t) * std::cos(0.35));
+    };
     int hint = -1;
     model.evaluate(view_at(0.0), 0.0, previous, {}, &hint);
     double worst = 0.0;
     for (double t = kPathStep; t < 2 * std::numbers::pi; t += kPathStep) {
       model.evaluate(view_at(t), 0.0, current, {}, &hint);
-      for (std::size_t i = 0; i < current.size(); ++i) worst = std::max(worst, static_cast<double>(std::abs(current[i] - previous[i])));
+      for (std::size_t i = 0; i < current.size(); ++i)
+        worst = std::max(worst, static_cast<double>(std::abs(current[i] - previous[i])));
       std::swap(previous, current);
     }
     EXPECT_LE(worst, kMeshLipschitz * kPathStep * max_delta);

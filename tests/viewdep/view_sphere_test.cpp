@@ -15,7 +15,7 @@ namespace {
 
 using Eigen::Vector3d;
 
-constexpr double kWeightTol = 1e-5;      // float weights
+constexpr double kWeightTol = 1e-5;  // float weights
 constexpr int kRandomViews = 10000;
 // Along a path sampled every kPathStep radians, the weights (as a vector over keys and base) may
 // change by at most kLipschitz * kPathStep in L1: continuous, with a generous slope bound; a jump
@@ -60,10 +60,11 @@ std::map<std::string, std::vector<Vector3d>> configurations() {
                                  fromAngles(100, 5)};
   c["keys in a closed hemisphere, some on its rim"] = {fromAngles(0, 0), fromAngles(120, 0), fromAngles(240, 0) * 1.0,
                                                        fromAngles(30, 60)};
-  c["octahedron"] = {Vector3d(1, 0, 0), Vector3d(-1, 0, 0), Vector3d(0, 1, 0),
-                     Vector3d(0, -1, 0), Vector3d(0, 0, 1), Vector3d(0, 0, -1)};
+  c["octahedron"] = {Vector3d(1, 0, 0),  Vector3d(-1, 0, 0), Vector3d(0, 1, 0),
+                     Vector3d(0, -1, 0), Vector3d(0, 0, 1),  Vector3d(0, 0, -1)};
   c["cube corners (square faces)"] = {};
-  for (int i = 0; i < 8; ++i) c["cube corners (square faces)"].push_back(Vector3d(i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? 1 : -1));
+  for (int i = 0; i < 8; ++i)
+    c["cube corners (square faces)"].push_back(Vector3d(i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? 1 : -1));
   std::mt19937 rng(7);
   for (int i = 0; i < 20; ++i) c["twenty random keys"].push_back(randomDirection(rng));
   return c;
@@ -71,7 +72,9 @@ std::map<std::string, std::vector<Vector3d>> configurations() {
 
 const std::vector<Uncovered> kModes = {Uncovered::Base, Uncovered::Cosine, Uncovered::Cosine2};
 
-std::string modeName(Uncovered u) { return u == Uncovered::Base ? "base" : u == Uncovered::Cosine ? "cosine" : "cosine2"; }
+std::string modeName(Uncovered u) {
+  return u == Uncovered::Base ? "base" : u == Uncovered::Cosine ? "cosine" : "cosine2";
+}
 
 TEST(ViewSphere, OctahedronMatchesTheNumbersOfTheIssue) {
   const auto keys = configurations()["octahedron"];
@@ -151,7 +154,8 @@ TEST(ViewSphere, WeightsSumToOneEverywhere) {
 TEST(ViewSphere, WeightsAreContinuousAlongGreatCircles) {
   // Several great circles, through keys, hull edges and dummy points alike.
   const std::vector<std::pair<Vector3d, Vector3d>> circles = {
-      {Vector3d(0, 0, 1), Vector3d(1, 0, 0)},        {Vector3d(0, 0, 1), Vector3d(0, 1, 0)},
+      {Vector3d(0, 0, 1), Vector3d(1, 0, 0)},
+      {Vector3d(0, 0, 1), Vector3d(0, 1, 0)},
       {Vector3d(1, 1, 1).normalized(), Vector3d(1, -1, 0).normalized()},
       {Vector3d(0.3, -0.2, 0.93).normalized(), Vector3d(0.2, 0.97, 0).normalized()}};
   for (const auto& [name, keys] : configurations()) {
@@ -171,7 +175,8 @@ TEST(ViewSphere, WeightsAreContinuousAlongGreatCircles) {
           worst = std::max(worst, change);
           previous = d;
         }
-        EXPECT_LE(worst, kLipschitz * kPathStep) << name << ", " << modeName(mode) << ", circle through " << a.transpose();
+        EXPECT_LE(worst, kLipschitz * kPathStep)
+            << name << ", " << modeName(mode) << ", circle through " << a.transpose();
       }
     }
   }

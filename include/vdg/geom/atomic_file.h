@@ -17,7 +17,6 @@ void writeFileAtomically(const std::string& path, const std::function<void(std::
 
 // Same, for callers that produce the file themselves (for instance a PNG encoder): `write`
 // receives the temporary path to create; the rename happens when it returns normally.
-void writeFileAtomicallyVia(const std::string& path,
-                            const std::function<void(const std::string& temp_path)>& write);
+void writeFileAtomicallyVia(const std::string& path, const std::function<void(const std::string& temp_path)>& write);
 
 }  // namespace vdg

@@ -19,9 +19,9 @@
 namespace vdg {
 
 struct TriMesh {
-  std::vector<float> positions;     // #V x 3
-  std::vector<std::int32_t> triangles;  // #F x 3
-  std::vector<float> uvs;               // empty or #T x 2
+  std::vector<float> positions;            // #V x 3
+  std::vector<std::int32_t> triangles;     // #F x 3
+  std::vector<float> uvs;                  // empty or #T x 2
   std::vector<std::int32_t> uv_triangles;  // empty or #F x 3 (indices into uvs)
 
   std::size_t vertexCount() const { return positions.size() / 3; }
