@@ -1,0 +1,174 @@
+// End-to-end tests of `vdg deform` and `vdg align`: run the built binary (VDG_BINARY) on a model
+// generated here, and check the files it writes — and that bad input leaves every file untouched.
+#include <gtest/gtest.h>
+#include <stb/stb_image_write.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "test_meshes.h"
+#include "vdg/deform/edits.h"
+#include "vdg/geom/obj_io.h"
+#include "vdg/viewdep/model.h"
+
+namespace vdg {
+namespace {
+namespace fs = std::filesystem;
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+void spit(const fs::path& p, const std::string& text) { std::ofstream(p, std::ios::binary) << text; }
+
+class DeformCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("vdg_deform_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    base_ = test::sphere(8, 16, 1.0);
+    writeObj((dir_ / "base.obj").string(), base_);
+    TriMesh front = base_;
+    front.positions[1] += 0.2f;  // the north pole pulled up
+    writeObj((dir_ / "front.obj").string(), front);
+    spit(dir_ / "m.vdg.json", R"({"version": 1, "base": "base.obj",
+      "keys": [{"name": "front", "mesh": "front.obj", "view": [0, 0, 1]}]})");
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  // Runs vdg with `args`; returns the exit status, stdout+stderr in `output_`.
+  int vdg(const std::string& args) {
+    const std::string out = (dir_ / "out.txt").string();
+    const std::string cmd = std::string("\"") + VDG_BINARY + "\" " + args + " > \"" + out + "\" 2>&1";
+    const int status = std::system(cmd.c_str());
+    output_ = slurp(out);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  }
+  std::string path(const std::string& name) const { return "\"" + (dir_ / name).string() + "\""; }
+
+  fs::path dir_;
+  TriMesh base_;
+  std::string output_;
+};
+
+constexpr const char* kCamera =
+    R"("camera": {"eye": [0.5, 0.5, 5], "target": [0, 0, 0], "up": [0, 1, 0], "fov_deg": 40})";
+
+TEST_F(DeformCli, NewKeyStepsLogAndUndo) {
+  spit(dir_ / "e1.json",
+       std::string("{") + kCamera + R"(, "ops": [{"op": "drag", "vertex": 20, "radius": 0.8, "delta": [0.2, 0.1]}]})");
+  spit(dir_ / "e2.json", R"({"ops": [{"op": "push_pull", "vertex": 20, "radius": 0.5, "amount": 0.1},
+                                     {"op": "displace", "vertex": 5, "radius": 2, "distance": "edges", "offset": [0, 0.1, 0]}]})");
+  ASSERT_EQ(vdg("deform " + path("m.vdg.json") + " --key side --ops " + path("e1.json")), 0) << output_;
+  const TriMesh step1 = readObj((dir_ / "side.obj").string());
+  EXPECT_NE(step1.positions, base_.positions);
+  const RawViewDependentModel model = loadManifest((dir_ / "m.vdg.json").string());
+  ASSERT_EQ(model.keys.size(), 2u);
+  EXPECT_EQ(model.keys[1].name, "side");
+  EXPECT_TRUE(model.keys[1].camera.has_value());
+
+  ASSERT_EQ(vdg("deform " + path("m.vdg.json") + " --key side --ops " + path("e2.json")), 0) << output_;
+  EXPECT_EQ(readEditLog((dir_ / "side.edits.json").string()).entries.size(), 2u);
+  EXPECT_NE(readObj((dir_ / "side.obj").string()).positions, step1.positions);
+
+  ASSERT_EQ(vdg("deform " + path("m.vdg.json") + " --key side --undo"), 0) << output_;
+  EXPECT_EQ(readObj((dir_ / "side.obj").string()).positions, step1.positions);
+  ASSERT_EQ(vdg("deform " + path("m.vdg.json") + " --key side --undo"), 0) << output_;
+  EXPECT_EQ(readObj((dir_ / "side.obj").string()).positions, base_.positions);
+  EXPECT_EQ(vdg("deform " + path("m.vdg.json") + " --key side --undo"), 1);
+  EXPECT_NE(output_.find("nothing to undo"), std::string::npos) << output_;
+}
+
+TEST_F(DeformCli, ExistingHandMadeKeyKeepsItsShapeAsOrigin) {
+  spit(dir_ / "e.json", R"({"ops": [{"op": "scale", "vertex": 0, "radius": 0.6, "factor": 1.5}]})");
+  ASSERT_EQ(vdg("deform " + path("m.vdg.json") + " --key front --ops " + path("e.json")), 0) << output_;
+  EXPECT_TRUE(fs::exists(dir_ / "front.origin.obj"));
+  ASSERT_EQ(vdg("deform " + path("m.vdg.json") + " --key front --undo"), 0) << output_;
+  EXPECT_EQ(readObj((dir_ / "front.obj").string()).positions, readObj((dir_ / "front.origin.obj").string()).positions);
+  EXPECT_NE(readObj((dir_ / "front.obj").string()).positions, base_.positions);
+}
+
+TEST_F(DeformCli, BadOperationsLeaveEveryFileUntouched) {
+  const std::string manifest = slurp(dir_ / "m.vdg.json"), front = slurp(dir_ / "front.obj");
+  const struct {
+    const char* ops;
+    const char* message;
+  } cases[] = {
+      {R"([{"op": "drag", "vertex": 0, "radius": 0.5, "delta": [0.1, 0]},
+           {"op": "drag", "vertex": 9999, "radius": 0.5, "delta": [0.1, 0]}])",
+       "ops[1] (drag): 'vertex' = 9999 is out of range"},
+      {R"([{"op": "push_pull", "vertex": 3, "radius": -1, "amount": 0.1}])",
+       "ops[0] (push_pull): 'radius' must be > 0"},
+      {R"([{"op": "twirl", "vertex": 3}])", "ops[0]: unknown op 'twirl'"},
+  };
+  for (const auto& c : cases) {
+    spit(dir_ / "bad.json", std::string(R"({"ops": )") + c.ops + "}");
+    EXPECT_EQ(vdg("deform " + path("m.vdg.json") + " --key front --ops " + path("bad.json")), 1) << c.ops;
+    EXPECT_NE(output_.find(c.message), std::string::npos) << output_;
+    EXPECT_EQ(output_.find('\n'), output_.size() - 1) << "one line: " << output_;
+    EXPECT_EQ(slurp(dir_ / "m.vdg.json"), manifest);
+    EXPECT_EQ(slurp(dir_ / "front.obj"), front);
+    EXPECT_FALSE(fs::exists(dir_ / "front.edits.json"));
+  }
+  // A new key without a camera or view.
+  spit(dir_ / "e.json", R"({"ops": [{"op": "drag", "vertex": 0, "radius": 0.5, "delta": [0.1, 0]}]})");
+  EXPECT_EQ(vdg("deform " + path("m.vdg.json") + " --key side --ops " + path("e.json")), 1);
+  EXPECT_NE(output_.find("give its camera or view"), std::string::npos) << output_;
+  EXPECT_FALSE(fs::exists(dir_ / "side.obj"));
+  EXPECT_EQ(slurp(dir_ / "m.vdg.json"), manifest);
+}
+
+TEST_F(DeformCli, DryRunReportsAndWritesNothing) {
+  const std::string manifest = slurp(dir_ / "m.vdg.json");
+  spit(dir_ / "e.json",
+       std::string("{") + kCamera + R"(, "ops": [{"op": "drag", "vertex": 20, "radius": 0.8, "delta": [0.2, 0.0]}]})");
+  ASSERT_EQ(vdg("deform " + path("m.vdg.json") + " --key side --dry-run --ops " + path("e.json")), 0) << output_;
+  EXPECT_NE(output_.find("ops[0] drag"), std::string::npos) << output_;
+  EXPECT_NE(output_.find("at most 0.2"), std::string::npos) << output_;
+  EXPECT_FALSE(fs::exists(dir_ / "side.obj"));
+  EXPECT_EQ(slurp(dir_ / "m.vdg.json"), manifest);
+}
+
+TEST_F(DeformCli, AlignRecoversCameraFromDrawing) {
+  Camera truth;
+  truth.eye = {1.0, 0.8, 4.0};
+  truth.target = {0, 0.1, 0};
+  truth.fov_deg = 35;
+  const int w = 320, h = 240;
+  std::vector<unsigned char> pixels(static_cast<std::size_t>(w) * h, 255);
+  ASSERT_TRUE(stbi_write_png((dir_ / "drawing.png").string().c_str(), w, h, 1, pixels.data(), w));
+  std::string pairs = R"({"pairs": [)";
+  for (int v = 1; v < 100; v += 9) {
+    const Eigen::Vector3d p(base_.positions[3 * v], base_.positions[3 * v + 1], base_.positions[3 * v + 2]);
+    const Eigen::Vector2d px = project(truth, w, h, p).pixel;
+    std::ostringstream s;
+    s.precision(17);
+    s << (v > 1 ? "," : "") << R"({"vertex": )" << v << R"(, "pixel": [)" << px.x() << ", " << px.y() << "]}";
+    pairs += s.str();
+  }
+  spit(dir_ / "pairs.json", pairs + "]}");
+  ASSERT_EQ(vdg("align " + path("m.vdg.json") + " --drawing " + path("drawing.png") + " --points " +
+                path("pairs.json") + " -o " + path("cam.json")),
+            0)
+      << output_;
+  EXPECT_NE(output_.find("RMS error"), std::string::npos);
+  const Camera got = readCameraFile((dir_ / "cam.json").string());
+  EXPECT_LT((got.eye - truth.eye).norm(), 1e-6 * truth.eye.norm());
+  EXPECT_NEAR(got.fov_deg, truth.fov_deg, 1e-6 * truth.fov_deg);
+
+  spit(dir_ / "few.json", R"([{"vertex": 1, "pixel": [1, 2]}, {"vertex": 2, "pixel": [3, 4]}])");
+  EXPECT_EQ(
+      vdg("align " + path("m.vdg.json") + " --size 320,240 --points " + path("few.json") + " -o " + path("cam2.json")),
+      1);
+  EXPECT_NE(output_.find("at least 6"), std::string::npos) << output_;
+  EXPECT_FALSE(fs::exists(dir_ / "cam2.json"));
+}
+
+}  // namespace
+}  // namespace vdg

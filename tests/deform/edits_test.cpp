@@ -1,0 +1,146 @@
+// Edit scripts, camera JSON and edit logs.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "test_meshes.h"
+#include "vdg/deform/edits.h"
+#include "vdg/geom/error.h"
+
+namespace vdg {
+namespace {
+
+Camera frontCamera() {
+  Camera c;
+  c.eye = {0, 0, 5};
+  c.target = {0, 0, 0};
+  c.fov_deg = 40;
+  return c;
+}
+
+std::string errorOf(const std::string& text) {
+  try {
+    parseEditScript(text, "E.json");
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(EditScript, ParsesEveryOp) {
+  const EditScript s = parseEditScript(R"({
+    "version": 1, "camera": {"eye": [0,0,5], "target": [0,0,0], "up": [0,1,0], "fov_deg": 40},
+    "ops": [
+      {"op": "drag", "vertex": 3, "radius": 0.5, "delta": [0.1, 0.0]},
+      {"op": "push_pull", "vertex": 3, "radius": 0.5, "amount": -0.1, "mode": "axis"},
+      {"op": "rotate", "vertex": 3, "radius": 0.5, "angle_deg": 10},
+      {"op": "scale", "vertex": 3, "radius": 0.5, "factor": [1.2, 0.9], "power": 2},
+      {"op": "displace", "vertex": 3, "radius": 2, "offset": [0, 0, 0.1], "distance": "edges", "falloff": "inverse_power"},
+      {"op": "ffd", "degree": [1, 2, 1], "moves": [{"index": [1, 2, 0], "offset": [0.1, 0, 0]}]},
+      {"op": "squash_stretch", "axis": "up", "factor": 1.3},
+      {"op": "affine", "matrix": [[1,0,0],[0,1,0],[0,0,1]], "translation": [0, 0.1, 0]}
+    ]})",
+                                       "E.json");
+  ASSERT_EQ(s.ops.size(), 8u);
+  EXPECT_TRUE(s.camera.has_value());
+  EXPECT_EQ(s.ops[1].push_mode, PushPullMode::kAlongAxis);
+  EXPECT_EQ(s.ops[2].falloff.power, 0.0);  // rotate: rigid group by default
+  EXPECT_EQ(s.ops[4].metric, DistanceMetric::kEdges);
+  EXPECT_EQ(s.ops[5].moves[0].index[1], 2);
+}
+
+TEST(EditScript, BadOpsNameIndexAndField) {
+  EXPECT_EQ(errorOf(R"({"ops": [{"op": "drag", "vertex": 0, "radius": 1, "delta": [0,0]},
+                                 {"op": "drag", "vertex": 0, "radius": -1, "delta": [0,0]}]})"),
+            "E.json: ops[1] (drag): 'radius' must be > 0, got -1");
+  EXPECT_EQ(errorOf(R"({"ops": [{"op": "twist"}]})").substr(0, 35), "E.json: ops[0]: unknown op 'twist' ");
+  EXPECT_EQ(errorOf(R"({"ops": [{"op": "drag", "vertex": 0, "radius": 1, "delta": [0,0], "colour": 1}]})"),
+            "E.json: ops[0] (drag): unknown field 'colour'");
+  EXPECT_EQ(errorOf(R"({"ops": [{"op": "drag", "vertex": -2, "radius": 1, "delta": [0,0]}]})"),
+            "E.json: ops[0] (drag): 'vertex' must be >= 0, got -2");
+  EXPECT_NE(errorOf(R"({"ops": [{"op": "ffd", "moves": [{"index": [2,0,0], "offset": [0,0,0]}]}]})")
+                .find("ops[0] (ffd): moves[0]: 'index'"),
+            std::string::npos);
+  EXPECT_NE(errorOf(R"({"ops": [{"op": "drag", "vertex": 0, "radius": 1}]})").find("exactly one of 'delta'"),
+            std::string::npos);
+  EXPECT_NE(errorOf("{ not json").find("E.json: invalid JSON"), std::string::npos);
+  EXPECT_NE(errorOf(R"({"version": 7, "ops": []})").find("'version'"), std::string::npos);
+}
+
+TEST(EditScript, VertexOutOfRangeNamesOpAndField) {
+  const EditScript s = parseEditScript(
+      R"({"ops": [{"op": "scale", "vertex": 1, "radius": 1, "factor": 2},
+                  {"op": "drag", "vertex": 99, "radius": 1, "delta": [0, 1]}]})",
+      "E.json");
+  try {
+    validateEdits(s.ops, 25, "E.json");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), "E.json: ops[1] (drag): 'vertex' = 99 is out of range (the mesh has 25 vertices)");
+  }
+}
+
+TEST(EditScript, ApplyReportsMovedVertices) {
+  TriMesh m = test::grid(5, 0.25);
+  const EditScript s = parseEditScript(
+      R"({"ops": [{"op": "drag", "vertex": 12, "radius": 0.3, "delta": [0.1, 0.0]},
+                  {"op": "affine", "matrix": [[1,0,0],[0,1,0],[0,0,1]]}]})",
+      "E.json");
+  const auto reports = applyEdits(frontCamera(), m.triangles, m.positions, s.ops);
+  ASSERT_EQ(reports.size(), 2u);
+  EXPECT_EQ(reports[0].moved, 5u);  // the centre and its 4 axis neighbours at 0.25 < 0.3
+  EXPECT_NEAR(reports[0].max_displacement, 0.1, 1e-6);
+  EXPECT_EQ(reports[1].moved, 0u);
+}
+
+TEST(EditScript, PixelDeltaNeedsImageSize) {
+  TriMesh m = test::grid(5, 0.25);
+  const EditScript s =
+      parseEditScript(R"({"ops": [{"op": "drag", "vertex": 12, "radius": 0.3, "delta_px": [10, 0]}]})", "E.json");
+  EXPECT_THROW(applyEdits(frontCamera(), m.triangles, m.positions, s.ops), Error);
+  const auto reports = applyEdits(frontCamera(), m.triangles, m.positions, s.ops, std::array<int, 2>{100, 100});
+  EXPECT_EQ(reports[0].moved, 5u);
+}
+
+TEST(CameraJson, RoundTripAndErrors) {
+  Camera c = frontCamera();
+  c.eye = {0.1, 0.2, 4.3};
+  const Camera back = parseCameraJson(cameraToJson(c), "c.json");
+  EXPECT_EQ(back.eye, c.eye);
+  EXPECT_EQ(back.fov_deg, c.fov_deg);
+  c.ortho_height = 2.5;
+  EXPECT_EQ(parseCameraJson(cameraToJson(c), "c.json").ortho_height, 2.5);
+  EXPECT_THROW(parseCameraJson(R"({"eye":[0,0,1],"target":[0,0,1],"fov_deg":40})", "c.json"), Error);
+  EXPECT_THROW(parseCameraJson(R"({"eye":[0,0,1],"target":[0,0,0],"fov_deg":200})", "c.json"), Error);
+  EXPECT_THROW(parseCameraJson(R"({"eye":[0,0,1],"target":[0,0,0]})", "c.json"), Error);
+}
+
+TEST(EditLog, RoundTripAndReplayIsDeterministic) {
+  const auto dir = std::filesystem::temp_directory_path() / "vdg_deform_editlog_test";
+  std::filesystem::create_directories(dir);
+  const TriMesh base = test::grid(7, 0.2);
+  EditLog log;
+  log.key = "k";
+  const EditScript s1 =
+      parseEditScript(R"({"ops": [{"op": "drag", "vertex": 24, "radius": 0.5, "delta": [0.1, 0.05]}]})", "a");
+  const EditScript s2 = parseEditScript(
+      R"({"ops": [{"op": "displace", "vertex": 10, "radius": 0.6, "offset": [0, 0, 0.2], "distance": "geodesic"}]})",
+      "b");
+  log.entries.push_back({frontCamera(), std::nullopt, s1.ops});
+  log.entries.push_back({frontCamera(), std::array<int, 2>{64, 48}, s2.ops});
+  TriMesh direct = base;
+  for (const auto& e : log.entries) applyEdits(e.camera, direct.triangles, direct.positions, e.ops, e.image_size);
+  const std::string path = editLogPath((dir / "k.obj").string());
+  EXPECT_EQ(std::filesystem::path(path).filename(), "k.edits.json");
+  writeEditLog(path, log);
+  const EditLog read = readEditLog(path);
+  ASSERT_EQ(read.entries.size(), 2u);
+  EXPECT_EQ(read.key, "k");
+  TriMesh replayed = base;
+  for (const auto& e : read.entries) applyEdits(e.camera, replayed.triangles, replayed.positions, e.ops, e.image_size);
+  EXPECT_EQ(replayed.positions, direct.positions);
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace vdg
