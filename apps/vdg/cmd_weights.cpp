@@ -1,4 +1,6 @@
 // vdg weights MODEL (--view X,Y,Z | --eye X,Y,Z) [--sharpness A] [--json]
+#include <cstdio>
+#include <cstdlib>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -7,6 +9,14 @@
 #include "view_options.h"
 
 namespace vdg::cli {
+namespace {
+// Weights are floats; print the digits a float holds, not the noise of its double widening.
+double floatDigits(float w) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof(buffer), "%.7g", static_cast<double>(w));
+  return std::strtod(buffer, nullptr);
+}
+}  // namespace
 
 void addWeightsCommand(CLI::App& app) {
   struct Options {
@@ -28,8 +38,8 @@ void addWeightsCommand(CLI::App& app) {
       out["keys"] = nlohmann::ordered_json::object();
       for (int k = 0; k < 3; ++k)
         if (w.key[k] >= 0 && w.weight[k] > 0.0f)
-          out["keys"][model.keyName(static_cast<std::size_t>(w.key[k]))] = w.weight[k];
-      out["base"] = w.base;
+          out["keys"][model.keyName(static_cast<std::size_t>(w.key[k]))] = floatDigits(w.weight[k]);
+      out["base"] = floatDigits(w.base);
       std::cout << out.dump() << "\n";
       return;
     }

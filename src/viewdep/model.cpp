@@ -37,7 +37,6 @@ void RawViewDependentModel::resolveViews() {
 
 void RawViewDependentModel::validate() const {
   validateMesh(base, where(*this) + ": base mesh" + (base_path.empty() ? std::string() : " '" + base_path + "'"));
-  if (keys.empty()) throw Error(where(*this) + ": the model has no keys (add at least one key deformation)");
   if (!(sharpness > 0.0) || !std::isfinite(sharpness))
     throw Error(where(*this) + ": 'sharpness' must be a positive number, got " + std::to_string(sharpness));
   if (!(sphere.base_falloff_deg > 0.0 && sphere.base_falloff_deg <= 70.0))
@@ -84,6 +83,7 @@ void RawViewDependentModel::validate() const {
 
 ViewDependentModel ViewDependentModel::build(const RawViewDependentModel& raw) {
   raw.validate();
+  if (raw.keys.empty()) throw Error(where(raw) + ": the model has no keys (add at least one key deformation)");
   ViewDependentModel model;
   model.base_ = raw.base;
   model.center_ = raw.resolvedCenter();

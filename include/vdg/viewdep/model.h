@@ -51,7 +51,7 @@ struct RawViewDependentModel {
   Eigen::Vector3d resolvedCenter() const;
   // Sets view = normalize(camera.eye - centre) for every key given by a camera.
   void resolveViews();
-  // Throws vdg::Error naming the manifest, key and vertex for: no keys, a key whose vertex count
+  // Throws vdg::Error naming the manifest, key and vertex for: a key whose vertex count
   // or triangles differ from the base, non-finite coordinates, a zero or non-finite view, two keys
   // with the same view (within 1e-6 rad), duplicate names, sharpness <= 0, a bad falloff angle.
   void validate() const;
@@ -66,7 +66,8 @@ void saveManifest(const std::string& path, const RawViewDependentModel& model);
 
 class ViewDependentModel {
  public:
-  // Validates `raw` and builds the viewing sphere and the (sparse) key deltas.
+  // Validates `raw` and builds the viewing sphere and the (sparse) key deltas. A model without keys
+  // can be loaded and saved (an editor starts from one) but not built: that throws vdg::Error.
   static ViewDependentModel build(const RawViewDependentModel& raw);
 
   const TriMesh& base() const { return base_; }
