@@ -46,5 +46,9 @@ class Progress {
 void addInfoCommand(CLI::App& app);
 void addWeightsCommand(CLI::App& app);
 void addEvalCommand(CLI::App& app);
+void addSampleCommand(CLI::App& app);
+void addAlignCommand(CLI::App& app);
+void addDeformCommand(CLI::App& app);
+void addRenderCommand(CLI::App& app);
 
 }  // namespace vdg::cli

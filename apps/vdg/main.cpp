@@ -7,14 +7,19 @@
 #include "vdg/geom/error.h"
 
 int main(int argc, char** argv) {
-  CLI::App app{"vdg — view-dependent geometry: models whose shape follows the view direction.\n"
-               "Run 'vdg SUBCOMMAND --help' for the options of each subcommand."};
+  CLI::App app{
+      "vdg — view-dependent geometry: models whose shape follows the view direction.\n"
+      "Run 'vdg SUBCOMMAND --help' for the options of each subcommand."};
   app.name("vdg");
   app.require_subcommand(1);
   app.set_version_flag("--version", "vdg 0.1.0");
   vdg::cli::addInfoCommand(app);
   vdg::cli::addWeightsCommand(app);
   vdg::cli::addEvalCommand(app);
+  vdg::cli::addSampleCommand(app);
+  vdg::cli::addAlignCommand(app);
+  vdg::cli::addDeformCommand(app);
+  vdg::cli::addRenderCommand(app);
 
   try {
     app.parse(argc, argv);

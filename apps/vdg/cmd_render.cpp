@@ -1,0 +1,203 @@
+// vdg render MODEL -o DIR|OUT.mp4|OUT.gif [--orbit N] [--frames A-B] [--observer] [--sphere] ...
+//
+// Renders a view-dependent model (or a plain mesh) headless with the NPR renderer, one PNG per
+// frame (DIR/frame_0000.png ...), the camera going once around the model in N frames. A frame's
+// image depends only on its number and the options, so --frames ranges can be split across
+// machines and give byte-identical frames.
+#include <unistd.h>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <memory>
+#include <sstream>
+
+#include "cli.h"
+#include "vdg/geom/error.h"
+#include "vdg/geom/obj_io.h"
+#include "vdg/render/model_renderer.h"
+
+namespace vdg::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct RenderOptions {
+  std::string model, output, size = "512x512", frames, color, background;
+  int orbit = 1, samples = 8;
+  double azimuth = 0.0, elevation = 15.0, distance = 0.0, fov = 30.0, sharpness = 0.0, line_width = 0.0;
+  bool observer = false, sphere = false, flat = false, quiet = false;
+};
+
+void parseSize(const std::string& text, int& width, int& height) {
+  const auto x = text.find('x');
+  long w = -1, h = -1;
+  try {
+    std::size_t used_w = 0, used_h = 0;
+    if (x != std::string::npos) {
+      w = std::stol(text.substr(0, x), &used_w);
+      h = std::stol(text.substr(x + 1), &used_h);
+    }
+    if (x == std::string::npos || used_w != x || used_h != text.size() - x - 1) w = h = -1;
+  } catch (const std::exception&) {
+    w = h = -1;
+  }
+  if (w < 0 || h < 0) throw UsageError("--size: expected WIDTHxHEIGHT in pixels, e.g. 512x512, got '" + text + "'");
+  if (w < 1 || h < 1 || w > render::kMaxImageSize || h > render::kMaxImageSize)
+    throw Error("--size " + text + ": each side must be between 1 and " + std::to_string(render::kMaxImageSize) +
+                " pixels");
+  width = static_cast<int>(w);
+  height = static_cast<int>(h);
+}
+
+render::Rgb parseColor(const std::string& text, const std::string& option) {
+  const Eigen::Vector3d v = parseVec3(text, option);
+  if (v.minCoeff() < 0.0 || v.maxCoeff() > 1.0)
+    throw UsageError(option + ": each channel must be in [0, 1], got '" + text + "'");
+  return {static_cast<float>(v.x()), static_cast<float>(v.y()), static_cast<float>(v.z())};
+}
+
+bool findOnPath(const std::string& program) {
+  const char* path = std::getenv("PATH");
+  if (!path) return false;
+  std::stringstream dirs(path);
+  for (std::string dir; std::getline(dirs, dir, ':');) {
+    std::error_code ec;
+    const fs::path candidate = fs::path(dir.empty() ? "." : dir) / program;
+    if (fs::is_regular_file(candidate, ec) && ::access(candidate.c_str(), X_OK) == 0) return true;
+  }
+  return false;
+}
+
+std::string shellQuote(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+void run(const RenderOptions& opt) {
+  if (opt.orbit < 1) throw UsageError("--orbit: the number of frames must be at least 1");
+  if (!(opt.fov > 0.0 && opt.fov < 180.0)) throw UsageError("--fov: expected degrees in (0, 180)");
+  if (!(std::abs(opt.elevation) < 90.0)) throw UsageError("--elevation: expected degrees in (-90, 90)");
+  if (opt.distance < 0.0) throw UsageError("--distance: must be positive");
+  render::FrameOptions fo;
+  parseSize(opt.size, fo.width, fo.height);
+  fo.samples = opt.samples;
+  fo.observer = opt.observer;
+  fo.sphere = opt.sphere;
+  fo.sharpness = opt.sharpness;
+  fo.flat = opt.flat;
+  fo.silhouette_width = static_cast<float>(opt.line_width);
+  if (!opt.color.empty()) fo.color = parseColor(opt.color, "--color");
+  if (!opt.background.empty()) fo.background = parseColor(opt.background, "--background");
+
+  FrameRange range{0, opt.orbit - 1};
+  if (!opt.frames.empty()) {
+    range = parseFrameRange(opt.frames, "--frames");
+    if (range.last >= opt.orbit)
+      throw UsageError("--frames " + opt.frames + ": the orbit has frames 0-" + std::to_string(opt.orbit - 1));
+  }
+
+  const bool video = opt.output.ends_with(".mp4") || opt.output.ends_with(".gif");
+  if (video && !findOnPath("ffmpeg"))
+    throw Error("-o " + opt.output +
+                ": writing a video needs the 'ffmpeg' program, which is not on PATH; "
+                "install it, or write PNG frames with -o DIR");
+
+  // The model: a manifest, or a plain mesh.
+  std::unique_ptr<ViewDependentModel> model;
+  std::unique_ptr<render::ModelRenderer> renderer;
+  const bool plain = opt.model.ends_with(".obj") || opt.model.ends_with(".gltf") || opt.model.ends_with(".glb");
+  if (!fs::exists(opt.model)) throw Error(opt.model + ": no such file");
+  TriMesh mesh;
+  if (plain) {
+    mesh = readMesh(opt.model);
+    fo.sphere = false;
+  } else {
+    model = std::make_unique<ViewDependentModel>(ViewDependentModel::build(loadManifest(opt.model)));
+  }
+  const TriMesh& base = model ? model->base() : mesh;
+  const Bounds bounds = computeBounds(base.positions);
+  const auto bc = bounds.center();
+  const Eigen::Vector3d center = model ? model->center() : Eigen::Vector3d(bc[0], bc[1], bc[2]);
+  double radius = 0.0;  // bounding sphere about the centre
+  for (std::size_t v = 0; v < base.vertexCount(); ++v)
+    radius = std::max(
+        radius,
+        (Eigen::Vector3d(base.positions[v * 3], base.positions[v * 3 + 1], base.positions[v * 3 + 2]) - center).norm());
+  radius = std::max(radius, 1e-6);
+  const double aspect = static_cast<double>(fo.width) / fo.height;
+  const double distance = opt.distance > 0.0 ? opt.distance : render::fitDistance(radius, opt.fov, aspect);
+  fo.observer_camera =
+      render::orbitCamera(center, render::fitDistance(radius, opt.fov, aspect), opt.azimuth + 35.0, 25.0, opt.fov);
+  renderer =
+      model ? std::make_unique<render::ModelRenderer>(*model, fo) : std::make_unique<render::ModelRenderer>(mesh, fo);
+
+  // Frames go to DIR, or for a video to a scratch folder beside it.
+  const fs::path out_dir = video ? fs::path(opt.output + ".frames") : fs::path(opt.output);
+  std::error_code ec;
+  fs::create_directories(out_dir, ec);
+  if (ec || !fs::is_directory(out_dir)) throw Error("-o " + out_dir.string() + ": cannot create the folder");
+
+  Progress progress("render", range.last - range.first + 1, opt.quiet);
+  render::Image image;
+  char name[32];
+  for (int f = range.first; f <= range.last; ++f) {
+    const double azimuth = opt.azimuth + 360.0 * f / opt.orbit;
+    renderer->render(render::orbitCamera(center, distance, azimuth, opt.elevation, opt.fov), image);
+    std::snprintf(name, sizeof name, "frame_%04d.png", f);
+    render::writePng((out_dir / name).string(), image);
+    progress.step(f - range.first + 1);
+  }
+
+  if (video) {
+    const std::string temp = opt.output + ".partial" + fs::path(opt.output).extension().string();
+    const std::string filter = opt.output.ends_with(".gif")
+                                   ? "-vf 'split[a][b];[a]palettegen[p];[b][p]paletteuse'"
+                                   : "-c:v libx264 -pix_fmt yuv420p -vf 'pad=ceil(iw/2)*2:ceil(ih/2)*2'";
+    const std::string cmd = "ffmpeg -loglevel error -y -framerate 24 -start_number " + std::to_string(range.first) +
+                            " -i " + shellQuote((out_dir / "frame_%04d.png").string()) + " " + filter + " " +
+                            shellQuote(temp);
+    if (std::system(cmd.c_str()) != 0) {
+      fs::remove(temp, ec);
+      throw Error("-o " + opt.output + ": ffmpeg failed to encode the frames (they are in " + out_dir.string() + ")");
+    }
+    fs::rename(temp, opt.output, ec);
+    if (ec) throw Error("-o " + opt.output + ": cannot write (" + ec.message() + ")");
+    fs::remove_all(out_dir, ec);
+  }
+  if (!opt.quiet)
+    std::printf("wrote %d frame%s (%dx%d) to %s\n", range.last - range.first + 1, range.last > range.first ? "s" : "",
+                renderer->imageWidth(), renderer->imageHeight(), opt.output.c_str());
+}
+
+}  // namespace
+
+void addRenderCommand(CLI::App& app) {
+  auto opt = std::make_shared<RenderOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "render",
+      "Render a view-dependent model (or a plain mesh) headless: NPR shading and silhouettes, one PNG a frame");
+  sub->add_option("MODEL", opt->model, "Model manifest (*.vdg.json), or a plain mesh (.obj)")->required();
+  sub->add_option("-o,--output", opt->output, "Output folder for frame_NNNN.png, or OUT.mp4 / OUT.gif (needs ffmpeg)")
+      ->required();
+  sub->add_option("--orbit", opt->orbit, "Frames for one turn of the camera around the model (default 1)");
+  sub->add_option("--azimuth", opt->azimuth, "Camera azimuth of frame 0 in degrees, from +Z towards +X (default 0)");
+  sub->add_option("--elevation", opt->elevation, "Camera elevation in degrees (default 15)");
+  sub->add_option("--distance", opt->distance, "Camera distance from the model centre (default: fit the model)");
+  sub->add_option("--fov", opt->fov, "Vertical field of view in degrees (default 30)");
+  sub->add_option("--size", opt->size, "Image size WxH of the main view (default 512x512)");
+  sub->add_option("--frames", opt->frames, "Render only frames A-B (or N) of the orbit");
+  sub->add_flag("--observer", opt->observer, "Add the model seen from a fixed observer camera, to the right");
+  sub->add_flag("--sphere", opt->sphere, "Add an inset of the viewing sphere (keys, hull, active triangle, view)");
+  sub->add_option("--sharpness", opt->sharpness, "Blend sharpness alpha (default: the model's own)");
+  sub->add_option("--color", opt->color, "Base colour R,G,B in [0,1] (default 1,1,1)");
+  sub->add_option("--background", opt->background, "Background colour R,G,B in [0,1] (default 0.97,0.97,0.95)");
+  sub->add_flag("--flat", opt->flat, "Flat (per-face) shading, for hard-edged models");
+  sub->add_option("--line-width", opt->line_width, "Silhouette stroke width in pixels (default: max(3, height/100))");
+  sub->add_option("--samples", opt->samples, "Multisample anti-aliasing samples (default 8, capped by the driver)");
+  sub->add_flag("-q,--quiet", opt->quiet, "No progress bar and no summary line");
+  sub->callback([opt] { run(*opt); });
+}
+
+}  // namespace vdg::cli

@@ -1,0 +1,110 @@
+// Renderer — headless OpenGL NPR renderer (Rademacher 99, section 3.2.4): warm/cool shaded meshes
+// with dark silhouettes, rendered offscreen with multisample anti-aliasing and read back as RGBA8.
+//
+// Context: EGL without any window system. Platforms are tried in this order: Mesa's surfaceless
+// platform (EGL_MESA_platform_surfaceless; llvmpipe on a machine without a GPU), the EGL device
+// platform (EGL_EXT_platform_device; NVIDIA and Mesa GPU drivers), the default display. An OpenGL
+// 4.5 core context is requested, then 3.3 core. GL functions are loaded through libepoxy.
+// Setting the environment variable VDG_RENDER_NO_GL=1 makes context creation fail as if no EGL
+// display existed (to test the error path).
+//
+// Created once (owns the context, programs, framebuffers and buffers); per-frame calls reuse
+// buffers and allocate nothing once the largest mesh has been seen. Output is deterministic: the
+// same calls give byte-identical images, whatever was drawn before. Not thread-safe; one thread.
+//
+// Silhouettes: the paper draws the faces that span a silhouette edge a second time as thick back-
+// face wireframe, depth-tested against the front faces, and a third time as points to fill the
+// cracks between thick edges. Core profiles have no wide lines and no polygon point mode, so the
+// same picture is drawn from the silhouette edges themselves (found per frame on the CPU, see
+// silhouette.h): each edge becomes a screen-space quad of the requested width (geometry shader)
+// and each edge end a round dot of the same diameter (point sprite), which fills the cracks. Both
+// are depth-tested (LEQUAL) against the shaded front faces, after pulling the edge towards the eye
+// by `silhouette_pull` line widths so the inner half of the line is not buried in the surface.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+
+#include "vdg/geom/camera.h"
+#include "vdg/render/image.h"
+#include "vdg/render/shading.h"
+
+namespace vdg::render {
+
+// Largest canvas side accepted, in pixels.
+inline constexpr int kMaxImageSize = 16384;
+
+struct RendererSettings {
+  int width = 512, height = 512;  // canvas size in pixels, each in [1, kMaxImageSize]
+  int samples = 8;                // MSAA samples; clamped to the driver's maximum; 1 = none
+};
+
+// A rectangle of the canvas in pixels, (x, y) = top-left corner, y down (image convention).
+struct Viewport {
+  int x = 0, y = 0, width = 0, height = 0;
+};
+
+// Where a draw call lands and how it projects: a camera, a viewport and the clip planes
+// (distances along the view axis, 0 < z_near < z_far).
+struct View {
+  Viewport viewport;
+  Camera camera;
+  double z_near = 0.1, z_far = 100.0;
+};
+
+struct MeshStyle {
+  Rgb color{1.0f, 1.0f, 1.0f};  // Cbase
+  ShadingParams shading;
+  bool flat = false;              // per-face normals instead of the mesh's vertex normals
+  float silhouette_width = 3.0f;  // pixels; <= 0 draws no silhouettes
+  Rgb silhouette_color{0.06f, 0.06f, 0.08f};
+  float silhouette_pull = 1.0f;  // depth offset towards the eye, in line widths
+};
+
+class Renderer {
+ public:
+  // Creates the EGL context and the framebuffers. Throws vdg::Error: "EGL: ..." when no display
+  // or context can be had, "OpenGL: ..." when a shader or framebuffer fails, "render: ..." for a
+  // size outside [1, kMaxImageSize].
+  explicit Renderer(const RendererSettings& settings);
+  ~Renderer();
+  Renderer(Renderer&&) noexcept;
+  Renderer& operator=(Renderer&&) noexcept;
+
+  int width() const;
+  int height() const;
+  int samples() const;         // the MSAA sample count in use
+  std::string glInfo() const;  // "GL_RENDERER / GL_VERSION / EGL platform"
+
+  // Registers a mesh of `vertex_count` vertices and #F x 3 triangles (indices < vertex_count; the
+  // caller guarantees this, e.g. by validateMesh). Builds its edge topology. Returns its handle.
+  int addMesh(std::span<const std::int32_t> triangles, std::size_t vertex_count);
+  // Uploads this frame's positions (#V x 3) and normals (#V x 3, or empty: flat shading only).
+  void updateMesh(int mesh, std::span<const float> positions, std::span<const float> normals);
+
+  // Fills the whole canvas (viewport == nullptr) or one viewport with `color`, and clears depth.
+  void clear(const Rgb& color, const Viewport* viewport = nullptr);
+  // Shaded mesh (back faces culled) and its silhouettes as seen from view.camera.
+  void drawMesh(int mesh, const View& view, const MeshStyle& style);
+  // Overlays, for diagrams such as the viewing sphere:
+  //  triangles #3N x 3 positions, shaded flat with `style` (no silhouettes, both sides drawn);
+  //  line segments #2N x 3 positions (pairs), `width` pixels, round joints;
+  //  dots #N x 3 positions, `diameter` pixels.
+  // With depth_test, lines and dots are pulled towards the eye by `pull` pixels' worth of depth.
+  void drawTriangles(std::span<const float> positions, const View& view, const MeshStyle& style);
+  void drawLines(std::span<const float> segments, const View& view, float width, const Rgb& color, bool depth_test,
+                 float pull = 1.0f);
+  void drawDots(std::span<const float> points, const View& view, float diameter, const Rgb& color, bool depth_test,
+                float pull = 1.0f);
+
+  // Resolves the multisampled canvas into `out` (resized on first use; alpha = 255).
+  void readPixels(Image& out);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace vdg::render

@@ -1,0 +1,294 @@
+// One frame of a view-dependent model: Rademacher 99, section 3.2 (locate, weigh, blend, render),
+// with the observer panel of Figure 6 (bottom row) and the viewing-sphere diagram of Figure 4.
+#include "vdg/render/model_renderer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <set>
+#include <utility>
+
+#include "vdg/geom/error.h"
+
+namespace vdg::render {
+namespace {
+
+constexpr double kDegToRad = std::numbers::pi / 180.0;
+constexpr double kFovDeg = 30.0;
+constexpr Rgb kKeyColor{0.15f, 0.15f, 0.18f};
+constexpr Rgb kActiveKeyColor{0.85f, 0.1f, 0.1f};
+constexpr Rgb kDummyColor{0.6f, 0.6f, 0.6f};
+constexpr Rgb kViewColor{0.1f, 0.3f, 0.9f};
+constexpr Rgb kWireColor{0.35f, 0.35f, 0.38f};
+constexpr Rgb kGuideColor{0.8f, 0.8f, 0.8f};
+constexpr Rgb kPanelColor{1.0f, 1.0f, 1.0f};
+constexpr Rgb kBorderColor{0.7f, 0.7f, 0.7f};
+constexpr Rgb kHullColor{0.92f, 0.92f, 0.92f};
+constexpr Rgb kActiveColor{0.35f, 0.8f, 0.35f};
+constexpr Rgb kCameraMarkColor{0.9f, 0.45f, 0.1f};
+
+void push(std::vector<float>& v, const Eigen::Vector3d& p) {
+  v.push_back(static_cast<float>(p.x()));
+  v.push_back(static_cast<float>(p.y()));
+  v.push_back(static_cast<float>(p.z()));
+}
+
+void checkSize(int w, int h, const char* what) {
+  if (w < 1 || h < 1 || w > kMaxImageSize || h > kMaxImageSize)
+    throw Error(std::string("render: ") + what + " " + std::to_string(w) + "x" + std::to_string(h) +
+                " is outside 1x1 .. " + std::to_string(kMaxImageSize) + "x" + std::to_string(kMaxImageSize));
+}
+
+}  // namespace
+
+Camera orbitCamera(const Eigen::Vector3d& center, double distance, double azimuth_deg, double elevation_deg,
+                   double fov_deg) {
+  const double az = azimuth_deg * kDegToRad, el = elevation_deg * kDegToRad;
+  Camera c;
+  c.target = center;
+  c.eye = center + distance * Eigen::Vector3d(std::sin(az) * std::cos(el), std::sin(el), std::cos(az) * std::cos(el));
+  c.up = Eigen::Vector3d::UnitY();
+  c.fov_deg = fov_deg;
+  return c;
+}
+
+double fitDistance(double radius, double fov_deg, double aspect) {
+  const double half_v = 0.5 * fov_deg * kDegToRad;
+  const double half = std::min(half_v, std::atan(std::tan(half_v) * std::min(1.0, aspect)));
+  return 1.1 * radius / std::sin(half);
+}
+
+struct ModelRenderer::Impl {
+  const ViewDependentModel* model = nullptr;
+  TriMesh plain;  // the plain mesh (no model)
+  FrameOptions options;
+  Renderer renderer;
+  int mesh_id = -1;
+  std::vector<float> positions, normals;
+  Eigen::Vector3d center = Eigen::Vector3d::Zero();
+  double radius = 1.0;
+  Camera observer;
+  // Viewing-sphere diagram: static parts built once, per-frame parts in reused buffers.
+  std::vector<float> wire, guide, key_dots, dummy_dots, hull_rest, active_tri, active_dots, view_ray, view_dot;
+
+  Impl(const FrameOptions& o, int image_width)
+      : options(o), renderer(RendererSettings{image_width, o.height, o.samples}) {}
+
+  const TriMesh& base() const { return model ? model->base() : plain; }
+
+  void setup() {
+    const TriMesh& mesh = base();
+    positions = mesh.positions;
+    normals.assign(positions.size(), 0.0f);
+    mesh_id = renderer.addMesh(mesh.triangles, mesh.vertexCount());
+    const Bounds b = computeBounds(mesh.positions);
+    const auto c = b.center();
+    center = model ? model->center() : Eigen::Vector3d(c[0], c[1], c[2]);
+    radius = std::max(1e-6, 0.5 * static_cast<double>(b.diagonal()));
+    if (options.silhouette_width <= 0.0f)
+      options.silhouette_width = std::max(3.0f, static_cast<float>(options.height) / 100.0f);
+    const double aspect = static_cast<double>(options.width) / options.height;
+    observer = options.observer_camera ? *options.observer_camera
+                                       : orbitCamera(center, fitDistance(radius, kFovDeg, aspect), 35.0, 25.0, kFovDeg);
+    if (!model) {
+      computeVertexNormals(positions, mesh.triangles, normals);
+      renderer.updateMesh(mesh_id, positions, normals);
+      return;
+    }
+    buildSphereDiagram();
+  }
+
+  void buildSphereDiagram() {
+    const ViewSphere& s = model->sphere();
+    const auto pts = s.points();
+    std::set<std::pair<int, int>> edges;
+    for (const auto& t : s.triangles())
+      for (int i = 0; i < 3; ++i) edges.insert(std::minmax(t[i], t[(i + 1) % 3]));
+    for (const auto& [a, b] : edges) {
+      push(wire, pts[a]);
+      push(wire, pts[b]);
+    }
+    // Boundary arcs of the covered region (cosine modes), as great-circle polylines.
+    for (const auto& arc : s.boundaryArcs()) {
+      const Eigen::Vector3d a = pts[arc[0]], b = pts[arc[1]];
+      constexpr int kSteps = 16;
+      for (int i = 0; i < kSteps; ++i) {
+        const auto lerp = [&](double t) { return ((1 - t) * a + t * b).normalized(); };
+        push(wire, lerp(double(i) / kSteps));
+        push(wire, lerp(double(i + 1) / kSteps));
+      }
+    }
+    // Guide circles: the equator and the meridian through the front, for orientation.
+    constexpr int kCircle = 48;
+    for (int i = 0; i < kCircle; ++i) {
+      const double a0 = 2 * std::numbers::pi * i / kCircle, a1 = 2 * std::numbers::pi * (i + 1) / kCircle;
+      push(guide, {std::sin(a0), 0, std::cos(a0)});
+      push(guide, {std::sin(a1), 0, std::cos(a1)});
+      push(guide, {0, std::sin(a0), std::cos(a0)});
+      push(guide, {0, std::sin(a1), std::cos(a1)});
+    }
+    for (std::size_t i = 0; i < pts.size(); ++i) push(s.isDummy(static_cast<int>(i)) ? dummy_dots : key_dots, pts[i]);
+    hull_rest.reserve(s.triangles().size() * 9);
+    active_tri.reserve(9);
+    active_dots.reserve(9);
+    view_ray.reserve(6);
+    view_dot.reserve(3);
+  }
+
+  void drawSphereInset(const Eigen::Vector3d& view, const ViewWeights& w) {
+    const ViewSphere& s = model->sphere();
+    const auto pts = s.points();
+    const int side = std::max(48, static_cast<int>(0.28 * std::min(options.width, options.height)));
+    const int margin = std::max(2, side / 20);
+    const Viewport border{options.width - side - margin - 1, options.height - side - margin - 1, side + 2, side + 2};
+    const Viewport inner{border.x + 1, border.y + 1, side, side};
+    renderer.clear(kBorderColor, &border);
+    renderer.clear(kPanelColor, &inner);
+
+    // Seen from 30 degrees to the side of and 20 degrees above the current view, so the active
+    // triangle faces the viewer while the sphere's turning stays readable.
+    const double az = std::atan2(view.x(), view.z()) / kDegToRad + 30.0;
+    const double el = std::clamp(std::asin(std::clamp(view.y(), -1.0, 1.0)) / kDegToRad + 20.0, -70.0, 70.0);
+    View v;
+    v.viewport = inner;
+    const double dist = fitDistance(1.15, kFovDeg, 1.0);
+    v.camera = orbitCamera(Eigen::Vector3d::Zero(), dist, az, el, kFovDeg);
+    v.z_near = dist - 2.0;
+    v.z_far = dist + 2.0;
+    const float unit = std::max(1.0f, side / 120.0f);
+
+    renderer.drawLines(guide, v, unit, kGuideColor, false);
+    hull_rest.clear();
+    active_tri.clear();
+    active_dots.clear();
+    const auto tris = s.triangles();
+    for (std::size_t t = 0; t < tris.size(); ++t)
+      for (int i = 0; i < 3; ++i) push(static_cast<int>(t) == w.triangle ? active_tri : hull_rest, pts[tris[t][i]]);
+    MeshStyle hull_style;
+    hull_style.color = kHullColor;
+    hull_style.shading = options.shading;
+    hull_style.shading.ka = 1.0f;  // a diagram: mostly its own colours, lightly shaded
+    hull_style.shading.vary_by_hue = false;
+    hull_style.shading.k = {1.0f, 0.15f, 1.0f, 0.3f};
+    renderer.drawTriangles(hull_rest, v, hull_style);
+    MeshStyle active_style = hull_style;
+    active_style.color = kActiveColor;
+    active_style.shading.vary_by_hue = false;
+    renderer.drawTriangles(active_tri, v, active_style);
+    renderer.drawLines(wire, v, unit * 1.2f, kWireColor, true, 2.0f);
+    renderer.drawDots(key_dots, v, unit * 6.0f, kKeyColor, true, 4.0f);
+    renderer.drawDots(dummy_dots, v, unit * 5.0f, kDummyColor, true, 4.0f);
+    renderer.drawDots(dummy_dots, v, unit * 2.5f, kPanelColor, true, 5.0f);
+    for (int i = 0; i < 3; ++i)
+      if (w.key[i] >= 0 && w.weight[i] > 0.0f) push(active_dots, pts[w.key[i]]);
+    if (w.triangle >= 0) {  // the triangle's three corners, dummies included (Figure 4's red keys)
+      active_dots.clear();
+      for (int i = 0; i < 3; ++i) push(active_dots, pts[tris[w.triangle][i]]);
+    }
+    renderer.drawDots(active_dots, v, unit * 8.0f, kActiveKeyColor, true, 6.0f);
+    view_ray.clear();
+    view_dot.clear();
+    push(view_ray, Eigen::Vector3d::Zero());
+    push(view_ray, view * 1.25);
+    push(view_dot, view);
+    renderer.drawLines(view_ray, v, unit * 1.5f, kViewColor, true, 2.0f);
+    renderer.drawDots(view_dot, v, unit * 7.0f, kViewColor, true, 8.0f);
+  }
+};
+
+ModelRenderer::ModelRenderer(const ViewDependentModel& model, const FrameOptions& options) {
+  checkSize(options.width, options.height, "image size");
+  const int image_width = options.observer ? options.width * 2 : options.width;
+  checkSize(image_width, options.height, "image size with the observer panel");
+  impl_ = std::make_unique<Impl>(options, image_width);
+  impl_->model = &model;
+  impl_->setup();
+}
+
+ModelRenderer::ModelRenderer(const TriMesh& mesh, const FrameOptions& options) {
+  checkSize(options.width, options.height, "image size");
+  const int image_width = options.observer ? options.width * 2 : options.width;
+  checkSize(image_width, options.height, "image size with the observer panel");
+  validateMesh(mesh, "render mesh");
+  impl_ = std::make_unique<Impl>(options, image_width);
+  impl_->plain = mesh;
+  impl_->options.sphere = false;
+  impl_->setup();
+}
+
+ModelRenderer::~ModelRenderer() = default;
+
+int ModelRenderer::imageWidth() const { return impl_->renderer.width(); }
+int ModelRenderer::imageHeight() const { return impl_->renderer.height(); }
+Renderer& ModelRenderer::renderer() { return impl_->renderer; }
+const TriMesh& ModelRenderer::baseMesh() const { return impl_->base(); }
+
+ViewWeights ModelRenderer::render(const Camera& camera, Image& out) {
+  Impl& m = *impl_;
+  const FrameOptions& o = m.options;
+  ViewWeights w;
+  w.base = 1.0f;
+  Eigen::Vector3d view = Eigen::Vector3d::UnitZ();
+  if (m.model) {
+    // Section 3.2.1: the view direction is the ray from the eye through the model's centre
+    // (for a parallel camera, the reversed viewing axis).
+    view = camera.isOrtho() ? Eigen::Vector3d((camera.eye - camera.target).normalized())
+                            : m.model->viewFromEye(camera.eye);
+    w = m.model->weights(view, o.sharpness);
+    m.model->blend(w, m.positions);
+    computeVertexNormals(m.positions, m.model->base().triangles, m.normals);
+    m.renderer.updateMesh(m.mesh_id, m.positions, m.normals);
+  }
+
+  m.renderer.clear(o.background);
+  MeshStyle style;
+  style.color = o.color;
+  style.shading = o.shading;
+  style.flat = o.flat;
+  style.silhouette_width = o.silhouette_width;
+  // Clip planes around the model's bounding sphere (twice its radius: keys may move vertices out).
+  auto clip = [&](View& v) {
+    const double d = (v.camera.eye - m.center).norm();
+    v.z_near = std::max(0.01 * m.radius, d - 2.0 * m.radius);
+    v.z_far = d + 2.0 * m.radius;
+  };
+  View main;
+  main.viewport = {0, 0, o.width, o.height};
+  main.camera = camera;
+  clip(main);
+  m.renderer.drawMesh(m.mesh_id, main, style);
+
+  if (o.observer) {
+    View obs;
+    obs.viewport = {o.width, 0, o.width, o.height};
+    obs.camera = m.observer;
+    clip(obs);
+    m.renderer.drawMesh(m.mesh_id, obs, [&] {
+      MeshStyle s = style;
+      s.color = o.observer_color;
+      s.shading.vary_by_hue = false;
+      s.shading.k = effectiveConstants(o.shading, o.observer_color);
+      s.shading.k.k2 *= 0.25f;
+      return s;
+    }());
+    // Where the main camera is: a short orange ray from the centre towards its eye.
+    std::array<float, 6> ray;
+    const Eigen::Vector3d tip = m.center + view * (1.5 * m.radius);
+    const Eigen::Vector3d root = m.center + view * (1.05 * m.radius);
+    for (int i = 0; i < 3; ++i) {
+      ray[i] = static_cast<float>(root[i]);
+      ray[3 + i] = static_cast<float>(tip[i]);
+    }
+    m.renderer.drawLines(ray, obs, std::max(1.5f, o.silhouette_width), kCameraMarkColor, true);
+    m.renderer.drawDots(std::span<const float>(ray).subspan(3), obs, 3.0f * std::max(1.5f, o.silhouette_width),
+                        kCameraMarkColor, true);
+    // A thin separator between the two panels.
+    const Viewport sep{o.width, 0, std::max(1, o.width / 256), o.height};
+    m.renderer.clear(kBorderColor, &sep);
+  }
+  if (o.sphere && m.model) m.drawSphereInset(view, w);
+  m.renderer.readPixels(out);
+  return w;
+}
+
+}  // namespace vdg::render

@@ -1,0 +1,106 @@
+// `vdg render` end to end: frames written, --frames ranges byte-identical, and every bad input
+// gives one clear line and exit status 1 (bad usage: 2).
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#ifdef VDG_CLI
+
+namespace {
+
+namespace fs = std::filesystem;
+const std::string kSource = VDG_SOURCE_DIR;
+const std::string kSpot = kSource + "/examples/spot/spot.vdg.json";
+
+struct Result {
+  int status = -1;
+  std::string output;  // stdout + stderr
+};
+
+Result vdg(const std::string& args, const std::string& env = "") {
+  const std::string log = testing::TempDir() + "/vdg_cli_render.log";
+  const std::string cmd = env + " " + VDG_CLI + " " + args + " > " + log + " 2>&1";
+  const int raw = std::system(cmd.c_str());
+  Result r;
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  std::ifstream in(log);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  r.output = ss.str();
+  return r;
+}
+
+std::string readBytes(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+fs::path freshDir(const std::string& name) {
+  const fs::path dir = fs::path(testing::TempDir()) / name;
+  fs::remove_all(dir);
+  return dir;
+}
+
+TEST(CliRender, OrbitWritesFramesAndRangesAreByteIdentical) {
+  const fs::path all = freshDir("vdg_render_all"), part = freshDir("vdg_render_part");
+  const std::string common = " --orbit 6 --size 96x96 --observer --sphere --quiet";
+  Result r = vdg("render " + kSpot + " -o " + all.string() + common);
+  ASSERT_EQ(r.status, 0) << r.output;
+  r = vdg("render " + kSpot + " -o " + part.string() + common + " --frames 3-4");
+  ASSERT_EQ(r.status, 0) << r.output;
+  for (int f = 0; f < 6; ++f) {
+    char name[32];
+    std::snprintf(name, sizeof name, "frame_%04d.png", f);
+    EXPECT_TRUE(fs::exists(all / name)) << name;
+    EXPECT_EQ(fs::exists(part / name), f == 3 || f == 4) << name;
+  }
+  EXPECT_EQ(readBytes(all / "frame_0003.png"), readBytes(part / "frame_0003.png"));
+  EXPECT_EQ(readBytes(all / "frame_0004.png"), readBytes(part / "frame_0004.png"));
+  EXPECT_NE(readBytes(all / "frame_0000.png"), readBytes(all / "frame_0003.png"));
+}
+
+void expectOneLineError(const Result& r, int status, const std::string& needle) {
+  EXPECT_EQ(r.status, status) << r.output;
+  EXPECT_NE(r.output.find(needle), std::string::npos) << r.output;
+  EXPECT_LE(std::count(r.output.begin(), r.output.end(), '\n'), 2) << r.output;
+}
+
+TEST(CliRender, UnknownModelFile) {
+  expectOneLineError(vdg("render /nonexistent/model.vdg.json -o " + freshDir("x").string()), 1,
+                     "/nonexistent/model.vdg.json");
+}
+
+TEST(CliRender, SizeZeroOrHuge) {
+  expectOneLineError(vdg("render " + kSpot + " -o " + freshDir("x").string() + " --size 0x64"), 1, "--size");
+  expectOneLineError(vdg("render " + kSpot + " -o " + freshDir("x").string() + " --size 20000x64"), 1, "16384");
+  expectOneLineError(vdg("render " + kSpot + " -o " + freshDir("x").string() + " --size big"), 2, "--size");
+}
+
+TEST(CliRender, NoOpenGl) {
+  expectOneLineError(vdg("render " + kSpot + " -o " + freshDir("x").string(), "VDG_RENDER_NO_GL=1"), 1,
+                     "EGL: no display");
+}
+
+TEST(CliRender, FramesOutsideTheOrbit) {
+  expectOneLineError(vdg("render " + kSpot + " -o " + freshDir("x").string() + " --orbit 4 --frames 2-9"), 2,
+                     "--frames");
+}
+
+TEST(CliRender, VideoWithoutFfmpeg) {
+  // An empty PATH hides ffmpeg whether or not it is installed.
+  const Result r = vdg("render " + kSpot + " -o " + testing::TempDir() + "/x.mp4", "PATH=/nonexistent");
+  expectOneLineError(r, 1, "ffmpeg");
+}
+
+}  // namespace
+
+#endif  // VDG_CLI

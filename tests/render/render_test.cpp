@@ -1,0 +1,468 @@
+// Tests of the render module: the lighting equation and its hue rule, silhouette edge detection,
+// and images rendered headless (EGL + Mesa llvmpipe in CI): golden images with a tolerance and
+// properties (coverage, closed dark outline, no warm tint on white, exact key reproduction, view
+// dependence, determinism), plus the error paths. Goldens: see tests/render/README.md.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <numbers>
+#include <optional>
+#include <string>
+
+#include <Eigen/Geometry>
+
+#include "vdg/geom/error.h"
+#include "vdg/render/image.h"
+#include "vdg/render/model_renderer.h"
+#include "vdg/render/renderer.h"
+#include "vdg/render/shading.h"
+#include "vdg/render/silhouette.h"
+#include "vdg/viewdep/model.h"
+
+namespace vdg::render {
+namespace {
+
+const std::string kSourceDir = VDG_SOURCE_DIR;
+constexpr int kSize = 128;
+// Golden comparison: a pixel differs when a channel is off by more than kChannelTolerance;
+// at most kMaxDifferingFraction of the pixels may differ (driver and CPU rounding differences).
+constexpr int kChannelTolerance = 24;
+constexpr double kMaxDifferingFraction = 0.01;
+
+// ---------------------------------------------------------------------------------------------
+// Test meshes, generated here.
+
+// UV sphere of radius 1 around the origin, `rings` x `segments`, closed, CCW from outside.
+TriMesh uvSphere(int rings, int segments) {
+  TriMesh m;
+  auto add = [&](double x, double y, double z) {
+    m.positions.push_back(static_cast<float>(x));
+    m.positions.push_back(static_cast<float>(y));
+    m.positions.push_back(static_cast<float>(z));
+  };
+  add(0, 1, 0);
+  for (int r = 1; r < rings; ++r) {
+    const double phi = std::numbers::pi * r / rings;
+    for (int s = 0; s < segments; ++s) {
+      const double theta = 2 * std::numbers::pi * s / segments;
+      add(std::sin(phi) * std::sin(theta), std::cos(phi), std::sin(phi) * std::cos(theta));
+    }
+  }
+  add(0, -1, 0);
+  const int south = static_cast<int>(m.vertexCount()) - 1;
+  auto ring = [&](int r, int s) { return 1 + (r - 1) * segments + (s % segments); };
+  auto tri = [&](int a, int b, int c) {
+    m.triangles.push_back(a);
+    m.triangles.push_back(b);
+    m.triangles.push_back(c);
+  };
+  for (int s = 0; s < segments; ++s) tri(0, ring(1, s), ring(1, s + 1));
+  for (int r = 1; r < rings - 1; ++r)
+    for (int s = 0; s < segments; ++s) {
+      tri(ring(r, s), ring(r + 1, s), ring(r + 1, s + 1));
+      tri(ring(r, s), ring(r + 1, s + 1), ring(r, s + 1));
+    }
+  for (int s = 0; s < segments; ++s) tri(south, ring(rings - 1, s + 1), ring(rings - 1, s));
+  return m;
+}
+
+// The sphere with a bump towards `dir` (vertices within 60 degrees pushed out by up to `amount`).
+TriMesh bumped(const TriMesh& base, const Eigen::Vector3d& dir, double amount) {
+  TriMesh m = base;
+  for (std::size_t v = 0; v < m.vertexCount(); ++v) {
+    Eigen::Vector3d p(m.positions[v * 3], m.positions[v * 3 + 1], m.positions[v * 3 + 2]);
+    const double c = p.normalized().dot(dir.normalized());
+    if (c > 0.5) p *= 1.0 + amount * (c - 0.5) / 0.5;
+    for (int i = 0; i < 3; ++i) m.positions[v * 3 + i] = static_cast<float>(p[i]);
+  }
+  return m;
+}
+
+// A sphere with three keys: a bump to the front (+Z), one to the right (+X), one up (+Y);
+// uncovered regions revert to the base through dummy keys.
+RawViewDependentModel bumpyModel() {
+  RawViewDependentModel raw;
+  raw.source = "test model";
+  raw.base = uvSphere(24, 32);
+  const std::array<Eigen::Vector3d, 3> views{Eigen::Vector3d(0, 0, 1), Eigen::Vector3d(1, 0, 0),
+                                             Eigen::Vector3d(0, 1, 0)};
+  const std::array<const char*, 3> names{"front", "right", "top"};
+  // Each key bumps the side perpendicular to its view, so the bump changes the outline.
+  const std::array<Eigen::Vector3d, 3> bumps{Eigen::Vector3d(1, 0.3, 0), Eigen::Vector3d(0, 1, -0.3),
+                                             Eigen::Vector3d(-1, 0, 0.3)};
+  for (int k = 0; k < 3; ++k) {
+    RawKey key;
+    key.name = names[k];
+    key.mesh = bumped(raw.base, bumps[k], 0.45);
+    key.view = views[k];
+    raw.keys.push_back(key);
+  }
+  raw.center = Eigen::Vector3d::Zero();
+  return raw;
+}
+
+const ViewDependentModel& testModel() {
+  static const ViewDependentModel model = ViewDependentModel::build(bumpyModel());
+  return model;
+}
+
+Camera cameraToward(const Eigen::Vector3d& dir) {
+  Camera c;
+  c.eye = dir.normalized() * 5.0;
+  c.target = Eigen::Vector3d::Zero();
+  c.up = std::abs(dir.normalized().y()) > 0.99 ? Eigen::Vector3d(0, 0, -1) : Eigen::Vector3d(0, 1, 0);
+  c.fov_deg = 35.0;
+  return c;
+}
+
+FrameOptions smallOptions() {
+  FrameOptions o;
+  o.width = o.height = kSize;
+  return o;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Image helpers.
+
+bool isBackground(const Image& img, int x, int y, const Rgb& bg) {
+  const std::uint8_t* p = img.pixel(x, y);
+  for (int c = 0; c < 3; ++c)
+    if (std::abs(int(p[c]) - int(std::lround(bg[c] * 255))) > 6) return false;
+  return true;
+}
+
+bool isDark(const Image& img, int x, int y) {
+  const std::uint8_t* p = img.pixel(x, y);
+  return p[0] < 70 && p[1] < 70 && p[2] < 70;
+}
+
+long countObjectPixels(const Image& img, const Rgb& bg) {
+  long n = 0;
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) n += isBackground(img, x, y, bg) ? 0 : 1;
+  return n;
+}
+
+std::string goldenPath(const std::string& name) { return kSourceDir + "/tests/render/golden/" + name + ".png"; }
+
+void expectMatchesGolden(const Image& img, const std::string& name) {
+  const std::string path = goldenPath(name);
+  if (const char* update = std::getenv("VDG_UPDATE_GOLDEN"); update && std::string(update) == "1") {
+    writePng(path, img);
+    std::printf("updated golden %s\n", path.c_str());
+    return;
+  }
+  ASSERT_TRUE(std::filesystem::exists(path)) << "missing golden " << path << " (run with VDG_UPDATE_GOLDEN=1)";
+  const Image golden = readPng(path);
+  const ImageDiff d = compareImages(img, golden, kChannelTolerance);
+  if (!d.same_size || d.differing_fraction > kMaxDifferingFraction) {
+    const std::string actual = testing::TempDir() + "/" + name + "_actual.png";
+    writePng(actual, img);
+    ADD_FAILURE() << name << ": " << d.differing_pixels << " pixels (" << d.differing_fraction * 100
+                  << "%) differ from " << path << " by more than " << kChannelTolerance << "; max channel difference "
+                  << d.max_channel_difference << "; actual image: " << actual;
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Shading (pure functions).
+
+TEST(Shading, HueRuleWhiteTurnsOffWarmLight) {
+  const ShadingConstants k = hueAdjustedConstants({}, {1.0f, 1.0f, 1.0f});
+  EXPECT_EQ(k.k2, 0.0f);
+  EXPECT_EQ(k.k1, 1.0f);
+  EXPECT_EQ(k.k3, 1.0f);
+  EXPECT_EQ(k.k4, 1.0f);
+  EXPECT_EQ(hueAdjustedConstants({}, {0.95f, 0.93f, 0.9f}).k2, 0.0f);
+}
+
+TEST(Shading, HueRulePurpleDoublesCoolLight) {
+  const ShadingConstants k = hueAdjustedConstants({}, {0.5f, 0.2f, 0.7f});
+  EXPECT_FLOAT_EQ(k.k4, 2.0f);
+  EXPECT_FLOAT_EQ(k.k2, 1.0f);
+}
+
+TEST(Shading, HueRuleRedMoreCoolLessWarm) {
+  const ShadingConstants k = hueAdjustedConstants({}, {0.8f, 0.1f, 0.1f});
+  EXPECT_GT(k.k4, 1.0f);
+  EXPECT_LT(k.k2, 1.0f);
+}
+
+TEST(Shading, HueRuleLeavesOtherHuesAndScalesCallerConstants) {
+  const ShadingConstants green = hueAdjustedConstants({}, {0.2f, 0.7f, 0.2f});
+  EXPECT_EQ(green.k1, 1.0f);
+  EXPECT_EQ(green.k2, 1.0f);
+  EXPECT_EQ(green.k3, 1.0f);
+  EXPECT_EQ(green.k4, 1.0f);
+  const ShadingConstants purple = hueAdjustedConstants({1.0f, 1.0f, 1.0f, 0.5f}, {0.5f, 0.2f, 0.7f});
+  EXPECT_FLOAT_EQ(purple.k4, 1.0f);
+  // Dark grey is not whitish: the warm light stays on.
+  EXPECT_EQ(hueAdjustedConstants({}, {0.3f, 0.3f, 0.3f}).k2, 1.0f);
+}
+
+TEST(Shading, EquationMatchesThePaper) {
+  ShadingParams p;
+  p.vary_by_hue = false;
+  const Rgb base{0.4f, 0.5f, 0.3f};
+  // Normal towards the warm light only (the cool light is then at an angle).
+  const Eigen::Vector3f l1 = Eigen::Vector3f(p.light_warm[0], p.light_warm[1], p.light_warm[2]).normalized();
+  const Eigen::Vector3f l2 = Eigen::Vector3f(p.light_cool[0], p.light_cool[1], p.light_cool[2]).normalized();
+  const Rgb c = shade(p, base, {l1.x(), l1.y(), l1.z()});
+  const float d2 = std::max(0.0f, l2.dot(l1));
+  for (int i = 0; i < 3; ++i) {
+    const float expected = std::clamp(
+        p.ka * base[i] + 1.0f * (p.warm[i] - base[i] * 1.0f) * 1.0f + d2 * (p.cool[i] - base[i]) * 1.0f, 0.0f, 1.0f);
+    EXPECT_NEAR(c[i], expected, 1e-5f);
+  }
+}
+
+TEST(Shading, NegativeLightTermsAreClampedToZero) {
+  ShadingParams p;
+  const Rgb base{0.4f, 0.5f, 0.3f};
+  // A normal facing away from both lights gets the ambient term only.
+  const Eigen::Vector3f away = -(Eigen::Vector3f(p.light_warm[0], p.light_warm[1], p.light_warm[2]).normalized() +
+                                 Eigen::Vector3f(p.light_cool[0], p.light_cool[1], p.light_cool[2]).normalized())
+                                    .normalized();
+  const Rgb c = shade(p, base, {away.x(), away.y(), away.z()});
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(c[i], p.ka * base[i], 1e-6f);
+}
+
+TEST(Shading, WhiteSurfaceHasNoWarmTint) {
+  const ShadingParams p;
+  for (int i = 0; i < 200; ++i) {
+    const double a = 0.7 * i, b = 0.31 * i;
+    const Eigen::Vector3f n(std::cos(a) * std::sin(b), std::sin(a) * std::sin(b), std::cos(b));
+    const Rgb c = shade(p, {1, 1, 1}, {n.x(), n.y(), n.z()});
+    EXPECT_LE(c[0], c[2] + 1e-6f) << "red above blue at normal " << n.transpose();
+    EXPECT_LE(c[1], c[2] + 1e-6f) << "green above blue at normal " << n.transpose();
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Silhouette edges.
+
+TEST(Silhouette, ClosedMeshEdgesHaveTwoFaces) {
+  const TriMesh s = uvSphere(6, 8);
+  const EdgeTopology t = buildEdgeTopology(s.triangles, s.vertexCount());
+  // Euler: V - E + F = 2.
+  EXPECT_EQ(
+      static_cast<long>(s.vertexCount()) - static_cast<long>(t.edgeCount()) + static_cast<long>(s.triangleCount()), 2);
+  for (std::size_t e = 0; e < t.edgeCount(); ++e) EXPECT_GE(t.faces[e * 2 + 1], 0);
+}
+
+TEST(Silhouette, EdgesBetweenFrontAndBackFacesOnly) {
+  const TriMesh s = uvSphere(12, 16);
+  const EdgeTopology t = buildEdgeTopology(s.triangles, s.vertexCount());
+  std::vector<std::uint8_t> front(s.triangleCount());
+  std::vector<std::uint32_t> edges;
+  faceFacing(s.positions, s.triangles, Eigen::Vector3f(0, 0, 10), front);
+  silhouetteEdges(t, front, edges);
+  ASSERT_FALSE(edges.empty());
+  // Seen from +Z the silhouette of a sphere is near the z = 0 circle, and every silhouette vertex
+  // is used by exactly two silhouette edges (a closed loop).
+  std::map<std::uint32_t, int> uses;
+  for (std::uint32_t v : edges) {
+    EXPECT_LT(std::abs(s.positions[v * 3 + 2]), 0.3f);
+    ++uses[v];
+  }
+  for (const auto& [v, n] : uses) EXPECT_EQ(n % 2, 0) << "vertex " << v;
+}
+
+TEST(Silhouette, OpenBoundaryIsAlwaysDrawn) {
+  const std::vector<float> quad{0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
+  const std::vector<std::int32_t> tris{0, 1, 2, 0, 2, 3};
+  const EdgeTopology t = buildEdgeTopology(tris, 4);
+  EXPECT_EQ(t.edgeCount(), 5u);
+  std::vector<std::uint8_t> front(2);
+  std::vector<std::uint32_t> edges;
+  faceFacing(quad, tris, Eigen::Vector3f(0.5f, 0.5f, 3), front);
+  EXPECT_EQ(front[0], 1);
+  EXPECT_EQ(front[1], 1);
+  silhouetteEdges(t, front, edges);
+  EXPECT_EQ(edges.size(), 8u);  // the four boundary edges, not the diagonal
+}
+
+// ---------------------------------------------------------------------------------------------
+// Images (need an OpenGL context: failing to create one is a test failure, never a skip).
+
+TEST(RenderImage, ContextIsAvailable) {
+  Renderer r(RendererSettings{16, 16, 4});
+  EXPECT_GE(r.samples(), 1);
+  std::printf("OpenGL: %s, %d samples\n", r.glInfo().c_str(), r.samples());
+}
+
+TEST(RenderImage, SphereGolden) {
+  ModelRenderer r(uvSphere(24, 32), smallOptions());
+  Image img;
+  r.render(cameraToward({0.3, 0.4, 1.0}), img);
+  expectMatchesGolden(img, "sphere");
+}
+
+TEST(RenderImage, ViewDependentModelGoldenWithObserverAndSphere) {
+  FrameOptions o = smallOptions();
+  o.observer = true;
+  o.sphere = true;
+  ModelRenderer r(testModel(), o);
+  EXPECT_EQ(r.imageWidth(), 2 * kSize);
+  Image img;
+  r.render(cameraToward({0.5, 0.3, 1.0}), img);
+  expectMatchesGolden(img, "bumpy_observer_sphere");
+}
+
+TEST(RenderImage, ObjectCoversPixelsAndOutlineIsClosedAndDark) {
+  const FrameOptions o = smallOptions();
+  ModelRenderer r(testModel(), o);
+  Image img;
+  for (const Eigen::Vector3d& dir :
+       {Eigen::Vector3d(0, 0, 1), Eigen::Vector3d(0.6, 0.2, 0.7), Eigen::Vector3d(-1, -0.3, -0.4)}) {
+    r.render(cameraToward(dir), img);
+    const long covered = countObjectPixels(img, o.background);
+    EXPECT_GT(covered, kSize * kSize / 10) << "view " << dir.transpose();
+    EXPECT_LT(covered, kSize * kSize * 9 / 10) << "view " << dir.transpose();
+    // Every boundary pixel of the object's mask has a dark (silhouette) pixel within 2 px.
+    long boundary = 0, uncovered = 0;
+    for (int y = 1; y < kSize - 1; ++y)
+      for (int x = 1; x < kSize - 1; ++x) {
+        if (isBackground(img, x, y, o.background)) continue;
+        const bool edge = isBackground(img, x - 1, y, o.background) || isBackground(img, x + 1, y, o.background) ||
+                          isBackground(img, x, y - 1, o.background) || isBackground(img, x, y + 1, o.background);
+        if (!edge) continue;
+        ++boundary;
+        bool near_dark = false;
+        for (int dy = -2; dy <= 2 && !near_dark; ++dy)
+          for (int dx = -2; dx <= 2 && !near_dark; ++dx) near_dark = isDark(img, x + dx, y + dy);
+        if (!near_dark) ++uncovered;
+      }
+    EXPECT_GT(boundary, 50);
+    EXPECT_EQ(uncovered, 0) << "boundary pixels with no silhouette nearby, view " << dir.transpose();
+    if (uncovered) writePng(testing::TempDir() + "/outline_failure.png", img);
+  }
+}
+
+TEST(RenderImage, WhiteSurfaceHasNoWarmTint) {
+  const FrameOptions o = smallOptions();
+  ModelRenderer r(uvSphere(24, 32), o);
+  Image img;
+  r.render(cameraToward({0.2, 0.3, 1.0}), img);
+  long checked = 0;
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kSize; ++x) {
+      if (isBackground(img, x, y, o.background) || isDark(img, x, y)) continue;
+      const std::uint8_t* p = img.pixel(x, y);
+      EXPECT_LE(p[0], p[2] + 2) << "warm pixel at " << x << "," << y;
+      ++checked;
+    }
+  EXPECT_GT(checked, 1000);
+}
+
+TEST(RenderImage, KeyViewRendersExactlyTheKeyMesh) {
+  const ViewDependentModel& model = testModel();
+  const FrameOptions o = smallOptions();
+  ModelRenderer blended(model, o);
+  for (std::size_t k = 0; k < model.keyCount(); ++k) {
+    TriMesh key_mesh = model.base();
+    model.keyPositions(k, key_mesh.positions);
+    ModelRenderer plain(key_mesh, o);
+    const Camera cam = cameraToward(model.keyView(k));
+    Image a, b;
+    const ViewWeights w = blended.render(cam, a);
+    plain.render(cam, b);
+    EXPECT_NEAR(w.weight[0] + w.weight[1] + w.weight[2], 1.0f, 1e-5f);
+    const ImageDiff d = compareImages(a, b, 8);
+    EXPECT_LE(d.differing_fraction, 0.001)
+        << "key " << model.keyName(k) << ": " << d.differing_pixels << " pixels differ";
+  }
+}
+
+TEST(RenderImage, OrbitFramesDifferWhereKeysDiffer) {
+  const ViewDependentModel& model = testModel();
+  const FrameOptions o = smallOptions();
+  ModelRenderer blended(model, o);
+  ModelRenderer base(model.base(), o);
+  Image a, b;
+  // At a key view the blended model differs from the base...
+  const Camera at_key = orbitCamera(Eigen::Vector3d::Zero(), 5.0, 0.0, 0.0, 35.0);
+  blended.render(at_key, a);
+  base.render(at_key, b);
+  EXPECT_GT(compareImages(a, b, 24).differing_fraction, 0.01);
+  // ...and far from every key (the back, covered by a dummy base key) it is the base.
+  const Camera behind = orbitCamera(Eigen::Vector3d::Zero(), 5.0, 225.0, -40.0, 35.0);
+  const ViewWeights w = blended.render(behind, a);
+  base.render(behind, b);
+  EXPECT_NEAR(w.base, 1.0f, 1e-5f);
+  EXPECT_LE(compareImages(a, b, 8).differing_fraction, 0.001);
+}
+
+TEST(RenderImage, SameFrameIsByteIdenticalWhateverCameBefore) {
+  FrameOptions o = smallOptions();
+  o.observer = true;
+  o.sphere = true;
+  const Camera cam = orbitCamera(Eigen::Vector3d::Zero(), 5.0, 50.0, 15.0, 35.0);
+  Image first, again, other;
+  {
+    ModelRenderer r(testModel(), o);
+    r.render(cam, first);
+  }
+  ModelRenderer r(testModel(), o);
+  for (double az : {0.0, 120.0, 270.0}) r.render(orbitCamera(Eigen::Vector3d::Zero(), 5.0, az, 15.0, 35.0), other);
+  r.render(cam, again);
+  EXPECT_EQ(first.rgba, again.rgba);
+}
+
+TEST(RenderImage, PngRoundTrip) {
+  ModelRenderer r(uvSphere(8, 12), smallOptions());
+  Image img;
+  r.render(cameraToward({0, 0, 1}), img);
+  const std::string path = testing::TempDir() + "/vdg_render_roundtrip.png";
+  writePng(path, img);
+  const Image back = readPng(path);
+  EXPECT_EQ(back.width, img.width);
+  EXPECT_EQ(back.rgba, img.rgba);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Bad input.
+
+void expectErrorContaining(const std::function<void()>& f, const std::string& needle) {
+  try {
+    f();
+    ADD_FAILURE() << "expected vdg::Error containing '" << needle << "'";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+  }
+}
+
+TEST(RenderErrors, SizeZeroOrHuge) {
+  expectErrorContaining([] { Renderer r(RendererSettings{0, 128, 4}); }, "image size 0x128");
+  expectErrorContaining([] { Renderer r(RendererSettings{128, kMaxImageSize + 1, 4}); }, "outside");
+  FrameOptions o = smallOptions();
+  o.width = kMaxImageSize;
+  o.observer = true;  // 2 x 16384 is too wide
+  expectErrorContaining([&] { ModelRenderer r(testModel(), o); }, "observer");
+}
+
+TEST(RenderErrors, NoGlGivesOneClearError) {
+  ::setenv("VDG_RENDER_NO_GL", "1", 1);
+  expectErrorContaining([] { Renderer r(RendererSettings{16, 16, 1}); }, "EGL: no display");
+  ::unsetenv("VDG_RENDER_NO_GL");
+  Renderer ok(RendererSettings{16, 16, 1});  // and recovers once it is unset
+}
+
+TEST(RenderErrors, MissingPng) {
+  expectErrorContaining([] { readPng("/nonexistent/x.png"); }, "/nonexistent/x.png");
+}
+
+TEST(RenderErrors, UnwritablePng) {
+  Image img;
+  img.width = img.height = 1;
+  img.rgba = {0, 0, 0, 255};
+  expectErrorContaining([&] { writePng("/nonexistent/dir/x.png", img); }, "/nonexistent/dir/x.png");
+}
+
+}  // namespace
+}  // namespace vdg::render
