@@ -12,17 +12,6 @@
 namespace vdg::cli {
 namespace {
 
-const char* uncoveredName(Uncovered u) {
-  switch (u) {
-    case Uncovered::Cosine:
-      return "cosine";
-    case Uncovered::Cosine2:
-      return "cosine2";
-    default:
-      return "base";
-  }
-}
-
 // Things an artist should know about a model that still loads.
 std::vector<std::string> modelWarnings(const ViewDependentModel& model) {
   std::vector<std::string> warnings;

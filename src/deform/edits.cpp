@@ -298,42 +298,10 @@ json parseJson(const std::string& text, const std::string& source) {
   }
 }
 
-Camera cameraFrom(const json& j, const std::string& where) {
-  FieldReader r(j, where);
-  Camera c;
-  c.eye = r.vec<3>("eye");
-  c.target = r.vec<3>("target");
-  c.up = r.has("up") ? r.vec<3>("up") : Eigen::Vector3d::UnitY();
-  const bool fov = r.has("fov_deg"), ortho = r.has("ortho_height");
-  if (fov == ortho) r.fail("give exactly one of 'fov_deg' (perspective) or 'ortho_height' (parallel)");
-  if (fov) {
-    c.fov_deg = r.number("fov_deg");
-    c.ortho_height = 0;
-    if (!(c.fov_deg > 0 && c.fov_deg < 180)) r.failField("fov_deg", "must be in (0, 180), got " + fmt(c.fov_deg));
-  } else {
-    c.ortho_height = r.number("ortho_height");
-    if (!(c.ortho_height > 0)) r.failField("ortho_height", "must be > 0, got " + fmt(c.ortho_height));
-  }
-  r.finish();
-  try {
-    cameraFrame(c);
-  } catch (const Error& e) {
-    r.fail(e.what());
-  }
-  return c;
-}
+// The camera JSON format belongs to the model manifest (vdg/viewdep/model.h).
+Camera cameraFrom(const json& j, const std::string& where) { return parseCameraJson(j.dump(), where); }
 
-json cameraJson(const Camera& c) {
-  json j;
-  j["eye"] = {c.eye.x(), c.eye.y(), c.eye.z()};
-  j["target"] = {c.target.x(), c.target.y(), c.target.z()};
-  j["up"] = {c.up.x(), c.up.y(), c.up.z()};
-  if (c.isOrtho())
-    j["ortho_height"] = c.ortho_height;
-  else
-    j["fov_deg"] = c.fov_deg;
-  return j;
-}
+json cameraJson(const Camera& c) { return json::parse(cameraToJson(c)); }
 
 std::optional<std::array<int, 2>> imageSize(FieldReader& r, const std::string& field) {
   if (!r.has(field)) return std::nullopt;
@@ -494,16 +462,10 @@ Camera cameraFromView(const Eigen::Vector3d& center, const Eigen::Vector3d& view
   return c;
 }
 
-Camera parseCameraJson(const std::string& text, const std::string& source) {
-  return cameraFrom(parseJson(text, source), source);
-}
-
-std::string cameraToJson(const Camera& camera) { return cameraJson(camera).dump(2); }
-
 Camera readCameraFile(const std::string& path) { return parseCameraJson(readText(path, "camera file"), path); }
 
 void writeCameraFile(const std::string& path, const Camera& camera) {
-  const std::string text = cameraToJson(camera) + "\n";
+  const std::string text = cameraJson(camera).dump(2) + "\n";
   writeFileAtomically(path, [&](std::ostream& out) { out << text; });
 }
 

@@ -182,6 +182,35 @@ struct Renderer::Impl {
     }
     glBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(bytes), data.data());
   }
+
+  // Common set-up of the overlay passes (lines, dots): target, view, data, depth state.
+  void beginOverlay(const View& v, std::span<const float> data, bool depth_test) {
+    context.makeCurrent();
+    glBindFramebuffer(GL_FRAMEBUFFER, ms_fbo.get());
+    setView(v);
+    uploadOverlay(data);
+    if (depth_test) {
+      glEnable(GL_DEPTH_TEST);
+      glDepthFunc(GL_LEQUAL);
+    } else {
+      glDisable(GL_DEPTH_TEST);
+    }
+    glDepthMask(GL_FALSE);
+  }
+
+  // Round dots of `diameter` pixels at the first `count` overlay points (alpha-to-coverage edges).
+  void drawRoundDots(const View& v, GLsizei count, float diameter, const Rgb& color, float pull_px) {
+    glEnable(GL_SAMPLE_ALPHA_TO_COVERAGE);
+    glUseProgram(dot_program->program.get());
+    setStroke(*dot_program, v, diameter, color, pull_px);
+    glDrawArrays(GL_POINTS, 0, count);
+    glDisable(GL_SAMPLE_ALPHA_TO_COVERAGE);
+  }
+
+  void endOverlay() {
+    glDepthMask(GL_TRUE);
+    glBindVertexArray(0);
+  }
 };
 
 Renderer::Renderer(const RendererSettings& settings) {
@@ -399,52 +428,23 @@ void Renderer::drawLines(std::span<const float> segments, const View& view, floa
                          bool depth_test, float pull) {
   Impl& m = *impl_;
   if (segments.size() < 6) return;
-  m.context.makeCurrent();
-  glBindFramebuffer(GL_FRAMEBUFFER, m.ms_fbo.get());
-  m.setView(view);
-  m.uploadOverlay(segments);
-  if (depth_test) {
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LEQUAL);
-  } else {
-    glDisable(GL_DEPTH_TEST);
-  }
-  glDepthMask(GL_FALSE);
+  m.beginOverlay(view, segments, depth_test);
   const auto count = static_cast<GLsizei>(segments.size() / 3 / 2 * 2);
+  const float pull_px = depth_test ? pull : 0.0f;
   glUseProgram(m.line_program->program.get());
-  m.setStroke(*m.line_program, view, width, color, depth_test ? pull : 0.0f);
+  m.setStroke(*m.line_program, view, width, color, pull_px);
   glDrawArrays(GL_LINES, 0, count);
-  glEnable(GL_SAMPLE_ALPHA_TO_COVERAGE);
-  glUseProgram(m.dot_program->program.get());
-  m.setStroke(*m.dot_program, view, width, color, depth_test ? pull : 0.0f);
-  glDrawArrays(GL_POINTS, 0, count);
-  glDisable(GL_SAMPLE_ALPHA_TO_COVERAGE);
-  glDepthMask(GL_TRUE);
-  glBindVertexArray(0);
+  m.drawRoundDots(view, count, width, color, pull_px);  // round joints between segments
+  m.endOverlay();
 }
 
 void Renderer::drawDots(std::span<const float> points, const View& view, float diameter, const Rgb& color,
                         bool depth_test, float pull) {
   Impl& m = *impl_;
   if (points.size() < 3) return;
-  m.context.makeCurrent();
-  glBindFramebuffer(GL_FRAMEBUFFER, m.ms_fbo.get());
-  m.setView(view);
-  m.uploadOverlay(points);
-  if (depth_test) {
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LEQUAL);
-  } else {
-    glDisable(GL_DEPTH_TEST);
-  }
-  glDepthMask(GL_FALSE);
-  glEnable(GL_SAMPLE_ALPHA_TO_COVERAGE);
-  glUseProgram(m.dot_program->program.get());
-  m.setStroke(*m.dot_program, view, diameter, color, depth_test ? pull : 0.0f);
-  glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(points.size() / 3));
-  glDisable(GL_SAMPLE_ALPHA_TO_COVERAGE);
-  glDepthMask(GL_TRUE);
-  glBindVertexArray(0);
+  m.beginOverlay(view, points, depth_test);
+  m.drawRoundDots(view, static_cast<GLsizei>(points.size() / 3), diameter, color, depth_test ? pull : 0.0f);
+  m.endOverlay();
 }
 
 void Renderer::readPixels(Image& out) {

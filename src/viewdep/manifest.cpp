@@ -55,7 +55,8 @@ Camera parseCamera(const json& value, const std::string& where) {
   Camera camera;
   if (!value.contains("eye")) throw Error(where + ": missing 'eye'");
   camera.eye = vec3(value["eye"], where + ".eye");
-  if (value.contains("target")) camera.target = vec3(value["target"], where + ".target");
+  if (!value.contains("target")) throw Error(where + ": missing 'target'");
+  camera.target = vec3(value["target"], where + ".target");
   if (value.contains("up")) camera.up = vec3(value["up"], where + ".up");
   const bool has_fov = value.contains("fov_deg"), has_ortho = value.contains("ortho_height");
   if (has_fov == has_ortho)
@@ -95,17 +96,6 @@ Uncovered parseUncovered(const json& value, const std::string& where) {
   throw Error(where + ": unknown value '" + s + "' (expected \"base\", \"cosine\" or \"cosine2\")");
 }
 
-const char* uncoveredName(Uncovered u) {
-  switch (u) {
-    case Uncovered::Cosine:
-      return "cosine";
-    case Uncovered::Cosine2:
-      return "cosine2";
-    default:
-      return "base";
-  }
-}
-
 TriMesh readReferencedMesh(const fs::path& folder, const std::string& relative, const std::string& where) {
   const fs::path path = fs::path(relative).is_absolute() ? fs::path(relative) : folder / relative;
   try {
@@ -116,6 +106,18 @@ TriMesh readReferencedMesh(const fs::path& folder, const std::string& relative, 
 }
 
 }  // namespace
+
+Camera parseCameraJson(const std::string& text, const std::string& where) {
+  json doc;
+  try {
+    doc = json::parse(text);
+  } catch (const json::parse_error& e) {
+    throw Error(where + ": not valid JSON: " + cleanJsonMessage(e.what()));
+  }
+  return parseCamera(doc, where);
+}
+
+std::string cameraToJson(const Camera& camera) { return cameraJson(camera).dump(); }
 
 RawViewDependentModel loadManifest(const std::string& path) {
   std::ifstream in(path, std::ios::binary);

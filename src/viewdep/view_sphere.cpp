@@ -115,6 +115,18 @@ std::vector<int> angularOrder(const std::vector<Vector3d>& points, const Vector3
 
 }  // namespace
 
+const char* uncoveredName(Uncovered uncovered) {
+  switch (uncovered) {
+    case Uncovered::Cosine:
+      return "cosine";
+    case Uncovered::Cosine2:
+      return "cosine2";
+    case Uncovered::Base:
+      break;
+  }
+  return "base";
+}
+
 ViewSphere ViewSphere::build(std::span<const Eigen::Vector3d> key_directions, const ViewSphereSettings& settings) {
   if (key_directions.empty()) throw Error("view sphere: a view-dependent model needs at least one key");
   if (!(settings.base_falloff_deg > 0.0 && settings.base_falloff_deg <= 70.0))

@@ -39,6 +39,16 @@ RawViewDependentModel bulgeModel(const std::vector<Vector3d>& views, Uncovered m
   return raw;
 }
 
+// Section 3.2.3 written out: v = w_base * base + sum_i w_i * key_i, vertex by vertex.
+void expectWeightedSumOfKeys(const RawViewDependentModel& raw, const ViewWeights& w, const std::vector<float>& out) {
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    double expected = w.base * raw.base.positions[i];
+    for (int k = 0; k < 3; ++k)
+      if (w.key[k] >= 0) expected += w.weight[k] * raw.keys[static_cast<std::size_t>(w.key[k])].mesh.positions[i];
+    ASSERT_NEAR(out[i], expected, kPositionTol) << "coordinate " << i;
+  }
+}
+
 const std::vector<Vector3d> kOctahedron = {Vector3d(1, 0, 0),  Vector3d(-1, 0, 0), Vector3d(0, 1, 0),
                                            Vector3d(0, -1, 0), Vector3d(0, 0, 1),  Vector3d(0, 0, -1)};
 
@@ -72,12 +82,7 @@ TEST(ViewDependentModel, BlendIsTheWeightedSumOfKeyMeshes) {
   const ViewWeights w = model.weights(view);
   std::vector<float> out(raw.base.positions.size());
   model.blend(w, out);
-  for (std::size_t i = 0; i < out.size(); ++i) {
-    double expected = w.base * raw.base.positions[i];
-    for (int k = 0; k < 3; ++k)
-      if (w.key[k] >= 0) expected += w.weight[k] * raw.keys[static_cast<std::size_t>(w.key[k])].mesh.positions[i];
-    ASSERT_NEAR(out[i], expected, kPositionTol);
-  }
+  expectWeightedSumOfKeys(raw, w, out);
 }
 
 TEST(ViewDependentModel, DenseAndSparseKeysBlendTheSame) {
@@ -89,12 +94,7 @@ TEST(ViewDependentModel, DenseAndSparseKeysBlendTheSame) {
   const ViewWeights w = model.weights(Vector3d(1, 0.4, 0.4));
   std::vector<float> out(raw.base.positions.size());
   model.blend(w, out);
-  for (std::size_t i = 0; i < out.size(); ++i) {
-    double expected = w.base * raw.base.positions[i];
-    for (int k = 0; k < 3; ++k)
-      if (w.key[k] >= 0) expected += w.weight[k] * raw.keys[static_cast<std::size_t>(w.key[k])].mesh.positions[i];
-    ASSERT_NEAR(out[i], expected, kPositionTol);
-  }
+  expectWeightedSumOfKeys(raw, w, out);
 }
 
 TEST(ViewDependentModel, FarFromAllKeysTheBaseModelIsBack) {

@@ -20,7 +20,7 @@ constexpr int kRandomViews = 10000;
 // Along a path sampled every kPathStep radians, the weights (as a vector over keys and base) may
 // change by at most kLipschitz * kPathStep in L1: continuous, with a generous slope bound; a jump
 // anywhere would be of order 0.1 to 1.
-constexpr double kPathStep = 2e-4;
+constexpr double kPathStep = 5e-4;
 constexpr double kLipschitz = 60.0;
 
 // Dense weights: one entry per key, then the base.

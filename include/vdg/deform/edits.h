@@ -20,6 +20,7 @@
 #include "vdg/deform/falloff.h"
 #include "vdg/deform/image_plane.h"
 #include "vdg/geom/camera.h"
+#include "vdg/viewdep/model.h"
 
 namespace vdg {
 
@@ -98,10 +99,8 @@ std::vector<EditReport> applyEdits(const Camera& camera, std::span<const std::in
 // ortho height `height`.
 Camera cameraFromView(const Eigen::Vector3d& center, const Eigen::Vector3d& view, double distance, double height);
 
-// Camera JSON, the object a manifest key's "camera" field holds:
-// {"eye":[x,y,z],"target":[x,y,z],"up":[x,y,z],"fov_deg":f} or with "ortho_height":h.
-Camera parseCameraJson(const std::string& text, const std::string& source);
-std::string cameraToJson(const Camera& camera);
+// Camera files hold the object a manifest key's "camera" field holds (parseCameraJson and
+// cameraToJson in vdg/viewdep/model.h).
 Camera readCameraFile(const std::string& path);
 void writeCameraFile(const std::string& path, const Camera& camera);  // atomic
 

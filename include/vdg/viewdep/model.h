@@ -64,6 +64,14 @@ RawViewDependentModel loadManifest(const std::string& path);
 // Writes the manifest (not the meshes) atomically, with mesh paths as stored in the raw model.
 void saveManifest(const std::string& path, const RawViewDependentModel& model);
 
+// A camera as JSON, the object a manifest key's "camera" field holds:
+//   {"eye": [x,y,z], "target": [x,y,z], "up": [x,y,z] (default [0,1,0]), "fov_deg": f | "ortho_height": h}
+// parseCameraJson throws vdg::Error prefixed with `where` for bad JSON, missing or unknown fields,
+// fov outside (0, 180), a non-positive ortho height, or a degenerate frame (eye == target, up
+// parallel to the view). cameraToJson writes one compact object.
+Camera parseCameraJson(const std::string& text, const std::string& where);
+std::string cameraToJson(const Camera& camera);
+
 class ViewDependentModel {
  public:
   // Validates `raw` and builds the viewing sphere and the (sparse) key deltas. A model without keys

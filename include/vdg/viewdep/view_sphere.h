@@ -31,6 +31,8 @@
 namespace vdg {
 
 enum class Uncovered { Base, Cosine, Cosine2 };
+// "base", "cosine" or "cosine2": the names the manifest and the command line use.
+const char* uncoveredName(Uncovered uncovered);
 
 struct ViewSphereSettings {
   Uncovered uncovered = Uncovered::Base;
