@@ -39,7 +39,7 @@ void readPairs(const std::string& path, const TriMesh& mesh, std::vector<Eigen::
   nlohmann::json j;
   try {
     j = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::parse_error& e) {
+  } catch (const nlohmann::json::exception& e) {
     throw Error(path + ": invalid JSON: " + e.what());
   }
   const nlohmann::json* pairs = &j;

@@ -35,6 +35,8 @@ json parseText(std::string_view text, const std::string& where) {
     std::ostringstream out;
     out << where << ": not valid JSON (at byte " << e.byte << ")";
     throw Error(out.str());
+  } catch (const json::exception& e) {  // for instance a number too large for a double
+    throw Error(where + ": not valid JSON: " + e.what());
   }
 }
 

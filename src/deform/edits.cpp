@@ -293,7 +293,7 @@ std::string readText(const std::string& path, const std::string& what) {
 json parseJson(const std::string& text, const std::string& source) {
   try {
     return json::parse(text);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {
     throw Error(source + ": invalid JSON: " + e.what());
   }
 }

@@ -111,7 +111,7 @@ Camera parseCameraJson(const std::string& text, const std::string& where) {
   json doc;
   try {
     doc = json::parse(text);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {
     throw Error(where + ": not valid JSON: " + cleanJsonMessage(e.what()));
   }
   return parseCamera(doc, where);
@@ -125,7 +125,7 @@ RawViewDependentModel loadManifest(const std::string& path) {
   json doc;
   try {
     doc = json::parse(in);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {
     throw Error(path + ": not valid JSON: " + cleanJsonMessage(e.what()));
   }
   if (!doc.is_object()) throw Error(path + ": expected a JSON object at the top level");

@@ -1,0 +1,71 @@
+// Mutated manifests and OBJ files are parsed or rejected with vdg::Error, never anything worse.
+#include <gtest/gtest.h>
+
+#include "support/mutate.h"
+#include "support/test_meshes.h"
+#include "vdg/geom/error.h"
+#include "vdg/geom/obj_io.h"
+#include "vdg/viewdep/model.h"
+
+namespace vdg {
+namespace {
+
+constexpr int kMutants = 1500;
+
+const char* kManifest = R"({
+  "version": 1, "base": "base.obj", "sharpness": 1.5, "uncovered": "cosine", "center": [0, 0.1, 0],
+  "keys": [
+    {"name": "a", "mesh": "a.obj", "view": [0, 0, 1]},
+    {"name": "b", "mesh": "b.obj", "camera": {"eye": [3, 0, 0], "target": [0, 0, 0], "up": [0, 1, 0], "fov_deg": 30}},
+    {"name": "c", "mesh": "c.obj", "camera": {"eye": [0, 3, 1], "target": [0, 0, 0], "ortho_height": 2}}
+  ]})";
+
+TEST(Robustness, MutatedManifestsLoadOrFailCleanly) {
+  testing::TempDir dir;
+  const TriMesh base = testing::uvSphere(4, 6);
+  writeObj(dir.file("base.obj"), base);
+  for (const char* name : {"a.obj", "b.obj", "c.obj"}) {
+    TriMesh key = base;
+    key.positions[4] += 0.2f;
+    writeObj(dir.file(name), key);
+  }
+  testing::Mutator mutator(1234);
+  int loaded = 0;
+  for (int i = 0; i < kMutants; ++i) {
+    const std::string text = mutator.mutate(kManifest);
+    testing::writeText(dir.file("m.vdg.json"), text);
+    try {
+      const ViewDependentModel model = ViewDependentModel::build(loadManifest(dir.file("m.vdg.json")));
+      std::vector<float> out(3 * model.vertexCount());
+      model.evaluate(Eigen::Vector3d(0.3, 0.4, 0.5), 0.0, out);
+      ++loaded;
+    } catch (const Error&) {
+    } catch (const std::exception& e) {
+      FAIL() << "mutant " << i << " threw a non-vdg exception: " << e.what() << "\n" << text;
+    }
+  }
+  EXPECT_GT(loaded, 0) << "some mutants (whitespace, number changes) should still load";
+}
+
+TEST(Robustness, MutatedObjFilesLoadOrFailCleanly) {
+  testing::TempDir dir;
+  const std::string obj =
+      "# quad and triangle\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0.5 0.5 1\n"
+      "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvn 0 0 1\n"
+      "f 1/1/1 2/2/1 3/3/1 4/4/1\nf 1 2 5\nf -1 -2 -3\n";
+  testing::Mutator mutator(99);
+  for (int i = 0; i < kMutants; ++i) {
+    const std::string text = mutator.mutate(obj);
+    testing::writeText(dir.file("m.obj"), text);
+    try {
+      const TriMesh m = readObj(dir.file("m.obj"));
+      validateMesh(m, "m.obj");
+    } catch (const Error&) {
+    } catch (const std::exception& e) {
+      FAIL() << "mutant " << i << " threw a non-vdg exception: " << e.what() << "\n" << text;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace vdg
