@@ -1,6 +1,7 @@
 // `vdg render` end to end: frames written, --frames ranges byte-identical, and every bad input
 // gives one clear line and exit status 1 (bad usage: 2).
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <sys/wait.h>
 #include <algorithm>
@@ -24,8 +25,14 @@ struct Result {
   std::string output;  // stdout + stderr
 };
 
+// A name unique to this process and test: ctest runs tests in parallel processes.
+std::string uniqueName(const std::string& stem) {
+  return stem + "_" + std::to_string(::getpid()) + "_" +
+         ::testing::UnitTest::GetInstance()->current_test_info()->name();
+}
+
 Result vdg(const std::string& args, const std::string& env = "") {
-  const std::string log = testing::TempDir() + "/vdg_cli_render.log";
+  const std::string log = testing::TempDir() + "/" + uniqueName("vdg_cli_render") + ".log";
   const std::string cmd = env + " " + VDG_CLI + " " + args + " > " + log + " 2>&1";
   const int raw = std::system(cmd.c_str());
   Result r;
@@ -45,7 +52,7 @@ std::string readBytes(const fs::path& p) {
 }
 
 fs::path freshDir(const std::string& name) {
-  const fs::path dir = fs::path(testing::TempDir()) / name;
+  const fs::path dir = fs::path(testing::TempDir()) / uniqueName(name);
   fs::remove_all(dir);
   return dir;
 }
