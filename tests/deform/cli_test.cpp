@@ -2,6 +2,7 @@
 // generated here, and check the files it writes — and that bad input leaves every file untouched.
 #include <gtest/gtest.h>
 #include <stb/stb_image_write.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -28,8 +29,8 @@ void spit(const fs::path& p, const std::string& text) { std::ofstream(p, std::io
 class DeformCli : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("vdg_deform_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    dir_ = fs::temp_directory_path() / ("vdg_deform_cli_" + std::to_string(::getpid()) + "_" +
+                                        std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
     base_ = test::sphere(8, 16, 1.0);
