@@ -20,6 +20,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// "1 step", "3 steps".
+std::string counted(std::size_t n, const char* noun) { return std::to_string(n) + " " + noun + (n == 1 ? "" : "s"); }
+
 struct DeformOptions {
   std::string model, key, ops, camera, view, mesh;
   bool dry_run = false, undo = false, quiet = false;
@@ -65,15 +68,15 @@ void runUndo(const DeformOptions& opt, RawViewDependentModel& raw, RawKey& key, 
   key.mesh.positions = rebuilt.positions;
   raw.validate();
   if (opt.dry_run) {
-    std::printf("would undo the last step of key '%s' (%zu operations); %zu steps would remain\n", key.name.c_str(),
-                undone_ops, log.entries.size());
+    std::printf("would undo the last step of key '%s' (%s); %s would remain\n", key.name.c_str(),
+                counted(undone_ops, "operation").c_str(), counted(log.entries.size(), "step").c_str());
     return;
   }
   writeObj(mesh_path.string(), key.mesh, "vdg deform: key '" + key.name + "'");
   writeEditLog(log_path.string(), log);
   if (!opt.quiet)
-    std::printf("undid the last step of key '%s' (%zu operations); %zu steps remain\n", key.name.c_str(), undone_ops,
-                log.entries.size());
+    std::printf("undid the last step of key '%s' (%s); %s remain\n", key.name.c_str(),
+                counted(undone_ops, "operation").c_str(), counted(log.entries.size(), "step").c_str());
 }
 
 void runDeform(const DeformOptions& opt) {
@@ -180,8 +183,8 @@ void runDeform(const DeformOptions& opt) {
   writeEditLog(log_path.string(), log);
   if (new_key) saveManifest(opt.model, raw);
   if (!opt.quiet)
-    std::printf("wrote key '%s' to %s (%zu steps in %s)\n", key->name.c_str(), mesh_path.string().c_str(),
-                log.entries.size(), log_path.filename().string().c_str());
+    std::printf("wrote key '%s' to %s (%s in %s)\n", key->name.c_str(), mesh_path.string().c_str(),
+                counted(log.entries.size(), "step").c_str(), log_path.filename().string().c_str());
 }
 
 }  // namespace

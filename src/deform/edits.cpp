@@ -14,6 +14,7 @@
 #include "vdg/deform/ffd.h"
 #include "vdg/geom/atomic_file.h"
 #include "vdg/geom/error.h"
+#include "vdg/geom/json_text.h"
 
 namespace vdg {
 
@@ -465,7 +466,7 @@ Camera cameraFromView(const Eigen::Vector3d& center, const Eigen::Vector3d& view
 Camera readCameraFile(const std::string& path) { return parseCameraJson(readText(path, "camera file"), path); }
 
 void writeCameraFile(const std::string& path, const Camera& camera) {
-  const std::string text = cameraJson(camera).dump(2) + "\n";
+  const std::string text = compactScalarArrays(cameraJson(camera).dump(2)) + "\n";
   writeFileAtomically(path, [&](std::ostream& out) { out << text; });
 }
 
@@ -512,7 +513,7 @@ void writeEditLog(const std::string& path, const EditLog& log) {
     for (const EditOp& op : e.ops) je["ops"].push_back(json::parse(op.json));
     j["entries"].push_back(std::move(je));
   }
-  const std::string text = j.dump(2) + "\n";
+  const std::string text = compactScalarArrays(j.dump(2)) + "\n";
   writeFileAtomically(path, [&](std::ostream& out) { out << text; });
 }
 

@@ -7,6 +7,7 @@
 
 #include "vdg/geom/atomic_file.h"
 #include "vdg/geom/error.h"
+#include "vdg/geom/json_text.h"
 #include "vdg/geom/obj_io.h"
 #include "vdg/viewdep/model.h"
 
@@ -199,30 +200,7 @@ void saveManifest(const std::string& path, const RawViewDependentModel& model) {
     keys.push_back(std::move(entry));
   }
   doc["keys"] = std::move(keys);
-  // Two-space indentation, but [x, y, z] arrays of numbers kept on one line.
-  std::string text = doc.dump(2) + "\n";
-  std::string compact;
-  compact.reserve(text.size());
-  for (std::size_t i = 0; i < text.size(); ++i) {
-    if (text[i] == '[') {
-      const std::size_t close = text.find(']', i);
-      const std::string inner = text.substr(i + 1, close - i - 1);
-      if (inner.find_first_of("{[\"") == std::string::npos) {
-        std::string flat = "[";
-        std::istringstream parts(inner);
-        for (std::string item; std::getline(parts, item, ',');) {
-          const auto a = item.find_first_not_of(" \n"), b = item.find_last_not_of(" \n");
-          if (a == std::string::npos) continue;
-          flat += (flat.size() > 1 ? ", " : "") + item.substr(a, b - a + 1);
-        }
-        compact += flat + "]";
-        i = close;
-        continue;
-      }
-    }
-    compact += text[i];
-  }
-  text = std::move(compact);
+  const std::string text = compactScalarArrays(doc.dump(2)) + "\n";
   writeFileAtomically(path, [&](std::ostream& out) { out << text; });
 }
 
