@@ -1,4 +1,4 @@
-// vdg align MODEL --drawing IMG --points PAIRS.json [--ortho] -o CAMERA.json
+// vdg align MODEL --drawing IMG --points PAIRS.json [--ortho] (-o CAMERA.json | --key NAME)
 //
 // Solves a key camera from 2D-3D correspondences between a drawing and the base mesh (Rademacher
 // 99, 3.1.1): DLT then Levenberg-Marquardt on the reprojection error (see vdg/deform/align.h).
@@ -22,7 +22,7 @@ namespace vdg::cli {
 namespace {
 
 struct AlignCliOptions {
-  std::string model, drawing, points, output, size;
+  std::string model, drawing, points, output, size, key;
   bool ortho = false, json = false;
 };
 
@@ -87,15 +87,38 @@ void runAlign(const AlignCliOptions& opt) {
     if (!(s >> width >> sep >> height) || sep != ',' || width <= 0 || height <= 0 || !s.eof())
       throw UsageError("--size: expected W,H in pixels, got '" + opt.size + "'");
   }
+  if (opt.output.empty() && opt.key.empty()) throw UsageError("give -o CAMERA.json, --key NAME, or both");
   const bool is_obj = opt.model.size() > 4 && opt.model.substr(opt.model.size() - 4) == ".obj";
-  const TriMesh base = is_obj ? readMesh(opt.model) : loadManifest(opt.model).base;
+  if (is_obj && !opt.key.empty()) throw UsageError("--key needs a model manifest, not a mesh");
+  RawViewDependentModel raw;
+  if (is_obj)
+    raw.base = readMesh(opt.model);
+  else
+    raw = loadManifest(opt.model);
+  const TriMesh& base = raw.base;
+  RawKey* key = nullptr;
+  if (!opt.key.empty()) {
+    for (RawKey& k : raw.keys)
+      if (k.name == opt.key) key = &k;
+    if (!key)
+      throw Error(opt.model + ": no key named '" + opt.key +
+                  "' (make it first, for instance with vdg deform --key NAME --camera CAMERA.json)");
+  }
   std::vector<Eigen::Vector3d> points;
   std::vector<Eigen::Vector2d> pixels;
   readPairs(opt.points, base, points, pixels);
   AlignOptions options;
   options.ortho = opt.ortho;
   const AlignResult r = alignCamera(points, pixels, width, height, options);
-  writeCameraFile(opt.output, r.camera);
+  if (key) {
+    // The key's view follows its new camera (normalize(eye - centre)); everything is checked
+    // before the manifest is replaced.
+    key->camera = r.camera;
+    raw.resolveViews();
+    raw.validate();
+  }
+  if (!opt.output.empty()) writeCameraFile(opt.output, r.camera);
+  if (key) saveManifest(opt.model, raw);
   if (opt.json) {
     nlohmann::json out;
     out["camera"] = nlohmann::json::parse(cameraToJson(r.camera));
@@ -109,7 +132,8 @@ void runAlign(const AlignCliOptions& opt) {
     std::printf("aligned %s camera from %zu pairs on a %dx%d drawing: RMS error %.4g px (max %.4g px; DLT %.4g px)\n",
                 r.camera.isOrtho() ? "parallel" : "perspective", points.size(), width, height, r.rms_px, r.max_px,
                 r.dlt_rms_px);
-    std::printf("wrote %s\n", opt.output.c_str());
+    if (!opt.output.empty()) std::printf("wrote %s\n", opt.output.c_str());
+    if (key) std::printf("stored the camera in key '%s' of %s\n", key->name.c_str(), opt.model.c_str());
   }
 }
 
@@ -127,7 +151,8 @@ void addAlignCommand(CLI::App& app) {
                   "Point pairs JSON: {\"pairs\": [{\"vertex\": I | \"point\": [x,y,z], \"pixel\": [x,y]}, ...]}")
       ->required();
   sub->add_flag("--ortho", opt->ortho, "Solve a parallel (orthographic) camera");
-  sub->add_option("-o,--output", opt->output, "Camera JSON to write")->required();
+  sub->add_option("-o,--output", opt->output, "Camera JSON to write");
+  sub->add_option("--key", opt->key, "Also store the camera in this key of the manifest (its view follows)");
   sub->add_flag("--json", opt->json, "Print the result as JSON");
   sub->callback([opt] { runAlign(*opt); });
 }
