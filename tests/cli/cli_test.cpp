@@ -136,4 +136,15 @@ TEST(Examples, SpotExampleIsReproducible) {
   }
 }
 
+TEST(Examples, BuildingExampleIsReproducible) {
+  vdg::testing::TempDir dir;
+  const Result r = run("'" + dir.path().string() + "'", VDG_MAKE_BUILDING);
+  ASSERT_EQ(r.code, 0) << r.err;
+  for (const char* file : {"building.vdg.json", "base.obj", "front.obj"}) {
+    EXPECT_EQ(vdg::testing::readText(dir.file(file)),
+              vdg::testing::readText(std::string(VDG_SOURCE_DIR "/examples/building/") + file))
+        << file << " differs from what make_building writes";
+  }
+}
+
 }  // namespace
