@@ -50,8 +50,12 @@ FrameRange parseFrameRange(const std::string& text, const std::string& option) {
 Progress::Progress(std::string label, long total, bool quiet)
     : label_(std::move(label)), total_(total), enabled_(!quiet && total > 1 && ::isatty(STDERR_FILENO)) {}
 
-Progress::~Progress() {
+Progress::~Progress() { finish(); }
+
+void Progress::finish() {
   if (enabled_ && last_percent_ >= 0) std::fputc('\n', stderr);
+  last_percent_ = -1;
+  enabled_ = false;
 }
 
 void Progress::step(long done) {

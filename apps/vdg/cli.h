@@ -34,6 +34,8 @@ class Progress {
   Progress(std::string label, long total, bool quiet);
   ~Progress();
   void step(long done);
+  // Ends the bar's line, so that what is printed next starts on a line of its own.
+  void finish();
 
  private:
   std::string label_;

@@ -149,6 +149,7 @@ void run(const RenderOptions& opt) {
     render::writePng((out_dir / name).string(), image);
     progress.step(f - range.first + 1);
   }
+  progress.finish();
 
   if (video) {
     const std::string temp = opt.output + ".partial" + fs::path(opt.output).extension().string();
