@@ -12,6 +12,7 @@
 #include <string>
 
 #include "vdg/geom/tri_mesh.h"
+#include "vdg/io/manifest.h"
 #include "vdg/render/model_renderer.h"
 #include "vdg/viewdep/model.h"
 

@@ -15,7 +15,9 @@
 #include "vdg/deform/align.h"
 #include "vdg/deform/edits.h"
 #include "vdg/geom/error.h"
-#include "vdg/geom/obj_io.h"
+#include "vdg/io/camera_json.h"
+#include "vdg/io/manifest.h"
+#include "vdg/io/obj.h"
 #include "vdg/viewdep/model.h"
 
 namespace vdg::cli {

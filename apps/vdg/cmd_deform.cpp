@@ -12,7 +12,10 @@
 #include "cli.h"
 #include "vdg/deform/edits.h"
 #include "vdg/geom/error.h"
-#include "vdg/geom/obj_io.h"
+#include "vdg/io/camera_json.h"
+#include "vdg/io/edit_script.h"
+#include "vdg/io/manifest.h"
+#include "vdg/io/obj.h"
 #include "vdg/viewdep/model.h"
 
 namespace vdg::cli {

@@ -3,7 +3,8 @@
 #include <memory>
 
 #include "cli.h"
-#include "vdg/geom/obj_io.h"
+#include "vdg/io/manifest.h"
+#include "vdg/io/obj.h"
 #include "view_options.h"
 
 namespace vdg::cli {

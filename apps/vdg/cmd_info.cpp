@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "cli.h"
+#include "vdg/io/manifest.h"
 #include "vdg/viewdep/model.h"
 
 namespace vdg::cli {

@@ -14,7 +14,8 @@
 
 #include "cli.h"
 #include "vdg/geom/error.h"
-#include "vdg/geom/obj_io.h"
+#include "vdg/io/manifest.h"
+#include "vdg/io/obj.h"
 #include "vdg/render/model_renderer.h"
 
 namespace vdg::cli {

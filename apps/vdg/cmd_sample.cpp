@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "cli.h"
-#include "vdg/anim/anim_json.h"
-#include "vdg/geom/atomic_file.h"
+#include "vdg/io/anim_json.h"
+#include "vdg/io/atomic_file.h"
 
 namespace vdg::cli {
 namespace {

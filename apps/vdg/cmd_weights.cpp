@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli.h"
+#include "vdg/io/manifest.h"
 #include "view_options.h"
 
 namespace vdg::cli {

@@ -15,8 +15,8 @@
 #include <string>
 
 #include "vdg/geom/error.h"
-#include "vdg/geom/obj_io.h"
 #include "vdg/geom/tri_mesh.h"
+#include "vdg/io/obj.h"
 
 namespace {
 

@@ -18,7 +18,8 @@
 #include <vector>
 
 #include "vdg/geom/error.h"
-#include "vdg/geom/obj_io.h"
+#include "vdg/io/manifest.h"
+#include "vdg/io/obj.h"
 #include "vdg/viewdep/model.h"
 
 namespace {

@@ -7,8 +7,8 @@
 #include <cstdlib>
 #include <memory>
 
-#include "vdg/geom/atomic_file.h"
 #include "vdg/geom/error.h"
+#include "vdg/io/atomic_file.h"
 
 namespace vdg::render {
 

@@ -11,7 +11,10 @@
 
 #include "test_meshes.h"
 #include "vdg/deform/edits.h"
-#include "vdg/geom/obj_io.h"
+#include "vdg/io/camera_json.h"
+#include "vdg/io/edit_script.h"
+#include "vdg/io/manifest.h"
+#include "vdg/io/obj.h"
 #include "vdg/viewdep/model.h"
 
 namespace vdg {

@@ -6,6 +6,8 @@
 #include "test_meshes.h"
 #include "vdg/deform/edits.h"
 #include "vdg/geom/error.h"
+#include "vdg/io/camera_json.h"
+#include "vdg/io/edit_script.h"
 
 namespace vdg {
 namespace {
@@ -63,7 +65,7 @@ TEST(EditScript, BadOpsNameIndexAndField) {
             std::string::npos);
   EXPECT_NE(errorOf(R"({"ops": [{"op": "drag", "vertex": 0, "radius": 1}]})").find("exactly one of 'delta'"),
             std::string::npos);
-  EXPECT_NE(errorOf("{ not json").find("E.json: invalid JSON"), std::string::npos);
+  EXPECT_NE(errorOf("{ not json").find("E.json: not valid JSON"), std::string::npos);
   EXPECT_NE(errorOf(R"({"version": 7, "ops": []})").find("'version'"), std::string::npos);
 }
 

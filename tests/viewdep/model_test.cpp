@@ -9,6 +9,7 @@
 
 #include "support/test_meshes.h"
 #include "vdg/geom/error.h"
+#include "vdg/io/manifest.h"
 
 namespace vdg {
 namespace {

@@ -1,7 +1,7 @@
-// Edit scripts: lists of deformation operations applied to a key mesh in its key camera, as read
-// from an EDITS.json file (`vdg deform --ops`) or made by the editor, and the per-key edit log that
-// lets a key be rebuilt from the base and undone step by step. The format is documented, with
-// examples, in docs/deform.md.
+// Edit scripts: lists of deformation operations applied to a key mesh in its key camera, as made
+// by the editor or read from an EDITS.json file (`vdg deform --ops`, parsed by vdg/io/edit_script.h),
+// and the per-key edit log that lets a key be rebuilt from the base and undone step by step. The
+// file formats are documented, with examples, in docs/deform.md.
 //
 // Operations ("op"): drag, push_pull, rotate, scale (image-plane tools, Rademacher 99, 3.1.2),
 // displace (Parent 4.10 attenuated vertex displacement), ffd (Sederberg-Parry lattice),
@@ -20,7 +20,6 @@
 #include "vdg/deform/falloff.h"
 #include "vdg/deform/image_plane.h"
 #include "vdg/geom/camera.h"
-#include "vdg/viewdep/model.h"
 
 namespace vdg {
 
@@ -72,12 +71,6 @@ struct EditScript {
   std::vector<EditOp> ops;
 };
 
-// Parses an EDITS.json text. Throws vdg::Error naming `source`, the op index, the op and the field:
-// "EDITS.json: ops[2] (drag): 'radius' must be > 0, got -1". Unknown ops and unknown fields are
-// errors. Vertex indices are checked against the mesh by validateEdits().
-EditScript parseEditScript(const std::string& text, const std::string& source);
-EditScript readEditScript(const std::string& path);
-
 // Checks every vertex index against `vertex_count`; throws vdg::Error naming the op and field.
 void validateEdits(std::span<const EditOp> ops, std::size_t vertex_count, const std::string& source);
 
@@ -99,11 +92,6 @@ std::vector<EditReport> applyEdits(const Camera& camera, std::span<const std::in
 // ortho height `height`.
 Camera cameraFromView(const Eigen::Vector3d& center, const Eigen::Vector3d& view, double distance, double height);
 
-// Camera files hold the object a manifest key's "camera" field holds (parseCameraJson and
-// cameraToJson in vdg/viewdep/model.h).
-Camera readCameraFile(const std::string& path);
-void writeCameraFile(const std::string& path, const Camera& camera);  // atomic
-
 // The edit log of a key: KEY.edits.json beside the key mesh. `origin` is "base" when the key was
 // made from the base, else the path (relative to the log) of a snapshot of the key mesh as it was
 // before its first logged edit. Each entry is one `vdg deform` run (or one editor edit): the camera
@@ -118,11 +106,5 @@ struct EditLog {
   std::string origin = "base";
   std::vector<EditLogEntry> entries;
 };
-
-// "dir/KEY.obj" -> "dir/KEY.edits.json".
-std::string editLogPath(const std::string& key_mesh_path);
-// Throws vdg::Error naming the file for a malformed log; a missing file is an error too.
-EditLog readEditLog(const std::string& path);
-void writeEditLog(const std::string& path, const EditLog& log);  // atomic
 
 }  // namespace vdg

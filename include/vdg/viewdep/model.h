@@ -25,8 +25,9 @@
 
 namespace vdg {
 
-// Current manifest format version (the "version" field of *.vdg.json).
-inline constexpr int kManifestVersion = 1;
+// The most keys a model may have: far more than any drawn model sheet, and a bound on the work and
+// memory a hostile manifest can ask for.
+inline constexpr std::size_t kMaxKeys = 100'000;
 
 struct RawKey {
   std::string name;       // unique within the model; defaults to the mesh file's stem
@@ -41,6 +42,7 @@ struct RawKey {
 struct RawViewDependentModel {
   std::string source;     // manifest path, used in messages (may be empty)
   std::string base_path;  // as written in the manifest
+  std::string comment;    // free text kept with the model (the manifest's "comment")
   TriMesh base;
   std::vector<RawKey> keys;
   double sharpness = 1.0;  // alpha of section 3.2.2, > 0
@@ -56,21 +58,6 @@ struct RawViewDependentModel {
   // with the same view (within 1e-6 rad), duplicate names, sharpness <= 0, a bad falloff angle.
   void validate() const;
 };
-
-// Reads a *.vdg.json manifest and every mesh it names (paths relative to the manifest), resolves
-// camera keys' views and validates. Throws vdg::Error naming the file and key for missing files,
-// unknown fields, a wrong or missing version, bad values, and everything validate() checks.
-RawViewDependentModel loadManifest(const std::string& path);
-// Writes the manifest (not the meshes) atomically, with mesh paths as stored in the raw model.
-void saveManifest(const std::string& path, const RawViewDependentModel& model);
-
-// A camera as JSON, the object a manifest key's "camera" field holds:
-//   {"eye": [x,y,z], "target": [x,y,z], "up": [x,y,z] (default [0,1,0]), "fov_deg": f | "ortho_height": h}
-// parseCameraJson throws vdg::Error prefixed with `where` for bad JSON, missing or unknown fields,
-// fov outside (0, 180), a non-positive ortho height, or a degenerate frame (eye == target, up
-// parallel to the view). cameraToJson writes one compact object.
-Camera parseCameraJson(const std::string& text, const std::string& where);
-std::string cameraToJson(const Camera& camera);
 
 class ViewDependentModel {
  public:

@@ -6,11 +6,11 @@
 #include <vector>
 
 #include "support/mutate.h"
-#include "vdg/anim/anim_json.h"
 #include "vdg/anim/camera_path.h"
 #include "vdg/anim/curve.h"
 #include "vdg/anim/track.h"
 #include "vdg/geom/error.h"
+#include "vdg/io/anim_json.h"
 
 namespace vdg::anim {
 namespace {

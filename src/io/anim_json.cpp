@@ -1,109 +1,29 @@
 // JSON form of the anim module's authoring objects (docs/anim.md). Parsing only: every value is
 // checked here for its JSON type and shape, with errors naming the key path; the mathematical
 // validation (times increasing, parameters in range) is done by the builders and re-prefixed here.
-#include "vdg/anim/anim_json.h"
+#include "vdg/io/anim_json.h"
 
 #include <cmath>
-#include <fstream>
 #include <initializer_list>
-#include <nlohmann/json.hpp>
 #include <numbers>
-#include <sstream>
 
+#include "json_reader.h"
 #include "vdg/geom/error.h"
+#include "vdg/io/read_file.h"
 
 namespace vdg::anim {
 namespace {
 
-using nlohmann::json;
-
-// A position in the document: the file (or caller's `where`) and the key path inside it.
-struct Ctx {
-  std::string where;
-  std::string path;  // e.g. "'track'.'keys'[1]"; empty at the top
-
-  Ctx key(const std::string& k) const { return {where, path.empty() ? "'" + k + "'" : path + ".'" + k + "'"}; }
-  Ctx index(std::size_t i) const { return {where, path + "[" + std::to_string(i) + "]"}; }
-  std::string prefix() const { return path.empty() ? where : where + ": " + path; }
-  [[noreturn]] void fail(const std::string& what) const { throw Error(prefix() + ": " + what); }
-};
-
-json parseText(std::string_view text, const std::string& where) {
-  try {
-    return json::parse(text.begin(), text.end());
-  } catch (const json::parse_error& e) {
-    std::ostringstream out;
-    out << where << ": not valid JSON (at byte " << e.byte << ")";
-    throw Error(out.str());
-  } catch (const json::exception& e) {  // for instance a number too large for a double
-    throw Error(where + ": not valid JSON: " + e.what());
-  }
-}
-
-void allowKeys(const json& j, const Ctx& ctx, std::initializer_list<const char*> keys) {
-  if (!j.is_object()) ctx.fail("expected an object");
-  for (const auto& item : j.items()) {
-    bool known = false;
-    for (const char* k : keys) known = known || item.key() == k;
-    if (!known) ctx.fail("unknown key '" + item.key() + "'");
-  }
-}
-
-double number(const json& j, const Ctx& ctx) {
-  if (!j.is_number()) ctx.fail("expected a number");
-  const double v = j.get<double>();
-  if (!std::isfinite(v)) ctx.fail("expected a finite number");
-  return v;
-}
-
-double numberOr(const json& obj, const char* key, double fallback, const Ctx& ctx) {
-  return obj.contains(key) ? number(obj.at(key), ctx.key(key)) : fallback;
-}
-
-std::string string(const json& j, const Ctx& ctx) {
-  if (!j.is_string()) ctx.fail("expected a string");
-  return j.get<std::string>();
-}
-
-// An array of numbers; `expected` > 0 demands that many.
-Eigen::VectorXd vector(const json& j, const Ctx& ctx, long expected = 0) {
-  auto shape_error = [&]() {
-    if (expected > 0) ctx.fail("expected " + std::to_string(expected) + (expected == 1 ? " number" : " numbers"));
-    ctx.fail("expected an array of numbers");
-  };
-  if (!j.is_array() || j.empty()) shape_error();
-  if (expected > 0 && static_cast<long>(j.size()) != expected) shape_error();
-  Eigen::VectorXd v(static_cast<Eigen::Index>(j.size()));
-  for (std::size_t i = 0; i < j.size(); ++i) {
-    if (!j[i].is_number() || !std::isfinite(j[i].get<double>())) shape_error();
-    v[static_cast<Eigen::Index>(i)] = j[i].get<double>();
-  }
-  return v;
-}
-
-Eigen::Vector3d vector3(const json& j, const Ctx& ctx) { return vector(j, ctx, 3); }
-
-// Re-raises a builder's error (which names the field) under this context.
-template <typename F>
-auto withContext(const Ctx& ctx, F f) {
-  try {
-    return f();
-  } catch (const Error& e) {
-    throw Error(ctx.prefix() + ": " + e.what());
-  }
-}
-
-template <typename Enum, std::size_t N>
-Enum enumValue(const json& j, const Ctx& ctx, const std::pair<const char*, Enum> (&names)[N]) {
-  const std::string s = string(j, ctx);
-  std::string list;
-  for (const auto& [name, value] : names) {
-    if (s == name) return value;
-    list += list.empty() ? "" : ", ";
-    list += std::string("'") + name + "'";
-  }
-  ctx.fail("unknown value '" + s + "' (expected one of " + list + ")");
-}
+using io::allowKeys;
+using io::Ctx;
+using io::enumValue;
+using io::number;
+using io::numberOr;
+using io::string;
+using io::vector;
+using io::vector3;
+using io::withContext;
+using Json = io::Json;
 
 constexpr std::pair<const char*, CurveKind> kCurveKinds[] = {
     {"linear", CurveKind::kLinear},
@@ -135,7 +55,7 @@ constexpr std::pair<const char*, ArcLengthMethod> kArcMethods[] = {{"table", Arc
                                                                    {"adaptive", ArcLengthMethod::kAdaptive}};
 
 // The ease object's own keys; `j` may hold other keys when `strict` is false (an ease inside a key).
-Ease easeFrom(const json& j, const Ctx& ctx) {
+Ease easeFrom(const Json& j, const Ctx& ctx) {
   if (j.is_string()) {  // shorthand "sine" / "linear"
     const std::string s = j.get<std::string>();
     if (s == "linear") return Ease::linear();
@@ -170,17 +90,13 @@ Ease easeFrom(const json& j, const Ctx& ctx) {
   ctx.key("ease").fail("unknown ease '" + kind + "' (expected 'linear', 'sine', 'sinusoidal' or 'parabolic')");
 }
 
-std::optional<ArcLengthOptions> arcLengthFrom(const json& j, const Ctx& ctx) {
+std::optional<ArcLengthOptions> arcLengthFrom(const Json& j, const Ctx& ctx) {
   if (j.is_boolean()) return j.get<bool>() ? std::optional<ArcLengthOptions>(ArcLengthOptions{}) : std::nullopt;
   allowKeys(j, ctx, {"method", "samples", "tolerance"});
   ArcLengthOptions o;
   if (j.contains("method")) o.method = enumValue(j.at("method"), ctx.key("method"), kArcMethods);
   if (j.contains("samples")) {
-    const json& s = j.at("samples");
-    if (!s.is_number_integer() || s.get<long>() < 2 || s.get<long>() > 10'000'000) {
-      ctx.key("samples").fail("expected an integer from 2 to 10000000");
-    }
-    o.table_samples = s.get<int>();
+    o.table_samples = static_cast<int>(io::integer(j.at("samples"), ctx.key("samples"), 2, 10'000'000));
   }
   o.tolerance = numberOr(j, "tolerance", o.tolerance, ctx);
   if (!(o.tolerance > 0.0 && o.tolerance < 1.0)) ctx.key("tolerance").fail("expected a number in (0, 1)");
@@ -188,12 +104,12 @@ std::optional<ArcLengthOptions> arcLengthFrom(const json& j, const Ctx& ctx) {
 }
 
 // Curve fields of `j` ("curve", "points", "times"); other keys are checked by the caller.
-RawCurve curveFrom(const json& j, const Ctx& ctx) {
+RawCurve curveFrom(const Json& j, const Ctx& ctx) {
   RawCurve c;
   if (!j.contains("curve")) ctx.fail("missing key 'curve'");
   c.kind = enumValue(j.at("curve"), ctx.key("curve"), kCurveKinds);
   if (!j.contains("points")) ctx.fail("missing key 'points'");
-  const json& pts = j.at("points");
+  const Json& pts = j.at("points");
   const Ctx pctx = ctx.key("points");
   if (!pts.is_array()) pctx.fail("expected an array of points");
   for (std::size_t i = 0; i < pts.size(); ++i) {
@@ -201,7 +117,7 @@ RawCurve curveFrom(const json& j, const Ctx& ctx) {
     c.points.push_back(vector(pts[i], pctx.index(i), dim));
   }
   if (j.contains("times")) {
-    const json& ts = j.at("times");
+    const Json& ts = j.at("times");
     if (!ts.is_array()) ctx.key("times").fail("expected an array of numbers");
     for (std::size_t i = 0; i < ts.size(); ++i) c.times.push_back(number(ts[i], ctx.key("times").index(i)));
   }
@@ -209,12 +125,12 @@ RawCurve curveFrom(const json& j, const Ctx& ctx) {
   return c;
 }
 
-RawCurve curveObject(const json& j, const Ctx& ctx) {
+RawCurve curveObject(const Json& j, const Ctx& ctx) {
   allowKeys(j, ctx, {"curve", "points", "times"});
   return curveFrom(j, ctx);
 }
 
-RawTrack trackFrom(const json& j, const Ctx& ctx) {
+RawTrack trackFrom(const Json& j, const Ctx& ctx) {
   allowKeys(j, ctx, {"name", "type", "interpolation", "extrapolation", "keys"});
   RawTrack t;
   if (j.contains("name")) t.name = string(j.at("name"), ctx.key("name"));
@@ -223,7 +139,7 @@ RawTrack trackFrom(const json& j, const Ctx& ctx) {
   if (j.contains("extrapolation"))
     t.extrapolation = enumValue(j.at("extrapolation"), ctx.key("extrapolation"), kExtrapolations);
   if (!j.contains("keys")) ctx.fail("missing key 'keys'");
-  const json& keys = j.at("keys");
+  const Json& keys = j.at("keys");
   const Ctx kctx = ctx.key("keys");
   if (!keys.is_array() || keys.empty()) kctx.fail("expected a non-empty array of keys");
   // Type: given, or inferred from the interpolation and the first value.
@@ -232,14 +148,14 @@ RawTrack trackFrom(const json& j, const Ctx& ctx) {
   } else if (t.interpolation == Interpolation::kSlerp || t.interpolation == Interpolation::kQuaternionCurve) {
     t.type = TrackType::kRotation;
   } else {
-    const json& k0 = keys[0];
+    const Json& k0 = keys[0];
     t.type =
         k0.is_object() && k0.contains("value") && k0.at("value").is_array() ? TrackType::kVector : TrackType::kScalar;
   }
   long dim = t.type == TrackType::kRotation ? 4 : t.type == TrackType::kScalar ? 1 : 0;
   for (std::size_t i = 0; i < keys.size(); ++i) {
     const Ctx c = kctx.index(i);
-    const json& k = keys[i];
+    const Json& k = keys[i];
     allowKeys(k, c, {"time", "value", "ease", "in", "out", "fixed_deg", "axis", "angle_deg"});
     RawKey key;
     if (!k.contains("time")) c.fail("missing key 'time'");
@@ -268,7 +184,7 @@ RawTrack trackFrom(const json& j, const Ctx& ctx) {
         if (k.contains(r)) c.fail(std::string("'") + r + "' is only used by rotation tracks");
       }
       if (!k.contains("value")) c.fail("missing key 'value'");
-      const json& v = k.at("value");
+      const Json& v = k.at("value");
       if (t.type == TrackType::kScalar) {
         if (v.is_array()) {
           key.value = vector(v, c.key("value"), 1);
@@ -289,7 +205,7 @@ RawTrack trackFrom(const json& j, const Ctx& ctx) {
   return t;
 }
 
-RawCameraPath cameraPathFrom(const json& j, const Ctx& ctx) {
+RawCameraPath cameraPathFrom(const Json& j, const Ctx& ctx) {
   allowKeys(j, ctx,
             {"position", "arc_length", "speed", "start_time", "end_time", "view", "center", "target_path", "up", "tilt",
              "fov_deg", "ortho_height"});
@@ -316,26 +232,26 @@ RawCameraPath cameraPathFrom(const json& j, const Ctx& ctx) {
 }  // namespace
 
 Ease parseEase(std::string_view json_text, const std::string& where) {
-  return easeFrom(parseText(json_text, where), Ctx{where, ""});
+  return easeFrom(io::parseJson(json_text, where), Ctx{where, ""});
 }
 
 RawCurve parseCurve(std::string_view json_text, const std::string& where) {
-  const json j = parseText(json_text, where);
+  const Json j = io::parseJson(json_text, where);
   const Ctx ctx{where, ""};
   allowKeys(j, ctx, {"curve", "points", "times", "arc_length"});
   return curveFrom(j, ctx);
 }
 
 RawTrack parseTrack(std::string_view json_text, const std::string& where) {
-  return trackFrom(parseText(json_text, where), Ctx{where, ""});
+  return trackFrom(io::parseJson(json_text, where), Ctx{where, ""});
 }
 
 RawCameraPath parseCameraPath(std::string_view json_text, const std::string& where) {
-  return cameraPathFrom(parseText(json_text, where), Ctx{where, ""});
+  return cameraPathFrom(io::parseJson(json_text, where), Ctx{where, ""});
 }
 
 AnimSpec parseAnimSpec(std::string_view json_text, const std::string& where) {
-  const json j = parseText(json_text, where);
+  const Json j = io::parseJson(json_text, where);
   const Ctx ctx{where, ""};
   if (!j.is_object()) ctx.fail("expected an object with 'ease', 'curve', 'track' or 'camera_path'");
   const int kinds = j.contains("ease") + j.contains("curve") + j.contains("track") + j.contains("camera_path");
@@ -362,12 +278,7 @@ AnimSpec parseAnimSpec(std::string_view json_text, const std::string& where) {
 }
 
 AnimSpec loadAnimSpec(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path + ": cannot open file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw Error(path + ": cannot read file");
-  return parseAnimSpec(text.str(), path);
+  return parseAnimSpec(readFileLimited(path, "animation spec", kMaxJsonFileBytes), path);
 }
 
 }  // namespace vdg::anim

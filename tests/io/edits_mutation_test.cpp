@@ -6,6 +6,7 @@
 #include "test_meshes.h"
 #include "vdg/deform/edits.h"
 #include "vdg/geom/error.h"
+#include "vdg/io/edit_script.h"
 
 namespace vdg {
 namespace {

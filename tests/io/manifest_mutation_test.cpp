@@ -4,7 +4,8 @@
 #include "support/mutate.h"
 #include "support/test_meshes.h"
 #include "vdg/geom/error.h"
-#include "vdg/geom/obj_io.h"
+#include "vdg/io/manifest.h"
+#include "vdg/io/obj.h"
 #include "vdg/viewdep/model.h"
 
 namespace vdg {

@@ -4,7 +4,8 @@
 
 #include "support/test_meshes.h"
 #include "vdg/geom/error.h"
-#include "vdg/geom/obj_io.h"
+#include "vdg/io/manifest.h"
+#include "vdg/io/obj.h"
 #include "vdg/viewdep/model.h"
 
 namespace vdg {
@@ -63,6 +64,23 @@ TEST_F(ManifestTest, LoadsKeysViewsAndSettings) {
   EXPECT_DOUBLE_EQ(raw.keys[1].camera->fov_deg, 30.0);
 }
 
+TEST_F(ManifestTest, SaveKeepsTheComment) {
+  RawViewDependentModel raw = loadManifest(write(kGood));
+  raw.comment = "drawn by A. Artist, sheet 3";
+  saveManifest(dir_.file("copy.vdg.json"), raw);
+  EXPECT_EQ(loadManifest(dir_.file("copy.vdg.json")).comment, raw.comment);
+}
+
+TEST_F(ManifestTest, ParsingReadsNoMesh) {
+  // parseManifest checks the document alone: the meshes it names need not exist.
+  const RawViewDependentModel raw = parseManifest(
+      R"({"version": 1, "base": "nowhere/base.obj", "keys": [{"mesh": "nowhere/a.obj", "view": [0, 0, 2]}]})", "doc");
+  EXPECT_EQ(raw.base_path, "nowhere/base.obj");
+  ASSERT_EQ(raw.keys.size(), 1u);
+  EXPECT_EQ(raw.keys[0].name, "a");
+  EXPECT_EQ(raw.base.vertexCount(), 0u);
+}
+
 TEST_F(ManifestTest, SaveThenLoadGivesTheSameModel) {
   RawViewDependentModel raw = loadManifest(write(kGood));
   raw.center = Vector3d(0.1, 0.2, 0.3);
@@ -89,13 +107,14 @@ TEST_F(ManifestTest, EveryValidationErrorNamesTheFileAndTheKey) {
       {"{", "m.vdg.json: not valid JSON"},
       {"[]", "m.vdg.json: expected a JSON object"},
       {R"({"base": "base.obj", "keys": []})", "m.vdg.json: missing 'version'"},
-      {R"({"version": 2, "base": "base.obj", "keys": []})", "m.vdg.json: 'version' is 2, but this vdg reads version 1"},
-      {R"({"version": 1, "base": "base.obj", "keys": [], "colour": 1})", "m.vdg.json: unknown field 'colour'"},
+      {R"({"version": 2, "base": "base.obj", "keys": []})",
+       "m.vdg.json: 'version': this vdg reads model manifests version 1, got 2"},
+      {R"({"version": 1, "base": "base.obj", "keys": [], "colour": 1})", "m.vdg.json: unknown key 'colour'"},
       {R"({"version": 1, "base": "nope.obj", "keys": []})", "m.vdg.json: base: "},
       {R"({"version": 1, "base": "base.obj", "keys": [{"mesh": "missing.obj", "view": [0,0,1]}]})",
        "key 'missing' (keys[0]): "},
       {R"({"version": 1, "base": "base.obj", "keys": [{"mesh": "a.obj", "view": [0,0,1], "weight": 2}]})",
-       "keys[0]: unknown field 'weight'"},
+       "'keys'[0]: unknown key 'weight'"},
       {R"({"version": 1, "base": "base.obj", "keys": [{"mesh": "a.obj", "view": [0,0,0]}]})",
        "key 'a' (keys[0]): view direction has zero length"},
       {R"({"version": 1, "base": "base.obj", "keys": [{"mesh": "a.obj", "view": [0,0,1]}, {"mesh": "b.obj", "view": [0,0,3]}]})",
@@ -104,19 +123,26 @@ TEST_F(ManifestTest, EveryValidationErrorNamesTheFileAndTheKey) {
        "another key has the same name"},
       {R"({"version": 1, "base": "base.obj", "keys": [{"mesh": "a.obj"}]})", "give exactly one of 'view'"},
       {R"({"version": 1, "base": "base.obj", "keys": [{"mesh": "a.obj", "view": [0,1]}]})",
-       "view: expected an array of 3 numbers"},
+       "key 'a' (keys[0]).'view': expected 3 numbers, got an array of 2 items"},
       {R"({"version": 1, "base": "base.obj", "keys": [{"mesh": "a.obj", "camera": {"eye": [0,0,3], "target": [0,0,0]}}]})",
        "give exactly one of 'fov_deg' (perspective) or 'ortho_height'"},
       {R"({"version": 1, "base": "base.obj", "keys": [{"mesh": "a.obj", "camera": {"eye": [0,0,0], "target": [0,0,0], "ortho_height": 2}}]})",
        "eye and target are the same point"},
       {R"({"version": 1, "base": "base.obj", "keys": [{"mesh": "a.obj", "camera": {"eye": [0,0,3], "fov_deg": 30}}]})",
-       "camera: missing 'target'"},
+       "key 'a' (keys[0]).'camera': missing key 'target'"},
       {R"({"version": 1, "base": "base.obj", "uncovered": "nearest", "keys": [{"mesh": "a.obj", "view": [0,0,1]}]})",
        "'uncovered': unknown value 'nearest'"},
       {R"({"version": 1, "base": "base.obj", "sharpness": 0, "keys": [{"mesh": "a.obj", "view": [0,0,1]}]})",
        "'sharpness' must be a positive number"},
       {R"({"version": 1, "base": "base.obj", "keys": [{"mesh": "a.obj", "view": [0,0,1], "frame": 3}]})",
        "'frame' needs an animated base model"},
+      {R"({"version": 4294967297, "base": "base.obj", "keys": []})",
+       "m.vdg.json: 'version': this vdg reads model manifests version 1, got 4294967297"},
+      {"{\"version\": " + std::string(70'000, '[') + std::string(70'000, ']') + "}",
+       "m.vdg.json: JSON nested deeper than 64 levels"},
+      {R"({"version": 1, "base": "", "keys": []})", "m.vdg.json: 'base': expected a mesh file name"},
+      {R"({"version": 1, "base": "base.obj", "keys": [{"mesh": "a.obj", "view": [1e400, 0, 0]}]})",
+       "m.vdg.json: not valid JSON"},
   };
   for (const Case& c : cases) {
     const std::string message = loadError(c.json);

@@ -1,8 +1,8 @@
 // Tests of the JSON form (docs/anim.md): every example parses, every invalid input names the key.
 #include <gtest/gtest.h>
 
-#include "vdg/anim/anim_json.h"
 #include "vdg/geom/error.h"
+#include "vdg/io/anim_json.h"
 
 namespace vdg::anim {
 namespace {
@@ -60,7 +60,9 @@ void expectError(const std::string& text, const std::string& message) {
 }
 
 TEST(AnimJson, ErrorsNameTheKey) {
-  expectError("{", "spec.json: not valid JSON (at byte 2)");
+  expectError(
+      "{",
+      "spec.json: not valid JSON at line 1, column 2: object key - unexpected end of input; expected string literal");
   expectError("[]", "spec.json: expected an object with 'ease', 'curve', 'track' or 'camera_path'");
   expectError(R"({"ease": "sine", "curve": "linear"})",
               "spec.json: expected exactly one of the keys 'ease', 'curve', 'track', 'camera_path'");
@@ -69,32 +71,36 @@ TEST(AnimJson, ErrorsNameTheKey) {
   expectError(R"({"ease": "sinusoidal", "t1": 0.9, "t2": 0.1})",
               "spec.json: sinusoidal ease: t1 = 0.9 must not exceed t2 = 0.1");
   expectError(R"({"ease": "sinusoidal", "t1": 0.2})", "spec.json: the sinusoidal ease needs 't1' and 't2'");
-  expectError(R"({"ease": "sinusoidal", "t1": "x", "t2": 0.5})", "spec.json: 't1': expected a number");
+  expectError(R"({"ease": "sinusoidal", "t1": "x", "t2": 0.5})",
+              "spec.json: 't1': expected a number, got the string \"x\"");
   expectError(R"({"ease": "parabolic", "a": 0.2, "b": 0.8, "t1": 0})",
               "spec.json: 't1' is not a parameter of the parabolic ease (use a, b)");
-  expectError(R"({"ease": "sine", "speed": 2})", "spec.json: unknown key 'speed'");
+  expectError(R"({"ease": "sine", "speed": 2})",
+              "spec.json: unknown key 'speed' (expected one of 'ease', 't1', 't2', 'a', 'b')");
   expectError(R"({"curve": "catmull-rom", "points": [[0,0,0],[1,1,1],[2,2]]})",
-              "spec.json: 'points'[2]: expected 3 numbers");
+              "spec.json: 'points'[2]: expected 3 numbers, got an array of 2 items");
   expectError(R"({"curve": "spline", "points": [[0],[1]]})",
               "spec.json: 'curve': unknown value 'spline' (expected one of 'linear', 'catmull-rom', "
               "'centripetal-catmull-rom', 'natural-cubic', 'parabolic-blending', 'bezier')");
   expectError(R"({"curve": "linear", "points": [[0],[1]], "times": [0, "a"]})",
-              "spec.json: 'times'[1]: expected a number");
+              "spec.json: 'times'[1]: expected a number, got the string \"a\"");
   expectError(R"({"curve": "linear", "points": [[0],[1]], "times": [1, 0]})",
               "spec.json: 'times'[1]: key times must strictly increase (1 then 0)");
   expectError(R"({"curve": "linear", "points": [[0],[1]], "arc_length": {"method": "table", "samples": 1}})",
-              "spec.json: 'arc_length'.'samples': expected an integer from 2 to 10000000");
+              "spec.json: 'arc_length'.'samples': expected an integer from 2 to 10000000, got 1");
   expectError(R"({"curve": "linear"})", "spec.json: missing key 'points'");
   expectError(R"({"track": {"keys": [{"time": 0, "value": [1, 2]}, {"time": 1, "value": [1]}]}})",
-              "spec.json: 'track'.'keys'[1].'value': expected 2 numbers");
+              "spec.json: 'track'.'keys'[1].'value': expected 2 numbers, got an array of 1 item");
   expectError(R"({"track": {"keys": [{"time": 0}]}})", "spec.json: 'track'.'keys'[0]: missing key 'value'");
   expectError(R"({"track": {"keys": [{"time": 0, "value": 1, "ease": {"ease": "sinusoidal", "t1": 2, "t2": 3}}]}})",
               "spec.json: 'track'.'keys'[0].'ease': sinusoidal ease: t1 = 2 is outside [0, 1]");
   expectError(R"({"track": {"interpolation": "slerp", "keys": [{"time": 0, "value": [1, 0, 0]}]}})",
-              "spec.json: 'track'.'keys'[0].'value': expected 4 numbers");
+              "spec.json: 'track'.'keys'[0].'value': expected 4 numbers, got an array of 3 items");
   expectError(R"({"track": {"name": "a", "keys": [{"time": 1, "value": 0}, {"time": 0, "value": 1}]}})",
               "spec.json: 'track': track 'a': 'keys'[1]: 'time' 0 must be greater than the previous key's 1");
-  expectError(R"({"track": {"keys": [], "interp": "linear"}})", "spec.json: 'track': unknown key 'interp'");
+  expectError(R"({"track": {"keys": [], "interp": "linear"}})",
+              "spec.json: 'track': unknown key 'interp' (expected one of 'name', 'type', 'interpolation', "
+              "'extrapolation', 'keys')");
   expectError(R"({"camera_path": {"position": {"curve": "linear", "points": [[0,0,0],[1,0,0]]}, "view": "up"}})",
               "spec.json: 'camera_path'.'view': unknown value 'up' (expected one of 'center', 'tangent', "
               "'target-path')");
@@ -105,7 +111,7 @@ TEST(AnimJson, MissingFile) {
     loadAnimSpec("/nonexistent/spec.json");
     FAIL();
   } catch (const Error& e) {
-    EXPECT_EQ(std::string(e.what()), "/nonexistent/spec.json: cannot open file");
+    EXPECT_EQ(std::string(e.what()), "/nonexistent/spec.json: no such file (animation spec)");
   }
 }
 

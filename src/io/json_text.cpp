@@ -1,4 +1,4 @@
-#include "vdg/geom/json_text.h"
+#include "vdg/io/json_text.h"
 
 namespace vdg {
 

@@ -1,12 +1,12 @@
-#include "vdg/geom/obj_io.h"
+#include "vdg/io/obj.h"
 
 #include <gtest/gtest.h>
 
 #include <filesystem>
 
 #include "support/test_meshes.h"
-#include "vdg/geom/atomic_file.h"
 #include "vdg/geom/error.h"
+#include "vdg/io/atomic_file.h"
 
 namespace vdg {
 namespace {
@@ -66,6 +66,51 @@ TEST(ObjIo, BadInputNamesTheFile) {
   const std::string range = errorOf([&] { readObj(dir.file("range.obj")); });
   EXPECT_NE(range.find("range.obj"), std::string::npos) << range;
   EXPECT_NE(errorOf([&] { readMesh(dir.file("x.ply")); }).find("unsupported mesh format '.ply'"), std::string::npos);
+}
+
+// Lines a lenient reader turns silently into a different shape: each is an error naming the line.
+TEST(ObjIo, StrictLinesNameTheLine) {
+  const std::string tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+  const std::pair<std::string, std::string> cases[] = {
+      {"v nan 1 1\n" + tri + "f 1 2 3\n", "m.obj:1: vertex 1: coordinate 'nan' is not a finite number"},
+      {tri + "v inf 1 1\nf 1 2 3\n", "m.obj:4: vertex 4: coordinate 'inf' is not a finite number"},
+      {tri + "v 1 2\nf 1 2 3\n", "m.obj:4: vertex 4: expected 3 coordinates x y z, got 2"},
+      {tri + "v 1 2 1e999\nf 1 2 3\n", "m.obj:4: vertex 4: coordinate '1e999' is out of range"},
+      {tri + "v 1 2 1e300\nf 1 2 3\n", "m.obj:4: vertex 4: coordinate '1e300' is too large for a float"},
+      {tri + "v 1 2 x\nf 1 2 3\n", "m.obj:4: vertex 4: 'x' is not a number"},
+      {tri + "f 1 2 99999999999999999999\n", "m.obj:4: face: vertex index '99999999999999999999' is out of range"},
+      {tri + "f 1 2 4294967299\n", "m.obj:4: face: vertex index '4294967299' is out of range"},
+      {tri + "f 1 2 7\n", "m.obj:4: a face refers to vertex 7 but the file has 3 vertices"},
+      {tri + "f 1 2 0\n", "m.obj:4: face: vertex index 0 (OBJ indices start at 1)"},
+      {tri + "f 1 2 -4\n", "m.obj:4: face: relative vertex index -4 reaches before the first vertex (3 read so far)"},
+      {tri + "f 1 2 3.5\n", "m.obj:4: face: vertex index '3.5' is not a whole number"},
+      {tri + "f 1 2\n", "m.obj:4: face: expected at least 3 corners, got 2"},
+      {tri + "f 1/1 2/1 3/1\n", "m.obj:4: a face refers to texture coordinate 1 but the file has 0"},
+      {tri + "f 1//x 2 3\n", "m.obj:4: face: normal index 'x' is not a whole number"},
+      {tri, "m.obj: OBJ file has no faces"},
+  };
+  for (const auto& [text, expected] : cases) EXPECT_EQ(errorOf([&] { parseObj(text, "m.obj"); }), expected) << text;
+}
+
+TEST(ObjIo, RelativeIndicesAndCommentsStillRead) {
+  const TriMesh m = parseObj("# a triangle\nv 0 0 0 # origin\nv 1 0 0\nv 0 1 0\r\nf -3 -2 -1\n", "m.obj");
+  EXPECT_EQ(m.triangles, (std::vector<std::int32_t>{0, 1, 2}));
+}
+
+TEST(ObjIo, MaterialLibrariesAreNeverOpened) {
+  // vdg uses no materials: an mtllib naming /dev/zero or a FIFO must neither hang nor exhaust memory.
+  testing::TempDir dir;
+  testing::writeText(dir.file("m.obj"), "mtllib /dev/zero\nusemtl skin\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  EXPECT_EQ(readObj(dir.file("m.obj")).triangleCount(), 1u);
+}
+
+TEST(ObjIo, NonRegularFilesAreRefused) {
+  EXPECT_EQ(errorOf([] { readObj("/dev/zero"); }), "/dev/zero: is a character device, not a mesh file");
+  testing::TempDir dir;
+  EXPECT_EQ(errorOf([&] { readMesh(dir.path().string()); }).find("is a folder") != std::string::npos ||
+                errorOf([&] { readMesh(dir.path().string()); }).find("unsupported mesh format") != std::string::npos,
+            true);
+  EXPECT_EQ(errorOf([&] { readMesh(dir.file("UPPER.OBJ")); }), dir.file("UPPER.OBJ") + ": no such file (mesh)");
 }
 
 TEST(AtomicFile, FailureLeavesTheOldFileUntouched) {

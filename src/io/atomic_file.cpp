@@ -1,4 +1,4 @@
-#include "vdg/geom/atomic_file.h"
+#include "vdg/io/atomic_file.h"
 
 #include <unistd.h>
 #include <atomic>
