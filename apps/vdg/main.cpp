@@ -2,9 +2,11 @@
 // into one line on stderr: exit status 1 for bad input (vdg::Error), 2 for bad usage.
 #include <cstdio>
 #include <exception>
+#include <string>
 
 #include "cli.h"
 #include "vdg/geom/error.h"
+#include "vdg/version.h"
 
 int main(int argc, char** argv) {
   CLI::App app{
@@ -12,7 +14,7 @@ int main(int argc, char** argv) {
       "Run 'vdg SUBCOMMAND --help' for the options of each subcommand."};
   app.name("vdg");
   app.require_subcommand(1);
-  app.set_version_flag("--version", "vdg 0.1.0");
+  app.set_version_flag("--version", std::string("vdg ") + vdg::versionString());
   vdg::cli::addInfoCommand(app);
   vdg::cli::addWeightsCommand(app);
   vdg::cli::addEvalCommand(app);
