@@ -163,6 +163,7 @@ CameraPath CameraPath::build(const RawCameraPath& raw, const std::string& where)
 }
 
 Eigen::Vector3d CameraPath::eyeAt(double t) const {
+  if (std::isnan(t)) t = start_time_;
   const double u = std::clamp((t - start_time_) / (end_time_ - start_time_), 0.0, 1.0);
   Eigen::Vector3d eye;
   path_.evaluateAtDistance(speed_.evaluate(u) * path_.totalLength(), std::span<double>(eye.data(), 3));
@@ -190,6 +191,7 @@ Eigen::Vector3d CameraPath::rawForward(double t, const Eigen::Vector3d& eye) con
 }
 
 Camera CameraPath::evaluate(double t) const {
+  if (std::isnan(t)) t = start_time_;  // a NaN table index would be undefined behaviour
   const int n = static_cast<int>(table_up_.size());
   const double x = std::clamp((t - start_time_) / (end_time_ - start_time_), 0.0, 1.0) * (n - 1);
   const int i = std::min(static_cast<int>(x), n - 2);

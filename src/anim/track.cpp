@@ -211,6 +211,7 @@ double Track::curveTime(double t) const {
   if (std::isnan(t)) t = t0;
   if (extrapolation_ == Extrapolation::kLoop && period > 0.0 && (t < t0 || t >= t1)) {
     double r = std::fmod(t - t0, period);
+    if (!std::isfinite(r)) r = 0.0;  // t = +-inf (or t - t0 overflowing): no phase; the first key
     if (r < 0.0) r += period;
     t = t0 + r;
   }

@@ -202,6 +202,23 @@ TEST(Overflow, FarCameraPathKeepsATargetDistinctFromTheEye) {
   EXPECT_NEAR((frame.up - Eigen::Vector3d(0, 1, 0)).norm(), 0.0, kRotationTol);
 }
 
+TEST(Overflow, InfiniteAndNanTimesGiveFiniteValues) {
+  const double inf = std::numeric_limits<double>::infinity(), nan = std::numeric_limits<double>::quiet_NaN();
+  RawTrack r;
+  r.name = "spin";
+  r.type = TrackType::kRotation;
+  r.interpolation = Interpolation::kSlerp;
+  r.extrapolation = Extrapolation::kLoop;
+  r.keys = {key(-1e307, {1, 0, 0, 0}), key(1e307, {0, 1, 0, 0})};
+  const Track track = Track::build(r);
+  for (const double t : {inf, -inf, nan, 1e308, -1e308}) EXPECT_TRUE(track.at(t).allFinite()) << t;
+  const CameraPath path = CameraPath::build(straightPath());
+  for (const double t : {inf, -inf, nan}) {
+    const Camera cam = path.evaluate(t);
+    EXPECT_TRUE(cam.eye.allFinite() && cam.target.allFinite() && cam.up.allFinite()) << t;
+  }
+}
+
 // ---- Huge and tiny quaternions ----------------------------------------------------------------
 
 TEST(HugeQuaternions, KeepTheirRotation) {
