@@ -5,6 +5,7 @@
 #include <string>
 
 #include "cli.h"
+#include "vdg/geom/normalize.h"
 #include "vdg/viewdep/model.h"
 
 namespace vdg::cli {
@@ -27,8 +28,9 @@ struct ViewOptions {
     if (view_text.empty() == eye_text.empty()) throw UsageError("give exactly one of --view X,Y,Z or --eye X,Y,Z");
     if (!view_text.empty()) {
       const Eigen::Vector3d v = parseVec3(view_text, "--view");
-      if (!(v.norm() > 0.0)) throw UsageError("--view: the view direction must not be zero");
-      return v.normalized();
+      const std::optional<Eigen::Vector3d> unit = normalizedOrNone(v);  // any finite length: 1e155 too
+      if (!unit) throw UsageError("--view: the view direction must be finite and not zero");
+      return *unit;
     }
     const Eigen::Vector3d eye = parseVec3(eye_text, "--eye");
     const Eigen::Vector3d v = model.viewFromEye(eye);

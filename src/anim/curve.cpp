@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "vdg/geom/error.h"
@@ -27,6 +28,8 @@ Vec parabolaDerivative(double x0, const Vec& y0, double x1, const Vec& y1, doubl
 }
 
 }  // namespace
+
+bool isUsableTimeSpan(double span) { return std::isfinite(span) && span >= std::numeric_limits<double>::min(); }
 
 const char* curveKindName(CurveKind kind) {
   switch (kind) {
@@ -65,6 +68,11 @@ void RawCurve::validate(const std::string& where) const {
   }
   const auto dim = points[0].size();
   if (dim < 1) fail("'points'[0]: a point needs at least one coordinate");
+  if (dim > kMaxCurveDimension) {
+    std::ostringstream out;
+    out << "'points'[0]: " << dim << " coordinates; a curve point may have at most " << kMaxCurveDimension;
+    fail(out.str());
+  }
   for (std::size_t i = 0; i < n; ++i) {
     std::ostringstream out;
     if (points[i].size() != dim) {
@@ -92,6 +100,11 @@ void RawCurve::validate(const std::string& where) const {
     }
     if (i > 0 && !(times[i] > times[i - 1])) {
       out << "'times'[" << i << "]: key times must strictly increase (" << times[i - 1] << " then " << times[i] << ")";
+      fail(out.str());
+    }
+    if (i > 0 && !isUsableTimeSpan(times[i] - times[i - 1])) {
+      out << "'times'[" << i << "]: the span from " << times[i - 1] << " to " << times[i]
+          << (std::isinf(times[i] - times[i - 1]) ? " overflows a double" : " is too small to divide by");
       fail(out.str());
     }
   }
@@ -234,6 +247,16 @@ Curve Curve::build(const RawCurve& raw, const std::string& where) {
         for (int k = 0; k < 4; ++k) set(s, k, P[3 * s + k]);
       }
       break;
+  }
+  // Finite keys can still give infinite slopes (1e308 then -1e308, or a tiny time span): reject
+  // them here rather than evaluate to inf or NaN later.
+  for (std::size_t i = 0; i < c.controls_.size(); ++i) {
+    if (!std::isfinite(c.controls_[i])) {
+      std::ostringstream out;
+      out << where << ": 'points': segment " << i / (4 * static_cast<std::size_t>(dim))
+          << " overflows: its coordinates or slopes are too large for doubles";
+      throw Error(out.str());
+    }
   }
   return c;
 }

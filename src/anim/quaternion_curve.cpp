@@ -6,7 +6,9 @@
 #include <cmath>
 #include <sstream>
 
+#include "vdg/anim/curve.h"
 #include "vdg/geom/error.h"
+#include "vdg/geom/normalize.h"
 
 namespace vdg::anim {
 
@@ -36,13 +38,13 @@ QuaternionCurve QuaternionCurve::build(const std::vector<Quaternion>& keys, cons
   }
   QuaternionCurve c;
   for (int i = 0; i < n; ++i) {
-    const double norm = keys[i].norm();
-    if (!keys[i].coeffs().allFinite() || !(norm > 0.0)) {
+    const std::optional<Quaternion> unit = normalizedOrNone(keys[i]);  // any finite length, 1e-200 or 1e200
+    if (!unit) {
       std::ostringstream out;
       out << "key " << i << ": quaternion must be finite and non-zero";
       fail(out.str());
     }
-    Quaternion q(keys[i].coeffs() / norm);
+    Quaternion q = *unit;
     if (i > 0 && c.keys_.back().coeffs().dot(q.coeffs()) < 0.0) q.coeffs() = -q.coeffs();
     c.keys_.push_back(q);
   }
@@ -55,6 +57,12 @@ QuaternionCurve QuaternionCurve::build(const std::vector<Quaternion>& keys, cons
     if (!std::isfinite(times[i]) || (i > 0 && !(times[i] > times[i - 1]))) {
       std::ostringstream out;
       out << "'times'[" << i << "]: key times must be finite and strictly increase";
+      fail(out.str());
+    }
+    if (i > 0 && !isUsableTimeSpan(times[i] - times[i - 1])) {
+      std::ostringstream out;
+      out << "'times'[" << i << "]: the span from " << times[i - 1] << " to " << times[i]
+          << (std::isinf(times[i] - times[i - 1]) ? " overflows a double" : " is too small to divide by");
       fail(out.str());
     }
   }

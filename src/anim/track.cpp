@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "vdg/geom/error.h"
+#include "vdg/geom/normalize.h"
 
 namespace vdg::anim {
 namespace {
@@ -98,14 +99,36 @@ void RawTrack::validate(const std::string& where) const {
       out << at.str() << "'time' " << k.time << " must be greater than the previous key's " << keys[i - 1].time;
       fail(out.str());
     }
+    // Spans are divided by (segment parameters) and the whole range is the loop period.
+    if (i > 0) {
+      const double span = k.time - keys[i - 1].time, range = k.time - keys[0].time;
+      std::ostringstream out;
+      if (!isUsableTimeSpan(span)) {
+        out << at.str() << "'time' " << k.time << ": the span from the previous key's " << keys[i - 1].time
+            << (std::isinf(span) ? " overflows a double" : " is too small to divide by");
+        fail(out.str());
+      }
+      if (!isUsableTimeSpan(range)) {
+        out << at.str() << "'time' " << k.time << ": the span from the first key's " << keys[0].time
+            << " overflows a double";
+        fail(out.str());
+      }
+    }
     if (k.value.size() != expected || expected < 1) {
       std::ostringstream out;
       out << at.str() << "'value': expected " << expected << (expected == 1 ? " number" : " numbers")
           << (rotation ? " (quaternion w, x, y, z)" : "") << ", got " << k.value.size();
       fail(out.str());
     }
+    if (expected > kMaxCurveDimension) {
+      std::ostringstream out;
+      out << at.str() << "'value': " << expected << " numbers; a track value may have at most " << kMaxCurveDimension;
+      fail(out.str());
+    }
     if (!k.value.allFinite()) fail(at.str() + "'value' must be finite");
-    if (rotation && !(k.value.norm() > 0.0)) fail(at.str() + "'value': a rotation quaternion must not be zero");
+    // Any finite non-zero length is a rotation (1e-200 too): a robust norm, not sum of squares.
+    if (rotation && !(robustNorm(std::span<const double>(k.value.data(), 4)) > 0.0))
+      fail(at.str() + "'value': a rotation quaternion must not be zero");
     for (const auto* handle : {&k.in_handle, &k.out_handle}) {
       if (!handle->has_value()) continue;
       const char* key_name = handle == &k.in_handle ? "'in'" : "'out'";
@@ -139,8 +162,8 @@ Track Track::build(const RawTrack& raw, const std::string& where) {
     std::vector<Quaternion> qs;
     for (int i = 0; i < n; ++i) {
       const Eigen::VectorXd& v = raw.keys[i].value;
-      Quaternion q(v[0], v[1], v[2], v[3]);
-      q.normalize();
+      // Robust normalisation: a quaternion 1e200 long is still its rotation, not the identity.
+      Quaternion q = normalizedOrNone(Quaternion(v[0], v[1], v[2], v[3])).value_or(Quaternion::Identity());
       if (i > 0 && qs.back().coeffs().dot(q.coeffs()) < 0.0) q.coeffs() = -q.coeffs();
       qs.push_back(q);
       t.values_.insert(t.values_.end(), {q.w(), q.x(), q.y(), q.z()});
@@ -188,6 +211,7 @@ double Track::curveTime(double t) const {
   if (std::isnan(t)) t = t0;
   if (extrapolation_ == Extrapolation::kLoop && period > 0.0 && (t < t0 || t >= t1)) {
     double r = std::fmod(t - t0, period);
+    if (!std::isfinite(r)) r = 0.0;  // t = +-inf (or t - t0 overflowing): no phase; the first key
     if (r < 0.0) r += period;
     t = t0 + r;
   }

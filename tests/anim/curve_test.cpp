@@ -298,7 +298,9 @@ TEST(ArcLength, RejectsBadOptions) {
     ArcLengthCurve::build(c, {ArcLengthMethod::kAdaptive, 2, 0.0}, "spec.json: 'arc_length'");
     FAIL();
   } catch (const Error& e) {
-    EXPECT_EQ(std::string(e.what()), "spec.json: 'arc_length': 'tolerance' must be in (0, 1), got 0");
+    EXPECT_EQ(std::string(e.what()),
+              "spec.json: 'arc_length': 'tolerance' must be in [1e-12, 1) (relative; finer is below the "
+              "rounding of the quadrature sums), got 0");
   }
   EXPECT_THROW(gaussLegendreLength(c, 0, 1, 9), Error);
 }

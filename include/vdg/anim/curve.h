@@ -41,12 +41,21 @@
 
 namespace vdg::anim {
 
+// Most coordinates a curve point may have. Animation curves are positions (3), quaternions (4),
+// colours (3-4) or a few of these packed together; 16 leaves room for such packs, keeps a point's
+// speed on the stack (arc length evaluates it thousands of times per lookup, allocation-free),
+// and bounds the cost of one evaluation. A 1,000-dimensional curve once took 50 s per sample.
+inline constexpr int kMaxCurveDimension = 16;
+
 enum class CurveKind { kLinear, kCatmullRom, kCentripetalCatmullRom, kNaturalCubic, kParabolicBlending, kBezier };
 
 // "linear", "catmull-rom", "centripetal-catmull-rom", "natural-cubic", "parabolic-blending", "bezier".
 const char* curveKindName(CurveKind kind);
 bool isInterpolating(CurveKind kind);  // false only for kBezier
 bool hasLocalControl(CurveKind kind);  // false only for kNaturalCubic
+// Whether `span` = t_{i+1} - t_i (or end - start) can be divided by: finite (times such as
+// -1e308 and 1e308 have an infinite span) and at least the smallest normal double.
+bool isUsableTimeSpan(double span);
 
 // Authoring description of a curve (what a file or an editor holds).
 struct RawCurve {
@@ -55,14 +64,18 @@ struct RawCurve {
   std::vector<double> times;            // empty (defaults 0, 1, ...) or one per key (per anchor for kBezier)
 
   // Throws vdg::Error, message prefixed with `where` (e.g. "spec.json: curve"), when there are too
-  // few points (2, or 4 for kBezier; kBezier needs 3s+1), dimensions differ or are 0, a coordinate
-  // or time is not finite, the number of times is wrong, or the times do not strictly increase.
+  // few points (2, or 4 for kBezier; kBezier needs 3s+1), dimensions differ, are 0 or exceed
+  // kMaxCurveDimension, a coordinate or time is not finite, the number of times is wrong, the
+  // times do not strictly increase, or a time span t_{i+1} - t_i overflows (e.g. -1e308 to 1e308)
+  // or is below the smallest normal double (so that 1 / span stays finite).
   void validate(const std::string& where = "curve") const;
 };
 
 class Curve {
  public:
-  // Validates (see RawCurve::validate) and builds. Throws vdg::Error.
+  // Validates (see RawCurve::validate) and builds. Throws vdg::Error, also when the built control
+  // points overflow (coordinates or slopes too large for doubles), so that no built curve
+  // evaluates to inf or NaN.
   static Curve build(const RawCurve& raw, const std::string& where = "curve");
 
   CurveKind kind() const { return kind_; }

@@ -33,9 +33,10 @@ struct QuaternionCurveOptions {
 
 class QuaternionCurve {
  public:
-  // keys: non-zero quaternions (normalised here); times: empty or one per key, strictly increasing.
+  // keys: non-zero quaternions of any finite length (normalised here, robustly); times: empty or
+  // one per key, strictly increasing, with usable spans (isUsableTimeSpan, curve.h).
   // Throws vdg::Error naming `where` for fewer than 2 keys, a zero or non-finite quaternion, bad times
-  // or a control_fraction outside (0, 1].
+  // (including a span that overflows) or a control_fraction outside (0, 1].
   static QuaternionCurve build(const std::vector<Quaternion>& keys, const std::vector<double>& times = {},
                                const QuaternionCurveOptions& options = {},
                                const std::string& where = "quaternion curve");

@@ -72,8 +72,11 @@ struct RawTrack {
   std::vector<RawKey> keys;
 
   // Throws vdg::Error "WHERE: track 'NAME': ..." naming the key index, for: no keys, key times not
-  // finite or not strictly increasing, value sizes wrong or differing, non-finite values, a zero
-  // quaternion, an interpolation not available for the type, handles on a non-Bezier track.
+  // finite or not strictly increasing, a span between two keys (or from the first key, the loop
+  // period) that overflows or is too small to divide by (isUsableTimeSpan), value sizes wrong or
+  // differing or above kMaxCurveDimension, non-finite values, a zero quaternion (any finite
+  // non-zero length is fine), an interpolation not available for the type, handles on a
+  // non-Bezier track. Track::build also throws when the built curve overflows (see Curve::build).
   void validate(const std::string& where = "track") const;
 };
 

@@ -25,8 +25,10 @@
 
 namespace vdg {
 
-// The most keys a model may have: far more than any drawn model sheet, and a bound on the work and
-// memory a hostile manifest can ask for.
+// Most keys a model may have. Far more than any model sheet (a few to a few dozen drawings), yet
+// small enough that building the viewing sphere (Qhull, O(n log n)) and a view's un-hinted
+// triangle search (linear in the hull's ~2n triangles) stay fast, and that the keys' meshes are
+// what limits memory. validate() rejects more; the manifest reader refuses more before reading.
 inline constexpr std::size_t kMaxKeys = 100'000;
 
 struct RawKey {
@@ -45,24 +47,28 @@ struct RawViewDependentModel {
   std::string comment;    // free text kept with the model (the manifest's "comment")
   TriMesh base;
   std::vector<RawKey> keys;
-  double sharpness = 1.0;  // alpha of section 3.2.2, > 0
+  double sharpness = 1.0;  // alpha of section 3.2.2, finite and > 0 (see view_sphere.h)
   ViewSphereSettings sphere;
   std::optional<Eigen::Vector3d> center;  // default: the base's bounding-box centre
 
   // The centre the views are measured from.
   Eigen::Vector3d resolvedCenter() const;
-  // Sets view = normalize(camera.eye - centre) for every key given by a camera.
+  // Sets view = normalize(camera.eye - centre) for every key given by a camera (robustly: any
+  // finite distance works; an eye at the centre leaves a zero view for validate() to report).
   void resolveViews();
   // Throws vdg::Error naming the manifest, key and vertex for: a key whose vertex count
-  // or triangles differ from the base, non-finite coordinates, a zero or non-finite view, two keys
-  // with the same view (within 1e-6 rad), duplicate names, sharpness <= 0, a bad falloff angle.
+  // or triangles differ from the base, non-finite coordinates, a vertex whose offset from the base
+  // overflows a float, a zero or non-finite view (any finite non-zero length is fine), two keys
+  // with the same view (within ViewSphere::kSameViewRad; an O(n log n) search), duplicate names,
+  // a sharpness that is not finite and > 0, a bad falloff angle, more than kMaxKeys keys.
   void validate() const;
 };
 
 class ViewDependentModel {
  public:
-  // Validates `raw` and builds the viewing sphere and the (sparse) key deltas. A model without keys
-  // can be loaded and saved (an editor starts from one) but not built: that throws vdg::Error.
+  // Validates `raw` (everything validate() checks; the same-view search runs once, in the viewing
+  // sphere's build) and builds the viewing sphere and the (sparse) key deltas. A model without
+  // keys can be loaded and saved (an editor starts from one) but not built: that throws vdg::Error.
   static ViewDependentModel build(const RawViewDependentModel& raw);
 
   const TriMesh& base() const { return base_; }
@@ -77,10 +83,11 @@ class ViewDependentModel {
   double sharpness() const { return sharpness_; }
   const ViewSphere& sphere() const { return sphere_; }
 
-  // normalize(eye - centre), the view direction for an eye position in model space.
-  Eigen::Vector3d viewFromEye(const Eigen::Vector3d& eye) const { return (eye - center_).normalized(); }
+  // normalize(eye - centre), the view direction for an eye position in model space, for any finite
+  // distance (robust normalisation); the zero vector when the eye is at the centre or not finite.
+  Eigen::Vector3d viewFromEye(const Eigen::Vector3d& eye) const;
 
-  // Weights of a view direction; sharpness <= 0 means "the model's own".
+  // Weights of a view direction; sharpness <= 0 or NaN means "the model's own" (never throws).
   ViewWeights weights(const Eigen::Vector3d& view, double sharpness = 0.0, int* hint = nullptr) const;
 
   // Blended positions for `w` into `out_positions` (#V x 3, caller-owned). No allocation, no throw.

@@ -19,11 +19,19 @@
 //    1 - w, so that the weights sum to 1 even behind the key); weights are continuous because p
 //    moves continuously wherever c > 0 and f reaches 0 where p may jump.
 // Sharpness alpha (section 3.2.2): the (up to three) triangle weights become w^a / sum w^a. In
-// the cosine modes the sharpening applies among the keys, before the falloff f.
+// the cosine modes the sharpening applies among the keys, before the falloff f. It is computed
+// relative to the largest weight, (w_i / w_max)^a / sum_j (w_j / w_max)^a, so any alpha > 0 is
+// exact: alpha = 5000 gives (to float rounding) weight 1 to the largest key (ties share it evenly),
+// never the unsharpened weights. Accepted values: alpha > 0 (finite; +inf is the limit "all
+// weight to the largest"). weights() is a per-frame query and never throws: NaN, 0 and negative
+// alphas are treated as 1 (no sharpening). Builders and loaders (RawViewDependentModel::validate)
+// reject a non-finite or non-positive model sharpness with vdg::Error instead.
 #pragma once
 
 #include <array>
+#include <functional>
 #include <span>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -54,14 +62,20 @@ struct ViewWeights {
 class ViewSphere {
  public:
   static constexpr int kDummyCandidates = 64;
+  // Two key directions closer than this angle are the same viewpoint.
+  static constexpr double kSameViewRad = 1e-6;
 
-  // key_directions: one direction per key, towards the eye, any non-zero length. Throws vdg::Error
-  // when there are no keys, a direction is zero or not finite, or two directions coincide
-  // (within 1e-6 rad). Messages name the key by index; callers add names.
-  static ViewSphere build(std::span<const Eigen::Vector3d> key_directions, const ViewSphereSettings& settings = {});
+  // key_directions: one direction per key, towards the eye, any finite non-zero length (1e-300 and
+  // 1e300 are fine: normalised robustly, vdg/geom/normalize.h). Throws vdg::Error when there are
+  // no keys, a direction is zero or not finite, or two directions coincide (within kSameViewRad;
+  // found in O(n log n) by forEachCloseViewPair). Messages name keys by `key_labels[i]` when
+  // given (one per key, e.g. "key 'front' (keys[0])"), by index ("key 3") otherwise.
+  static ViewSphere build(std::span<const Eigen::Vector3d> key_directions, const ViewSphereSettings& settings = {},
+                          std::span<const std::string> key_labels = {});
 
-  // Weights of the view direction `view` (towards the eye; any non-zero length; a zero or
-  // non-finite vector gives the base model). sharpness > 0 (values <= 0 are treated as 1).
+  // Weights of the view direction `view` (towards the eye; any finite non-zero length, normalised
+  // robustly, so 1e-200 and 1e200 give the unit view's weights; a zero or non-finite vector gives
+  // the base model). sharpness: see "Sharpness alpha" above (NaN and values <= 0 act as 1).
   // `hint` (optional, in/out) remembers the last triangle to speed up coherent queries.
   ViewWeights weights(const Eigen::Vector3d& view, double sharpness = 1.0, int* hint = nullptr) const;
 
@@ -94,5 +108,13 @@ class ViewSphere {
   std::vector<int> isolated_;  // cosine modes: keys that belong to no triangle and no arc
   double covered_fraction_ = 0.0;
 };
+
+// Pairs of `unit_directions` less than `max_angle_rad` apart (angle atan2(|a x b|, a.b)), found
+// through a grid on the sphere: O(n log n) plus the number of close pairs, not O(n^2). Calls
+// visit(i, j, angle_rad) with j < i, in increasing order of i and then of j; the search stops
+// early when visit returns false. Returns the number of pairs visited. Inputs are expected unit
+// (non-finite components are tolerated: such a direction is near nothing).
+std::size_t forEachCloseViewPair(std::span<const Eigen::Vector3d> unit_directions, double max_angle_rad,
+                                 const std::function<bool(std::size_t i, std::size_t j, double angle_rad)>& visit);
 
 }  // namespace vdg
