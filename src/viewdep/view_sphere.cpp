@@ -331,7 +331,18 @@ ViewWeights ViewSphere::falloff(const Eigen::Vector3d& v, double& nearest_cos) c
   return best.key[0] < 0 ? ViewWeights{} : best;
 }
 
-ViewWeights ViewSphere::weights(const Eigen::Vector3d& view, double sharpness, int* hint) const {
+bool ViewSphere::weights(const Eigen::Vector3d& view, double sharpness, ViewWeights& out, int* hint) const {
+  const double len = view.norm();
+  if (!(len > 0.0) || !std::isfinite(len)) return false;
+  if (!(sharpness > 0.0) || !std::isfinite(sharpness)) return false;
+  int local_hint = hint ? *hint : -1;
+  if (local_hint < -1 || local_hint >= static_cast<int>(triangles_.size())) return false;
+  out = locate(view, sharpness, &local_hint);
+  if (hint) *hint = local_hint;
+  return true;
+}
+
+ViewWeights ViewSphere::locate(const Eigen::Vector3d& view, double sharpness, int* hint) const {
   ViewWeights result;
   const double len = view.norm();
   if (!(len > 0.0) || !std::isfinite(len)) {

@@ -2,7 +2,8 @@
 // the blending weights of any view direction (Rademacher 99, sections 3.2.1-3.2.2 and 3.3).
 //
 // Built once from the key directions (an immutable run-time object); weights() is then a pure,
-// allocation-free, non-throwing query that a renderer calls every frame.
+// allocation-free, non-throwing query that a renderer calls every frame (its inputs are checked
+// and a violation returns false, see weights()).
 //
 // Uncovered regions (section 3.3), for key sets whose hull does not enclose the sphere's centre:
 //  - Uncovered::Base: dummy "base" points are added on the sphere wherever no key lies within
@@ -60,10 +61,17 @@ class ViewSphere {
   // (within 1e-6 rad). Messages name the key by index; callers add names.
   static ViewSphere build(std::span<const Eigen::Vector3d> key_directions, const ViewSphereSettings& settings = {});
 
-  // Weights of the view direction `view` (towards the eye; any non-zero length; a zero or
-  // non-finite vector gives the base model). sharpness > 0 (values <= 0 are treated as 1).
-  // `hint` (optional, in/out) remembers the last triangle to speed up coherent queries.
-  ViewWeights weights(const Eigen::Vector3d& view, double sharpness = 1.0, int* hint = nullptr) const;
+  // Weights of the view direction `view` (towards the eye, any non-zero finite length) into `out`.
+  // `hint` (optional, in/out) is -1 (no hint) or a triangle index from an earlier call on this
+  // sphere; it speeds up coherent queries and is set to the triangle found (left as it is when
+  // the view falls in an uncovered region).
+  // Per-frame contract (the rule of every vdg evaluation function, after ozz-animation's jobs):
+  // inputs are checked on entry; on a violation weights() returns false and has written nothing
+  // (neither `out` nor `*hint`); it never throws and never allocates. Violations: a zero or
+  // non-finite view, a sharpness that is not finite or not > 0, a hint other than -1 or an index
+  // into triangles().
+  [[nodiscard]] bool weights(const Eigen::Vector3d& view, double sharpness, ViewWeights& out,
+                             int* hint = nullptr) const;
 
   std::size_t keyCount() const { return key_count_; }
   // Unit directions of all points: the keys first (in input order), then the dummy base points.
@@ -81,6 +89,8 @@ class ViewSphere {
   struct Cone {
     Eigen::Matrix3d inverse;  // inverse of [a b c]: lambda = inverse * v
   };
+  // weights() after its checks: view non-zero and finite, sharpness > 0, hint valid.
+  ViewWeights locate(const Eigen::Vector3d& view, double sharpness, int* hint) const;
   ViewWeights locateInTriangle(int t, const Eigen::Vector3d& lambda) const;
   ViewWeights falloff(const Eigen::Vector3d& v, double& nearest_cos) const;
   void finishWeights(ViewWeights& w, double sharpness) const;
