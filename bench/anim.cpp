@@ -4,10 +4,10 @@
 #include <benchmark/benchmark.h>
 
 #include <array>
-#include <cstdio>
-#include <cstdlib>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 
 #include "vdg/anim/arc_length.h"
 #include "vdg/anim/curve.h"

@@ -12,9 +12,9 @@
 #include <vector>
 
 #include "cli.h"
-#include "vdg/geom/error.h"
 #include "vdg/anim/anim_json.h"
 #include "vdg/geom/atomic_file.h"
+#include "vdg/geom/error.h"
 
 namespace vdg::cli {
 namespace {

@@ -35,8 +35,8 @@ void addWeightsCommand(CLI::App& app) {
     const Eigen::Vector3d view = opt->view.resolve(model);
     ViewWeights w;
     if (!model.weights(view, opt->view.sharpness, w))  // resolve() gives a unit view; sharpness > 0
-      throw Error("weights: the model refused view " + std::to_string(view.x()) + "," + std::to_string(view.y()) +
-                  "," + std::to_string(view.z()) + " (internal error)");
+      throw Error("weights: the model refused view " + std::to_string(view.x()) + "," + std::to_string(view.y()) + "," +
+                  std::to_string(view.z()) + " (internal error)");
     if (opt->json) {
       nlohmann::ordered_json out;
       out["keys"] = nlohmann::ordered_json::object();

@@ -276,15 +276,12 @@ ViewWeights ModelRenderer::render(const Camera& camera, Image& out) {
     obs.viewport = {o.width, 0, o.width, o.height};
     obs.camera = m.observer;
     clip(obs);
-    check(m.renderer.drawMesh(m.mesh_id, obs, [&] {
-      MeshStyle s = style;
-      s.color = o.observer_color;
-      s.shading.vary_by_hue = false;
-      s.shading.k = effectiveConstants(o.shading, o.observer_color);
-      s.shading.k.k2 *= 0.25f;
-      return s;
-    }()),
-          "drawMesh");
+    MeshStyle observer_style = style;
+    observer_style.color = o.observer_color;
+    observer_style.shading.vary_by_hue = false;
+    observer_style.shading.k = effectiveConstants(o.shading, o.observer_color);
+    observer_style.shading.k.k2 *= 0.25f;
+    check(m.renderer.drawMesh(m.mesh_id, obs, observer_style), "drawMesh");
     // Where the main camera is: a short orange ray from the centre towards its eye.
     std::array<float, 6> ray;
     const Eigen::Vector3d tip = m.center + view * (1.5 * m.radius);
@@ -295,7 +292,7 @@ ViewWeights ModelRenderer::render(const Camera& camera, Image& out) {
     }
     check(m.renderer.drawLines(ray, obs, std::max(1.5f, o.silhouette_width), kCameraMarkColor, true), "drawLines");
     check(m.renderer.drawDots(std::span<const float>(ray).subspan(3), obs, 3.0f * std::max(1.5f, o.silhouette_width),
-                        kCameraMarkColor, true),
+                              kCameraMarkColor, true),
           "drawDots");
     // A thin separator between the two panels.
     const Viewport sep{o.width, 0, std::max(1, o.width / 256), o.height};

@@ -99,13 +99,13 @@ TEST(AnimAllocation, CameraPathEvaluate) {
 
 TEST(AnimAllocation, Ease) {
   double sum = 0.0;
-  EXPECT_EQ(allocationsDuring([&] {
-              for (const Ease& e :
-                   {Ease::linear(), Ease::sine(), Ease::sinusoidal(0.2, 0.7), Ease::parabolic(0.3, 0.6)})
-                for (int i = 0; i <= kSamples; ++i) sum += e.evaluate(sampleTime(i, 0.0, 1.0));
-              for (int i = 0; i <= kSamples; ++i) sum += easeSine(sampleTime(i, 0.0, 1.0));
-            }),
-            0);
+  EXPECT_EQ(
+      allocationsDuring([&] {
+        for (const Ease& e : {Ease::linear(), Ease::sine(), Ease::sinusoidal(0.2, 0.7), Ease::parabolic(0.3, 0.6)})
+          for (int i = 0; i <= kSamples; ++i) sum += e.evaluate(sampleTime(i, 0.0, 1.0));
+        for (int i = 0; i <= kSamples; ++i) sum += easeSine(sampleTime(i, 0.0, 1.0));
+      }),
+      0);
   EXPECT_GT(sum, 0.0);
 }
 

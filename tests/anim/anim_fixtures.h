@@ -26,8 +26,8 @@ inline RawKey key(double time, std::initializer_list<double> value) {
 inline Curve curve3(CurveKind kind = CurveKind::kCatmullRom) {
   RawCurve raw;
   raw.kind = kind;
-  raw.points = {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 2, 0), Eigen::Vector3d(3, 1, 1),
-                Eigen::Vector3d(4, 3, 2), Eigen::Vector3d(6, 0, 1)};
+  raw.points = {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 2, 0), Eigen::Vector3d(3, 1, 1), Eigen::Vector3d(4, 3, 2),
+                Eigen::Vector3d(6, 0, 1)};
   if (kind == CurveKind::kBezier) raw.points.resize(4);
   return Curve::build(raw);
 }

@@ -131,7 +131,8 @@ TEST(AnimContract, ConvenienceFormsThrowNamingTheProblem) {
   const Curve c = fixtures::curve3();
   expectError([&] { (void)c.at(kNaN); }, "curve: time nan is not finite");
   expectError([&] { (void)c.derivativeAt(kInf); }, "curve: time inf is not finite");
-  expectError([&] { (void)c.segmentControls(c.segmentCount()); }, "curve: segment 4 out of range (the curve has 4 segments)");
+  expectError([&] { (void)c.segmentControls(c.segmentCount()); },
+              "curve: segment 4 out of range (the curve has 4 segments)");
   expectError([&] { (void)c.segmentControls(-1); }, "curve: segment -1 out of range");
   const std::vector<Track> tracks = fixtures::tracks();
   expectError([&] { (void)tracks[0].at(kNaN); }, "track 'scalar': time nan is not finite");

@@ -50,9 +50,9 @@ std::vector<View> badViews() {
   with([](View& v) { v.camera.eye.x() = kNaN; });
   with([](View& v) { v.camera.target.y() = std::numeric_limits<double>::infinity(); });
   with([](View& v) { v.camera.up.z() = kNaN; });
-  with([](View& v) { v.camera.eye = v.camera.target; });                                  // no view axis
-  with([](View& v) { v.camera.up = v.camera.eye - v.camera.target; });                    // up along the axis
-  with([](View& v) { v.camera.up = Eigen::Vector3d::Zero(); });                           // no up
+  with([](View& v) { v.camera.eye = v.camera.target; });                // no view axis
+  with([](View& v) { v.camera.up = v.camera.eye - v.camera.target; });  // up along the axis
+  with([](View& v) { v.camera.up = Eigen::Vector3d::Zero(); });         // no up
   with([](View& v) { v.camera.fov_deg = 0.0; });
   with([](View& v) { v.camera.fov_deg = 180.0; });
   with([](View& v) { v.camera.fov_deg = kNaN; });

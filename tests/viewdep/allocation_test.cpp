@@ -119,8 +119,7 @@ TEST_P(Allocation, EvaluateWithNormals) {
   int hint = -1;
   bool ok = true;
   EXPECT_EQ(allocationsDuring([&] {
-              for (int i = 0; i < kFrames; ++i)
-                ok = model_->evaluate(orbit(i), 1.5, positions_, normals_, &hint) && ok;
+              for (int i = 0; i < kFrames; ++i) ok = model_->evaluate(orbit(i), 1.5, positions_, normals_, &hint) && ok;
             }),
             0);
   EXPECT_TRUE(ok);

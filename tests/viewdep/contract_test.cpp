@@ -4,8 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <climits>
-#include <functional>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
@@ -25,8 +25,8 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 const std::vector<Vector3d>& badViews() {
-  static const std::vector<Vector3d> views = {Vector3d::Zero(),       Vector3d(kNaN, 0, 1), Vector3d(0, kNaN, 1),
-                                              Vector3d(0, 0, kNaN),   Vector3d(kInf, 0, 1), Vector3d(0, -kInf, 1),
+  static const std::vector<Vector3d> views = {Vector3d::Zero(),          Vector3d(kNaN, 0, 1), Vector3d(0, kNaN, 1),
+                                              Vector3d(0, 0, kNaN),      Vector3d(kInf, 0, 1), Vector3d(0, -kInf, 1),
                                               Vector3d(kNaN, kNaN, kNaN)};
   return views;
 }

@@ -82,7 +82,7 @@ class CameraPath {
   Camera cameraAt(double t) const;
 
  private:
-  bool eyePosition(double t, Eigen::Vector3d& out) const;  // t finite
+  bool eyePosition(double t, Eigen::Vector3d& out) const;                             // t finite
   bool rawForward(double t, const Eigen::Vector3d& eye, Eigen::Vector3d& out) const;  // may be zero
 
   ArcLengthCurve path_;

@@ -10,8 +10,8 @@
 //
 // Created once (owns the context, programs, framebuffers and buffers); per-frame calls reuse
 // buffers and allocate nothing once the largest mesh has been seen. Per-frame calls check their
-// input and return false on a violation (see updateMesh); they never throw std::out_of_range. Output is deterministic: the
-// same calls give byte-identical images, whatever was drawn before. Not thread-safe; one thread.
+// input and return false on a violation (see updateMesh); they never throw std::out_of_range. Output is deterministic:
+// the same calls give byte-identical images, whatever was drawn before. Not thread-safe; one thread.
 //
 // Silhouettes: the paper draws the faces that span a silhouette edge a second time as thick back-
 // face wireframe, depth-tested against the front faces, and a third time as points to fill the
