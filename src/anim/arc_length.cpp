@@ -25,7 +25,7 @@ double speed(const Curve& curve, double t) {
   std::array<double, kMaxDim> buf{};
   if (curve.dimension() <= kMaxDim) {
     std::span<double> d(buf.data(), static_cast<std::size_t>(curve.dimension()));
-    curve.derivative(t, d);
+    if (!curve.derivative(t, d)) return std::numeric_limits<double>::quiet_NaN();  // t not finite
     double sum = 0.0;
     for (double v : d) sum += v * v;
     return std::sqrt(sum);
@@ -203,7 +203,8 @@ ArcLengthCurve ArcLengthCurve::build(const Curve& curve, const ArcLengthOptions&
     a.table_s_[0] = 0.0;
     for (int i = 1; i < n; ++i) {
       const double t = i == n - 1 ? t1 : t0 + (t1 - t0) * i / (n - 1);
-      curve.evaluate(t, std::span<double>(cur.data(), static_cast<std::size_t>(cur.size())));
+      if (!curve.evaluate(t, std::span<double>(cur.data(), static_cast<std::size_t>(cur.size()))))
+        throw Error(where + ": curve evaluation failed at t = " + std::to_string(t) + " (internal error)");
       a.table_t_[i] = t;
       a.table_s_[i] = a.table_s_[i - 1] + (cur - prev).norm();
       prev = cur;
@@ -300,12 +301,14 @@ double ArcLengthCurve::timeAtDistance(double s) const {
   return t;
 }
 
-void ArcLengthCurve::evaluateAtDistance(double s, std::span<double> out) const {
-  curve_.evaluate(timeAtDistance(s), out);
+bool ArcLengthCurve::evaluateAtDistance(double s, std::span<double> out) const {
+  if (!std::isfinite(s)) return false;
+  return curve_.evaluate(timeAtDistance(s), out);
 }
 
-void ArcLengthCurve::evaluateAtFraction(double f, std::span<double> out) const {
-  curve_.evaluate(timeAtFraction(f), out);
+bool ArcLengthCurve::evaluateAtFraction(double f, std::span<double> out) const {
+  if (!std::isfinite(f)) return false;
+  return curve_.evaluate(timeAtFraction(f), out);
 }
 
 }  // namespace vdg::anim

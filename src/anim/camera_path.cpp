@@ -9,6 +9,7 @@
 #include <cmath>
 #include <numbers>
 #include <sstream>
+#include <string>
 
 #include <Eigen/Geometry>
 
@@ -125,7 +126,8 @@ CameraPath CameraPath::build(const RawCameraPath& raw, const std::string& where)
   std::vector<Eigen::Vector3d> raw_forward(n);
   for (int i = 0; i < n; ++i) {
     const double t = c.start_time_ + (c.end_time_ - c.start_time_) * i / (n - 1);
-    raw_forward[i] = c.rawForward(t, c.eyeAt(t));
+    if (!c.rawForward(t, c.eyeAt(t), raw_forward[i]))
+      throw Error(where + ": path evaluation failed at t = " + std::to_string(t) + " (internal error)");
   }
   // Undefined directions take the nearest earlier one (the first defined one at the start).
   Eigen::Vector3d last = -Eigen::Vector3d::UnitZ();
@@ -162,43 +164,52 @@ CameraPath CameraPath::build(const RawCameraPath& raw, const std::string& where)
   return c;
 }
 
-Eigen::Vector3d CameraPath::eyeAt(double t) const {
-  if (std::isnan(t)) t = start_time_;
+bool CameraPath::eyePosition(double t, Eigen::Vector3d& out) const {
   const double u = std::clamp((t - start_time_) / (end_time_ - start_time_), 0.0, 1.0);
-  Eigen::Vector3d eye;
-  path_.evaluateAtDistance(speed_.evaluate(u) * path_.totalLength(), std::span<double>(eye.data(), 3));
-  return eye;
+  return path_.evaluateAtDistance(speed_.evaluate(u) * path_.totalLength(), std::span<double>(out.data(), 3));
 }
 
-Eigen::Vector3d CameraPath::rawForward(double t, const Eigen::Vector3d& eye) const {
+Eigen::Vector3d CameraPath::eyeAt(double t) const {
+  Eigen::Vector3d e;
+  if (!std::isfinite(t) || !eyePosition(t, e)) throw Error("camera path: time " + std::to_string(t) + " is not finite");
+  return e;
+}
+
+Camera CameraPath::cameraAt(double t) const {
+  Camera c;
+  if (!evaluate(t, c)) throw Error("camera path: time " + std::to_string(t) + " is not finite");
+  return c;
+}
+
+bool CameraPath::rawForward(double t, const Eigen::Vector3d& eye, Eigen::Vector3d& out) const {
   switch (view_) {
     case ViewMode::kCenterOfInterest:
-      return center_ - eye;
+      out = center_ - eye;
+      return true;
     case ViewMode::kMovingTarget: {
       Eigen::Vector3d target;
-      target_path_->evaluate(t, std::span<double>(target.data(), 3));
-      return target - eye;
+      if (!target_path_->evaluate(t, std::span<double>(target.data(), 3))) return false;
+      out = target - eye;
+      return true;
     }
     case ViewMode::kAlongTangent: {
       const double u = std::clamp((t - start_time_) / (end_time_ - start_time_), 0.0, 1.0);
       const double ct = path_.timeAtDistance(speed_.evaluate(u) * path_.totalLength());
-      Eigen::Vector3d d;
-      path_.curve().derivative(ct, std::span<double>(d.data(), 3));
-      return d;
+      return path_.curve().derivative(ct, std::span<double>(out.data(), 3));
     }
   }
-  return Eigen::Vector3d::Zero();
+  return false;
 }
 
-Camera CameraPath::evaluate(double t) const {
-  if (std::isnan(t)) t = start_time_;  // a NaN table index would be undefined behaviour
+bool CameraPath::evaluate(double t, Camera& out) const {
+  if (!std::isfinite(t)) return false;
   const int n = static_cast<int>(table_up_.size());
   const double x = std::clamp((t - start_time_) / (end_time_ - start_time_), 0.0, 1.0) * (n - 1);
   const int i = std::min(static_cast<int>(x), n - 2);
   const double w = x - i;
   Camera cam;
-  cam.eye = eyeAt(t);
-  const Eigen::Vector3d raw_f = rawForward(t, cam.eye);
+  Eigen::Vector3d raw_f;
+  if (!eyePosition(t, cam.eye) || !rawForward(t, cam.eye, raw_f)) return false;
   Eigen::Vector3d f;
   if (const auto d = directionOf(raw_f)) {
     f = *d;
@@ -211,8 +222,9 @@ Camera CameraPath::evaluate(double t) const {
   Eigen::Vector3d up =
       orthonormalise(up_mix, f, orthonormalise(table_up_[w < 0.5 ? i : i + 1], f, anyPerpendicular(f)));
   if (tilt_) {
-    const double tilt = tilt_->scalarAt(t) * kPi / 180.0;
-    up = Eigen::AngleAxisd(tilt, -f) * up;
+    double tilt_deg = 0.0;
+    if (!tilt_->evaluate(t, std::span<double>(&tilt_deg, 1))) return false;
+    up = Eigen::AngleAxisd(tilt_deg * kPi / 180.0, -f) * up;
   }
   switch (view_) {
     case ViewMode::kCenterOfInterest:
@@ -230,7 +242,8 @@ Camera CameraPath::evaluate(double t) const {
   cam.up = up;
   cam.fov_deg = fov_deg_;
   cam.ortho_height = ortho_height_;
-  return cam;
+  out = cam;
+  return true;
 }
 
 }  // namespace vdg::anim

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <string>
 
 #include "vdg/geom/error.h"
 
@@ -278,11 +279,15 @@ int Curve::segmentAt(double t, double* u) const {
 }
 
 std::span<const double> Curve::segmentControls(int segment) const {
+  if (segment < 0 || segment >= segmentCount())
+    throw Error("curve: segment " + std::to_string(segment) + " out of range (the curve has " +
+                std::to_string(segmentCount()) + " segments)");
   return std::span<const double>(controls_).subspan(static_cast<std::size_t>(segment) * 4 * dimension_,
                                                     4 * static_cast<std::size_t>(dimension_));
 }
 
-void Curve::evaluate(double t, std::span<double> out) const {
+bool Curve::evaluate(double t, std::span<double> out) const {
+  if (out.size() != static_cast<std::size_t>(dimension_) || !std::isfinite(t)) return false;
   double u = 0.0;
   const int s = segmentAt(t, &u);
   const double* c = controls_.data() + static_cast<std::size_t>(s) * 4 * dimension_;
@@ -296,9 +301,11 @@ void Curve::evaluate(double t, std::span<double> out) const {
     const double be = b + u * (e - b);
     out[d] = ab + u * (be - ab);
   }
+  return true;
 }
 
-void Curve::derivative(double t, std::span<double> out) const {
+bool Curve::derivative(double t, std::span<double> out) const {
+  if (out.size() != static_cast<std::size_t>(dimension_) || !std::isfinite(t)) return false;
   double u = 0.0;
   const int s = segmentAt(t, &u);
   const double* c = controls_.data() + static_cast<std::size_t>(s) * 4 * dimension_;
@@ -310,17 +317,20 @@ void Curve::derivative(double t, std::span<double> out) const {
     const double b = d1 + u * (d2 - d1);
     out[d] = scale * (a + u * (b - a));
   }
+  return true;
 }
 
 Eigen::VectorXd Curve::at(double t) const {
   Eigen::VectorXd v(dimension_);
-  evaluate(t, std::span<double>(v.data(), static_cast<std::size_t>(dimension_)));
+  if (!evaluate(t, std::span<double>(v.data(), static_cast<std::size_t>(dimension_))))
+    throw Error("curve: time " + std::to_string(t) + " is not finite");
   return v;
 }
 
 Eigen::VectorXd Curve::derivativeAt(double t) const {
   Eigen::VectorXd v(dimension_);
-  derivative(t, std::span<double>(v.data(), static_cast<std::size_t>(dimension_)));
+  if (!derivative(t, std::span<double>(v.data(), static_cast<std::size_t>(dimension_))))
+    throw Error("curve: time " + std::to_string(t) + " is not finite");
   return v;
 }
 

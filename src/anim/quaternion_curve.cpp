@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <string>
 
 #include "vdg/anim/curve.h"
 #include "vdg/geom/error.h"
@@ -89,7 +90,8 @@ QuaternionCurve QuaternionCurve::build(const std::vector<Quaternion>& keys, cons
   return c;
 }
 
-Quaternion QuaternionCurve::evaluate(double t) const {
+bool QuaternionCurve::evaluate(double t, Quaternion& out) const {
+  if (!std::isfinite(t)) return false;
   const int segments = segmentCount();
   int s = 0;
   double u = 0.0;
@@ -101,7 +103,14 @@ Quaternion QuaternionCurve::evaluate(double t) const {
     s = std::clamp(static_cast<int>(it - times_.begin()) - 1, 0, segments - 1);
     u = std::clamp((t - times_[s]) / (times_[s + 1] - times_[s]), 0.0, 1.0);
   }
-  return sphericalBezier(keys_[s], a_[s], b_[s + 1], keys_[s + 1], u);
+  out = sphericalBezier(keys_[s], a_[s], b_[s + 1], keys_[s + 1], u);
+  return true;
+}
+
+Quaternion QuaternionCurve::at(double t) const {
+  Quaternion q;
+  if (!evaluate(t, q)) throw Error("quaternion curve: time " + std::to_string(t) + " is not finite");
+  return q;
 }
 
 }  // namespace vdg::anim

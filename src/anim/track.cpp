@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <string>
 
 #include "vdg/geom/error.h"
 #include "vdg/geom/normalize.h"
@@ -224,7 +225,8 @@ double Track::curveTime(double t) const {
   return times_[s] + eases_[s].evaluate((t - times_[s]) / h) * h;
 }
 
-void Track::evaluate(double t, std::span<double> out) const {
+bool Track::evaluate(double t, std::span<double> out) const {
+  if (out.size() != static_cast<std::size_t>(dimension_) || !std::isfinite(t)) return false;
   const double ct = curveTime(t);
   const int n = keyCount();
   const auto key = [&](int i) { return values_.data() + static_cast<std::size_t>(i) * dimension_; };
@@ -236,12 +238,12 @@ void Track::evaluate(double t, std::span<double> out) const {
   }
   if (n == 1 || interpolation_ == Interpolation::kStep) {
     std::copy(key(s), key(s) + dimension_, out.begin());
-    return;
+    return true;
   }
   if (type_ == TrackType::kRotation) {
     Quaternion q;
     if (quaternion_curve_) {
-      q = quaternion_curve_->evaluate(ct);
+      if (!quaternion_curve_->evaluate(ct, q)) return false;
     } else {  // slerp between the two keys of the segment
       const int seg = std::min(s, n - 2);
       const double u = std::clamp((ct - times_[seg]) / (times_[seg + 1] - times_[seg]), 0.0, 1.0);
@@ -253,27 +255,35 @@ void Track::evaluate(double t, std::span<double> out) const {
     out[1] = q.x();
     out[2] = q.y();
     out[3] = q.z();
-    return;
+    return true;
   }
-  curve_->evaluate(ct, out);
+  return curve_->evaluate(ct, out);
 }
+
+namespace {
+[[noreturn]] void throwBadTime(const std::string& name, double t) {
+  throw Error("track '" + name + "': time " + std::to_string(t) + " is not finite");
+}
+}  // namespace
 
 Eigen::VectorXd Track::at(double t) const {
   Eigen::VectorXd v(dimension_);
-  evaluate(t, std::span<double>(v.data(), static_cast<std::size_t>(dimension_)));
+  if (!evaluate(t, std::span<double>(v.data(), static_cast<std::size_t>(dimension_)))) throwBadTime(name_, t);
   return v;
 }
 
 double Track::scalarAt(double t) const {
   if (dimension_ > 4) return at(t)[0];
   double v[4] = {0, 0, 0, 0};
-  evaluate(t, std::span<double>(v, static_cast<std::size_t>(dimension_)));
+  if (!evaluate(t, std::span<double>(v, static_cast<std::size_t>(dimension_)))) throwBadTime(name_, t);
   return v[0];
 }
 
 Quaternion Track::rotationAt(double t) const {
+  if (type_ != TrackType::kRotation)
+    throw Error("track '" + name_ + "': rotationAt on a " + trackTypeName(type_) + " track");
   double v[4] = {1, 0, 0, 0};
-  if (type_ == TrackType::kRotation) evaluate(t, std::span<double>(v, 4));
+  if (!evaluate(t, std::span<double>(v, 4))) throwBadTime(name_, t);
   return Quaternion(v[0], v[1], v[2], v[3]);
 }
 

@@ -47,11 +47,15 @@ Bounds computeBounds(std::span<const float> positions) {
   return b;
 }
 
-void computeVertexNormals(std::span<const float> positions, std::span<const std::int32_t> triangles,
+bool computeVertexNormals(std::span<const float> positions, std::span<const std::int32_t> triangles,
                           std::span<float> normals) {
+  if (positions.size() % 3 != 0 || normals.size() != positions.size() || triangles.size() % 3 != 0) return false;
+  const auto vertex_count = static_cast<std::int64_t>(positions.size() / 3);
+  for (const std::int32_t v : triangles)
+    if (v < 0 || v >= vertex_count) return false;
   std::fill(normals.begin(), normals.end(), 0.0f);
   const float scale = normalScale(positions);
-  for (std::size_t t = 0; t + 2 < triangles.size(); t += 3) {
+  for (std::size_t t = 0; t < triangles.size(); t += 3) {
     const std::size_t a = 3 * static_cast<std::size_t>(triangles[t]);
     const std::size_t b = 3 * static_cast<std::size_t>(triangles[t + 1]);
     const std::size_t c = 3 * static_cast<std::size_t>(triangles[t + 2]);
@@ -68,7 +72,7 @@ void computeVertexNormals(std::span<const float> positions, std::span<const std:
       normals[v + 2] += nz;
     }
   }
-  for (std::size_t v = 0; v + 2 < normals.size(); v += 3) {
+  for (std::size_t v = 0; v < normals.size(); v += 3) {
     const float len =
         std::sqrt(normals[v] * normals[v] + normals[v + 1] * normals[v + 1] + normals[v + 2] * normals[v + 2]);
     if (len > 0.0f) {
@@ -78,6 +82,7 @@ void computeVertexNormals(std::span<const float> positions, std::span<const std:
       normals[v + 2] *= inv;
     }
   }
+  return true;
 }
 
 void validateMesh(const TriMesh& mesh, const std::string& what) {

@@ -3,6 +3,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <set>
@@ -167,15 +168,46 @@ Eigen::Vector3d ViewDependentModel::viewFromEye(const Eigen::Vector3d& eye) cons
   return normalizedOrNone(Eigen::Vector3d(eye - center_)).value_or(Eigen::Vector3d::Zero());
 }
 
-ViewWeights ViewDependentModel::weights(const Eigen::Vector3d& view, double sharpness, int* hint) const {
-  return sphere_.weights(view, sharpness > 0.0 ? sharpness : sharpness_, hint);
+namespace {
+[[noreturn]] void throwKeyOutOfRange(std::size_t key, std::size_t count) {
+  throw Error("key " + std::to_string(key) + " out of range (the model has " + std::to_string(count) + " keys)");
+}
+}  // namespace
+
+const std::string& ViewDependentModel::keyName(std::size_t key) const {
+  if (key >= keys_.size()) throwKeyOutOfRange(key, keys_.size());
+  return keys_[key].name;
+}
+
+const Eigen::Vector3d& ViewDependentModel::keyView(std::size_t key) const {
+  if (key >= keys_.size()) throwKeyOutOfRange(key, keys_.size());
+  return sphere_.points()[key];
+}
+
+const std::optional<Camera>& ViewDependentModel::keyCamera(std::size_t key) const {
+  if (key >= keys_.size()) throwKeyOutOfRange(key, keys_.size());
+  return keys_[key].camera;
+}
+
+std::size_t ViewDependentModel::keyMovedCount(std::size_t key) const {
+  if (key >= keys_.size()) throwKeyOutOfRange(key, keys_.size());
+  return keys_[key].moved_count;
+}
+
+bool ViewDependentModel::weights(const Eigen::Vector3d& view, double sharpness, ViewWeights& out, int* hint) const {
+  if (!std::isfinite(sharpness)) return false;
+  return sphere_.weights(view, sharpness > 0.0 ? sharpness : sharpness_, out, hint);
 }
 
 // Section 3.2.3: v = sum_i w_i v^i, written as base + sum_i w_i (v^i - base) because the weights,
 // base included, sum to 1. Only the moved vertices of sparse keys are touched.
-void ViewDependentModel::blend(const ViewWeights& w, std::span<float> out) const {
+bool ViewDependentModel::blend(const ViewWeights& w, std::span<float> out) const {
   const std::size_t n = base_.positions.size();
-  if (out.size() < n) return;  // contract violation; never write past the caller's buffer
+  if (out.size() != n) return false;
+  for (int slot = 0; slot < 3; ++slot) {
+    if (w.key[slot] < -1 || w.key[slot] >= static_cast<int>(keys_.size())) return false;
+    if (!std::isfinite(w.weight[slot])) return false;
+  }
   // Dense keys are fused into one pass over the base (one read of each array, one write);
   // sparse keys then scatter their moved vertices.
   const float* dense_delta[3] = {nullptr, nullptr, nullptr};
@@ -230,19 +262,30 @@ void ViewDependentModel::blend(const ViewWeights& w, std::span<float> out) const
       v[2] += weight * d[3 * i + 2];
     }
   }
+  return true;
 }
 
-void ViewDependentModel::keyPositions(std::size_t key, std::span<float> out) const {
+bool ViewDependentModel::keyPositions(std::size_t key, std::span<float> out) const {
+  if (key >= keys_.size()) return false;
   ViewWeights w;
   w.key[0] = static_cast<int>(key);
   w.weight[0] = 1.0f;
-  blend(w, out);
+  return blend(w, out);
 }
 
-void ViewDependentModel::evaluate(const Eigen::Vector3d& view, double sharpness, std::span<float> out_positions,
+bool ViewDependentModel::evaluate(const Eigen::Vector3d& view, double sharpness, std::span<float> out_positions,
                                   std::span<float> out_normals, int* hint) const {
-  blend(weights(view, sharpness, hint), out_positions);
-  if (!out_normals.empty()) computeVertexNormals(out_positions, base_.triangles, out_normals);
+  // Every check happens before the first write: sizes here, view/sharpness/hint in a trial
+  // weights() on a local hint, which is only stored once everything has succeeded.
+  if (out_positions.size() != base_.positions.size()) return false;
+  if (!out_normals.empty() && out_normals.size() != base_.positions.size()) return false;
+  int local_hint = hint ? *hint : -1;
+  ViewWeights w;
+  if (!weights(view, sharpness, w, &local_hint)) return false;
+  if (!blend(w, out_positions)) return false;  // cannot fail: w comes from this model's sphere
+  if (!out_normals.empty() && !computeVertexNormals(out_positions, base_.triangles, out_normals)) return false;
+  if (hint) *hint = local_hint;
+  return true;
 }
 
 }  // namespace vdg

@@ -343,14 +343,23 @@ ViewWeights ViewSphere::falloff(const Eigen::Vector3d& v, double& nearest_cos) c
   return best.key[0] < 0 ? ViewWeights{} : best;
 }
 
-ViewWeights ViewSphere::weights(const Eigen::Vector3d& view, double sharpness, int* hint) const {
+bool ViewSphere::weights(const Eigen::Vector3d& view, double sharpness, ViewWeights& out, int* hint) const {
+  if (!normalizedOrNone(view)) return false;  // zero or non-finite; 1e200 and 1e-200 are fine
+  if (!(sharpness > 0.0) || !std::isfinite(sharpness)) return false;
+  int local_hint = hint ? *hint : -1;
+  if (local_hint < -1 || local_hint >= static_cast<int>(triangles_.size())) return false;
+  out = locate(view, sharpness, &local_hint);
+  if (hint) *hint = local_hint;
+  return true;
+}
+
+ViewWeights ViewSphere::locate(const Eigen::Vector3d& view, double sharpness, int* hint) const {
   ViewWeights result;
   const std::optional<Vector3d> unit = normalizedOrNone(view);  // any finite length, 1e-300 or 1e300
   if (!unit) {
     result.base = 1.0f;
     return result;
   }
-  if (!(sharpness > 0.0)) sharpness = 1.0;  // NaN, 0 and negative values (see the header)
   const Vector3d v = *unit;
 
   // Section 3.2.1: the triangle whose cone (centre + triangle) contains the view ray. The cone

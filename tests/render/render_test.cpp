@@ -372,7 +372,7 @@ TEST(RenderImage, KeyViewRendersExactlyTheKeyMesh) {
   ModelRenderer blended(model, o);
   for (std::size_t k = 0; k < model.keyCount(); ++k) {
     TriMesh key_mesh = model.base();
-    model.keyPositions(k, key_mesh.positions);
+    ASSERT_TRUE(model.keyPositions(k, key_mesh.positions));
     ModelRenderer plain(key_mesh, o);
     const Camera cam = cameraToward(model.keyView(k));
     Image a, b;

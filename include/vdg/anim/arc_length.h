@@ -75,9 +75,11 @@ class ArcLengthCurve {
   double timeAtDistance(double s) const;
   // t at fraction f = s / totalLength() (clamped to [0, 1]).
   double timeAtFraction(double f) const;
-  // P at distance s / at fraction f; `out` must have curve().dimension() entries.
-  void evaluateAtDistance(double s, std::span<double> out) const;
-  void evaluateAtFraction(double f, std::span<double> out) const;
+  // P at distance s / at fraction f into `out` (s, f clamped). Per-frame contract of curve.h:
+  // violations (return false, `out` untouched): out.size() != curve().dimension(), s or f not
+  // finite.
+  [[nodiscard]] bool evaluateAtDistance(double s, std::span<double> out) const;
+  [[nodiscard]] bool evaluateAtFraction(double f, std::span<double> out) const;
 
  private:
   Curve curve_;

@@ -77,17 +77,20 @@ class CameraPath {
   double endTime() const { return end_time_; }
   const ArcLengthCurve& path() const { return path_; }
 
-  // Eye position at animation time t (clamped to [startTime, endTime]).
+  // The camera at animation time t (clamped to [startTime, endTime]) into `out`: eye on the path,
+  // target = eye + d * view direction, d = max(1, |eye|) (or the centre of interest / moving target itself), orthonormal
+  // up. Per-frame contract of curve.h: violation (returns false, `out` untouched): t not finite.
+  [[nodiscard]] bool evaluate(double t, Camera& out) const;
+  // Convenience forms (tools and tests): eye position / camera at t; throw vdg::Error for a
+  // non-finite t.
   Eigen::Vector3d eyeAt(double t) const;
-  // The camera at animation time t: eye on the path, target = eye + d * view direction with
-  // d = max(1, |eye|) (so that a far eye does not absorb the offset), or the centre of interest /
-  // moving target itself; orthonormal up. Directions are normalised robustly (any finite length).
-  // Never throws.
-  Camera evaluate(double t) const;
+  // The camera at t as evaluate() gives it: target = eye + d * view direction with d = max(1, |eye|)
+  // (so that a far eye does not absorb the offset), directions normalised robustly.
+  Camera cameraAt(double t) const;
 
  private:
-  Eigen::Vector3d rawForward(double t, const Eigen::Vector3d& eye) const;  // may be zero
-  Eigen::Vector3d forwardAt(double t, const Eigen::Vector3d& eye) const;   // unit
+  bool eyePosition(double t, Eigen::Vector3d& out) const;                             // t finite
+  bool rawForward(double t, const Eigen::Vector3d& eye, Eigen::Vector3d& out) const;  // may be zero
 
   ArcLengthCurve path_;
   Ease speed_;

@@ -30,8 +30,17 @@
 //                         Evaluated by De Casteljau.
 // If `times` is empty the key times default to 0, 1, 2, ... (one per key, or per anchor for kBezier).
 //
-// Every kind is stored as one cubic Bezier segment per key interval, evaluated by De Casteljau;
-// evaluation allocates nothing and never throws.
+// Every kind is stored as one cubic Bezier segment per key interval, evaluated by De Casteljau.
+//
+// Per-frame contract (the rule of every vdg evaluation function, after ozz-animation's jobs, here
+// and in arc_length.h, track.h, camera_path.h, quaternion_curve.h): a function that writes its
+// result into caller-owned memory (a span or an out-reference) returns [[nodiscard]] bool. It
+// checks on entry every size (a span must have exactly the size stated), index and value its
+// contract names; on a violation it returns false and has written nothing; it never throws and
+// never allocates. A time must be finite (NaN and +-infinity are violations); finite times
+// outside the keyed range are clamped (or looped), which is not a violation.
+// The convenience forms that return their result by value (at(), derivativeAt(), ...) run the same
+// checks and throw vdg::Error naming the bad value instead; they are for tools and tests.
 #pragma once
 
 #include <Eigen/Core>
@@ -85,16 +94,20 @@ class Curve {
   double endTime() const { return times_.back(); }
   const std::vector<double>& keyTimes() const { return times_; }
 
-  // P(t) and dP/dt, t clamped to [startTime, endTime]; `out` must have dimension() entries.
-  void evaluate(double t, std::span<double> out) const;
-  void derivative(double t, std::span<double> out) const;
-  // Convenience forms that allocate the result.
+  // P(t) and dP/dt into `out`, t clamped to [startTime, endTime]. Violations (return false, `out`
+  // untouched): out.size() != dimension(), t not finite.
+  [[nodiscard]] bool evaluate(double t, std::span<double> out) const;
+  [[nodiscard]] bool derivative(double t, std::span<double> out) const;
+  // Convenience forms that allocate the result; throw vdg::Error for a non-finite t.
   Eigen::VectorXd at(double t) const;
   Eigen::VectorXd derivativeAt(double t) const;
 
-  // Segment containing t (clamped): index in [0, segmentCount()), and the local parameter u in [0, 1].
+  // Segment containing t (clamped; NaN counts as startTime()): index in [0, segmentCount()), and
+  // the local parameter u in [0, 1] into *u (not null).
   int segmentAt(double t, double* u) const;
   // The four Bezier control points of a segment, as a 4 x dimension() row-major span view.
+  // Throws vdg::Error "curve: segment S out of range (the curve has N segments)" for a segment
+  // outside [0, segmentCount()).
   std::span<const double> segmentControls(int segment) const;
 
  private:

@@ -74,11 +74,13 @@ class ViewDependentModel {
   const TriMesh& base() const { return base_; }
   std::size_t vertexCount() const { return base_.vertexCount(); }
   std::size_t keyCount() const { return keys_.size(); }
-  const std::string& keyName(std::size_t key) const { return keys_[key].name; }
-  const Eigen::Vector3d& keyView(std::size_t key) const { return sphere_.points()[key]; }
-  const std::optional<Camera>& keyCamera(std::size_t key) const { return keys_[key].camera; }
+  // Accessors by key index (tools and editors, not per-frame): `key` must be < keyCount(); an
+  // index out of range throws vdg::Error "key K out of range (the model has N keys)".
+  const std::string& keyName(std::size_t key) const;
+  const Eigen::Vector3d& keyView(std::size_t key) const;
+  const std::optional<Camera>& keyCamera(std::size_t key) const;
   // Number of vertices key `key` moves (its delta is stored sparse when this is small).
-  std::size_t keyMovedCount(std::size_t key) const { return keys_[key].moved_count; }
+  std::size_t keyMovedCount(std::size_t key) const;
   const Eigen::Vector3d& center() const { return center_; }
   double sharpness() const { return sharpness_; }
   const ViewSphere& sphere() const { return sphere_; }
@@ -87,16 +89,29 @@ class ViewDependentModel {
   // distance (robust normalisation); the zero vector when the eye is at the centre or not finite.
   Eigen::Vector3d viewFromEye(const Eigen::Vector3d& eye) const;
 
-  // Weights of a view direction; sharpness <= 0 or NaN means "the model's own" (never throws).
-  ViewWeights weights(const Eigen::Vector3d& view, double sharpness = 0.0, int* hint = nullptr) const;
+  // Per-frame contract (the rule of every vdg evaluation function, after ozz-animation's jobs):
+  // weights(), blend(), keyPositions() and evaluate() check their sizes, indices and values on
+  // entry; on a violation they return false and have written nothing (no output span, no `out`,
+  // no `*hint`); they never throw and never allocate. Spans must have exactly the size stated.
+  // The model's triangles are trusted from build() (validated there); normals still go through
+  // computeVertexNormals, whose per-call index pass is cheap next to the blend.
 
-  // Blended positions for `w` into `out_positions` (#V x 3, caller-owned). No allocation, no throw.
-  void blend(const ViewWeights& w, std::span<float> out_positions) const;
-  // Positions of key `key` (its full mesh) into `out_positions` (#V x 3).
-  void keyPositions(std::size_t key, std::span<float> out_positions) const;
-  // weights + blend + (optional, when out_normals is non-empty) recomputed normals.
-  void evaluate(const Eigen::Vector3d& view, double sharpness, std::span<float> out_positions,
-                std::span<float> out_normals = {}, int* hint = nullptr) const;
+  // Weights of a view direction into `out`. sharpness <= 0 means "the model's own"; `hint` as in
+  // ViewSphere::weights (-1 or a triangle index of sphere()). Violations: a zero or non-finite
+  // view, a non-finite sharpness, a hint out of range.
+  [[nodiscard]] bool weights(const Eigen::Vector3d& view, double sharpness, ViewWeights& out,
+                             int* hint = nullptr) const;
+  // Blended positions for `w` into `out_positions` (#V x 3). Violations: out_positions.size() !=
+  // 3 * vertexCount(); a slot's key index >= keyCount() or < -1; a non-finite weight.
+  [[nodiscard]] bool blend(const ViewWeights& w, std::span<float> out_positions) const;
+  // Positions of key `key` (its full mesh) into `out_positions` (#V x 3). Violations: key >=
+  // keyCount(), out_positions.size() != 3 * vertexCount().
+  [[nodiscard]] bool keyPositions(std::size_t key, std::span<float> out_positions) const;
+  // weights + blend + (when out_normals is non-empty) normals recomputed from the blended
+  // positions. Violations: those of weights(); out_positions.size() != 3 * vertexCount();
+  // out_normals neither empty nor 3 * vertexCount() floats.
+  [[nodiscard]] bool evaluate(const Eigen::Vector3d& view, double sharpness, std::span<float> out_positions,
+                              std::span<float> out_normals = {}, int* hint = nullptr) const;
 
  private:
   struct Key {

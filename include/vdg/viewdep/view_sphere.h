@@ -2,7 +2,8 @@
 // the blending weights of any view direction (Rademacher 99, sections 3.2.1-3.2.2 and 3.3).
 //
 // Built once from the key directions (an immutable run-time object); weights() is then a pure,
-// allocation-free, non-throwing query that a renderer calls every frame.
+// allocation-free, non-throwing query that a renderer calls every frame (its inputs are checked
+// and a violation returns false, see weights()).
 //
 // Uncovered regions (section 3.3), for key sets whose hull does not enclose the sphere's centre:
 //  - Uncovered::Base: dummy "base" points are added on the sphere wherever no key lies within
@@ -22,10 +23,9 @@
 // the cosine modes the sharpening applies among the keys, before the falloff f. It is computed
 // relative to the largest weight, (w_i / w_max)^a / sum_j (w_j / w_max)^a, so any alpha > 0 is
 // exact: alpha = 5000 gives (to float rounding) weight 1 to the largest key (ties share it evenly),
-// never the unsharpened weights. Accepted values: alpha > 0 (finite; +inf is the limit "all
-// weight to the largest"). weights() is a per-frame query and never throws: NaN, 0 and negative
-// alphas are treated as 1 (no sharpening). Builders and loaders (RawViewDependentModel::validate)
-// reject a non-finite or non-positive model sharpness with vdg::Error instead.
+// never the unsharpened weights. Accepted values: finite alpha > 0. weights() is a per-frame query
+// and never throws: it refuses (returns false) a NaN, infinite, zero or negative alpha. Builders
+// and loaders (RawViewDependentModel::validate) reject such a model sharpness with vdg::Error.
 #pragma once
 
 #include <array>
@@ -74,10 +74,17 @@ class ViewSphere {
                           std::span<const std::string> key_labels = {});
 
   // Weights of the view direction `view` (towards the eye; any finite non-zero length, normalised
-  // robustly, so 1e-200 and 1e200 give the unit view's weights; a zero or non-finite vector gives
-  // the base model). sharpness: see "Sharpness alpha" above (NaN and values <= 0 act as 1).
-  // `hint` (optional, in/out) remembers the last triangle to speed up coherent queries.
-  ViewWeights weights(const Eigen::Vector3d& view, double sharpness = 1.0, int* hint = nullptr) const;
+  // robustly, so 1e-200 and 1e200 give the unit view's weights) into `out`. sharpness: see
+  // "Sharpness alpha" above. `hint` (optional, in/out) is -1 (no hint) or a triangle index from an
+  // earlier call on this sphere; it speeds up coherent queries and is set to the triangle found
+  // (left as it is when the view falls in an uncovered region).
+  // Per-frame contract (the rule of every vdg evaluation function, after ozz-animation's jobs):
+  // inputs are checked on entry; on a violation weights() returns false and has written nothing
+  // (neither `out` nor `*hint`); it never throws and never allocates. Violations: a zero or
+  // non-finite view, a sharpness that is not finite or not > 0, a hint other than -1 or an index
+  // into triangles().
+  [[nodiscard]] bool weights(const Eigen::Vector3d& view, double sharpness, ViewWeights& out,
+                             int* hint = nullptr) const;
 
   std::size_t keyCount() const { return key_count_; }
   // Unit directions of all points: the keys first (in input order), then the dummy base points.
@@ -95,6 +102,8 @@ class ViewSphere {
   struct Cone {
     Eigen::Matrix3d inverse;  // inverse of [a b c]: lambda = inverse * v
   };
+  // weights() after its checks: view non-zero and finite, sharpness > 0, hint valid.
+  ViewWeights locate(const Eigen::Vector3d& view, double sharpness, int* hint) const;
   ViewWeights locateInTriangle(int t, const Eigen::Vector3d& lambda) const;
   ViewWeights falloff(const Eigen::Vector3d& v, double& nearest_cos) const;
   void finishWeights(ViewWeights& w, double sharpness) const;
