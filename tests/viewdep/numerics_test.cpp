@@ -43,6 +43,18 @@ void expectSameWeights(const ViewWeights& a, const ViewWeights& b, int keys) {
   EXPECT_NEAR(a.base, b.base, kWeightTol);
 }
 
+// The weights of a view that must be accepted (the per-frame query returns false on a violation).
+ViewWeights weightsOf(const ViewSphere& s, const Vector3d& view, double alpha = 1.0) {
+  ViewWeights w;
+  EXPECT_TRUE(s.weights(view, alpha, w)) << "view " << view.transpose() << ", alpha " << alpha;
+  return w;
+}
+ViewWeights weightsOf(const ViewDependentModel& m, const Vector3d& view, double alpha = 0.0) {
+  ViewWeights w;
+  EXPECT_TRUE(m.weights(view, alpha, w)) << "view " << view.transpose() << ", alpha " << alpha;
+  return w;
+}
+
 Vector3d randomDirection(std::mt19937& rng) {
   std::normal_distribution<double> n;
   Vector3d v;
@@ -57,10 +69,10 @@ Vector3d randomDirection(std::mt19937& rng) {
 TEST(Sharpness, HugeAlphaGivesAllWeightToTheLargestKey) {
   const ViewSphere s = ViewSphere::build(kOctahedron);
   const Vector3d view(1, 0.5, 0.2);  // weights of +x, +y, +z: 0.59, 0.29, 0.12
-  const ViewWeights plain = s.weights(view, 1.0);
+  const ViewWeights plain = weightsOf(s, view, 1.0);
   ASSERT_NEAR(weightOf(plain, 0), 1.0 / 1.7, kWeightTol);
-  for (const double alpha : {1100.0, 5000.0, 1e300, std::numeric_limits<double>::infinity()}) {
-    const ViewWeights w = s.weights(view, alpha);
+  for (const double alpha : {1100.0, 5000.0, 1e300}) {
+    const ViewWeights w = weightsOf(s, view, alpha);
     EXPECT_NEAR(weightOf(w, 0), 1.0f, kWeightTol) << "alpha " << alpha;  // never the alpha = 1 weights
     EXPECT_NEAR(weightOf(w, 2), 0.0f, kWeightTol) << "alpha " << alpha;
     EXPECT_NEAR(weightOf(w, 4), 0.0f, kWeightTol) << "alpha " << alpha;
@@ -70,7 +82,7 @@ TEST(Sharpness, HugeAlphaGivesAllWeightToTheLargestKey) {
 
 TEST(Sharpness, TiesForTheLargestWeightShareIt) {
   const ViewSphere s = ViewSphere::build(kOctahedron);
-  const ViewWeights w = s.weights(Vector3d(1, 1, 0.3), 5000.0);  // +x and +y tie
+  const ViewWeights w = weightsOf(s, Vector3d(1, 1, 0.3), 5000.0);  // +x and +y tie
   EXPECT_NEAR(weightOf(w, 0), 0.5f, kWeightTol);
   EXPECT_NEAR(weightOf(w, 2), 0.5f, kWeightTol);
   EXPECT_NEAR(weightOf(w, 4), 0.0f, kWeightTol);
@@ -82,19 +94,22 @@ TEST(Sharpness, ModerateAlphaStillFollowsThePaper) {
   const double alpha = 3.0;
   const double p[3] = {std::pow(1.0, alpha), std::pow(0.5, alpha), std::pow(0.2, alpha)};
   const double sum = p[0] + p[1] + p[2];
-  const ViewWeights w = s.weights(view, alpha);
+  const ViewWeights w = weightsOf(s, view, alpha);
   EXPECT_NEAR(weightOf(w, 0), p[0] / sum, kWeightTol);
   EXPECT_NEAR(weightOf(w, 2), p[1] / sum, kWeightTol);
   EXPECT_NEAR(weightOf(w, 4), p[2] / sum, kWeightTol);
 }
 
-TEST(Sharpness, NanZeroAndNegativeActAsOneInTheFrameQuery) {
+TEST(Sharpness, NanZeroNegativeAndInfiniteAreRefusedByTheFrameQuery) {
   const ViewSphere s = ViewSphere::build(kOctahedron);
   const Vector3d view(1, 0.5, 0.2);
-  const ViewWeights plain = s.weights(view, 1.0);
-  for (const double alpha :
-       {std::numeric_limits<double>::quiet_NaN(), 0.0, -2.0, -std::numeric_limits<double>::infinity()})
-    expectSameWeights(s.weights(view, alpha), plain, 6);
+  for (const double alpha : {std::numeric_limits<double>::quiet_NaN(), 0.0, -2.0,
+                             std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()}) {
+    ViewWeights w;
+    w.base = 0.25f;  // a sentinel: a refused query writes nothing
+    EXPECT_FALSE(s.weights(view, alpha, w)) << alpha;
+    EXPECT_EQ(w.base, 0.25f);
+  }
 }
 
 TEST(Sharpness, ModelRejectsNonFiniteOrNonPositiveSharpness) {
@@ -123,10 +138,10 @@ TEST(RobustViews, HugeAndTinyViewsGiveTheUnitViewsWeights) {
     std::mt19937 rng(7);
     for (int i = 0; i < 50; ++i) {
       const Vector3d v = randomDirection(rng);
-      const ViewWeights unit = s.weights(v, 1.5);
+      const ViewWeights unit = weightsOf(s, v, 1.5);
       for (const double scale : {1e155, 1e200, 1e300, 1e-155, 1e-200, 1e-300}) {
         SCOPED_TRACE(scale);
-        expectSameWeights(s.weights(v * scale, 1.5), unit, 3);
+        expectSameWeights(weightsOf(s, v * scale, 1.5), unit, 3);
       }
     }
   }
@@ -138,7 +153,7 @@ TEST(RobustViews, HugeAndTinyKeyViewsAreReachable) {
     views[0] *= scale;
     const ViewSphere s = ViewSphere::build(views);
     EXPECT_NEAR(s.points()[0].norm(), 1.0, 1e-12);
-    EXPECT_NEAR(weightOf(s.weights(Vector3d(1, 0, 0)), 0), 1.0f, kWeightTol) << scale;
+    EXPECT_NEAR(weightOf(weightsOf(s, Vector3d(1, 0, 0)), 0), 1.0f, kWeightTol) << scale;
   }
 }
 
@@ -167,10 +182,10 @@ TEST(RobustViews, ModelWithHugeKeyViewAndFarEyeBuildsAndReachesTheKey) {
   raw.resolveViews();
   EXPECT_NEAR((raw.keys[4].view - Vector3d(0, 0, 1)).norm(), 0.0, 1e-12);
   const ViewDependentModel model = ViewDependentModel::build(raw);
-  EXPECT_NEAR(weightOf(model.weights(Vector3d(1, 0, 0)), 0), 1.0f, kWeightTol);
-  EXPECT_NEAR(weightOf(model.weights(Vector3d(0, 1, 0)), 2), 1.0f, kWeightTol);
-  EXPECT_NEAR(weightOf(model.weights(model.viewFromEye(Vector3d(0, 0, 1e250))), 4), 1.0f, kWeightTol);
-  EXPECT_NEAR(weightOf(model.weights(Vector3d(1e-250, 0, 0), 2.0), 0), 1.0f, kWeightTol);
+  EXPECT_NEAR(weightOf(weightsOf(model, Vector3d(1, 0, 0)), 0), 1.0f, kWeightTol);
+  EXPECT_NEAR(weightOf(weightsOf(model, Vector3d(0, 1, 0)), 2), 1.0f, kWeightTol);
+  EXPECT_NEAR(weightOf(weightsOf(model, model.viewFromEye(Vector3d(0, 0, 1e250))), 4), 1.0f, kWeightTol);
+  EXPECT_NEAR(weightOf(weightsOf(model, Vector3d(1e-250, 0, 0), 2.0), 0), 1.0f, kWeightTol);
   EXPECT_EQ(model.viewFromEye(model.center()), Vector3d::Zero());
 }
 

@@ -47,12 +47,12 @@ int main() {
   std::vector<float> normals(positions.size());
 
   bool ok = true;
-  model.evaluate(Eigen::Vector3d(1, 0, 0), 0.0, positions, normals);
+  ok &= model.evaluate(Eigen::Vector3d(1, 0, 0), 0.0, positions, normals);
   ok &= near(positions[3 * 3 + 2], 2.0f, "top vertex z seen from the side key");
   ok &= near(positions[3 * 1 + 0], 1.0f, "+X vertex x seen from the side key");
-  model.evaluate(Eigen::Vector3d(0, 0, 1), 0.0, positions, normals);
+  ok &= model.evaluate(Eigen::Vector3d(0, 0, 1), 0.0, positions, normals);
   ok &= near(positions[3 * 1 + 0], 1.5f, "+X vertex x seen from the front key");
-  model.evaluate(Eigen::Vector3d(-1, -1, -1), 0.0, positions, normals);  // far from both keys
+  ok &= model.evaluate(Eigen::Vector3d(-1, -1, -1), 0.0, positions, normals);  // far from both keys
   ok &= near(positions[3 * 3 + 2], 1.0f, "top vertex z seen from behind");
   ok &= near(positions[3 * 1 + 0], 1.0f, "+X vertex x seen from behind");
   if (!ok) return 1;
