@@ -245,9 +245,10 @@ void writeVertices(OJson& j, const std::vector<std::int32_t>& vertices) {
   if (!vertices.empty()) j["vertices"] = vertices;
 }
 
-OJson writeOp(const EditOp& op) {
+// `at` names the op in messages ("op", "... 'entries'[0].'ops'[1]").
+OJson writeOp(const EditOp& op, const std::string& at) {
   if (const auto problem = checkEditOp(op))
-    throw Error(std::string("op (") + editKindName(op) + ")." + problem->field + ": " + problem->message);
+    throw Error(at + " (" + editKindName(op) + ")." + problem->field + ": " + problem->message);
   OJson j;
   j["op"] = editKindName(op);
   switch (editKind(op)) {
@@ -390,7 +391,7 @@ EditScript parseEditScript(const std::string& text, const std::string& source) {
 
 EditScript readEditScript(const std::string& path) { return scriptFrom(io::readJsonFile(path, "edit script"), path); }
 
-std::string editOpToJson(const EditOp& op) { return writeOp(op).dump(); }
+std::string editOpToJson(const EditOp& op) { return writeOp(op, "op").dump(); }
 
 EditOp parseEditOp(const std::string& text, const std::string& source) {
   return readOp(io::parseJson(text, source), Ctx{source, ""});
@@ -414,14 +415,9 @@ std::string formatEditLog(const EditLog& log) {
     je["camera"] = io::cameraJson(entry.camera);
     if (entry.image_size) je["image_size"] = *entry.image_size;
     je["ops"] = OJson::array();
-    for (std::size_t i = 0; i < entry.ops.size(); ++i) {
-      try {
-        je["ops"].push_back(writeOp(entry.ops[i]));
-      } catch (const Error& err) {
-        throw Error("edit log of key '" + log.key + "': entries[" + std::to_string(e) + "]." + "ops[" +
-                    std::to_string(i) + "] " + err.what());
-      }
-    }
+    for (std::size_t i = 0; i < entry.ops.size(); ++i)
+      je["ops"].push_back(writeOp(entry.ops[i], "edit log of key '" + log.key + "': 'entries'[" + std::to_string(e) +
+                                                    "].'ops'[" + std::to_string(i) + "]"));
     j["entries"].push_back(std::move(je));
   }
   return compactScalarArrays(j.dump(2)) + "\n";

@@ -181,17 +181,18 @@ TEST_F(DeformCli, AKeySharingItsMeshFileIsRefused) {
 TEST_F(DeformCli, AStepIsAllOrNothingWhenTheDiskFills) {
   // A long edit log (many ops), so that the key mesh fits under the limit and the log does not.
   std::string ops;
-  for (int i = 0; i < 120; ++i)
+  for (int i = 0; i < 400; ++i)
     ops += std::string(i ? "," : "") + R"({"op": "drag", "vertex": 20, "radius": 0.8, "delta": [0.0001, 0]})";
   spit(dir_ / "e1.json", std::string("{") + kCamera + R"(, "ops": [)" + ops + "]}");
   ASSERT_EQ(vdg("deform -q " + path("m.vdg.json") + " --key side --ops " + path("e1.json")), 0) << output_;
-  constexpr std::uintmax_t kLimitBytes = 12 * 1024;  // ulimit -f 12
-  ASSERT_GT(fs::file_size(dir_ / "side.edits.json"), kLimitBytes);
-  ASSERT_LT(fs::file_size(dir_ / "side.obj"), kLimitBytes);
+  // ulimit -f 24: 24 blocks, of 512 bytes in POSIX shells (dash), of 1024 in bash.
+  constexpr std::uintmax_t kLowLimit = 24 * 512, kHighLimit = 24 * 1024;
+  ASSERT_GT(fs::file_size(dir_ / "side.edits.json"), kHighLimit);
+  ASSERT_LT(fs::file_size(dir_ / "side.obj"), kLowLimit);
   spit(dir_ / "e2.json", R"({"ops": [{"op": "drag", "vertex": 20, "radius": 0.8, "delta": [0.1, 0]}]})");
   const auto before = folderContents(dir_);
-  // 12 blocks of 1024 bytes: the mesh is staged, the log is not.
-  const std::string limited = "trap '' XFSZ; ulimit -f 12; \"" + std::string(VDG_BINARY) + "\" deform " +
+  // The mesh is staged, the log is not.
+  const std::string limited = "trap '' XFSZ; ulimit -f 24; \"" + std::string(VDG_BINARY) + "\" deform " +
                               path("m.vdg.json") + " --key side --ops " + path("e2.json") + " > " + path("out.txt") +
                               " 2>&1";
   const int status = std::system(limited.c_str());

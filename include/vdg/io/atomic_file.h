@@ -7,8 +7,8 @@
 //     checked, the file is flushed to the disk (fsync) and closed, and only then renamed over the
 //     real file. A replaced file keeps its permission bits; a new one gets 0666 & ~umask. On any
 //     failure (disk full, quota, file size limit, I/O error) the temporary file is removed, the
-//     target is untouched and vdg::Error names the target: "out/a.png: cannot write: No space
-//     left on device".
+//     target is untouched and vdg::Error names the target: "out/a.png: cannot write file: No
+//     space left on device".
 //   - a character device (/dev/null, a terminal) or a FIFO: written directly, never replaced. A
 //     FIFO with no reader is an error ("PATH: is a FIFO that no program is reading"), not a hang.
 //   - a folder, a socket, a block device: refused, "PATH: is a folder, not a file".
