@@ -95,6 +95,7 @@ void runUndo(const DeformOptions& opt, RawViewDependentModel& raw, RawKey& key, 
 void runDeform(const DeformOptions& opt) {
   const fs::path folder = fs::path(opt.model).parent_path();
   const std::string journal = (folder / kJournalName).string();
+  const FolderLock lock(folder.empty() ? "." : folder.string());  // one deform at a time per folder
   if (const auto recovered = recoverFileTransaction(journal))
     std::fprintf(stderr, "vdg deform: %s: %s\n", folder.empty() ? "." : folder.string().c_str(), recovered->c_str());
   FileTransaction transaction(journal);

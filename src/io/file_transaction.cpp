@@ -1,6 +1,8 @@
 // Several files replaced as one step, with a journal for crash recovery (design in the header).
 #include "vdg/io/file_transaction.h"
 
+#include <fcntl.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 #include <cctype>
@@ -47,6 +49,21 @@ bool isTemporaryBeside(const std::string& temp, const std::string& target) {
 void removeQuietly(const std::string& path) { ::unlink(path.c_str()); }
 
 }  // namespace
+
+FolderLock::FolderLock(const std::string& folder) {
+  fd_ = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd_ < 0)
+    throw Error(folder + ": cannot open the folder: " + std::error_code(errno, std::generic_category()).message());
+  if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+    const int err = errno;
+    ::close(fd_);
+    if (err == EWOULDBLOCK)
+      throw Error(folder + ": another vdg is changing files here; try again when it has finished");
+    throw Error(folder + ": cannot lock the folder: " + std::error_code(err, std::generic_category()).message());
+  }
+}
+
+FolderLock::~FolderLock() { ::close(fd_); }  // closing releases the lock
 
 FileTransaction::FileTransaction(std::string journal_path) : journal_path_(std::move(journal_path)) {}
 

@@ -142,6 +142,17 @@ TEST(FileTransaction, APendingJournalBlocksANewStep) {
   EXPECT_FALSE(fs::exists(dir.path() / "a.txt"));
 }
 
+TEST(FileTransaction, FolderLockIsExclusive) {
+  testing::TempDir dir;
+  {
+    const FolderLock first(dir.path().string());
+    EXPECT_EQ(errorOf([&] { FolderLock second(dir.path().string()); }),
+              dir.path().string() + ": another vdg is changing files here; try again when it has finished");
+  }
+  EXPECT_EQ(errorOf([&] { FolderLock again(dir.path().string()); }), "");  // released with the first
+  EXPECT_NE(errorOf([&] { FolderLock none(dir.file("missing")); }).find("cannot open the folder"), std::string::npos);
+}
+
 TEST(FileTransaction, AJournalNotWrittenByVdgIsNotTrusted) {
   testing::TempDir dir;
   const std::string base = fs::absolute(dir.path()).string();

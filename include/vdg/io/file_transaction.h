@@ -21,7 +21,9 @@
 // present over their targets (committing: completed; a missing temporary was renamed already).
 // Recovery refuses a journal whose temporary files are not ".vdg-XXXXXX" names beside their
 // targets, so a hand-made journal cannot rename arbitrary files. One transaction at a time per
-// journal: commit() refuses to start while a journal is present.
+// journal: commit() refuses to start while a journal is present, and a caller that reads files,
+// recovers and commits (`vdg deform`) holds a FolderLock on the journal's folder throughout, so
+// that two processes neither interleave their steps nor recover each other's step in progress.
 #pragma once
 
 #include <optional>
@@ -51,6 +53,20 @@ class FileTransaction {
   std::string journal_path_;
   std::vector<File> files_;
   bool committed_ = false;
+};
+
+// An exclusive advisory lock (flock) on a folder, held while the object lives. Throws vdg::Error
+// "FOLDER: another vdg is changing files here; try again when it has finished" when another
+// holder has it (it does not wait), or naming the folder when it cannot be opened.
+class FolderLock {
+ public:
+  explicit FolderLock(const std::string& folder);
+  ~FolderLock();
+  FolderLock(const FolderLock&) = delete;
+  FolderLock& operator=(const FolderLock&) = delete;
+
+ private:
+  int fd_ = -1;
 };
 
 // Finishes an interrupted transaction whose journal is at `journal_path`. Returns nothing when
