@@ -2,19 +2,23 @@
 // vdg deform MODEL --key NAME --undo
 //
 // Applies image-plane and attenuated deformations (Rademacher 99, 3.1.2; Parent 4.10) to one key
-// of a model, in the key's camera, writes the key mesh and the manifest atomically, and appends the
-// run to the key's edit log (KEY.edits.json) so that the key can be rebuilt and undone. Nothing is
-// written unless every operation is valid and the updated model validates. See docs/deform.md.
+// of a model, in the key's camera, and appends the run to the key's edit log (KEY.edits.json) so
+// that the key can be rebuilt and undone. The rules live in the deform library
+// (vdg/deform/key_edit.h); this file loads the files, calls it, and writes the key mesh, the edit
+// log and the manifest as ONE transaction (vdg/io/file_transaction.h): all of them or none, and an
+// interrupted step is completed or rolled back by the next run on the model. See docs/deform.md.
 #include <cstdio>
 #include <filesystem>
 #include <memory>
 
 #include "cli.h"
 #include "vdg/deform/edits.h"
+#include "vdg/deform/key_edit.h"
 #include "vdg/geom/error.h"
 #include "vdg/geom/normalize.h"
 #include "vdg/io/camera_json.h"
 #include "vdg/io/edit_script.h"
+#include "vdg/io/file_transaction.h"
 #include "vdg/io/manifest.h"
 #include "vdg/io/obj.h"
 #include "vdg/viewdep/model.h"
@@ -23,6 +27,9 @@ namespace vdg::cli {
 namespace fs = std::filesystem;
 
 namespace {
+
+// The journal of `vdg deform` transactions, one per model folder.
+constexpr const char* kJournalName = ".vdg-journal";
 
 // "1 step", "3 steps".
 std::string counted(std::size_t n, const char* noun) { return std::to_string(n) + " " + noun + (n == 1 ? "" : "s"); }
@@ -36,14 +43,20 @@ fs::path meshFile(const fs::path& folder, const std::string& mesh_path) {
   return fs::path(mesh_path).is_absolute() ? fs::path(mesh_path) : folder / mesh_path;
 }
 
-// A camera for a key known only by its view: parallel, framing the base.
-Camera viewCamera(const RawViewDependentModel& raw, const Eigen::Vector3d& view) {
-  const Bounds b = computeBounds(raw.base.positions);
-  const double size = std::max(static_cast<double>(b.diagonal()), 1e-6);
-  return cameraFromView(raw.resolvedCenter(), view, 2.0 * size, 1.1 * size);
+bool sameFile(const fs::path& a, const fs::path& b) {
+  std::error_code ec;
+  if (fs::exists(a, ec) && fs::exists(b, ec)) return fs::equivalent(a, b, ec);
+  return fs::absolute(a, ec).lexically_normal() == fs::absolute(b, ec).lexically_normal();
 }
 
-void replace(std::vector<float>& positions, const std::vector<float>& from) { positions = from; }
+// A key whose mesh file another key also uses cannot be deformed alone.
+void checkMeshNotShared(const RawViewDependentModel& raw, const RawKey& key, const fs::path& folder) {
+  const fs::path mine = meshFile(folder, key.mesh_path);
+  for (const RawKey& other : raw.keys)
+    if (&other != &key && sameFile(mine, meshFile(folder, other.mesh_path)))
+      throw Error("key '" + key.name + "' shares its mesh file " + mine.string() + " with key '" + other.name +
+                  "': a deformation would change both; give each key its own mesh file in the manifest");
+}
 
 TriMesh originMesh(const RawViewDependentModel& raw, const EditLog& log, const fs::path& log_path) {
   if (log.origin == "base") return raw.base;
@@ -52,11 +65,12 @@ TriMesh originMesh(const RawViewDependentModel& raw, const EditLog& log, const f
   if (snapshot.vertexCount() != raw.base.vertexCount())
     throw Error(log_path.string() + ": origin mesh '" + log.origin + "' has " + std::to_string(snapshot.vertexCount()) +
                 " vertices, the base has " + std::to_string(raw.base.vertexCount()));
-  replace(m.positions, snapshot.positions);
+  m.positions = snapshot.positions;
   return m;
 }
 
-void runUndo(const DeformOptions& opt, RawViewDependentModel& raw, RawKey& key, const fs::path& folder) {
+void runUndo(const DeformOptions& opt, RawViewDependentModel& raw, RawKey& key, const fs::path& folder,
+             FileTransaction& transaction) {
   const fs::path mesh_path = meshFile(folder, key.mesh_path);
   const fs::path log_path = editLogPath(mesh_path.string());
   if (!fs::exists(log_path)) throw Error("key '" + key.name + "': no edit log " + log_path.string() + " to undo from");
@@ -64,37 +78,41 @@ void runUndo(const DeformOptions& opt, RawViewDependentModel& raw, RawKey& key, 
   if (log.entries.empty())
     throw Error("key '" + key.name + "': nothing to undo (the edit log " + log_path.string() + " is empty)");
   const std::size_t undone_ops = log.entries.back().ops.size();
-  log.entries.pop_back();
-  TriMesh rebuilt = originMesh(raw, log, log_path);
-  for (std::size_t e = 0; e < log.entries.size(); ++e)
-    applyEdits(log.entries[e].camera, rebuilt.triangles, rebuilt.positions, log.entries[e].ops,
-               log.entries[e].image_size, log_path.string() + ": entries[" + std::to_string(e) + "]");
-  key.mesh.positions = rebuilt.positions;
+  key.mesh.positions = undoLastStep(originMesh(raw, log, log_path), log, log_path.string());
   raw.validate();
   if (opt.dry_run) {
     std::printf("would undo the last step of key '%s' (%s); %s would remain\n", key.name.c_str(),
                 counted(undone_ops, "operation").c_str(), counted(log.entries.size(), "step").c_str());
     return;
   }
-  writeObj(mesh_path.string(), key.mesh, "vdg deform: key '" + key.name + "'");
-  writeEditLog(log_path.string(), log);
+  transaction.write(mesh_path.string(), formatObj(key.mesh, "vdg deform: key '" + key.name + "'"));
+  transaction.write(log_path.string(), formatEditLog(log));
+  transaction.commit();
   if (!opt.quiet)
     std::printf("undid the last step of key '%s' (%s); %s remain\n", key.name.c_str(),
                 counted(undone_ops, "operation").c_str(), counted(log.entries.size(), "step").c_str());
 }
 
 void runDeform(const DeformOptions& opt) {
-  RawViewDependentModel raw = loadManifest(opt.model);
   const fs::path folder = fs::path(opt.model).parent_path();
-  RawKey* key = nullptr;
-  for (RawKey& k : raw.keys)
-    if (k.name == opt.key) key = &k;
+  const std::string journal = (folder / kJournalName).string();
+  const FolderLock lock(folder.empty() ? "." : folder.string());  // one deform at a time per folder
+  if (const auto recovered = recoverFileTransaction(journal))
+    std::fprintf(stderr, "vdg deform: %s: %s\n", folder.empty() ? "." : folder.string().c_str(), recovered->c_str());
+  FileTransaction transaction(journal);
+
+  RawViewDependentModel raw = loadManifest(opt.model);
+  std::size_t key_index = raw.keys.size();
+  for (std::size_t k = 0; k < raw.keys.size(); ++k)
+    if (raw.keys[k].name == opt.key) key_index = k;
+  const bool new_key = key_index == raw.keys.size();
 
   if (opt.undo) {
     if (!opt.ops.empty() || !opt.camera.empty() || !opt.view.empty() || !opt.mesh.empty())
       throw UsageError("--undo takes no --ops, --camera, --view or --mesh");
-    if (!key) throw Error(opt.model + ": no key named '" + opt.key + "'");
-    runUndo(opt, raw, *key, folder);
+    if (new_key) throw Error(opt.model + ": no key named '" + opt.key + "'");
+    checkMeshNotShared(raw, raw.keys[key_index], folder);
+    runUndo(opt, raw, raw.keys[key_index], folder, transaction);
     return;
   }
   if (opt.ops.empty()) throw UsageError("give --ops EDITS.json (or --undo)");
@@ -114,81 +132,57 @@ void runDeform(const DeformOptions& opt) {
     if (!unit) throw UsageError("--view: the view direction must be finite and not zero");
     given_view = *unit;
   }
-  bool new_key = false;
-  if (key) {
+  if (!new_key) {
+    const RawKey& key = raw.keys[key_index];
     if (given_camera || given_view)
-      throw Error("key '" + key->name + "' already has its " + (key->camera ? "camera" : "view") +
+      throw Error("key '" + key.name + "' already has its " + (key.camera ? "camera" : "view") +
                   "; the operations use it (edit the manifest to change it, or leave out the camera/view)");
     if (!opt.mesh.empty()) throw UsageError("--mesh: only for a new key");
+    checkMeshNotShared(raw, key, folder);
   } else {
+    checkKeyName(opt.key);
     if (!given_camera && !given_view)
       throw Error("key '" + opt.key + "' is new: give its camera or view (\"camera\"/\"view\" in " + opt.ops +
                   ", --camera CAMERA.json or --view X,Y,Z)");
-    RawKey k;
-    k.name = opt.key;
-    k.mesh_path = opt.mesh.empty() ? opt.key + ".obj" : opt.mesh;
-    k.mesh = raw.base;
-    k.camera = given_camera;
-    if (given_view) k.view = *given_view;
-    const fs::path target = meshFile(folder, k.mesh_path);
+    key_index = addKey(raw, {opt.key, opt.mesh, given_camera, given_view});
+    const fs::path target = meshFile(folder, raw.keys[key_index].mesh_path);
     for (const RawKey& other : raw.keys)
-      if (fs::exists(target) && fs::exists(meshFile(folder, other.mesh_path)) &&
-          fs::equivalent(target, meshFile(folder, other.mesh_path)))
+      if (&other != &raw.keys[key_index] && sameFile(target, meshFile(folder, other.mesh_path)))
         throw Error("key '" + opt.key + "': mesh " + target.string() + " belongs to key '" + other.name + "'");
-    if (fs::exists(target) || fs::exists(editLogPath(target.string())))
+    if (fs::exists(fs::symlink_status(target)) || fs::exists(fs::symlink_status(editLogPath(target.string()))))
       throw Error("key '" + opt.key + "': " + target.string() +
                   " (or its edit log) already exists and is not a key of the model; choose another --mesh");
-    raw.keys.push_back(std::move(k));
-    key = &raw.keys.back();
-    new_key = true;
-    raw.resolveViews();
   }
-  const Camera camera = key->camera ? *key->camera : viewCamera(raw, key->view);
 
-  // Edit a copy; nothing is written unless every operation succeeds.
-  std::vector<float> positions = key->mesh.positions;
-  const auto reports = applyEdits(camera, key->mesh.triangles, positions, script.ops, script.image_size, opt.ops);
+  RawKey& key = raw.keys[key_index];
+  const fs::path mesh_path = meshFile(folder, key.mesh_path);
+  const fs::path log_path = editLogPath(mesh_path.string());
+  const fs::path snapshot_path = mesh_path.parent_path() / (mesh_path.stem().string() + ".origin.obj");
+  // The log this step extends; a key made outside vdg deform starts one from a snapshot of its shape.
+  const bool has_log = !new_key && fs::exists(log_path);
+  EditLog log = has_log ? readEditLog(log_path.string()) : startEditLog(raw, key, snapshot_path.filename().string());
+  const TriMesh before = key.mesh;
+
+  const auto reports = deformKey(raw, key_index, log, script.ops, script.image_size, opt.ops);
   if (!opt.quiet || opt.dry_run) {
     for (std::size_t i = 0; i < reports.size(); ++i)
-      std::printf("ops[%zu] %-14s moves %zu vertices, at most %.6g\n", i, editKindName(script.ops[i].kind),
-                  reports[i].moved, reports[i].max_displacement);
+      std::printf("ops[%zu] %-14s moves %zu vertices, at most %.6g\n", i, editKindName(script.ops[i]), reports[i].moved,
+                  reports[i].max_displacement);
   }
-  const std::vector<float> before = key->mesh.positions;
-  key->mesh.positions = positions;
-  raw.validate();
   if (opt.dry_run) {
-    std::printf("dry run: %s key '%s' not written\n", new_key ? "new" : "existing", key->name.c_str());
+    std::printf("dry run: %s key '%s' not written\n", new_key ? "new" : "existing", key.name.c_str());
     return;
   }
 
-  const fs::path mesh_path = meshFile(folder, key->mesh_path);
-  const fs::path log_path = editLogPath(mesh_path.string());
-  EditLog log;
-  bool write_snapshot = false;
-  fs::path snapshot_path;
-  if (!new_key && fs::exists(log_path)) {
-    log = readEditLog(log_path.string());
-  } else {
-    log.key = key->name;
-    if (!new_key && before != raw.base.positions) {
-      // A key made outside vdg deform: keep its current shape as the log's origin.
-      snapshot_path = mesh_path.parent_path() / (mesh_path.stem().string() + ".origin.obj");
-      log.origin = snapshot_path.filename().string();
-      write_snapshot = true;
-    }
-  }
-  log.entries.push_back({camera, script.image_size, script.ops});
-
-  if (write_snapshot) {
-    TriMesh snapshot = key->mesh;
-    snapshot.positions = before;
-    writeObj(snapshot_path.string(), snapshot, "vdg deform: key '" + key->name + "' before its first logged edit");
-  }
-  writeObj(mesh_path.string(), key->mesh, "vdg deform: key '" + key->name + "'");
-  writeEditLog(log_path.string(), log);
-  if (new_key) saveManifest(opt.model, raw);
+  if (!has_log && log.origin != "base")
+    transaction.write(snapshot_path.string(),
+                      formatObj(before, "vdg deform: key '" + key.name + "' before its first logged edit"));
+  transaction.write(mesh_path.string(), formatObj(key.mesh, "vdg deform: key '" + key.name + "'"));
+  transaction.write(log_path.string(), formatEditLog(log));
+  if (new_key) transaction.write(opt.model, formatManifest(raw));
+  transaction.commit();
   if (!opt.quiet)
-    std::printf("wrote key '%s' to %s (%s in %s)\n", key->name.c_str(), mesh_path.string().c_str(),
+    std::printf("wrote key '%s' to %s (%s in %s)\n", key.name.c_str(), mesh_path.string().c_str(),
                 counted(log.entries.size(), "step").c_str(), log_path.filename().string().c_str());
 }
 

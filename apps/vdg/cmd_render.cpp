@@ -4,16 +4,20 @@
 // frame (DIR/frame_0000.png ...), the camera going once around the model in N frames. A frame's
 // image depends only on its number and the options, so --frames ranges can be split across
 // machines and give byte-identical frames.
+#include <sys/stat.h>
 #include <unistd.h>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <memory>
 #include <sstream>
 
 #include "cli.h"
 #include "vdg/geom/error.h"
+#include "vdg/io/atomic_file.h"
 #include "vdg/io/manifest.h"
 #include "vdg/io/obj.h"
 #include "vdg/render/model_renderer.h"
@@ -153,7 +157,21 @@ void run(const RenderOptions& opt) {
   progress.finish();
 
   if (video) {
-    const std::string temp = opt.output + ".partial" + fs::path(opt.output).extension().string();
+    // ffmpeg writes a short temporary name beside the real file (links followed), renamed over it
+    // only when the encoding succeeded; it picks the format from the extension.
+    const std::string real = resolveOutputPath(opt.output);
+    struct stat existing {};
+    if (::stat(real.c_str(), &existing) == 0 && !S_ISREG(existing.st_mode))
+      throw Error("-o " + opt.output + ": is not a regular file; a video is written only to a file");
+    const std::string ext = fs::path(opt.output).extension().string();
+    std::string temp_name = (fs::path(real).parent_path() / (".vdg-XXXXXX" + ext)).string();
+    const int temp_fd = ::mkstemps(temp_name.data(), static_cast<int>(ext.size()));
+    if (temp_fd < 0) throw Error("-o " + opt.output + ": cannot write file: " + std::strerror(errno));
+    const mode_t mask = ::umask(0);  // single-threaded here: read the umask and put it back
+    ::umask(mask);
+    (void)::fchmod(temp_fd, ::stat(real.c_str(), &existing) == 0 ? existing.st_mode & 07777 : 0666 & ~mask);
+    ::close(temp_fd);
+    const std::string temp = temp_name;
     const std::string filter = opt.output.ends_with(".gif")
                                    ? "-vf 'split[a][b];[a]palettegen[p];[b][p]paletteuse'"
                                    : "-c:v libx264 -pix_fmt yuv420p -vf 'pad=ceil(iw/2)*2:ceil(ih/2)*2'";
@@ -164,8 +182,11 @@ void run(const RenderOptions& opt) {
       fs::remove(temp, ec);
       throw Error("-o " + opt.output + ": ffmpeg failed to encode the frames (they are in " + out_dir.string() + ")");
     }
-    fs::rename(temp, opt.output, ec);
-    if (ec) throw Error("-o " + opt.output + ": cannot write (" + ec.message() + ")");
+    if (::rename(temp.c_str(), real.c_str()) != 0) {
+      const int err = errno;
+      fs::remove(temp, ec);
+      throw Error("-o " + opt.output + ": cannot write file: " + std::strerror(err));
+    }
     fs::remove_all(out_dir, ec);
   }
   if (!opt.quiet)

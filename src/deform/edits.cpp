@@ -6,6 +6,7 @@
 #include <cmath>
 #include <numbers>
 #include <set>
+#include <sstream>
 
 #include "vdg/deform/ffd.h"
 #include "vdg/geom/error.h"
@@ -34,17 +35,133 @@ const char* editKindName(EditKind kind) {
   return "?";
 }
 
+namespace {
+
+std::string fmt(double v) {
+  std::ostringstream s;
+  s.precision(10);
+  s << v;
+  return s.str();
+}
+
+// The picked vertex shared by the image-plane tools, or nullptr for whole-mesh tools.
+const VertexPick* pickOf(const EditOp& op) {
+  return std::visit(
+      [](const auto& o) -> const VertexPick* {
+        if constexpr (requires { o.pick; })
+          return &o.pick;
+        else
+          return nullptr;
+      },
+      op);
+}
+
+const std::vector<std::int32_t>* verticesOf(const EditOp& op) {
+  return std::visit(
+      [](const auto& o) -> const std::vector<std::int32_t>* {
+        if constexpr (requires { o.vertices; })
+          return &o.vertices;
+        else
+          return nullptr;
+      },
+      op);
+}
+
+std::optional<EditOpProblem> problem(const std::string& field, const std::string& message) {
+  return EditOpProblem{"'" + field + "'", message};
+}
+
+template <typename Vec>
+std::optional<EditOpProblem> finiteVector(const Vec& v, const char* field) {
+  if (!v.allFinite()) return problem(field, "must hold finite numbers");
+  return std::nullopt;
+}
+
+std::optional<EditOpProblem> checkCenter(const std::optional<Eigen::Vector3d>& center) {
+  if (center) return finiteVector(*center, "center");
+  return std::nullopt;
+}
+
+std::optional<EditOpProblem> checkPick(const VertexPick& p) {
+  if (p.vertex < 0) return problem("vertex", "must be >= 0, got " + std::to_string(p.vertex));
+  if (!(p.falloff.radius > 0) || !std::isfinite(p.falloff.radius))
+    return problem("radius", "must be > 0 and finite, got " + fmt(p.falloff.radius));
+  if (!(p.falloff.power >= 0) || !std::isfinite(p.falloff.power))
+    return problem("power", "must be >= 0 and finite, got " + fmt(p.falloff.power));
+  return std::nullopt;
+}
+
+std::optional<EditOpProblem> checkFields(const DragOp& o) {
+  if (o.delta_px) return finiteVector(*o.delta_px, "delta_px");
+  return finiteVector(o.delta, "delta");
+}
+std::optional<EditOpProblem> checkFields(const PushPullOp& o) {
+  if (!std::isfinite(o.amount)) return problem("amount", "must be a finite number");
+  return std::nullopt;
+}
+std::optional<EditOpProblem> checkFields(const RotateOp& o) {
+  if (!std::isfinite(o.angle_deg)) return problem("angle_deg", "must be a finite number");
+  return std::nullopt;
+}
+std::optional<EditOpProblem> checkFields(const ScaleOp& o) {
+  if (!o.factor.allFinite() || !(o.factor.minCoeff() > 0))
+    return problem("factor", "must be > 0 and finite, got [" + fmt(o.factor.x()) + ", " + fmt(o.factor.y()) + "]");
+  return std::nullopt;
+}
+std::optional<EditOpProblem> checkFields(const DisplaceOp& o) { return finiteVector(o.offset, "offset"); }
+std::optional<EditOpProblem> checkFields(const FfdOp& o) {
+  for (int a = 0; a < 3; ++a)
+    if (o.degree[a] < 1 || o.degree[a] > kMaxFfdDegree)
+      return problem("degree", "must hold three integers from 1 to " + std::to_string(kMaxFfdDegree) + ", got " +
+                                   std::to_string(o.degree[a]));
+  if (!(o.padding >= 0) || !(o.padding <= kMaxFfdPadding))
+    return problem("padding", "must be from 0 to " + fmt(kMaxFfdPadding) + ", got " + fmt(o.padding));
+  for (std::size_t m = 0; m < o.moves.size(); ++m) {
+    const std::string at = "'moves'[" + std::to_string(m) + "]";
+    for (int a = 0; a < 3; ++a)
+      if (o.moves[m].index[a] < 0 || o.moves[m].index[a] > o.degree[a])
+        return EditOpProblem{at + ".'index'", "component " + std::to_string(a) + " = " +
+                                                  std::to_string(o.moves[m].index[a]) + " is out of range [0, " +
+                                                  std::to_string(o.degree[a]) + "]"};
+    if (!o.moves[m].offset.allFinite()) return EditOpProblem{at + ".'offset'", "must hold finite numbers"};
+  }
+  return std::nullopt;
+}
+std::optional<EditOpProblem> checkFields(const SquashStretchOp& o) {
+  if (!o.axis.allFinite() || !(o.axis.norm() > 0)) return problem("axis", "must be a finite, non-zero vector");
+  if (!(o.factor > 0) || !std::isfinite(o.factor))
+    return problem("factor", "must be > 0 and finite, got " + fmt(o.factor));
+  return checkCenter(o.center);
+}
+std::optional<EditOpProblem> checkFields(const AffineOp& o) {
+  if (!o.matrix.allFinite()) return problem("matrix", "must hold finite numbers");
+  if (auto p = finiteVector(o.translation, "translation")) return p;
+  return checkCenter(o.center);
+}
+
+}  // namespace
+
+std::optional<EditOpProblem> checkEditOp(const EditOp& op) {
+  if (const VertexPick* pick = pickOf(op))
+    if (auto p = checkPick(*pick)) return p;
+  if (const auto* vertices = verticesOf(op))
+    for (std::int32_t v : *vertices)
+      if (v < 0) return problem("vertices", "must hold vertex indices >= 0, got " + std::to_string(v));
+  return std::visit([](const auto& o) { return checkFields(o); }, op);
+}
+
 void validateEdits(std::span<const EditOp> ops, std::size_t vertex_count, const std::string& source) {
   for (std::size_t i = 0; i < ops.size(); ++i) {
     const EditOp& op = ops[i];
-    const std::string at = source + ": ops[" + std::to_string(i) + "] (" + editKindName(op.kind) + "): ";
-    if (op.vertex >= static_cast<std::int64_t>(vertex_count))
-      throw Error(at + "'vertex' = " + std::to_string(op.vertex) + " is out of range (the mesh has " +
-                  std::to_string(vertex_count) + " vertices)");
-    for (std::int32_t v : op.vertices)
-      if (static_cast<std::size_t>(v) >= vertex_count)
-        throw Error(at + "'vertices' holds " + std::to_string(v) + ", out of range (the mesh has " +
-                    std::to_string(vertex_count) + " vertices)");
+    const std::string at = source + ": 'ops'[" + std::to_string(i) + "] (" + editKindName(op) + ").";
+    if (auto p = checkEditOp(op)) throw Error(at + p->field + ": " + p->message);
+    const std::string range = " is out of range (the mesh has " + std::to_string(vertex_count) + " vertices)";
+    if (const VertexPick* pick = pickOf(op))
+      if (static_cast<std::size_t>(pick->vertex) >= vertex_count)
+        throw Error(at + "'vertex': " + std::to_string(pick->vertex) + range);
+    if (const auto* vertices = verticesOf(op))
+      for (std::int32_t v : *vertices)
+        if (static_cast<std::size_t>(v) >= vertex_count) throw Error(at + "'vertices': " + std::to_string(v) + range);
   }
 }
 
@@ -60,65 +177,75 @@ std::vector<EditReport> applyEdits(const Camera& camera, std::span<const std::in
   std::vector<float> before;
   for (std::size_t i = 0; i < ops.size(); ++i) {
     const EditOp& op = ops[i];
-    const std::string at = source + ": ops[" + std::to_string(i) + "] (" + editKindName(op.kind) + "): ";
+    const std::string at = source + ": 'ops'[" + std::to_string(i) + "] (" + editKindName(op) + ")";
     before.assign(positions.begin(), positions.end());
-    const auto seed = static_cast<std::int32_t>(op.vertex);
     std::vector<double> w;
     Eigen::Vector3d pivot = Eigen::Vector3d::Zero();
-    if (op.vertex >= 0) {
-      w = seedWeights(op.metric, op.falloff, positions, triangles, seed);
+    if (const VertexPick* pick = pickOf(op)) {
+      const std::int32_t seed = pick->vertex;
+      w = seedWeights(pick->metric, pick->falloff, positions, triangles, seed);
       pivot = Eigen::Vector3d(positions[3 * seed], positions[3 * seed + 1], positions[3 * seed + 2]);
     }
-    auto centroid = [&]() -> Eigen::Vector3d {
-      if (op.center) return *op.center;
+    auto centroid = [&](const std::vector<std::int32_t>& vertices,
+                        const std::optional<Eigen::Vector3d>& center) -> Eigen::Vector3d {
+      if (center) return *center;
       Eigen::Vector3d c = Eigen::Vector3d::Zero();
-      const std::size_t count = op.vertices.empty() ? n : op.vertices.size();
+      const std::size_t count = vertices.empty() ? n : vertices.size();
       for (std::size_t k = 0; k < count; ++k) {
-        const std::size_t v = op.vertices.empty() ? k : static_cast<std::size_t>(op.vertices[k]);
+        const std::size_t v = vertices.empty() ? k : static_cast<std::size_t>(vertices[k]);
         c += Eigen::Vector3d(positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]);
       }
       return c / static_cast<double>(std::max<std::size_t>(count, 1));
     };
-    switch (op.kind) {
+    switch (editKind(op)) {
       case EditKind::kDrag: {
-        Eigen::Vector2d delta = op.delta;
-        if (op.delta_px) {
-          if (!image_size) throw Error(at + "'delta_px' needs the drawing's size: give \"image_size\": [w, h]");
+        const DragOp& o = std::get<DragOp>(op);
+        Eigen::Vector2d delta = o.delta;
+        if (o.delta_px) {
+          if (!image_size) throw Error(at + ".'delta_px': needs the drawing's size: give \"image_size\": [w, h]");
           const double depth = project(camera, (*image_size)[0], (*image_size)[1], pivot).depth;
-          delta = imagePlaneDelta(camera, (*image_size)[0], (*image_size)[1], depth, *op.delta_px);
+          delta = imagePlaneDelta(camera, (*image_size)[0], (*image_size)[1], depth, *o.delta_px);
         }
         dragInImagePlane(camera, positions, w, delta);
         break;
       }
-      case EditKind::kPushPull:
-        pushPull(camera, positions, w, op.amount, op.push_mode);
+      case EditKind::kPushPull: {
+        const PushPullOp& o = std::get<PushPullOp>(op);
+        pushPull(camera, positions, w, o.amount, o.mode);
         break;
+      }
       case EditKind::kRotate:
-        rotateInImagePlane(camera, positions, w, pivot, op.angle_deg * std::numbers::pi / 180.0);
+        rotateInImagePlane(camera, positions, w, pivot, std::get<RotateOp>(op).angle_deg * std::numbers::pi / 180.0);
         break;
       case EditKind::kScale:
-        scaleInImagePlane(camera, positions, w, pivot, op.factor);
+        scaleInImagePlane(camera, positions, w, pivot, std::get<ScaleOp>(op).factor);
         break;
-      case EditKind::kDisplace:
-        displaceVertices(positions, w, op.camera_frame ? Eigen::Vector3d(camera_axes * op.offset) : op.offset);
+      case EditKind::kDisplace: {
+        const DisplaceOp& o = std::get<DisplaceOp>(op);
+        displaceVertices(positions, w, o.camera_frame ? Eigen::Vector3d(camera_axes * o.offset) : o.offset);
         break;
+      }
       case EditKind::kFfd: {
-        const Eigen::Matrix3d lattice_frame = op.camera_frame ? camera_axes : Eigen::Matrix3d::Identity();
-        FfdLattice lattice = ffdLatticeAround(positions, op.vertices, lattice_frame, op.degree, op.padding);
-        const FfdBinding binding = bindFfd(lattice, positions, op.vertices);
-        for (const FfdMove& m : op.moves) lattice.point(m.index[0], m.index[1], m.index[2]) += lattice_frame * m.offset;
+        const FfdOp& o = std::get<FfdOp>(op);
+        const Eigen::Matrix3d lattice_frame = o.camera_frame ? camera_axes : Eigen::Matrix3d::Identity();
+        FfdLattice lattice = ffdLatticeAround(positions, o.vertices, lattice_frame, o.degree, o.padding);
+        const FfdBinding binding = bindFfd(lattice, positions, o.vertices);
+        for (const FfdMove& m : o.moves) lattice.point(m.index[0], m.index[1], m.index[2]) += lattice_frame * m.offset;
         applyFfd(lattice, binding, positions);
         break;
       }
       case EditKind::kSquashStretch: {
-        const Eigen::Vector3d axis = op.camera_frame ? Eigen::Vector3d(camera_axes * op.axis) : op.axis;
-        applyAffine(positions, op.vertices, squashStretchMatrix(axis, op.stretch, op.preserve_volume), centroid(),
-                    Eigen::Vector3d::Zero());
+        const SquashStretchOp& o = std::get<SquashStretchOp>(op);
+        const Eigen::Vector3d axis = o.camera_frame ? Eigen::Vector3d(camera_axes * o.axis) : o.axis;
+        applyAffine(positions, o.vertices, squashStretchMatrix(axis, o.factor, o.preserve_volume),
+                    centroid(o.vertices, o.center), Eigen::Vector3d::Zero());
         break;
       }
-      case EditKind::kAffine:
-        applyAffine(positions, op.vertices, op.matrix, centroid(), op.translation);
+      case EditKind::kAffine: {
+        const AffineOp& o = std::get<AffineOp>(op);
+        applyAffine(positions, o.vertices, o.matrix, centroid(o.vertices, o.center), o.translation);
         break;
+      }
     }
     EditReport report;
     for (std::size_t v = 0; v < n; ++v) {
@@ -126,7 +253,7 @@ std::vector<EditReport> applyEdits(const Camera& camera, std::span<const std::in
                         Eigen::Vector3d(before[3 * v], before[3 * v + 1], before[3 * v + 2]))
                            .norm();
       if (!std::isfinite(d))
-        throw Error(at + "produced a non-finite vertex position (vertex " + std::to_string(v) + ")");
+        throw Error(at + ": produced a non-finite vertex position (vertex " + std::to_string(v) + ")");
       if (d > 0) {
         ++report.moved;
         report.max_displacement = std::max(report.max_displacement, d);

@@ -1,322 +1,401 @@
-// Edit scripts, edit logs and camera files: the JSON forms of vdg/deform/edits.h (docs/deform.md).
+// Edit operations, edit scripts and edit logs: the JSON forms of vdg/deform/edits.h
+// (docs/deform.md). Every op is read by readOp and written by writeOp, and nowhere else.
 #include "vdg/io/edit_script.h"
 
-#include <Eigen/Geometry>
-#include <algorithm>
-#include <cmath>
+#include <cstdint>
 #include <filesystem>
-#include <fstream>
-#include <nlohmann/json.hpp>
-#include <numbers>
-#include <set>
-#include <sstream>
+#include <limits>
 
 #include "camera_fields.h"
 #include "json_reader.h"
 #include "vdg/geom/error.h"
 #include "vdg/io/atomic_file.h"
 #include "vdg/io/json_text.h"
-#include "vdg/io/read_file.h"
 
 namespace vdg {
 
-using nlohmann::json;
-
 namespace {
 
-// Reads the fields of one JSON object, naming `where` and the field in every error, and rejects
-// fields nobody asked for.
-class FieldReader {
- public:
-  FieldReader(const json& object, std::string where) : obj_(object), where_(std::move(where)) {
-    if (!obj_.is_object()) fail("expected a JSON object");
-  }
-  [[noreturn]] void fail(const std::string& message) const { throw Error(where_ + ": " + message); }
-  [[noreturn]] void failField(const std::string& field, const std::string& message) const {
-    throw Error(where_ + ": '" + field + "' " + message);
-  }
-  bool has(const std::string& field) {
-    used_.insert(field);
-    return obj_.contains(field);
-  }
-  const json& get(const std::string& field) {
-    if (!has(field)) failField(field, "is missing");
-    return obj_.at(field);
-  }
-  double number(const std::string& field) {
-    const json& v = get(field);
-    if (!v.is_number() || !std::isfinite(v.get<double>())) failField(field, "must be a finite number");
-    return v.get<double>();
-  }
-  double number(const std::string& field, double fallback) { return has(field) ? number(field) : fallback; }
-  std::int64_t integer(const std::string& field) {
-    const json& v = get(field);
-    if (!v.is_number_integer()) failField(field, "must be an integer, got " + v.dump());
-    return v.get<std::int64_t>();
-  }
-  bool boolean(const std::string& field, bool fallback) {
-    if (!has(field)) return fallback;
-    const json& v = obj_.at(field);
-    if (!v.is_boolean()) failField(field, "must be true or false");
-    return v.get<bool>();
-  }
-  std::string string(const std::string& field, const std::string& fallback) {
-    if (!has(field)) return fallback;
-    const json& v = obj_.at(field);
-    if (!v.is_string()) failField(field, "must be a string");
-    return v.get<std::string>();
-  }
-  template <int N>
-  Eigen::Matrix<double, N, 1> vec(const std::string& field) {
-    return vecOf<N>(get(field), field);
-  }
-  template <int N>
-  Eigen::Matrix<double, N, 1> vecOf(const json& v, const std::string& field) const {
-    if (!v.is_array() || v.size() != N) failField(field, "must be an array of " + std::to_string(N) + " numbers");
-    Eigen::Matrix<double, N, 1> out;
-    for (int i = 0; i < N; ++i) {
-      if (!v[i].is_number() || !std::isfinite(v[i].get<double>()))
-        failField(field, "must be an array of " + std::to_string(N) + " finite numbers");
-      out[i] = v[i].get<double>();
-    }
-    return out;
-  }
-  void finish() const {
-    for (auto it = obj_.begin(); it != obj_.end(); ++it)
-      if (!used_.count(it.key())) fail("unknown field '" + it.key() + "'");
-  }
-  const std::string& where() const { return where_; }
+using io::Ctx;
+using io::Json;
+using OJson = nlohmann::ordered_json;
 
- private:
-  const json& obj_;
-  std::string where_;
-  std::set<std::string> used_;
-};
+constexpr std::int64_t kMaxIndex = std::numeric_limits<std::int32_t>::max();
 
-std::string fmt(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
+constexpr std::pair<const char*, EditKind> kKinds[] = {{"drag", EditKind::kDrag},
+                                                       {"push_pull", EditKind::kPushPull},
+                                                       {"rotate", EditKind::kRotate},
+                                                       {"scale", EditKind::kScale},
+                                                       {"displace", EditKind::kDisplace},
+                                                       {"ffd", EditKind::kFfd},
+                                                       {"squash_stretch", EditKind::kSquashStretch},
+                                                       {"affine", EditKind::kAffine}};
+constexpr std::pair<const char*, DistanceMetric> kMetrics[] = {{"euclidean", DistanceMetric::kEuclidean},
+                                                               {"edges", DistanceMetric::kEdges},
+                                                               {"geodesic", DistanceMetric::kGeodesic}};
+constexpr std::pair<const char*, FalloffShape> kShapes[] = {{"power", FalloffShape::kPower},
+                                                            {"inverse_power", FalloffShape::kInversePower}};
+constexpr std::pair<const char*, PushPullMode> kModes[] = {{"ray", PushPullMode::kAlongRay},
+                                                           {"axis", PushPullMode::kAlongAxis}};
+constexpr std::pair<const char*, bool> kFrames[] = {{"camera", true}, {"world", false}};
+// The named axes of squash_stretch: the camera's right, up and back (towards the eye).
+constexpr std::pair<const char*, int> kAxes[] = {{"right", 0}, {"up", 1}, {"view", 2}};
+
+template <typename T, std::size_t N>
+const char* nameOf(const std::pair<const char*, T> (&names)[N], T value) {
+  for (const auto& [name, v] : names)
+    if (v == value) return name;
+  return "?";
 }
 
-std::vector<std::int32_t> vertexList(FieldReader& r, const std::string& field) {
+// ---- reading ----------------------------------------------------------------------------------
+
+Eigen::Vector2d vector2(const Json& j, const Ctx& ctx) { return io::vector(j, ctx, 2); }
+
+std::optional<Eigen::Vector3d> optionalVector3(const Json& j, const char* key, const Ctx& ctx) {
+  if (!j.contains(key)) return std::nullopt;
+  return io::vector3(j.at(key), ctx.key(key));
+}
+
+template <typename T, std::size_t N>
+T enumOr(const Json& j, const char* key, T fallback, const Ctx& ctx, const std::pair<const char*, T> (&names)[N]) {
+  return j.contains(key) ? io::enumValue(j.at(key), ctx.key(key), names) : fallback;
+}
+
+std::vector<std::int32_t> vertexList(const Json& j, const Ctx& ctx) {
   std::vector<std::int32_t> out;
-  if (!r.has(field)) return out;
-  const json& v = r.get(field);
-  if (!v.is_array()) r.failField(field, "must be an array of vertex indices");
-  for (const json& e : v) {
-    if (!e.is_number_integer() || e.get<std::int64_t>() < 0 || e.get<std::int64_t>() > INT32_MAX)
-      r.failField(field, "must hold non-negative vertex indices, got " + e.dump());
-    out.push_back(static_cast<std::int32_t>(e.get<std::int64_t>()));
-  }
-  if (out.empty()) r.failField(field, "must not be empty (leave it out to select every vertex)");
+  if (!j.contains("vertices")) return out;
+  const Json& list = j.at("vertices");
+  const Ctx lctx = ctx.key("vertices");
+  if (!list.is_array()) lctx.fail("expected an array of vertex indices, got " + io::describe(list));
+  if (list.empty()) lctx.fail("must not be empty (leave it out to select every vertex)");
+  out.reserve(list.size());
+  for (std::size_t i = 0; i < list.size(); ++i)
+    out.push_back(static_cast<std::int32_t>(io::integer(list[i], lctx.index(i), 0, kMaxIndex)));
   return out;
 }
 
-EditOp parseOp(const json& j, std::size_t index, const std::string& source) {
-  const std::string at = source + ": ops[" + std::to_string(index) + "]";
-  if (!j.is_object()) throw Error(at + ": expected a JSON object with an \"op\" field");
-  if (!j.contains("op") || !j.at("op").is_string()) throw Error(at + ": 'op' is missing or not a string");
-  const std::string name = j.at("op").get<std::string>();
-  EditOp op;
-  op.json = j.dump();
-  static const std::pair<const char*, EditKind> kKinds[] = {{"drag", EditKind::kDrag},
-                                                            {"push_pull", EditKind::kPushPull},
-                                                            {"rotate", EditKind::kRotate},
-                                                            {"scale", EditKind::kScale},
-                                                            {"displace", EditKind::kDisplace},
-                                                            {"ffd", EditKind::kFfd},
-                                                            {"squash_stretch", EditKind::kSquashStretch},
-                                                            {"affine", EditKind::kAffine}};
-  bool found = false;
-  for (const auto& [n, k] : kKinds)
-    if (name == n) op.kind = k, found = true;
-  if (!found)
-    throw Error(at + ": unknown op '" + name +
-                "' (expected drag, push_pull, rotate, scale, displace, ffd, squash_stretch or affine)");
-  FieldReader r(j, at + " (" + name + ")");
-  r.has("op");
+VertexPick readPick(const Json& j, const Ctx& ctx, double default_power) {
+  VertexPick p;
+  p.vertex = static_cast<std::int32_t>(io::integer(io::required(j, "vertex", ctx), ctx.key("vertex"), 0, kMaxIndex));
+  p.falloff.radius = io::number(io::required(j, "radius", ctx), ctx.key("radius"));
+  p.falloff.power = io::numberOr(j, "power", default_power, ctx);
+  p.falloff.shape = enumOr(j, "falloff", FalloffShape::kPower, ctx, kShapes);
+  p.metric = enumOr(j, "distance", DistanceMetric::kEuclidean, ctx, kMetrics);
+  return p;
+}
 
-  const bool picked = op.kind == EditKind::kDrag || op.kind == EditKind::kPushPull || op.kind == EditKind::kRotate ||
-                      op.kind == EditKind::kScale || op.kind == EditKind::kDisplace;
-  if (picked) {
-    op.vertex = r.integer("vertex");
-    if (op.vertex < 0) r.failField("vertex", "must be >= 0, got " + std::to_string(op.vertex));
-    op.falloff.radius = r.number("radius");
-    if (!(op.falloff.radius > 0)) r.failField("radius", "must be > 0, got " + fmt(op.falloff.radius));
-    // The image-plane rotate and scale tools act on a rigid group by default; the others fall off.
-    const double default_power = (op.kind == EditKind::kRotate || op.kind == EditKind::kScale) ? 0.0 : 2.0;
-    op.falloff.power = r.number("power", default_power);
-    if (!(op.falloff.power >= 0)) r.failField("power", "must be >= 0, got " + fmt(op.falloff.power));
-    op.falloff.shape = parseFalloffShape(r.string("falloff", "power"), r.where() + ": 'falloff'");
-    op.metric = parseDistanceMetric(r.string("distance", "euclidean"), r.where() + ": 'distance'");
-  }
-  switch (op.kind) {
+#define VDG_PICK_KEYS "op", "vertex", "radius", "power", "falloff", "distance"
+
+EditOp readOpFields(const Json& j, EditKind kind, const Ctx& ctx) {
+  switch (kind) {
     case EditKind::kDrag: {
-      const bool world = r.has("delta"), px = r.has("delta_px");
-      if (world == px) r.fail("give exactly one of 'delta' (world units) or 'delta_px' (pixels)");
+      io::allowKeys(j, ctx, {VDG_PICK_KEYS, "delta", "delta_px"});
+      DragOp o;
+      o.pick = readPick(j, ctx, 2.0);
+      const bool world = j.contains("delta"), px = j.contains("delta_px");
+      if (world == px) ctx.fail("give exactly one of 'delta' (world units) or 'delta_px' (pixels)");
       if (world)
-        op.delta = r.vec<2>("delta");
+        o.delta = vector2(j.at("delta"), ctx.key("delta"));
       else
-        op.delta_px = r.vec<2>("delta_px");
+        o.delta_px = vector2(j.at("delta_px"), ctx.key("delta_px"));
+      return o;
+    }
+    case EditKind::kPushPull: {
+      io::allowKeys(j, ctx, {VDG_PICK_KEYS, "amount", "mode"});
+      PushPullOp o;
+      o.pick = readPick(j, ctx, 2.0);
+      o.amount = io::number(io::required(j, "amount", ctx), ctx.key("amount"));
+      o.mode = enumOr(j, "mode", PushPullMode::kAlongRay, ctx, kModes);
+      return o;
+    }
+    case EditKind::kRotate: {
+      io::allowKeys(j, ctx, {VDG_PICK_KEYS, "angle_deg"});
+      RotateOp o;
+      o.pick = readPick(j, ctx, 0.0);  // a rigid group by default
+      o.angle_deg = io::number(io::required(j, "angle_deg", ctx), ctx.key("angle_deg"));
+      return o;
+    }
+    case EditKind::kScale: {
+      io::allowKeys(j, ctx, {VDG_PICK_KEYS, "factor"});
+      ScaleOp o;
+      o.pick = readPick(j, ctx, 0.0);
+      const Json& f = io::required(j, "factor", ctx);
+      o.factor =
+          f.is_number() ? Eigen::Vector2d::Constant(io::number(f, ctx.key("factor"))) : vector2(f, ctx.key("factor"));
+      return o;
+    }
+    case EditKind::kDisplace: {
+      io::allowKeys(j, ctx, {VDG_PICK_KEYS, "offset", "frame"});
+      DisplaceOp o;
+      o.pick = readPick(j, ctx, 2.0);
+      o.offset = io::vector3(io::required(j, "offset", ctx), ctx.key("offset"));
+      o.camera_frame = enumOr(j, "frame", false, ctx, kFrames);
+      return o;
+    }
+    case EditKind::kFfd: {
+      io::allowKeys(j, ctx, {"op", "vertices", "frame", "degree", "padding", "moves"});
+      FfdOp o;
+      o.vertices = vertexList(j, ctx);
+      o.camera_frame = enumOr(j, "frame", true, ctx, kFrames);
+      if (j.contains("degree")) {
+        const Json& d = j.at("degree");
+        const Ctx dctx = ctx.key("degree");
+        if (!d.is_array() || d.size() != 3) dctx.fail("expected 3 integers, got " + io::describe(d));
+        for (std::size_t a = 0; a < 3; ++a)
+          o.degree[a] = static_cast<int>(io::integer(d[a], dctx.index(a), 1, kMaxFfdDegree));
+      }
+      o.padding = io::numberOr(j, "padding", o.padding, ctx);
+      const Json& moves = io::required(j, "moves", ctx);
+      const Ctx mctx = ctx.key("moves");
+      if (!moves.is_array()) mctx.fail("expected an array of {\"index\": [i,j,k], \"offset\": [x,y,z]}");
+      for (std::size_t m = 0; m < moves.size(); ++m) {
+        const Ctx c = mctx.index(m);
+        io::allowKeys(moves[m], c, {"index", "offset"});
+        FfdMove move;
+        const Json& idx = io::required(moves[m], "index", c);
+        if (!idx.is_array() || idx.size() != 3) c.key("index").fail("expected 3 integers, got " + io::describe(idx));
+        for (std::size_t a = 0; a < 3; ++a)
+          move.index[a] = static_cast<int>(io::integer(idx[a], c.key("index").index(a), 0, kMaxFfdDegree));
+        move.offset = io::vector3(io::required(moves[m], "offset", c), c.key("offset"));
+        o.moves.push_back(move);
+      }
+      return o;
+    }
+    case EditKind::kSquashStretch: {
+      io::allowKeys(j, ctx, {"op", "vertices", "axis", "frame", "factor", "preserve_volume", "center"});
+      SquashStretchOp o;
+      o.vertices = vertexList(j, ctx);
+      const Json& axis = io::required(j, "axis", ctx);
+      if (axis.is_string()) {
+        if (j.contains("frame")) ctx.key("frame").fail("only with an axis [x, y, z]: a named axis is the camera's");
+        o.camera_frame = true;
+        o.axis = Eigen::Vector3d::Unit(io::enumValue(axis, ctx.key("axis"), kAxes));
+      } else {
+        o.axis = io::vector3(axis, ctx.key("axis"));
+        o.camera_frame = enumOr(j, "frame", false, ctx, kFrames);
+      }
+      o.factor = io::number(io::required(j, "factor", ctx), ctx.key("factor"));
+      if (j.contains("preserve_volume"))
+        o.preserve_volume = io::boolean(j.at("preserve_volume"), ctx.key("preserve_volume"));
+      o.center = optionalVector3(j, "center", ctx);
+      return o;
+    }
+    case EditKind::kAffine: {
+      io::allowKeys(j, ctx, {"op", "vertices", "matrix", "translation", "center"});
+      AffineOp o;
+      o.vertices = vertexList(j, ctx);
+      const Json& m = io::required(j, "matrix", ctx);
+      const Ctx mctx = ctx.key("matrix");
+      if (!m.is_array() || m.size() != 3) mctx.fail("expected 3 rows of 3 numbers, got " + io::describe(m));
+      for (std::size_t row = 0; row < 3; ++row)
+        o.matrix.row(static_cast<Eigen::Index>(row)) = io::vector3(m[row], mctx.index(row)).transpose();
+      if (j.contains("translation")) o.translation = io::vector3(j.at("translation"), ctx.key("translation"));
+      o.center = optionalVector3(j, "center", ctx);
+      return o;
+    }
+  }
+  ctx.fail("unknown op");
+}
+
+// `ctx` is the op's own position ("'ops'[2]"); messages add the kind: "'ops'[2] (drag).'radius'".
+EditOp readOp(const Json& j, const Ctx& ctx) {
+  if (!j.is_object()) ctx.fail("expected an object with an \"op\" field, got " + io::describe(j));
+  const EditKind kind = io::enumValue(io::required(j, "op", ctx), ctx.key("op"), kKinds);
+  const Ctx kctx = ctx.labelled(ctx.path + (ctx.path.empty() ? "" : " ") + "(" + editKindName(kind) + ")");
+  EditOp op = readOpFields(j, kind, kctx);
+  if (const auto problem = checkEditOp(op))
+    Ctx{kctx.where, kctx.path + (kctx.path.empty() ? "" : ".") + problem->field}.fail(problem->message);
+  return op;
+}
+
+std::vector<EditOp> readOps(const Json& doc, const Ctx& ctx) {
+  const Json& ops = io::required(doc, "ops", ctx);
+  if (!ops.is_array()) ctx.key("ops").fail("expected an array of operations, got " + io::describe(ops));
+  std::vector<EditOp> out;
+  out.reserve(ops.size());
+  for (std::size_t i = 0; i < ops.size(); ++i) out.push_back(readOp(ops[i], ctx.key("ops").index(i)));
+  return out;
+}
+
+std::optional<std::array<int, 2>> readImageSize(const Json& doc, const Ctx& ctx) {
+  if (!doc.contains("image_size")) return std::nullopt;
+  const Json& s = doc.at("image_size");
+  const Ctx sctx = ctx.key("image_size");
+  if (!s.is_array() || s.size() != 2) sctx.fail("expected [width, height] in pixels, got " + io::describe(s));
+  std::array<int, 2> out{};
+  for (std::size_t a = 0; a < 2; ++a) out[a] = static_cast<int>(io::integer(s[a], sctx.index(a), 1, kMaxEditImageSide));
+  return out;
+}
+
+// ---- writing ----------------------------------------------------------------------------------
+
+OJson array(const Eigen::Vector2d& v) { return OJson::array({v.x(), v.y()}); }
+OJson array(const Eigen::Vector3d& v) { return OJson::array({v.x(), v.y(), v.z()}); }
+
+void writePick(OJson& j, const VertexPick& p) {
+  j["vertex"] = p.vertex;
+  j["radius"] = p.falloff.radius;
+  j["power"] = p.falloff.power;
+  j["falloff"] = nameOf(kShapes, p.falloff.shape);
+  j["distance"] = nameOf(kMetrics, p.metric);
+}
+
+void writeVertices(OJson& j, const std::vector<std::int32_t>& vertices) {
+  if (!vertices.empty()) j["vertices"] = vertices;
+}
+
+// `at` names the op in messages ("op", "... 'entries'[0].'ops'[1]").
+OJson writeOp(const EditOp& op, const std::string& at) {
+  if (const auto problem = checkEditOp(op))
+    throw Error(at + " (" + editKindName(op) + ")." + problem->field + ": " + problem->message);
+  OJson j;
+  j["op"] = editKindName(op);
+  switch (editKind(op)) {
+    case EditKind::kDrag: {
+      const auto& o = std::get<DragOp>(op);
+      writePick(j, o.pick);
+      if (o.delta_px)
+        j["delta_px"] = array(*o.delta_px);
+      else
+        j["delta"] = array(o.delta);
       break;
     }
     case EditKind::kPushPull: {
-      op.amount = r.number("amount");
-      const std::string mode = r.string("mode", "ray");
-      if (mode == "ray")
-        op.push_mode = PushPullMode::kAlongRay;
-      else if (mode == "axis")
-        op.push_mode = PushPullMode::kAlongAxis;
-      else
-        r.failField("mode", "must be \"ray\" or \"axis\", got \"" + mode + "\"");
+      const auto& o = std::get<PushPullOp>(op);
+      writePick(j, o.pick);
+      j["amount"] = o.amount;
+      j["mode"] = nameOf(kModes, o.mode);
       break;
     }
-    case EditKind::kRotate:
-      op.angle_deg = r.number("angle_deg");
+    case EditKind::kRotate: {
+      const auto& o = std::get<RotateOp>(op);
+      writePick(j, o.pick);
+      j["angle_deg"] = o.angle_deg;
       break;
+    }
     case EditKind::kScale: {
-      const json& f = r.get("factor");
-      if (f.is_number())
-        op.factor = Eigen::Vector2d::Constant(f.get<double>());
-      else
-        op.factor = r.vecOf<2>(f, "factor");
-      if (!(op.factor.minCoeff() > 0) || !op.factor.allFinite()) r.failField("factor", "must be > 0, got " + f.dump());
+      const auto& o = std::get<ScaleOp>(op);
+      writePick(j, o.pick);
+      j["factor"] = array(o.factor);
       break;
     }
     case EditKind::kDisplace: {
-      op.offset = r.vec<3>("offset");
-      const std::string frame = r.string("frame", "world");
-      if (frame != "world" && frame != "camera") r.failField("frame", "must be \"world\" or \"camera\"");
-      op.camera_frame = frame == "camera";
+      const auto& o = std::get<DisplaceOp>(op);
+      writePick(j, o.pick);
+      j["offset"] = array(o.offset);
+      j["frame"] = nameOf(kFrames, o.camera_frame);
       break;
     }
     case EditKind::kFfd: {
-      op.vertices = vertexList(r, "vertices");
-      const std::string frame = r.string("frame", "camera");
-      if (frame != "world" && frame != "camera") r.failField("frame", "must be \"world\" or \"camera\"");
-      op.camera_frame = frame == "camera";
-      if (r.has("degree")) {
-        const Eigen::Vector3d d = r.vec<3>("degree");
-        for (int a = 0; a < 3; ++a) {
-          if (d[a] != std::floor(d[a]) || d[a] < 1 || d[a] > 16)
-            r.failField("degree", "must hold three integers in [1, 16], got " + fmt(d[a]));
-          op.degree[a] = static_cast<int>(d[a]);
-        }
-      }
-      op.padding = r.number("padding", 0.05);
-      if (!(op.padding >= 0)) r.failField("padding", "must be >= 0, got " + fmt(op.padding));
-      const json& moves = r.get("moves");
-      if (!moves.is_array()) r.failField("moves", "must be an array of {\"index\": [i,j,k], \"offset\": [x,y,z]}");
-      for (std::size_t m = 0; m < moves.size(); ++m) {
-        FieldReader mr(moves[m], r.where() + ": moves[" + std::to_string(m) + "]");
-        const Eigen::Vector3d idx = mr.vec<3>("index");
-        FfdMove move;
-        for (int a = 0; a < 3; ++a) {
-          if (idx[a] != std::floor(idx[a]) || idx[a] < 0 || idx[a] > op.degree[a])
-            mr.failField("index", "component " + std::to_string(a) + " = " + fmt(idx[a]) + " is out of range [0, " +
-                                      std::to_string(op.degree[a]) + "]");
-          move.index[a] = static_cast<int>(idx[a]);
-        }
-        move.offset = mr.vec<3>("offset");
-        mr.finish();
-        op.moves.push_back(move);
+      const auto& o = std::get<FfdOp>(op);
+      writeVertices(j, o.vertices);
+      j["frame"] = nameOf(kFrames, o.camera_frame);
+      j["degree"] = o.degree;
+      j["padding"] = o.padding;
+      j["moves"] = OJson::array();
+      for (const FfdMove& m : o.moves) {
+        OJson jm;
+        jm["index"] = m.index;
+        jm["offset"] = array(m.offset);
+        j["moves"].push_back(std::move(jm));
       }
       break;
     }
     case EditKind::kSquashStretch: {
-      op.vertices = vertexList(r, "vertices");
-      const json& axis = r.get("axis");
-      if (axis.is_string()) {
-        const std::string a = axis.get<std::string>();
-        op.camera_frame = true;
-        if (a == "right")
-          op.axis = Eigen::Vector3d::UnitX();
-        else if (a == "up")
-          op.axis = Eigen::Vector3d::UnitY();
-        else if (a == "view")
-          op.axis = Eigen::Vector3d::UnitZ();
-        else
-          r.failField("axis", "must be \"right\", \"up\", \"view\" or [x, y, z], got \"" + a + "\"");
+      const auto& o = std::get<SquashStretchOp>(op);
+      writeVertices(j, o.vertices);
+      const char* named = nullptr;
+      for (const auto& [name, a] : kAxes)
+        if (o.camera_frame && o.axis == Eigen::Vector3d::Unit(a)) named = name;
+      if (named) {
+        j["axis"] = named;
       } else {
-        op.camera_frame = false;
-        op.axis = r.vecOf<3>(axis, "axis");
-        if (!(op.axis.norm() > 0)) r.failField("axis", "must be non-zero");
+        j["axis"] = array(o.axis);
+        j["frame"] = nameOf(kFrames, o.camera_frame);
       }
-      op.stretch = r.number("factor");
-      if (!(op.stretch > 0)) r.failField("factor", "must be > 0, got " + fmt(op.stretch));
-      op.preserve_volume = r.boolean("preserve_volume", true);
-      if (r.has("center")) op.center = r.vec<3>("center");
+      j["factor"] = o.factor;
+      j["preserve_volume"] = o.preserve_volume;
+      if (o.center) j["center"] = array(*o.center);
       break;
     }
     case EditKind::kAffine: {
-      op.vertices = vertexList(r, "vertices");
-      const json& m = r.get("matrix");
-      if (!m.is_array() || m.size() != 3) r.failField("matrix", "must be 3 rows of 3 numbers");
-      for (int row = 0; row < 3; ++row) op.matrix.row(row) = r.vecOf<3>(m[row], "matrix").transpose();
-      if (r.has("translation")) op.translation = r.vec<3>("translation");
-      if (r.has("center")) op.center = r.vec<3>("center");
+      const auto& o = std::get<AffineOp>(op);
+      writeVertices(j, o.vertices);
+      j["matrix"] = OJson::array();
+      for (int row = 0; row < 3; ++row) j["matrix"].push_back(array(Eigen::Vector3d(o.matrix.row(row).transpose())));
+      j["translation"] = array(o.translation);
+      if (o.center) j["center"] = array(*o.center);
       break;
     }
   }
-  r.finish();
-  return op;
+  return j;
 }
 
-std::string readText(const std::string& path, const std::string& what) {
-  return readFileLimited(path, what, kMaxJsonFileBytes);
+bool isOriginFileName(const std::string& origin) {
+  const std::filesystem::path p(origin);
+  return !origin.empty() && p.filename() == p && origin[0] != '.' && origin.ends_with(".obj");
 }
 
-json parseJson(const std::string& text, const std::string& source) { return io::parseJson(text, source); }
+}  // namespace
 
-Camera cameraFrom(const json& j, const std::string& where) { return io::cameraFrom(j, io::Ctx{where, ""}); }
+namespace {
 
-json cameraJson(const Camera& c) { return json(io::cameraJson(c)); }
-
-std::optional<std::array<int, 2>> imageSize(FieldReader& r, const std::string& field) {
-  if (!r.has(field)) return std::nullopt;
-  const Eigen::Vector2d s = r.vec<2>(field);
-  if (s.x() < 1 || s.y() < 1 || s.x() != std::floor(s.x()) || s.y() != std::floor(s.y()))
-    r.failField(field, "must be two positive integers [width, height]");
-  return std::array<int, 2>{static_cast<int>(s.x()), static_cast<int>(s.y())};
+EditScript scriptFrom(const Json& doc, const std::string& source) {
+  const Ctx ctx{source, ""};
+  io::formatVersion(doc, ctx, "edit scripts", kEditsVersion, kEditsVersion, /*missing=*/kEditsVersion);
+  io::allowKeys(doc, ctx, {"version", "camera", "view", "image_size", "ops"});
+  EditScript script;
+  if (doc.contains("camera") && doc.contains("view")) ctx.fail("give 'camera' or 'view', not both");
+  if (doc.contains("camera")) script.camera = io::cameraFrom(doc.at("camera"), ctx.key("camera"));
+  if (doc.contains("view")) {
+    const Eigen::Vector3d v = io::vector3(doc.at("view"), ctx.key("view"));
+    if (!(v.norm() > 0)) ctx.key("view").fail("must be non-zero");
+    script.view = v.normalized();
+  }
+  script.image_size = readImageSize(doc, ctx);
+  script.ops = readOps(doc, ctx);
+  return script;
 }
 
-std::vector<EditOp> parseOps(FieldReader& r, const std::string& source) {
-  const json& ops = r.get("ops");
-  if (!ops.is_array()) r.failField("ops", "must be an array of operations");
-  std::vector<EditOp> out;
-  for (std::size_t i = 0; i < ops.size(); ++i) out.push_back(parseOp(ops[i], i, source));
-  return out;
-}
-
-void checkVersion(FieldReader& r) {
-  if (!r.has("version")) return;
-  const std::int64_t v = r.integer("version");
-  if (v != kEditsVersion)
-    r.failField("version", "is " + std::to_string(v) + "; this vdg reads version " + std::to_string(kEditsVersion));
+EditLog logFrom(const Json& doc, const std::string& source) {
+  const Ctx ctx{source, ""};
+  io::formatVersion(doc, ctx, "edit logs", kEditsVersion, kEditsVersion, /*missing=*/kEditsVersion);
+  io::allowKeys(doc, ctx, {"version", "key", "origin", "entries"});
+  EditLog log;
+  if (doc.contains("key")) log.key = io::string(doc.at("key"), ctx.key("key"));
+  if (doc.contains("origin")) {
+    log.origin = io::string(doc.at("origin"), ctx.key("origin"));
+    if (log.origin != "base" && !isOriginFileName(log.origin))
+      ctx.key("origin").fail("expected \"base\" or the file name of a mesh beside the log (NAME.obj, no folder)");
+  }
+  const Json& entries = io::required(doc, "entries", ctx);
+  if (!entries.is_array()) ctx.key("entries").fail("expected an array, got " + io::describe(entries));
+  for (std::size_t e = 0; e < entries.size(); ++e) {
+    const Ctx ectx = ctx.key("entries").index(e);
+    io::allowKeys(entries[e], ectx, {"camera", "image_size", "ops"});
+    EditLogEntry entry;
+    entry.camera = io::cameraFrom(io::required(entries[e], "camera", ectx), ectx.key("camera"));
+    entry.image_size = readImageSize(entries[e], ectx);
+    entry.ops = readOps(entries[e], ectx);
+    log.entries.push_back(std::move(entry));
+  }
+  return log;
 }
 
 }  // namespace
 
 EditScript parseEditScript(const std::string& text, const std::string& source) {
-  const json j = parseJson(text, source);
-  FieldReader r(j, source);
-  checkVersion(r);
-  EditScript script;
-  if (r.has("camera")) script.camera = cameraFrom(r.get("camera"), source + ": camera");
-  if (r.has("view")) {
-    const Eigen::Vector3d v = r.vec<3>("view");
-    if (!(v.norm() > 0)) r.failField("view", "must be non-zero");
-    script.view = v.normalized();
-  }
-  if (script.camera && script.view) r.fail("give 'camera' or 'view', not both");
-  script.image_size = imageSize(r, "image_size");
-  script.ops = parseOps(r, source);
-  r.finish();
-  return script;
+  return scriptFrom(io::parseJson(text, source), source);
 }
 
-EditScript readEditScript(const std::string& path) { return parseEditScript(readText(path, "edit script"), path); }
+EditScript readEditScript(const std::string& path) { return scriptFrom(io::readJsonFile(path, "edit script"), path); }
+
+std::string editOpToJson(const EditOp& op) { return writeOp(op, "op").dump(); }
+
+EditOp parseEditOp(const std::string& text, const std::string& source) {
+  return readOp(io::parseJson(text, source), Ctx{source, ""});
+}
 
 std::string editLogPath(const std::string& key_mesh_path) {
   std::filesystem::path p(key_mesh_path);
@@ -324,45 +403,32 @@ std::string editLogPath(const std::string& key_mesh_path) {
   return p.string();
 }
 
-EditLog readEditLog(const std::string& path) {
-  const json j = parseJson(readText(path, "edit log"), path);
-  FieldReader r(j, path);
-  checkVersion(r);
-  EditLog log;
-  log.key = r.string("key", "");
-  log.origin = r.string("origin", "base");
-  const json& entries = r.get("entries");
-  if (!entries.is_array()) r.failField("entries", "must be an array");
-  for (std::size_t e = 0; e < entries.size(); ++e) {
-    const std::string where = path + ": entries[" + std::to_string(e) + "]";
-    FieldReader er(entries[e], where);
-    EditLogEntry entry;
-    entry.camera = cameraFrom(er.get("camera"), where + ": camera");
-    entry.image_size = imageSize(er, "image_size");
-    entry.ops = parseOps(er, where);
-    er.finish();
-    log.entries.push_back(std::move(entry));
-  }
-  r.finish();
-  return log;
-}
-
-void writeEditLog(const std::string& path, const EditLog& log) {
-  json j;
+std::string formatEditLog(const EditLog& log) {
+  OJson j;
   j["version"] = kEditsVersion;
   j["key"] = log.key;
   j["origin"] = log.origin;
-  j["entries"] = json::array();
-  for (const EditLogEntry& e : log.entries) {
-    json je;
-    je["camera"] = cameraJson(e.camera);
-    if (e.image_size) je["image_size"] = {(*e.image_size)[0], (*e.image_size)[1]};
-    je["ops"] = json::array();
-    for (const EditOp& op : e.ops) je["ops"].push_back(json::parse(op.json));
+  j["entries"] = OJson::array();
+  for (std::size_t e = 0; e < log.entries.size(); ++e) {
+    const EditLogEntry& entry = log.entries[e];
+    OJson je;
+    je["camera"] = io::cameraJson(entry.camera);
+    if (entry.image_size) je["image_size"] = *entry.image_size;
+    je["ops"] = OJson::array();
+    for (std::size_t i = 0; i < entry.ops.size(); ++i)
+      je["ops"].push_back(writeOp(entry.ops[i], "edit log of key '" + log.key + "': 'entries'[" + std::to_string(e) +
+                                                    "].'ops'[" + std::to_string(i) + "]"));
     j["entries"].push_back(std::move(je));
   }
-  const std::string text = compactScalarArrays(j.dump(2)) + "\n";
-  writeFileAtomically(path, [&](std::ostream& out) { out << text; });
+  return compactScalarArrays(j.dump(2)) + "\n";
 }
+
+EditLog parseEditLog(const std::string& text, const std::string& source) {
+  return logFrom(io::parseJson(text, source), source);
+}
+
+EditLog readEditLog(const std::string& path) { return logFrom(io::readJsonFile(path, "edit log"), path); }
+
+void writeEditLog(const std::string& path, const EditLog& log) { writeFileAtomically(path, formatEditLog(log)); }
 
 }  // namespace vdg

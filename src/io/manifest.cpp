@@ -93,7 +93,7 @@ RawViewDependentModel loadManifest(const std::string& path) {
   return model;
 }
 
-void saveManifest(const std::string& path, const RawViewDependentModel& model) {
+std::string formatManifest(const RawViewDependentModel& model) {
   nlohmann::ordered_json doc;
   doc["version"] = kManifestVersion;
   if (!model.comment.empty()) doc["comment"] = model.comment;
@@ -115,8 +115,11 @@ void saveManifest(const std::string& path, const RawViewDependentModel& model) {
     keys.push_back(std::move(entry));
   }
   doc["keys"] = std::move(keys);
-  const std::string text = compactScalarArrays(doc.dump(2)) + "\n";
-  writeFileAtomically(path, [&](std::ostream& out) { out << text; });
+  return compactScalarArrays(doc.dump(2)) + "\n";
+}
+
+void saveManifest(const std::string& path, const RawViewDependentModel& model) {
+  writeFileAtomically(path, formatManifest(model));
 }
 
 }  // namespace vdg

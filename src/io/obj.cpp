@@ -224,7 +224,7 @@ TriMesh parseObj(const std::string& text, const std::string& source) {
 
 TriMesh readObj(const std::string& path) { return parseObj(readFileLimited(path, "mesh", kMaxMeshFileBytes), path); }
 
-void writeObj(const std::string& path, const TriMesh& mesh, const std::string& header) {
+std::string formatObj(const TriMesh& mesh, const std::string& header) {
   std::string text;
   text.reserve(mesh.positions.size() * 12 + mesh.triangles.size() * 10);
   if (!header.empty()) {
@@ -262,8 +262,11 @@ void writeObj(const std::string& path, const TriMesh& mesh, const std::string& h
     }
     text += '\n';
   }
-  writeFileAtomically(path,
-                      [&](std::ostream& out) { out.write(text.data(), static_cast<std::streamsize>(text.size())); });
+  return text;
+}
+
+void writeObj(const std::string& path, const TriMesh& mesh, const std::string& header) {
+  writeFileAtomically(path, formatObj(mesh, header));
 }
 
 TriMesh readMesh(const std::string& path) {

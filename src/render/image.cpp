@@ -16,10 +16,15 @@ void writePng(const std::string& path, const Image& image) {
   if (image.width <= 0 || image.height <= 0 ||
       image.rgba.size() != static_cast<std::size_t>(image.width) * image.height * 4)
     throw Error("PNG " + path + ": image has no pixels or a wrong buffer size");
-  writeFileAtomicallyVia(path, [&](const std::string& temp_path) {
-    if (!stbi_write_png(temp_path.c_str(), image.width, image.height, 4, image.rgba.data(), image.width * 4))
-      throw Error("PNG " + path + ": cannot write (disk full or folder not writable?)");
-  });
+  // Encoded in memory, then written through the atomic writer, which checks every write: a full
+  // disk is an error naming the file, never a truncated PNG in place of a good one.
+  std::string png;
+  const auto append = [](void* context, void* data, int size) {
+    static_cast<std::string*>(context)->append(static_cast<const char*>(data), static_cast<std::size_t>(size));
+  };
+  if (!stbi_write_png_to_func(append, &png, image.width, image.height, 4, image.rgba.data(), image.width * 4))
+    throw Error("PNG " + path + ": cannot encode the image");
+  writeFileAtomically(path, png);
 }
 
 Image readPng(const std::string& path) {

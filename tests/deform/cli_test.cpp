@@ -2,11 +2,13 @@
 // generated here, and check the files it writes — and that bad input leaves every file untouched.
 #include <gtest/gtest.h>
 #include <stb/stb_image_write.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include "test_meshes.h"
@@ -106,10 +108,10 @@ TEST_F(DeformCli, BadOperationsLeaveEveryFileUntouched) {
   } cases[] = {
       {R"([{"op": "drag", "vertex": 0, "radius": 0.5, "delta": [0.1, 0]},
            {"op": "drag", "vertex": 9999, "radius": 0.5, "delta": [0.1, 0]}])",
-       "ops[1] (drag): 'vertex' = 9999 is out of range"},
+       "'ops'[1] (drag).'vertex': 9999 is out of range"},
       {R"([{"op": "push_pull", "vertex": 3, "radius": -1, "amount": 0.1}])",
-       "ops[0] (push_pull): 'radius' must be > 0"},
-      {R"([{"op": "twirl", "vertex": 3}])", "ops[0]: unknown op 'twirl'"},
+       "'ops'[0] (push_pull).'radius': must be > 0"},
+      {R"([{"op": "twirl", "vertex": 3}])", "'ops'[0].'op': unknown value 'twirl'"},
   };
   for (const auto& c : cases) {
     spit(dir_ / "bad.json", std::string(R"({"ops": )") + c.ops + "}");
@@ -126,6 +128,115 @@ TEST_F(DeformCli, BadOperationsLeaveEveryFileUntouched) {
   EXPECT_NE(output_.find("give its camera or view"), std::string::npos) << output_;
   EXPECT_FALSE(fs::exists(dir_ / "side.obj"));
   EXPECT_EQ(slurp(dir_ / "m.vdg.json"), manifest);
+}
+
+// Every file of the model folder with its contents, to check that nothing changed at all.
+std::map<std::string, std::string> folderContents(const fs::path& dir) {
+  std::map<std::string, std::string> files;
+  for (const auto& e : fs::directory_iterator(dir))
+    if (e.path().filename() != "out.txt") files[e.path().filename().string()] = slurp(e.path());
+  return files;
+}
+
+TEST_F(DeformCli, KeyNamesAndMeshPathsAreChecked) {
+  spit(dir_ / "e.json",
+       std::string("{") + kCamera + R"(, "ops": [{"op": "drag", "vertex": 20, "radius": 0.8, "delta": [0.2, 0.1]}]})");
+  const auto before = folderContents(dir_);
+  const struct {
+    std::string args;
+    const char* message;
+  } cases[] = {
+      {"--key ../../x", "key name '../../x': not allowed (key names are file names: use 1 to 64 letters"},
+      {"--key .hidden", "key name '.hidden': not allowed"},
+      {"--key 'bad\xff'", "key name 'bad\\xff': not allowed"},
+      {"--key k --mesh k.txt", "--mesh k.txt: a key mesh must be an OBJ file"},
+      {"--key k --mesh ../k.obj", "--mesh ../k.obj: must stay inside the manifest's folder"},
+      {"--key k --mesh /tmp/k.obj", "--mesh /tmp/k.obj: must be relative"},
+  };
+  for (const auto& c : cases) {
+    EXPECT_EQ(vdg("deform " + path("m.vdg.json") + " " + c.args + " --ops " + path("e.json")), 1) << c.args;
+    EXPECT_NE(output_.find(c.message), std::string::npos) << output_;
+    EXPECT_EQ(folderContents(dir_), before) << c.args;
+  }
+  EXPECT_FALSE(fs::exists(dir_.parent_path().parent_path() / "x.obj"));
+  EXPECT_FALSE(fs::exists("/tmp/k.obj"));
+  // A mesh path in a subfolder is fine.
+  fs::create_directories(dir_ / "keys");
+  ASSERT_EQ(vdg("deform " + path("m.vdg.json") + " --key k --mesh keys/k.obj --ops " + path("e.json")), 0) << output_;
+  EXPECT_EQ(loadManifest((dir_ / "m.vdg.json").string()).keys.back().mesh_path, "keys/k.obj");
+}
+
+TEST_F(DeformCli, AKeySharingItsMeshFileIsRefused) {
+  spit(dir_ / "m.vdg.json", R"({"version": 1, "base": "base.obj",
+    "keys": [{"name": "front", "mesh": "front.obj", "view": [0, 0, 1]},
+             {"name": "back", "mesh": "./front.obj", "view": [0, 0, -1]}]})");
+  spit(dir_ / "e.json", R"({"ops": [{"op": "drag", "vertex": 0, "radius": 0.5, "delta": [0.1, 0]}]})");
+  const auto before = folderContents(dir_);
+  EXPECT_EQ(vdg("deform " + path("m.vdg.json") + " --key back --ops " + path("e.json")), 1);
+  EXPECT_NE(output_.find("key 'back' shares its mesh file"), std::string::npos) << output_;
+  EXPECT_NE(output_.find("with key 'front'"), std::string::npos) << output_;
+  EXPECT_EQ(folderContents(dir_), before);
+}
+
+TEST_F(DeformCli, AStepIsAllOrNothingWhenTheDiskFills) {
+  // A long edit log (many ops), so that the key mesh fits under the limit and the log does not.
+  std::string ops;
+  for (int i = 0; i < 400; ++i)
+    ops += std::string(i ? "," : "") + R"({"op": "drag", "vertex": 20, "radius": 0.8, "delta": [0.0001, 0]})";
+  spit(dir_ / "e1.json", std::string("{") + kCamera + R"(, "ops": [)" + ops + "]}");
+  ASSERT_EQ(vdg("deform -q " + path("m.vdg.json") + " --key side --ops " + path("e1.json")), 0) << output_;
+  // ulimit -f 24: 24 blocks, of 512 bytes in POSIX shells (dash), of 1024 in bash.
+  constexpr std::uintmax_t kLowLimit = 24 * 512, kHighLimit = 24 * 1024;
+  ASSERT_GT(fs::file_size(dir_ / "side.edits.json"), kHighLimit);
+  ASSERT_LT(fs::file_size(dir_ / "side.obj"), kLowLimit);
+  spit(dir_ / "e2.json", R"({"ops": [{"op": "drag", "vertex": 20, "radius": 0.8, "delta": [0.1, 0]}]})");
+  const auto before = folderContents(dir_);
+  // The mesh is staged, the log is not.
+  const std::string limited = "trap '' XFSZ; ulimit -f 24; \"" + std::string(VDG_BINARY) + "\" deform " +
+                              path("m.vdg.json") + " --key side --ops " + path("e2.json") + " > " + path("out.txt") +
+                              " 2>&1";
+  const int status = std::system(limited.c_str());
+  output_ = slurp(dir_ / "out.txt");
+  ASSERT_TRUE(WIFEXITED(status)) << output_;
+  EXPECT_EQ(WEXITSTATUS(status), 1) << output_;
+  EXPECT_NE(output_.find("side.edits.json: cannot write file: File too large"), std::string::npos) << output_;
+  EXPECT_EQ(folderContents(dir_), before);  // no file changed, no temporary file or journal left
+}
+
+TEST_F(DeformCli, AnInterruptedStepIsCompletedOrRolledBackByTheNextRun) {
+  spit(dir_ / "e.json", R"({"ops": [{"op": "drag", "vertex": 0, "radius": 0.5, "delta": [0.1, 0]}]})");
+  const std::string d = fs::absolute(dir_).string();
+  // Interrupted while committing: the key's temporary file was complete, and is renamed now.
+  TriMesh interrupted = base_;
+  interrupted.positions[4] += 0.5f;
+  spit(dir_ / ".vdg-Abc123", formatObj(interrupted));
+  spit(dir_ / ".vdg-journal", R"({"version": 1, "state": "committing", "files": [{"target": ")" + d +
+                                  R"(/front.obj", "temp": ")" + d + R"(/.vdg-Abc123"}]})");
+  ASSERT_EQ(vdg("deform " + path("m.vdg.json") + " --key front --dry-run --ops " + path("e.json")), 0) << output_;
+  EXPECT_NE(output_.find("completed an interrupted step: wrote " + d + "/front.obj"), std::string::npos) << output_;
+  EXPECT_EQ(readObj((dir_ / "front.obj").string()).positions, interrupted.positions);
+  EXPECT_FALSE(fs::exists(dir_ / ".vdg-journal"));
+  EXPECT_FALSE(fs::exists(dir_ / ".vdg-Abc123"));
+  // Interrupted while staging: the temporary files go, the targets were never touched.
+  const std::string front = slurp(dir_ / "front.obj");
+  spit(dir_ / ".vdg-Def456", "half a mesh");
+  spit(dir_ / ".vdg-journal", R"({"version": 1, "state": "staging", "files": [{"target": ")" + d +
+                                  R"(/front.obj", "temp": ")" + d + R"(/.vdg-Def456"}]})");
+  ASSERT_EQ(vdg("deform " + path("m.vdg.json") + " --key front --ops " + path("e.json")), 0) << output_;
+  EXPECT_NE(output_.find("rolled back an interrupted step"), std::string::npos) << output_;
+  EXPECT_FALSE(fs::exists(dir_ / ".vdg-Def456"));
+  EXPECT_FALSE(fs::exists(dir_ / ".vdg-journal"));
+  EXPECT_NE(slurp(dir_ / "front.obj"), front);  // and this run's step went through
+}
+
+TEST_F(DeformCli, ASymlinkedManifestStaysALink) {
+  fs::rename(dir_ / "m.vdg.json", dir_ / "real.vdg.json");
+  fs::create_symlink("real.vdg.json", dir_ / "m.vdg.json");
+  spit(dir_ / "e.json",
+       std::string("{") + kCamera + R"(, "ops": [{"op": "drag", "vertex": 20, "radius": 0.8, "delta": [0.2, 0.1]}]})");
+  ASSERT_EQ(vdg("deform " + path("m.vdg.json") + " --key side --ops " + path("e.json")), 0) << output_;
+  EXPECT_TRUE(fs::is_symlink(dir_ / "m.vdg.json"));
+  EXPECT_EQ(loadManifest((dir_ / "real.vdg.json").string()).keys.size(), 2u);
 }
 
 TEST_F(DeformCli, DryRunReportsAndWritesNothing) {

@@ -45,28 +45,63 @@ TEST(EditScript, ParsesEveryOp) {
                                        "E.json");
   ASSERT_EQ(s.ops.size(), 8u);
   EXPECT_TRUE(s.camera.has_value());
-  EXPECT_EQ(s.ops[1].push_mode, PushPullMode::kAlongAxis);
-  EXPECT_EQ(s.ops[2].falloff.power, 0.0);  // rotate: rigid group by default
-  EXPECT_EQ(s.ops[4].metric, DistanceMetric::kEdges);
-  EXPECT_EQ(s.ops[5].moves[0].index[1], 2);
+  EXPECT_EQ(std::get<PushPullOp>(s.ops[1]).mode, PushPullMode::kAlongAxis);
+  EXPECT_EQ(std::get<RotateOp>(s.ops[2]).pick.falloff.power, 0.0);  // rotate: rigid group by default
+  EXPECT_EQ(std::get<DisplaceOp>(s.ops[4]).pick.metric, DistanceMetric::kEdges);
+  EXPECT_EQ(std::get<FfdOp>(s.ops[5]).moves[0].index[1], 2);
+  for (std::size_t i = 0; i < s.ops.size(); ++i) EXPECT_EQ(static_cast<std::size_t>(editKind(s.ops[i])), i);
 }
 
 TEST(EditScript, BadOpsNameIndexAndField) {
   EXPECT_EQ(errorOf(R"({"ops": [{"op": "drag", "vertex": 0, "radius": 1, "delta": [0,0]},
                                  {"op": "drag", "vertex": 0, "radius": -1, "delta": [0,0]}]})"),
-            "E.json: ops[1] (drag): 'radius' must be > 0, got -1");
-  EXPECT_EQ(errorOf(R"({"ops": [{"op": "twist"}]})").substr(0, 35), "E.json: ops[0]: unknown op 'twist' ");
-  EXPECT_EQ(errorOf(R"({"ops": [{"op": "drag", "vertex": 0, "radius": 1, "delta": [0,0], "colour": 1}]})"),
-            "E.json: ops[0] (drag): unknown field 'colour'");
+            "E.json: 'ops'[1] (drag).'radius': must be > 0 and finite, got -1");
+  EXPECT_EQ(errorOf(R"({"ops": [{"op": "twist"}]})").substr(0, 47), "E.json: 'ops'[0].'op': unknown value 'twist' (e");
+  EXPECT_EQ(
+      errorOf(R"({"ops": [{"op": "drag", "vertex": 0, "radius": 1, "delta": [0,0], "colour": 1}]})").substr(0, 50),
+      "E.json: 'ops'[0] (drag): unknown key 'colour' (exp");
   EXPECT_EQ(errorOf(R"({"ops": [{"op": "drag", "vertex": -2, "radius": 1, "delta": [0,0]}]})"),
-            "E.json: ops[0] (drag): 'vertex' must be >= 0, got -2");
-  EXPECT_NE(errorOf(R"({"ops": [{"op": "ffd", "moves": [{"index": [2,0,0], "offset": [0,0,0]}]}]})")
-                .find("ops[0] (ffd): moves[0]: 'index'"),
-            std::string::npos);
+            "E.json: 'ops'[0] (drag).'vertex': expected an integer from 0 to 2147483647, got -2");
+  EXPECT_EQ(errorOf(R"({"ops": [{"op": "ffd", "moves": [{"index": [2,0,0], "offset": [0,0,0]}]}]})"),
+            "E.json: 'ops'[0] (ffd).'moves'[0].'index': component 0 = 2 is out of range [0, 1]");
   EXPECT_NE(errorOf(R"({"ops": [{"op": "drag", "vertex": 0, "radius": 1}]})").find("exactly one of 'delta'"),
             std::string::npos);
   EXPECT_NE(errorOf("{ not json").find("E.json: not valid JSON"), std::string::npos);
   EXPECT_NE(errorOf(R"({"version": 7, "ops": []})").find("'version'"), std::string::npos);
+}
+
+// Every number is range-checked before it is converted or used; the message names the field.
+TEST(EditScript, NumbersOutOfRangeNameTheField) {
+  const std::pair<const char*, const char*> cases[] = {
+      {R"({"image_size": [1e12, 1e12], "ops": []})", "E.json: 'image_size'[0]: expected an integer from 1 to 65536"},
+      {R"({"image_size": [0, 10], "ops": []})", "E.json: 'image_size'[0]: expected an integer from 1 to 65536, got 0"},
+      {R"({"image_size": [10.5, 10], "ops": []})", "E.json: 'image_size'[0]: expected an integer from 1 to 65536"},
+      {R"({"ops": [{"op": "drag", "vertex": 4294967297, "radius": 1, "delta": [0,0]}]})",
+       "E.json: 'ops'[0] (drag).'vertex': expected an integer from 0 to 2147483647"},
+      {R"({"ops": [{"op": "drag", "vertex": 0, "radius": 1e999, "delta": [0,0]}]})", "E.json: not valid JSON"},
+      {R"({"ops": [{"op": "drag", "vertex": 0, "radius": 0, "delta": [0,0]}]})",
+       "E.json: 'ops'[0] (drag).'radius': must be > 0 and finite, got 0"},
+      {R"({"ops": [{"op": "drag", "vertex": 0, "radius": 1, "power": -1, "delta": [0,0]}]})",
+       "E.json: 'ops'[0] (drag).'power': must be >= 0 and finite, got -1"},
+      {R"({"ops": [{"op": "scale", "vertex": 0, "radius": 1, "factor": [1, -2]}]})",
+       "E.json: 'ops'[0] (scale).'factor': must be > 0 and finite, got [1, -2]"},
+      {R"({"ops": [{"op": "ffd", "degree": [1, 17, 1], "moves": []}]})",
+       "E.json: 'ops'[0] (ffd).'degree'[1]: expected an integer from 1 to 16, got 17"},
+      {R"({"ops": [{"op": "ffd", "padding": -0.5, "moves": []}]})",
+       "E.json: 'ops'[0] (ffd).'padding': must be from 0 to 10, got -0.5"},
+      {R"({"ops": [{"op": "squash_stretch", "axis": [0, 0, 0], "factor": 2}]})",
+       "E.json: 'ops'[0] (squash_stretch).'axis': must be a finite, non-zero vector"},
+      {R"({"ops": [{"op": "squash_stretch", "axis": "up", "factor": 0}]})",
+       "E.json: 'ops'[0] (squash_stretch).'factor': must be > 0 and finite, got 0"},
+      {R"({"ops": [{"op": "affine", "matrix": [[1,0,0],[0,1,0]]}]})",
+       "E.json: 'ops'[0] (affine).'matrix': expected 3 rows of 3 numbers, got an array of 2 items"},
+      {R"({"ops": [{"op": "affine", "matrix": [[1,0,0],[0,1,0],[0,0,1]], "vertices": [-1]}]})",
+       "E.json: 'ops'[0] (affine).'vertices'[0]: expected an integer from 0 to 2147483647, got -1"},
+  };
+  for (const auto& [text, expected] : cases) {
+    const std::string msg = errorOf(text);
+    EXPECT_EQ(msg.substr(0, std::string(expected).size()), expected) << text;
+  }
 }
 
 TEST(EditScript, VertexOutOfRangeNamesOpAndField) {
@@ -78,7 +113,7 @@ TEST(EditScript, VertexOutOfRangeNamesOpAndField) {
     validateEdits(s.ops, 25, "E.json");
     FAIL();
   } catch (const Error& e) {
-    EXPECT_EQ(std::string(e.what()), "E.json: ops[1] (drag): 'vertex' = 99 is out of range (the mesh has 25 vertices)");
+    EXPECT_EQ(std::string(e.what()), "E.json: 'ops'[1] (drag).'vertex': 99 is out of range (the mesh has 25 vertices)");
   }
 }
 

@@ -113,26 +113,6 @@ TEST(ObjIo, NonRegularFilesAreRefused) {
   EXPECT_EQ(errorOf([&] { readMesh(dir.file("UPPER.OBJ")); }), dir.file("UPPER.OBJ") + ": no such file (mesh)");
 }
 
-TEST(AtomicFile, FailureLeavesTheOldFileUntouched) {
-  testing::TempDir dir;
-  const std::string path = dir.file("keep.txt");
-  testing::writeText(path, "original");
-  EXPECT_THROW(writeFileAtomically(path,
-                                   [](std::ostream& out) {
-                                     out << "half";
-                                     throw Error("interrupted");
-                                   }),
-               Error);
-  EXPECT_EQ(testing::readText(path), "original");
-  // No temporary file is left behind.
-  int files = 0;
-  for (const auto& entry : std::filesystem::directory_iterator(dir.path())) {
-    (void)entry;
-    ++files;
-  }
-  EXPECT_EQ(files, 1);
-}
-
 TEST(AtomicFile, MissingFolderIsAClearError) {
   testing::TempDir dir;
   const std::string msg = errorOf([&] { writeObj(dir.file("no/such/folder/a.obj"), testing::uvSphere()); });

@@ -11,6 +11,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #ifdef VDG_CLI
 
@@ -73,6 +74,25 @@ TEST(CliRender, OrbitWritesFramesAndRangesAreByteIdentical) {
   EXPECT_EQ(readBytes(all / "frame_0003.png"), readBytes(part / "frame_0003.png"));
   EXPECT_EQ(readBytes(all / "frame_0004.png"), readBytes(part / "frame_0004.png"));
   EXPECT_NE(readBytes(all / "frame_0000.png"), readBytes(all / "frame_0003.png"));
+}
+
+// A full disk (here a file size limit, which fails writes the same way) is an error naming the
+// frame, exit status 1, and a frame already there stays byte-identical.
+TEST(CliRender, FullDiskFailsAndKeepsExistingFrames) {
+  const fs::path dir = freshDir("vdg_render_full");
+  Result r = vdg("render " + kSpot + " -o " + dir.string() + " --size 96x96 --quiet");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const std::string frame = readBytes(dir / "frame_0000.png");
+  ASSERT_GT(frame.size(), 1024u);  // more than the 1-block limit below
+  r = vdg("render " + kSpot + " -o " + dir.string() + " --size 96x96 --azimuth 90 --quiet",
+          "trap '' XFSZ; ulimit -f 1;");
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("frame_0000.png: cannot write file: File too large"), std::string::npos) << r.output;
+  EXPECT_EQ(readBytes(dir / "frame_0000.png"), frame);
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
+  EXPECT_EQ(names, std::vector<std::string>{"frame_0000.png"});
+  fs::remove_all(dir);
 }
 
 void expectOneLineError(const Result& r, int status, const std::string& needle) {

@@ -13,6 +13,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include <Eigen/Core>
@@ -26,43 +27,104 @@ namespace vdg {
 inline constexpr int kEditsVersion = 1;
 
 enum class EditKind { kDrag, kPushPull, kRotate, kScale, kDisplace, kFfd, kSquashStretch, kAffine };
+// "drag", "push_pull", ... : the "op" field of the JSON form.
 const char* editKindName(EditKind kind);
 
-struct FfdMove {
-  std::array<int, 3> index{0, 0, 0};  // control point (i, j, k)
-  Eigen::Vector3d offset = Eigen::Vector3d::Zero();
+// The picked (seed) vertex of the image-plane tools and the region it drags along: vertices whose
+// distance (`metric`) from it is below `falloff.radius` move by falloffWeight() of the full edit.
+struct VertexPick {
+  std::int32_t vertex = 0;  // index into the mesh, < #V
+  DistanceMetric metric = DistanceMetric::kEuclidean;
+  Falloff falloff;  // radius > 0 and finite; power >= 0 and finite
 };
 
-// One parsed operation. Only the fields of its kind are meaningful (see docs/deform.md).
-struct EditOp {
-  EditKind kind = EditKind::kDrag;
-  std::string json;  // the operation as canonical JSON (what the edit log stores)
+// Image-plane drag (Rademacher 99, 3.1.2): the picked vertex moves by `delta` (world units along
+// the camera's right and up axes), or by `delta_px` pixels (x right, y down) of an image of the
+// script's image_size, converted at the picked vertex's depth. Vertices keep their view depth.
+struct DragOp {
+  VertexPick pick;
+  Eigen::Vector2d delta = Eigen::Vector2d::Zero();
+  std::optional<Eigen::Vector2d> delta_px;  // when set, replaces `delta`
+};
+// View-depth change by w * amount (world units, > 0 away from the camera), along each vertex's ray
+// from the eye (kAlongRay: it keeps its pixel) or along the view axis.
+struct PushPullOp {
+  VertexPick pick;
+  double amount = 0;
+  PushPullMode mode = PushPullMode::kAlongRay;
+};
+// Rotation by angle_deg (counter-clockwise in the image) about the view-axis line through the
+// picked vertex. A rigid group by default: pick.falloff.power = 0.
+struct RotateOp {
+  VertexPick pick{0, DistanceMetric::kEuclidean, Falloff{1.0, 0.0, FalloffShape::kPower}};
+  double angle_deg = 0;
+};
+// Scaling by `factor` (> 0, along camera right and up) about the picked vertex, parallel to the
+// image plane. A rigid group by default.
+struct ScaleOp {
+  VertexPick pick{0, DistanceMetric::kEuclidean, Falloff{1.0, 0.0, FalloffShape::kPower}};
+  Eigen::Vector2d factor = Eigen::Vector2d::Ones();
+};
+// Attenuated displacement (Parent 4.10): every vertex moves by w * offset (world units, in the
+// world frame, or in the camera's right/up/back frame when camera_frame).
+struct DisplaceOp {
+  VertexPick pick;
+  Eigen::Vector3d offset = Eigen::Vector3d::Zero();
+  bool camera_frame = false;
+};
 
-  // Picked-vertex tools (drag, push_pull, rotate, scale, displace).
-  std::int64_t vertex = -1;
-  DistanceMetric metric = DistanceMetric::kEuclidean;
-  Falloff falloff;
-  Eigen::Vector2d delta = Eigen::Vector2d::Zero();  // drag: world units along camera right, up
-  std::optional<Eigen::Vector2d> delta_px;          // drag: pixels (x right, y down) instead
-  double amount = 0;                                // push_pull: world units, > 0 pushes away
-  PushPullMode push_mode = PushPullMode::kAlongRay;
-  double angle_deg = 0;                              // rotate: counter-clockwise in the image
-  Eigen::Vector2d factor = Eigen::Vector2d::Ones();  // scale: along camera right, up
-  Eigen::Vector3d offset = Eigen::Vector3d::Zero();  // displace: world units
-
-  // Whole-mesh tools (ffd, squash_stretch, affine): the vertices they act on (empty = all).
+struct FfdMove {
+  std::array<int, 3> index{0, 0, 0};                 // control point (i, j, k), each in [0, degree]
+  Eigen::Vector3d offset = Eigen::Vector3d::Zero();  // in the lattice frame, world units
+};
+// Sederberg-Parry free-form deformation: a Bernstein lattice of `degree` (each 1..16) around
+// `vertices` (empty: all) padded by `padding` (>= 0, fraction of the extent per side), aligned
+// with the camera's axes (camera_frame) or the world's; `moves` displace control points.
+inline constexpr int kMaxFfdDegree = 16;        // as makeFfdLattice (vdg/deform/ffd.h) allows
+inline constexpr double kMaxFfdPadding = 10.0;  // ten extents per side is already far beyond use
+struct FfdOp {
   std::vector<std::int32_t> vertices;
-  bool camera_frame = true;  // ffd lattice / offsets / squash axis in the camera's frame
+  bool camera_frame = true;
   std::array<int, 3> degree{1, 1, 1};
   double padding = 0.05;
   std::vector<FfdMove> moves;
-  Eigen::Vector3d axis = Eigen::Vector3d::UnitY();  // squash_stretch (in camera frame if camera_frame)
-  double stretch = 1.0;
-  bool preserve_volume = true;
-  Eigen::Matrix3d matrix = Eigen::Matrix3d::Identity();  // affine
-  Eigen::Vector3d translation = Eigen::Vector3d::Zero();
-  std::optional<Eigen::Vector3d> center;  // squash_stretch / affine; default: the vertices' centroid
 };
+// Squash and stretch (Parent 4.10): `factor` (> 0) along `axis` (non-zero; in the camera's
+// right/up/back frame when camera_frame, else world), 1/sqrt(factor) across it when
+// preserve_volume, about `center` (default: the vertices' centroid).
+struct SquashStretchOp {
+  std::vector<std::int32_t> vertices;
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitY();
+  bool camera_frame = true;
+  double factor = 1.0;
+  bool preserve_volume = true;
+  std::optional<Eigen::Vector3d> center;
+};
+// p' = center + matrix (p - center) + translation (world frame; center default: the centroid).
+struct AffineOp {
+  std::vector<std::int32_t> vertices;
+  Eigen::Matrix3d matrix = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d translation = Eigen::Vector3d::Zero();
+  std::optional<Eigen::Vector3d> center;
+};
+
+// One operation: plain data, built in C++ or read from JSON by vdg/io/edit_script.h, which holds
+// the one conversion to and from the JSON form. The alternatives are in EditKind's order.
+using EditOp = std::variant<DragOp, PushPullOp, RotateOp, ScaleOp, DisplaceOp, FfdOp, SquashStretchOp, AffineOp>;
+
+inline EditKind editKind(const EditOp& op) { return static_cast<EditKind>(op.index()); }
+inline const char* editKindName(const EditOp& op) { return editKindName(editKind(op)); }
+
+// A value of an op outside its range: `field` is the key path inside the op as the JSON form
+// writes it ("'radius'", "'moves'[1].'index'"), `message` says what is wrong ("must be > 0, got
+// -1"). Vertex indices are checked against a mesh by validateEdits() only.
+struct EditOpProblem {
+  std::string field;
+  std::string message;
+};
+// The first value of `op` out of its documented range (radius, power, factors, degree, indices,
+// finite numbers), or nothing. The JSON reader and validateEdits() both use it: one set of rules.
+std::optional<EditOpProblem> checkEditOp(const EditOp& op);
 
 struct EditScript {
   std::optional<Camera> camera;                  // key camera for a new key
@@ -71,7 +133,8 @@ struct EditScript {
   std::vector<EditOp> ops;
 };
 
-// Checks every vertex index against `vertex_count`; throws vdg::Error naming the op and field.
+// Checks every op (checkEditOp) and every vertex index against `vertex_count`; throws vdg::Error
+// "SOURCE: 'ops'[1] (drag).'vertex': 99 is out of range (the mesh has 25 vertices)".
 void validateEdits(std::span<const EditOp> ops, std::size_t vertex_count, const std::string& source);
 
 struct EditReport {

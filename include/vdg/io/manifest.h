@@ -20,6 +20,8 @@ RawViewDependentModel parseManifest(const std::string& text, const std::string& 
 // camera keys' views and validates. Throws vdg::Error naming the file and key for missing files,
 // unknown fields, a wrong or missing version, bad values, and everything validate() checks.
 RawViewDependentModel loadManifest(const std::string& path);
+// The manifest text saveManifest writes (for callers that write it themselves).
+std::string formatManifest(const RawViewDependentModel& model);
 // Writes the manifest (not the meshes) atomically, with mesh paths as stored in the raw model.
 void saveManifest(const std::string& path, const RawViewDependentModel& model);
 

@@ -25,6 +25,8 @@ TriMesh parseObj(const std::string& text, const std::string& source);
 // Reads a regular file of at most kMaxMeshFileBytes (vdg/io/read_file.h) and parses it.
 TriMesh readObj(const std::string& path);
 
+// The OBJ text writeObj writes (for callers that write it themselves, e.g. in a FileTransaction).
+std::string formatObj(const TriMesh& mesh, const std::string& header = {});
 // Writes `mesh` to `path` atomically. `header` (may be empty) becomes leading comment lines.
 void writeObj(const std::string& path, const TriMesh& mesh, const std::string& header = {});
 

@@ -1,0 +1,78 @@
+// Replacing several files as one step: after commit() all of them are replaced, after a failure
+// none is, and after a crash in between (power cut, kill -9) the next run either completes the
+// step or rolls it back. `vdg deform` writes a key mesh, its edit log and the manifest this way.
+//
+// Design. Every file is written as in vdg/io/atomic_file.h: a complete temporary file beside its
+// real target (symbolic links followed), renamed over it. What makes several files one step is a
+// journal, a small JSON file at a path the caller chooses (for `vdg deform`: ".vdg-journal" in the
+// model's folder), itself always replaced atomically:
+//   {"version": 1, "state": "staging" | "committing",
+//    "files": [{"target": "/abs/real/path", "temp": "/abs/real/.vdg-XXXXXX"}, ...]}
+// commit() runs these phases:
+//   1. chooses a temporary name for every file and writes the journal in state "staging";
+//   2. writes every temporary file completely, checking each write, and flushes it to the disk;
+//   3. rewrites the journal in state "committing": from here on the step is decided;
+//   4. renames each temporary file over its target, then removes the journal.
+// A failure in phases 1-2 (disk full, a folder not writable) removes the temporary files and the
+// journal and throws: nothing changed. A failure in phase 4 is rare (the temporaries are complete
+// and beside their targets) and throws, leaving the journal for recovery.
+// recoverFileTransaction() reads a journal left behind and, by its state, either removes the
+// temporary files (staging: rolled back, the targets were never touched) or renames the ones still
+// present over their targets (committing: completed; a missing temporary was renamed already).
+// Recovery refuses a journal whose temporary files are not ".vdg-XXXXXX" names beside their
+// targets, so a hand-made journal cannot rename arbitrary files. One transaction at a time per
+// journal: commit() refuses to start while a journal is present, and a caller that reads files,
+// recovers and commits (`vdg deform`) holds a FolderLock on the journal's folder throughout, so
+// that two processes neither interleave their steps nor recover each other's step in progress.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace vdg {
+
+class FileTransaction {
+ public:
+  // `journal_path`: where the journal lives while commit() runs (its folder must exist).
+  explicit FileTransaction(std::string journal_path);
+
+  // Adds a file to write; nothing is written before commit(). The last contents given for one
+  // path win. `path` must name a regular file or nothing (checked by commit()).
+  void write(const std::string& path, std::string contents);
+  bool empty() const { return files_.empty(); }
+
+  // Writes every file as one step (see above). Throws vdg::Error naming the file that failed, or
+  // the journal when one is already present. A transaction commits once.
+  void commit();
+
+ private:
+  struct File {
+    std::string path, contents;
+  };
+  std::string journal_path_;
+  std::vector<File> files_;
+  bool committed_ = false;
+};
+
+// An exclusive advisory lock (flock) on a folder, held while the object lives. Throws vdg::Error
+// "FOLDER: another vdg is changing files here; try again when it has finished" when another
+// holder has it (it does not wait), or naming the folder when it cannot be opened.
+class FolderLock {
+ public:
+  explicit FolderLock(const std::string& folder);
+  ~FolderLock();
+  FolderLock(const FolderLock&) = delete;
+  FolderLock& operator=(const FolderLock&) = delete;
+
+ private:
+  int fd_ = -1;
+};
+
+// Finishes an interrupted transaction whose journal is at `journal_path`. Returns nothing when
+// there is no journal, else one line saying what was done: "completed an interrupted step: wrote
+// A, B" or "rolled back an interrupted step: no file had been changed". Throws vdg::Error naming
+// the journal when it cannot be read or trusted (then nothing is renamed), or a rename fails.
+std::optional<std::string> recoverFileTransaction(const std::string& journal_path);
+
+}  // namespace vdg
