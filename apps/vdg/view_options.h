@@ -1,6 +1,7 @@
 // Options shared by the subcommands that evaluate a model at one view (weights, eval).
 #pragma once
 
+#include <cmath>
 #include <optional>
 #include <string>
 
@@ -18,22 +19,23 @@ struct ViewOptions {
     auto* view = sub.add_option("--view", view_text, "View direction X,Y,Z from the model centre towards the eye");
     auto* eye = sub.add_option("--eye", eye_text, "Eye position X,Y,Z in model space (view = eye - centre)");
     view->excludes(eye);
-    sub.add_option("--sharpness", sharpness, "Sharpness alpha of the blend (default: the model's)")
-        ->check(CLI::PositiveNumber);
+    sub.add_option("--sharpness", sharpness, "Sharpness alpha of the blend, > 0 (default: the model's)")
+        ->check(positiveNumber());
   }
 
   // The view direction; throws UsageError unless exactly one of --view / --eye was given.
   Eigen::Vector3d resolve(const ViewDependentModel& model) const {
     if (view_text.empty() == eye_text.empty()) throw UsageError("give exactly one of --view X,Y,Z or --eye X,Y,Z");
     if (!view_text.empty()) {
-      const Eigen::Vector3d v = parseVec3(view_text, "--view");
-      if (!(v.norm() > 0.0)) throw UsageError("--view: the view direction must not be zero");
-      return v.normalized();
+      return parseDirection(view_text, "--view");
     }
-    const Eigen::Vector3d eye = parseVec3(eye_text, "--eye");
-    const Eigen::Vector3d v = model.viewFromEye(eye);
-    if (!(v.norm() > 0.0)) throw UsageError("--eye: the eye is at the model centre, so there is no view direction");
-    return v;
+    // view = normalize(eye - centre), as ViewDependentModel::viewFromEye, scaled first so that a
+    // far eye (1e300) does not overflow the length.
+    const Eigen::Vector3d d = parseVec3(eye_text, "--eye") - model.center();
+    const double largest = d.cwiseAbs().maxCoeff();
+    if (!std::isfinite(largest)) throw UsageError("--eye: too far from the model centre, got " + shown(eye_text));
+    if (!(largest > 0.0)) throw UsageError("--eye: the eye is at the model centre, so there is no view direction");
+    return (d / largest).normalized();
   }
 };
 
