@@ -60,10 +60,12 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    if (app.get_subcommands().empty() && argc >= 2 && argv[1][0] != '-') {
+    if (app.get_subcommands().empty()) {
       std::string names;
       for (const CLI::App* sub : app.get_subcommands({})) names += (names.empty() ? "" : ", ") + sub->get_name();
-      return usage(app, "unknown subcommand " + vdg::cli::shown(argv[1]) + " (expected one of " + names + ")");
+      if (argc < 2) return usage(app, "give a subcommand: one of " + names);
+      if (argv[1][0] != '-')
+        return usage(app, "unknown subcommand " + vdg::cli::shown(argv[1]) + " (expected one of " + names + ")");
     }
     return usage(app, e.what());
   } catch (const vdg::cli::UsageError& e) {
