@@ -202,7 +202,7 @@ void addRenderCommand(CLI::App& app) {
   sub->add_option("--frames", opt->frames, "Render only frames A-B (or N) of the orbit, 0 <= A <= B < --orbit");
   sub->add_flag("--observer", opt->observer, "Add the model seen from a fixed observer camera, to the right");
   sub->add_flag("--sphere", opt->sphere, "Add an inset of the viewing sphere (keys, hull, active triangle, view)");
-  sub->add_option("--sharpness", opt->sharpness, "Blend sharpness alpha, > 0 (default: the model's own)")
+  sub->add_option("--sharpness", opt->sharpness, "Blend sharpness alpha (default: the model's own)")
       ->check(positiveNumber());
   sub->add_option("--color", opt->color, "Base colour R,G,B in [0,1] (default 1,1,1)");
   sub->add_option("--background", opt->background, "Background colour R,G,B in [0,1] (default 0.97,0.97,0.95)");

@@ -19,7 +19,7 @@ struct ViewOptions {
     auto* view = sub.add_option("--view", view_text, "View direction X,Y,Z from the model centre towards the eye");
     auto* eye = sub.add_option("--eye", eye_text, "Eye position X,Y,Z in model space (view = eye - centre)");
     view->excludes(eye);
-    sub.add_option("--sharpness", sharpness, "Sharpness alpha of the blend, > 0 (default: the model's)")
+    sub.add_option("--sharpness", sharpness, "Sharpness alpha of the blend (default: the model's)")
         ->check(positiveNumber());
   }
 
