@@ -52,6 +52,9 @@ class FieldReader {
   std::int64_t integer(const std::string& field) {
     const json& v = get(field);
     if (!v.is_number_integer()) failField(field, "must be an integer, got " + v.dump());
+    // An unsigned value above INT64_MAX would wrap to a negative number (18446744073709551615 -> -1).
+    if (v.is_number_unsigned() && v.get<std::uint64_t>() > static_cast<std::uint64_t>(INT64_MAX))
+      failField(field, "is too large, got " + v.dump());
     return v.get<std::int64_t>();
   }
   bool boolean(const std::string& field, bool fallback) {
@@ -106,7 +109,7 @@ std::vector<std::int32_t> vertexList(FieldReader& r, const std::string& field) {
   if (!v.is_array()) r.failField(field, "must be an array of vertex indices");
   for (const json& e : v) {
     if (!e.is_number_integer() || e.get<std::int64_t>() < 0 || e.get<std::int64_t>() > INT32_MAX)
-      r.failField(field, "must hold non-negative vertex indices, got " + e.dump());
+      r.failField(field, "must hold vertex indices in [0, " + std::to_string(INT32_MAX) + "], got " + e.dump());
     out.push_back(static_cast<std::int32_t>(e.get<std::int64_t>()));
   }
   if (out.empty()) r.failField(field, "must not be empty (leave it out to select every vertex)");
