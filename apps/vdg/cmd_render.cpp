@@ -35,7 +35,11 @@ struct RenderOptions {
 constexpr long kMaxOrbitFrames = 1000000;
 constexpr int kMaxSamples = 64;           // the driver caps it further
 constexpr double kMaxLineWidth = 1000.0;  // pixels
-constexpr int kDriverQuerySide = 4096;    // larger canvases are checked against the driver's limit
+constexpr int kDriverQuerySide = 4096;
+// Beyond these the camera frame cannot be computed in double precision (the eye-target distance
+// overflows, or a near-zero field of view fits the model at an overflowing distance).
+constexpr double kMaxDistance = 1e15;
+constexpr double kMinFovDeg = 0.01, kMaxFovDeg = 179.99;  // larger canvases are checked against the driver's limit
 
 // The canvas is twice as wide with the observer panel; both sides must fit the OpenGL driver.
 void checkCanvas(const std::string& size_text, const render::FrameOptions& fo) {
@@ -193,8 +197,9 @@ void addRenderCommand(CLI::App& app) {
   sub->add_option("--elevation", opt->elevation, "Camera elevation in degrees (default 15)")
       ->check(openRange(-90.0, 90.0));
   sub->add_option("--distance", opt->distance, "Camera distance from the model centre (default: fit the model)")
-      ->check(positiveNumber());
-  sub->add_option("--fov", opt->fov, "Vertical field of view in degrees (default 30)")->check(openRange(0.0, 180.0));
+      ->check(positiveNumber(kMaxDistance));
+  sub->add_option("--fov", opt->fov, "Vertical field of view in degrees (default 30)")
+      ->check(numberIn({kMinFovDeg, End::kClosed, kMaxFovDeg, End::kClosed}));
   sub->add_option("--size", opt->size,
                   "Image size WxH of the main view, each side in [1, " + std::to_string(render::kMaxImageSize) +
                       "] and within the OpenGL driver's limits (default 512x512)")
