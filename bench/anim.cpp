@@ -6,6 +6,8 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 
 #include "vdg/anim/arc_length.h"
 #include "vdg/anim/curve.h"
@@ -39,7 +41,10 @@ double sampleAll(const vdg::anim::ArcLengthCurve& a) {
   std::array<double, 3> p{};
   double sum = 0;
   for (int i = 0; i < kSamplesPerIteration; ++i) {
-    a.evaluateAtFraction((i + 0.5) / kSamplesPerIteration, p);
+    if (!a.evaluateAtFraction((i + 0.5) / kSamplesPerIteration, p)) {
+      std::fprintf(stderr, "bench/anim: evaluateAtFraction refused its input (internal error)\n");
+      std::abort();
+    }
     sum += p[0];
   }
   return sum;

@@ -1,22 +1,149 @@
+include(GNUInstallDirs)
+
 # Per-target settings: C++20, warnings, optional -Werror and sanitizers. No global flags.
+# The sanitizer link flag is passed on to whatever links the target inside this build tree (tests,
+# the app) but never exported: an installed vdg package must not force -fsanitize on its users.
 function(vdg_target_defaults target)
   target_compile_features(${target} PUBLIC cxx_std_20)
   target_compile_options(${target} PRIVATE -Wall -Wextra -Wshadow $<$<BOOL:${VDG_WERROR}>:-Werror>)
   if(VDG_SANITIZE)
     target_compile_options(${target} PRIVATE -fsanitize=address,undefined -fno-omit-frame-pointer
                                              -fno-sanitize-recover=undefined)
-    target_link_options(${target} PUBLIC -fsanitize=address,undefined)
+    target_link_options(${target} PUBLIC $<BUILD_INTERFACE:-fsanitize=address,undefined>)
   endif()
 endfunction()
 
-# vdg_add_module(NAME SOURCES ... DEPS ...): library vdg_NAME with public headers in include/.
+# Which package provides an external target that an installed vdg library needs, as the lines (a
+# list) the package config (vdgConfig.cmake) runs to find it and as the pkg-config module vdg.pc requires.
+# A module that links a new external library adds it here; configuring fails until it does.
+function(_vdg_package_of dep out_find out_pc)
+  if(dep STREQUAL "Eigen3::Eigen")
+    set(find "find_dependency(Eigen3 3.3 NO_MODULE)")
+    set(pc eigen3)
+  elseif(dep MATCHES "^Qhull::(.+)$")
+    set(find "find_dependency(Qhull)")
+    set(pc ${CMAKE_MATCH_1})
+  elseif(dep STREQUAL "tinyobjloader::tinyobjloader")
+    set(find "find_dependency(tinyobjloader)")
+    set(pc tinyobjloader)
+  elseif(dep STREQUAL "nlohmann_json::nlohmann_json")
+    set(find "find_dependency(nlohmann_json 3)")
+    set(pc nlohmann_json)
+  elseif(dep MATCHES "^Boost::")
+    set(find "find_dependency(Boost)")
+    set(pc "")  # Boost ships no pkg-config files; its headers are in the default include path
+  elseif(dep MATCHES "^PkgConfig::(EPOXY|STB)$")
+    string(TOLOWER "${CMAKE_MATCH_1}" pc)
+    set(find "find_dependency(PkgConfig)" "_vdg_find_pkg(${CMAKE_MATCH_1} ${pc})")
+  else()
+    message(FATAL_ERROR "vdg_add_module: an installed vdg library links ${dep}, and cmake/VdgTargets.cmake "
+                        "does not know which package provides it; add it to _vdg_package_of there")
+  endif()
+  set(${out_find} "${find}" PARENT_SCOPE)
+  set(${out_pc} "${pc}" PARENT_SCOPE)
+endfunction()
+
+# A dependency that only lends its headers to the library's own .cpp files: an interface library
+# that links nothing (nlohmann_json, Boost::headers). The static library needs nothing from it at
+# link time, so it is kept out of the installed package.
+function(_vdg_is_header_only dep out)
+  set(result FALSE)
+  if(TARGET ${dep})
+    get_target_property(type ${dep} TYPE)
+    get_target_property(links ${dep} INTERFACE_LINK_LIBRARIES)
+    if(type STREQUAL "INTERFACE_LIBRARY" AND NOT links)
+      set(result TRUE)
+    endif()
+  endif()
+  set(${out} ${result} PARENT_SCOPE)
+endfunction()
+
+# vdg_add_module(NAME SOURCES ... DEPS ... PRIVATE_DEPS ...): library vdg_NAME (vdg::NAME), public
+# headers in include/vdg/NAME/. Every module is installed and exported: `cmake --install` puts the
+# library, its headers and the vdg CMake package (vdg::NAME) and vdg.pc into the prefix.
+#   DEPS          public: other vdg modules, and libraries whose headers vdg's headers include
+#   PRIVATE_DEPS  used by the .cpp files only; header-only ones stay out of the installed package,
+#                 the others are still needed when a user links the static library, so the
+#                 package config finds them.
 function(vdg_add_module name)
   cmake_parse_arguments(ARG "" "" "SOURCES;DEPS;PRIVATE_DEPS" ${ARGN})
   add_library(vdg_${name} STATIC ${ARG_SOURCES})
   add_library(vdg::${name} ALIAS vdg_${name})
-  target_include_directories(vdg_${name} PUBLIC ${PROJECT_SOURCE_DIR}/include)
-  target_link_libraries(vdg_${name} PUBLIC ${ARG_DEPS} PRIVATE ${ARG_PRIVATE_DEPS})
+  set_target_properties(vdg_${name} PROPERTIES EXPORT_NAME ${name})
+  target_include_directories(vdg_${name} PUBLIC $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/include>
+                                                $<BUILD_INTERFACE:${PROJECT_BINARY_DIR}/include>
+                                                $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
+  set(private_deps "")
+  set(installed_deps ${ARG_DEPS})
+  foreach(dep IN LISTS ARG_PRIVATE_DEPS)
+    _vdg_is_header_only(${dep} header_only)
+    if(header_only)
+      list(APPEND private_deps $<BUILD_INTERFACE:${dep}>)
+    else()
+      list(APPEND private_deps ${dep})
+      list(APPEND installed_deps ${dep})
+    endif()
+  endforeach()
+  target_link_libraries(vdg_${name} PUBLIC ${ARG_DEPS} PRIVATE ${private_deps})
   vdg_target_defaults(vdg_${name})
+
+  # Record what the installed package must find: external targets, not vdg's own modules.
+  foreach(dep IN LISTS installed_deps)
+    if(TARGET ${dep} AND NOT dep MATCHES "^vdg::")
+      _vdg_package_of(${dep} find pc)
+      set_property(GLOBAL APPEND PROPERTY VDG_PACKAGE_FIND "${find}")
+      if(pc)
+        set_property(GLOBAL APPEND PROPERTY VDG_PACKAGE_PC_REQUIRES ${pc})
+      endif()
+    endif()
+  endforeach()
+  set_property(GLOBAL APPEND PROPERTY VDG_INSTALLED_MODULES ${name})
+
+  install(TARGETS vdg_${name} EXPORT vdgTargets ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
+  if(EXISTS ${PROJECT_SOURCE_DIR}/include/vdg/${name})
+    install(DIRECTORY ${PROJECT_SOURCE_DIR}/include/vdg/${name} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/vdg
+            FILES_MATCHING PATTERN "*.h")
+  endif()
+endfunction()
+
+# After every module: the version header, the exported CMake package (vdgConfig.cmake,
+# vdgConfigVersion.cmake, vdgTargets.cmake) and vdg.pc, all relocatable (found relative to
+# where they are installed, so `cmake --install --prefix ANY` works).
+function(vdg_install_package)
+  include(CMakePackageConfigHelpers)
+  set(config_dir ${CMAKE_INSTALL_LIBDIR}/cmake/vdg)
+  install(FILES ${PROJECT_BINARY_DIR}/include/vdg/version.h DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/vdg)
+  install(EXPORT vdgTargets NAMESPACE vdg:: DESTINATION ${config_dir})
+
+  get_property(modules GLOBAL PROPERTY VDG_INSTALLED_MODULES)
+  get_property(finds GLOBAL PROPERTY VDG_PACKAGE_FIND)
+  get_property(pc_requires GLOBAL PROPERTY VDG_PACKAGE_PC_REQUIRES)
+  list(REMOVE_DUPLICATES finds)
+  list(REMOVE_DUPLICATES pc_requires)
+  list(JOIN finds "\n" VDG_FIND_DEPENDENCIES)
+  set(VDG_MODULE_LIST "${modules}")
+  configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/vdgConfig.cmake.in
+                                ${PROJECT_BINARY_DIR}/package/vdgConfig.cmake INSTALL_DESTINATION ${config_dir})
+  # 0.x: a minor version may break the API, so only the same MAJOR.MINOR is compatible.
+  write_basic_package_version_file(${PROJECT_BINARY_DIR}/package/vdgConfigVersion.cmake
+                                   COMPATIBILITY SameMinorVersion)
+  install(FILES ${PROJECT_BINARY_DIR}/package/vdgConfig.cmake ${PROJECT_BINARY_DIR}/package/vdgConfigVersion.cmake
+          DESTINATION ${config_dir})
+
+  # vdg.pc: the libraries are static, so everything they link goes into Requires/Libs (not the
+  # .private fields, which plain `pkg-config --libs` leaves out); modules are listed top first,
+  # the order a static link needs.
+  set(libs "")
+  list(REVERSE modules)
+  foreach(module IN LISTS modules)
+    string(APPEND libs " -lvdg_${module}")
+  endforeach()
+  list(JOIN pc_requires " " VDG_PC_REQUIRES)
+  set(VDG_PC_LIBS "${libs}")
+  file(RELATIVE_PATH VDG_PC_PREFIX_FROM_PCDIR /root/${CMAKE_INSTALL_LIBDIR}/pkgconfig /root)
+  string(REGEX REPLACE "/$" "" VDG_PC_PREFIX_FROM_PCDIR "${VDG_PC_PREFIX_FROM_PCDIR}")
+  configure_file(${PROJECT_SOURCE_DIR}/cmake/vdg.pc.in ${PROJECT_BINARY_DIR}/package/vdg.pc @ONLY)
+  install(FILES ${PROJECT_BINARY_DIR}/package/vdg.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
 endfunction()
 
 # vdg_add_test(NAME SOURCES ... DEPS ...): a GoogleTest executable registered with CTest.

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "vdg/geom/error.h"
+#include "vdg/geom/normalize.h"
 
 namespace vdg::cli {
 namespace {
@@ -153,10 +154,9 @@ Eigen::Vector3d parseVec3(const std::string& text, const std::string& option) {
 }
 
 Eigen::Vector3d parseDirection(const std::string& text, const std::string& option) {
-  const Eigen::Vector3d v = parseVec3(text, option);
-  const double largest = v.cwiseAbs().maxCoeff();
-  if (!(largest > 0.0)) throw UsageError(option + ": the direction must not be zero, got " + shown(text));
-  return (v / largest).normalized();  // scaled first, so 1e308,1e308,0 does not overflow
+  const std::optional<Eigen::Vector3d> unit = normalizedOrNone(parseVec3(text, option));  // 1e308 too
+  if (!unit) throw UsageError(option + ": the direction must not be zero, got " + shown(text));
+  return *unit;
 }
 
 FrameRange parseFrameRange(const std::string& text, const std::string& option) {

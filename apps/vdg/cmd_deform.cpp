@@ -12,6 +12,7 @@
 #include "cli.h"
 #include "vdg/deform/edits.h"
 #include "vdg/geom/error.h"
+#include "vdg/geom/normalize.h"
 #include "vdg/io/camera_json.h"
 #include "vdg/io/edit_script.h"
 #include "vdg/io/manifest.h"
@@ -108,9 +109,7 @@ void runDeform(const DeformOptions& opt) {
   }
   if (!opt.view.empty()) {
     if (given_camera || given_view) throw UsageError("--view: a camera or view is already given");
-    const Eigen::Vector3d v = parseVec3(opt.view, "--view");
-    if (!(v.norm() > 0)) throw UsageError("--view: the view direction must not be zero");
-    given_view = v.normalized();
+    given_view = parseDirection(opt.view, "--view");
   }
   bool new_key = false;
   if (key) {

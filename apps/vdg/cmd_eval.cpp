@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "cli.h"
+#include "vdg/geom/error.h"
 #include "vdg/io/manifest.h"
 #include "vdg/io/obj.h"
 #include "view_options.h"
@@ -28,9 +29,12 @@ void addEvalCommand(CLI::App& app) {
       throw UsageError("-o: expected an .obj file name, got " + shown(opt->output));
     const ViewDependentModel model = ViewDependentModel::build(loadManifest(opt->model));
     const Eigen::Vector3d view = opt->view.resolve(model);
-    const ViewWeights w = model.weights(view, opt->view.sharpness);
+    ViewWeights w;
     TriMesh out = model.base();
-    model.blend(w, out.positions);
+    // resolve() gives a unit view, the sharpness is checked positive and `out` has the base's size.
+    if (!model.weights(view, opt->view.sharpness, w) || !model.blend(w, out.positions))
+      throw Error("eval: the model refused view " + std::to_string(view.x()) + "," + std::to_string(view.y()) + "," +
+                  std::to_string(view.z()) + " (internal error)");
     std::string header = "vdg eval " + opt->model + "\nview " + std::to_string(view.x()) + " " +
                          std::to_string(view.y()) + " " + std::to_string(view.z()) + "\nweights:";
     for (int k = 0; k < 3; ++k)

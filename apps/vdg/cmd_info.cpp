@@ -13,22 +13,40 @@
 namespace vdg::cli {
 namespace {
 
-// Things an artist should know about a model that still loads.
+// Things an artist should know about a model that still loads. Each kind of per-key or per-pair
+// warning is listed at most kMaxListed times, then summed up in one line: a model with thousands
+// of keys must not print (or hold) a warning for every pair.
 std::vector<std::string> modelWarnings(const ViewDependentModel& model) {
   std::vector<std::string> warnings;
   constexpr double kCloseKeysDeg = 5.0;  // keys closer than this make abrupt transitions
   constexpr double kLowCoverage = 0.25;  // below this, most views show the plain base model
+  constexpr std::size_t kMaxListed = 20;
+  // Counting stops here: past a million close pairs the exact number says nothing more.
+  constexpr std::size_t kMaxCounted = 1000000;
+  std::size_t unmoved = 0;
   for (std::size_t k = 0; k < model.keyCount(); ++k) {
-    if (model.keyMovedCount(k) == 0)
+    if (model.keyMovedCount(k) != 0) continue;
+    if (++unmoved <= kMaxListed)
       warnings.push_back("key '" + model.keyName(k) + "' moves no vertex (it is identical to the base)");
-    for (std::size_t j = 0; j < k; ++j) {
-      const double deg =
-          std::acos(std::clamp(model.keyView(k).dot(model.keyView(j)), -1.0, 1.0)) * 180.0 / std::numbers::pi;
-      if (deg < kCloseKeysDeg)
-        warnings.push_back("keys '" + model.keyName(j) + "' and '" + model.keyName(k) + "' are only " +
-                           std::to_string(deg).substr(0, 4) + " degrees apart: the blend between them will be abrupt");
-    }
   }
+  if (unmoved > kMaxListed)
+    warnings.push_back("... and " + std::to_string(unmoved - kMaxListed) + " more keys that move no vertex");
+  // Close pairs through a grid on the sphere (O(n log n) plus the pairs counted), not all n^2 pairs.
+  const auto views = model.sphere().points().first(model.keyCount());
+  std::size_t close = 0;
+  forEachCloseViewPair(views, kCloseKeysDeg * std::numbers::pi / 180.0,
+                       [&](std::size_t k, std::size_t j, double angle) {
+                         if (++close <= kMaxListed) {
+                           const double deg = angle * 180.0 / std::numbers::pi;
+                           warnings.push_back("keys '" + model.keyName(j) + "' and '" + model.keyName(k) +
+                                              "' are only " + std::to_string(deg).substr(0, 4) +
+                                              " degrees apart: the blend between them will be abrupt");
+                         }
+                         return close < kMaxCounted;
+                       });
+  if (close > kMaxListed)
+    warnings.push_back("... and " + std::string(close >= kMaxCounted ? "at least " : "") +
+                       std::to_string(close - kMaxListed) + " more close pairs of keys");
   if (model.sphere().coveredFraction() < kLowCoverage)
     warnings.push_back("real keys cover only " +
                        std::to_string(static_cast<int>(std::lround(100 * model.sphere().coveredFraction()))) +

@@ -46,6 +46,12 @@ std::vector<double> parseList(const std::string& text) {
   return out;
 }
 
+// The evaluation calls below get spans of the right size and finite parameters (parseList and
+// the sample grid), so a refusal is a bug of ours.
+void checkEvaluated(bool ok, double param) {
+  if (!ok) throw Error("sample: evaluation refused the parameter " + std::to_string(param) + " (internal error)");
+}
+
 std::vector<std::string> componentNames(int dim, const char* const* names3) {
   std::vector<std::string> n;
   for (int d = 0; d < dim; ++d) n.push_back(dim <= 3 ? names3[d] : "p" + std::to_string(d));
@@ -74,7 +80,7 @@ Sampled sample(const anim::AnimSpec& spec, const std::vector<double>& at, int sa
         out.header.insert(out.header.begin(), "s");
         eval = [a](double f) {
           std::vector<double> v(a->curve().dimension());
-          a->evaluateAtFraction(f, v);
+          checkEvaluated(a->evaluateAtFraction(f, v), f);
           return v;
         };
         keep = a;
@@ -84,7 +90,7 @@ Sampled sample(const anim::AnimSpec& spec, const std::vector<double>& at, int sa
         hi = curve->endTime();
         eval = [curve](double t) {
           std::vector<double> v(curve->dimension());
-          curve->evaluate(t, v);
+          checkEvaluated(curve->evaluate(t, v), t);
           return v;
         };
         keep = curve;
@@ -106,7 +112,7 @@ Sampled sample(const anim::AnimSpec& spec, const std::vector<double>& at, int sa
       hi = track->endTime();
       eval = [track](double t) {
         std::vector<double> v(track->dimension());
-        track->evaluate(t, v);
+        checkEvaluated(track->evaluate(t, v), t);
         return v;
       };
       keep = track;
@@ -118,7 +124,8 @@ Sampled sample(const anim::AnimSpec& spec, const std::vector<double>& at, int sa
       lo = path->startTime();
       hi = path->endTime();
       eval = [path](double t) {
-        const Camera c = path->evaluate(t);
+        Camera c;
+        checkEvaluated(path->evaluate(t, c), t);
         return std::vector<double>{c.eye.x(),    c.eye.y(), c.eye.z(), c.target.x(), c.target.y(),
                                    c.target.z(), c.up.x(),  c.up.y(),  c.up.z()};
       };

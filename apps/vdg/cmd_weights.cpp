@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli.h"
+#include "vdg/geom/error.h"
 #include "vdg/io/manifest.h"
 #include "view_options.h"
 
@@ -33,7 +34,10 @@ void addWeightsCommand(CLI::App& app) {
   sub->callback([opt] {
     const ViewDependentModel model = ViewDependentModel::build(loadManifest(opt->model));
     const Eigen::Vector3d view = opt->view.resolve(model);
-    const ViewWeights w = model.weights(view, opt->view.sharpness);
+    ViewWeights w;
+    if (!model.weights(view, opt->view.sharpness, w))  // resolve() gives a unit view; sharpness > 0
+      throw Error("weights: the model refused view " + std::to_string(view.x()) + "," + std::to_string(view.y()) + "," +
+                  std::to_string(view.z()) + " (internal error)");
     if (opt->json) {
       nlohmann::ordered_json out;
       out["keys"] = nlohmann::ordered_json::object();

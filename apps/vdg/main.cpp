@@ -10,6 +10,7 @@
 
 #include "cli.h"
 #include "vdg/geom/error.h"
+#include "vdg/version.h"
 
 namespace {
 
@@ -42,7 +43,7 @@ int main(int argc, char** argv) {
       "Run 'vdg SUBCOMMAND --help' for the options of each subcommand."};
   app.name("vdg");
   app.require_subcommand(1);
-  app.set_version_flag("--version", "vdg 0.1.0");
+  app.set_version_flag("--version", std::string("vdg ") + vdg::versionString());
   vdg::cli::addInfoCommand(app);
   vdg::cli::addWeightsCommand(app);
   vdg::cli::addEvalCommand(app);

@@ -1,11 +1,11 @@
 // Options shared by the subcommands that evaluate a model at one view (weights, eval).
 #pragma once
 
-#include <cmath>
 #include <optional>
 #include <string>
 
 #include "cli.h"
+#include "vdg/geom/normalize.h"
 #include "vdg/viewdep/model.h"
 
 namespace vdg::cli {
@@ -29,13 +29,13 @@ struct ViewOptions {
     if (!view_text.empty()) {
       return parseDirection(view_text, "--view");
     }
-    // view = normalize(eye - centre), as ViewDependentModel::viewFromEye, scaled first so that a
-    // far eye (1e300) does not overflow the length.
+    // view = normalize(eye - centre), as ViewDependentModel::viewFromEye, without overflow for a
+    // far eye (1e300).
     const Eigen::Vector3d d = parseVec3(eye_text, "--eye") - model.center();
-    const double largest = d.cwiseAbs().maxCoeff();
-    if (!std::isfinite(largest)) throw UsageError("--eye: too far from the model centre, got " + shown(eye_text));
-    if (!(largest > 0.0)) throw UsageError("--eye: the eye is at the model centre, so there is no view direction");
-    return (d / largest).normalized();
+    if (!d.allFinite()) throw UsageError("--eye: too far from the model centre, got " + shown(eye_text));
+    const std::optional<Eigen::Vector3d> unit = normalizedOrNone(d);
+    if (!unit) throw UsageError("--eye: the eye is at the model centre, so there is no view direction");
+    return *unit;
   }
 };
 

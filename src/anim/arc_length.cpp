@@ -17,21 +17,20 @@
 namespace vdg::anim {
 namespace {
 
-constexpr int kMaxDim = 16;  // speeds of curves up to this dimension use a stack buffer
-constexpr int kNewtonIterations = 60;
-constexpr unsigned kMaxDepth = 20;
+constexpr int kMaxDim = kMaxCurveDimension;  // every curve's speed fits a stack buffer
+constexpr int kNewtonIterations = kMaxArcLengthNewtonSteps;
 
-// |P'(t)| without allocating (dimensions above kMaxDim fall back to a heap vector).
+// |P'(t)| without allocating (Curve::build guarantees dimension() <= kMaxCurveDimension).
 double speed(const Curve& curve, double t) {
   std::array<double, kMaxDim> buf{};
   if (curve.dimension() <= kMaxDim) {
     std::span<double> d(buf.data(), static_cast<std::size_t>(curve.dimension()));
-    curve.derivative(t, d);
+    if (!curve.derivative(t, d)) return std::numeric_limits<double>::quiet_NaN();  // t not finite
     double sum = 0.0;
     for (double v : d) sum += v * v;
     return std::sqrt(sum);
   }
-  return curve.derivativeAt(t).norm();
+  return curve.derivativeAt(t).norm();  // unreachable for built curves
 }
 
 template <int N>
@@ -58,10 +57,72 @@ double gaussPiece(const Curve& curve, double a, double b, int order) {
   }
 }
 
+// One 15-point Gauss-Kronrod rule on [a, b] with its error estimate |K15 - G7|.
+struct Piece {
+  double a = 0.0, b = 0.0, value = 0.0, error = 0.0;
+};
+Piece kronrod(const Curve& curve, double a, double b) {
+  Piece p{a, b, 0.0, 0.0};
+  p.value = boost::math::quadrature::gauss_kronrod<double, 15>::integrate([&](double t) { return speed(curve, t); }, a,
+                                                                          b, 0, 0.0, &p.error);
+  return p;
+}
+
+struct Quadrature {
+  double value = 0.0;
+  bool converged = true;
+};
+
+// Globally adaptive Gauss-Kronrod quadrature of |P'| over [a, b] (as QUADPACK's QAG): the piece
+// with the largest error estimate is halved until the summed estimate is within `tolerance` of
+// the integral, or kMaxArcLengthIntervals pieces exist (converged = false; the estimate so far is
+// returned). Work is therefore bounded by 15 (2 kMaxArcLengthIntervals - 1) speed evaluations,
+// whatever the tolerance, and nothing is allocated (the pieces live on the stack).
+Quadrature adaptivePieceChecked(const Curve& curve, double a, double b, double tolerance) {
+  if (!(b > a)) return {};
+  std::array<Piece, kMaxArcLengthIntervals> pieces;
+  int count = 1;
+  pieces[0] = kronrod(curve, a, b);
+  for (;;) {
+    double total = 0.0, error = 0.0;
+    int worst = 0;
+    for (int i = 0; i < count; ++i) {
+      total += pieces[i].value;
+      error += pieces[i].error;
+      if (pieces[i].error > pieces[worst].error) worst = i;
+    }
+    if (error <= tolerance * std::abs(total)) return {total, true};
+    const Piece p = pieces[worst];
+    const double mid = 0.5 * (p.a + p.b);
+    if (count >= kMaxArcLengthIntervals || !(mid > p.a && mid < p.b) || !std::isfinite(error)) return {total, false};
+    pieces[worst] = kronrod(curve, p.a, mid);
+    pieces[count++] = kronrod(curve, mid, p.b);
+  }
+}
+
 double adaptivePiece(const Curve& curve, double a, double b, double tolerance) {
-  if (!(b > a)) return 0.0;
-  return boost::math::quadrature::gauss_kronrod<double, 15>::integrate([&](double t) { return speed(curve, t); }, a, b,
-                                                                       kMaxDepth, tolerance);
+  return adaptivePieceChecked(curve, a, b, tolerance).value;
+}
+
+void checkTolerance(double tolerance, const std::string& where) {
+  if (!(tolerance >= kMinArcLengthTolerance && tolerance < 1.0)) {
+    std::ostringstream out;
+    out << where << ": 'tolerance' must be in [" << kMinArcLengthTolerance
+        << ", 1) (relative; finer is below the rounding of the quadrature sums), got " << tolerance;
+    throw Error(out.str());
+  }
+}
+
+void throwOverflow(const std::string& where) {
+  throw Error(where + ": the curve's length overflows (coordinates too large for doubles)");
+}
+
+// Throws vdg::Error when the quadrature of one segment ran out of pieces.
+void throwUnconverged(const std::string& where, int segment, double tolerance) {
+  std::ostringstream out;
+  out << where << ": segment " << segment << ": the arc length did not reach 'tolerance' " << tolerance << " within "
+      << kMaxArcLengthIntervals << " quadrature intervals (kMaxArcLengthIntervals); use a larger 'tolerance'";
+  throw Error(out.str());
 }
 
 // Applies `piece` to each sub-interval of [t0, t1] that lies within one segment.
@@ -99,7 +160,15 @@ double gaussLegendreLength(const Curve& curve, double t0, double t1, int order) 
 }
 
 double adaptiveLength(const Curve& curve, double t0, double t1, double tolerance) {
-  return perSegment(curve, t0, t1, [&](double a, double b) { return adaptivePiece(curve, a, b, tolerance); });
+  checkTolerance(tolerance, "adaptive arc length");
+  int segment = 0;
+  return perSegment(curve, t0, t1, [&](double a, double b) {
+    const Quadrature q = adaptivePieceChecked(curve, a, b, tolerance);
+    if (!std::isfinite(q.value)) throwOverflow("adaptive arc length");
+    if (!q.converged) throwUnconverged("adaptive arc length", segment, tolerance);
+    ++segment;
+    return q.value;
+  });
 }
 
 ArcLengthCurve ArcLengthCurve::build(const Curve& curve, const ArcLengthOptions& options, const std::string& where) {
@@ -108,9 +177,16 @@ ArcLengthCurve ArcLengthCurve::build(const Curve& curve, const ArcLengthOptions&
     out << where << ": 'samples' must be at least 2, got " << options.table_samples;
     throw Error(out.str());
   }
-  if (options.method == ArcLengthMethod::kAdaptive && !(options.tolerance > 0.0 && options.tolerance < 1.0)) {
+  if (options.method == ArcLengthMethod::kTable && options.table_samples > kMaxArcLengthTableSamples) {
     std::ostringstream out;
-    out << where << ": 'tolerance' must be in (0, 1), got " << options.tolerance;
+    out << where << ": 'samples' must be at most " << kMaxArcLengthTableSamples << ", got " << options.table_samples;
+    throw Error(out.str());
+  }
+  if (options.method == ArcLengthMethod::kAdaptive) checkTolerance(options.tolerance, where);
+  if (curve.dimension() > kMaxCurveDimension) {  // a built Curve never is; kept for the contract
+    std::ostringstream out;
+    out << where << ": curves of dimension " << curve.dimension() << " exceed kMaxCurveDimension ("
+        << kMaxCurveDimension << ")";
     throw Error(out.str());
   }
   ArcLengthCurve a;
@@ -127,7 +203,8 @@ ArcLengthCurve ArcLengthCurve::build(const Curve& curve, const ArcLengthOptions&
     a.table_s_[0] = 0.0;
     for (int i = 1; i < n; ++i) {
       const double t = i == n - 1 ? t1 : t0 + (t1 - t0) * i / (n - 1);
-      curve.evaluate(t, std::span<double>(cur.data(), static_cast<std::size_t>(cur.size())));
+      if (!curve.evaluate(t, std::span<double>(cur.data(), static_cast<std::size_t>(cur.size()))))
+        throw Error(where + ": curve evaluation failed at t = " + std::to_string(t) + " (internal error)");
       a.table_t_[i] = t;
       a.table_s_[i] = a.table_s_[i - 1] + (cur - prev).norm();
       prev = cur;
@@ -142,10 +219,14 @@ ArcLengthCurve ArcLengthCurve::build(const Curve& curve, const ArcLengthOptions&
     const auto& times = curve.keyTimes();
     a.segment_start_.assign(times.size(), 0.0);
     for (int s = 0; s < curve.segmentCount(); ++s) {
-      a.segment_start_[s + 1] = a.segment_start_[s] + adaptivePiece(curve, times[s], times[s + 1], options.tolerance);
+      const Quadrature q = adaptivePieceChecked(curve, times[s], times[s + 1], options.tolerance);
+      if (!std::isfinite(q.value)) throwOverflow(where);
+      if (!q.converged) throwUnconverged(where, s, options.tolerance);
+      a.segment_start_[s + 1] = a.segment_start_[s] + q.value;
     }
     a.total_ = a.segment_start_.back();
   }
+  if (!std::isfinite(a.total_)) throwOverflow(where);
   return a;
 }
 
@@ -195,8 +276,16 @@ double ArcLengthCurve::timeAtDistance(double s) const {
   if (seg_len <= 0.0) return lo;
   double t = lo + (hi - lo) * std::clamp(target / seg_len, 0.0, 1.0);
   const double tol = options_.tolerance * std::max(total_, std::numeric_limits<double>::min());
+  // s(t) - s(t_seg) is kept up to date by integrating only between successive iterates, so each
+  // step costs one short quadrature (bounded by kMaxArcLengthIntervals) and the whole lookup at
+  // most kMaxArcLengthNewtonSteps of them.
+  double t_at = times[seg];
+  double s_at = 0.0;
   for (int iter = 0; iter < kNewtonIterations; ++iter) {
-    const double g = adaptivePiece(curve_, times[seg], t, options_.tolerance) - target;
+    s_at += t >= t_at ? adaptivePiece(curve_, t_at, t, options_.tolerance)
+                      : -adaptivePiece(curve_, t, t_at, options_.tolerance);
+    t_at = t;
+    const double g = s_at - target;
     if (std::abs(g) <= tol) break;
     if (g > 0.0) {
       hi = t;
@@ -212,12 +301,14 @@ double ArcLengthCurve::timeAtDistance(double s) const {
   return t;
 }
 
-void ArcLengthCurve::evaluateAtDistance(double s, std::span<double> out) const {
-  curve_.evaluate(timeAtDistance(s), out);
+bool ArcLengthCurve::evaluateAtDistance(double s, std::span<double> out) const {
+  if (!std::isfinite(s)) return false;
+  return curve_.evaluate(timeAtDistance(s), out);
 }
 
-void ArcLengthCurve::evaluateAtFraction(double f, std::span<double> out) const {
-  curve_.evaluate(timeAtFraction(f), out);
+bool ArcLengthCurve::evaluateAtFraction(double f, std::span<double> out) const {
+  if (!std::isfinite(f)) return false;
+  return curve_.evaluate(timeAtFraction(f), out);
 }
 
 }  // namespace vdg::anim

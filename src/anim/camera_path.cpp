@@ -9,10 +9,12 @@
 #include <cmath>
 #include <numbers>
 #include <sstream>
+#include <string>
 
 #include <Eigen/Geometry>
 
 #include "vdg/geom/error.h"
+#include "vdg/geom/normalize.h"
 
 namespace vdg::anim {
 namespace {
@@ -32,6 +34,19 @@ double smoothstep(double e0, double e1, double x) {
 Eigen::Vector3d anyPerpendicular(const Eigen::Vector3d& f) {
   const Eigen::Vector3d other = std::abs(f.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
   return (other - other.dot(f) * f).normalized();
+}
+
+// The unit direction of v, or nothing when v is shorter than kTinyDirection (the eye on the
+// target, a zero tangent) or not finite. Robust: a direction 1e200 long is still a direction.
+std::optional<Eigen::Vector3d> directionOf(const Eigen::Vector3d& v) {
+  if (!(robustNorm(v) > kTinyDirection)) return std::nullopt;
+  return normalizedOrNone(v);
+}
+
+// A point `dir` (unit) away from `eye` that differs from it in doubles: far eyes (|eye| > 1e16)
+// would otherwise absorb a unit offset, giving target == eye.
+Eigen::Vector3d pointAhead(const Eigen::Vector3d& eye, const Eigen::Vector3d& dir) {
+  return eye + dir * std::max(1.0, robustNorm(eye));
 }
 
 // v made orthogonal to unit f and normalised; `fallback` (already orthogonal) when degenerate.
@@ -66,6 +81,12 @@ CameraPath CameraPath::build(const RawCameraPath& raw, const std::string& where)
     out << "'end_time' (" << raw.end_time << ") must be greater than 'start_time' (" << raw.start_time << ")";
     fail(out.str());
   }
+  if (!isUsableTimeSpan(raw.end_time - raw.start_time)) {
+    std::ostringstream out;
+    out << "'end_time' (" << raw.end_time << ") - 'start_time' (" << raw.start_time << ") "
+        << (std::isinf(raw.end_time - raw.start_time) ? "overflows a double" : "is too small to divide by");
+    fail(out.str());
+  }
   c.speed_ = raw.speed;
   c.start_time_ = raw.start_time;
   c.end_time_ = raw.end_time;
@@ -77,8 +98,9 @@ CameraPath CameraPath::build(const RawCameraPath& raw, const std::string& where)
     c.target_path_ = Curve::build(*raw.target_path, where + ": 'target_path'");
     if (c.target_path_->dimension() != 3) fail("'target_path': expected 3D points");
   }
-  if (!raw.up.allFinite() || !(raw.up.norm() > 0.0)) fail("'up' must be a finite non-zero vector");
-  c.world_up_ = raw.up.normalized();
+  const std::optional<Eigen::Vector3d> world_up = normalizedOrNone(raw.up);  // any finite non-zero length
+  if (!world_up) fail("'up' must be a finite non-zero vector");
+  c.world_up_ = *world_up;
   if (raw.tilt_deg) {
     if (raw.tilt_deg->type != TrackType::kScalar) fail("'tilt': expected a scalar track (degrees)");
     c.tilt_ = Track::build(*raw.tilt_deg, where + ": 'tilt'");
@@ -91,7 +113,11 @@ CameraPath CameraPath::build(const RawCameraPath& raw, const std::string& where)
   }
   c.fov_deg_ = raw.fov_deg;
   c.ortho_height_ = raw.ortho_height;
-  if (raw.up_samples < 2) fail("'up_samples' must be at least 2");
+  if (raw.up_samples < 2 || raw.up_samples > kMaxCameraPathUpSamples) {
+    std::ostringstream out;
+    out << "'up_samples' must be in 2.." << kMaxCameraPathUpSamples << ", got " << raw.up_samples;
+    fail(out.str());
+  }
 
   // Up-vector table (see the header): transport, then roll towards the projected world up.
   const int n = raw.up_samples;
@@ -100,19 +126,20 @@ CameraPath CameraPath::build(const RawCameraPath& raw, const std::string& where)
   std::vector<Eigen::Vector3d> raw_forward(n);
   for (int i = 0; i < n; ++i) {
     const double t = c.start_time_ + (c.end_time_ - c.start_time_) * i / (n - 1);
-    raw_forward[i] = c.rawForward(t, c.eyeAt(t));
+    if (!c.rawForward(t, c.eyeAt(t), raw_forward[i]))
+      throw Error(where + ": path evaluation failed at t = " + std::to_string(t) + " (internal error)");
   }
   // Undefined directions take the nearest earlier one (the first defined one at the start).
   Eigen::Vector3d last = -Eigen::Vector3d::UnitZ();
   for (int i = 0; i < n; ++i) {
-    if (raw_forward[i].norm() > kTinyDirection) {
-      last = raw_forward[i].normalized();
+    if (const auto d = directionOf(raw_forward[i])) {
+      last = *d;
       break;
     }
   }
   const double sin_lo = std::sin(kTransportOnlyDeg * kPi / 180.0), sin_hi = std::sin(kUprightDeg * kPi / 180.0);
   for (int i = 0; i < n; ++i) {
-    if (raw_forward[i].norm() > kTinyDirection) last = raw_forward[i].normalized();
+    if (const auto d = directionOf(raw_forward[i])) last = *d;
     const Eigen::Vector3d f = last;
     c.table_forward_[i] = f;
     const Eigen::Vector3d projected = c.world_up_ - c.world_up_.dot(f) * f;
@@ -137,71 +164,86 @@ CameraPath CameraPath::build(const RawCameraPath& raw, const std::string& where)
   return c;
 }
 
-Eigen::Vector3d CameraPath::eyeAt(double t) const {
+bool CameraPath::eyePosition(double t, Eigen::Vector3d& out) const {
   const double u = std::clamp((t - start_time_) / (end_time_ - start_time_), 0.0, 1.0);
-  Eigen::Vector3d eye;
-  path_.evaluateAtDistance(speed_.evaluate(u) * path_.totalLength(), std::span<double>(eye.data(), 3));
-  return eye;
+  return path_.evaluateAtDistance(speed_.evaluate(u) * path_.totalLength(), std::span<double>(out.data(), 3));
 }
 
-Eigen::Vector3d CameraPath::rawForward(double t, const Eigen::Vector3d& eye) const {
+Eigen::Vector3d CameraPath::eyeAt(double t) const {
+  Eigen::Vector3d e;
+  if (!std::isfinite(t) || !eyePosition(t, e)) throw Error("camera path: time " + std::to_string(t) + " is not finite");
+  return e;
+}
+
+Camera CameraPath::cameraAt(double t) const {
+  Camera c;
+  if (!evaluate(t, c)) throw Error("camera path: time " + std::to_string(t) + " is not finite");
+  return c;
+}
+
+bool CameraPath::rawForward(double t, const Eigen::Vector3d& eye, Eigen::Vector3d& out) const {
   switch (view_) {
     case ViewMode::kCenterOfInterest:
-      return center_ - eye;
+      out = center_ - eye;
+      return true;
     case ViewMode::kMovingTarget: {
       Eigen::Vector3d target;
-      target_path_->evaluate(t, std::span<double>(target.data(), 3));
-      return target - eye;
+      if (!target_path_->evaluate(t, std::span<double>(target.data(), 3))) return false;
+      out = target - eye;
+      return true;
     }
     case ViewMode::kAlongTangent: {
       const double u = std::clamp((t - start_time_) / (end_time_ - start_time_), 0.0, 1.0);
       const double ct = path_.timeAtDistance(speed_.evaluate(u) * path_.totalLength());
-      Eigen::Vector3d d;
-      path_.curve().derivative(ct, std::span<double>(d.data(), 3));
-      return d;
+      return path_.curve().derivative(ct, std::span<double>(out.data(), 3));
     }
   }
-  return Eigen::Vector3d::Zero();
+  return false;
 }
 
-Camera CameraPath::evaluate(double t) const {
+bool CameraPath::evaluate(double t, Camera& out) const {
+  if (!std::isfinite(t)) return false;
   const int n = static_cast<int>(table_up_.size());
   const double x = std::clamp((t - start_time_) / (end_time_ - start_time_), 0.0, 1.0) * (n - 1);
   const int i = std::min(static_cast<int>(x), n - 2);
   const double w = x - i;
   Camera cam;
-  cam.eye = eyeAt(t);
-  Eigen::Vector3d f = rawForward(t, cam.eye);
-  if (f.norm() > kTinyDirection) {
-    f.normalize();
+  Eigen::Vector3d raw_f;
+  if (!eyePosition(t, cam.eye) || !rawForward(t, cam.eye, raw_f)) return false;
+  Eigen::Vector3d f;
+  if (const auto d = directionOf(raw_f)) {
+    f = *d;
   } else {  // undefined here: the tabulated direction
-    f = (table_forward_[i] * (1 - w) + table_forward_[i + 1] * w).normalized();
+    f = normalizedOrNone(Eigen::Vector3d(table_forward_[i] * (1 - w) + table_forward_[i + 1] * w))
+            .value_or(table_forward_[w < 0.5 ? i : i + 1]);
   }
   Eigen::Vector3d up_mix = table_up_[i] * (1 - w) + table_up_[i + 1] * w;
   if (up_mix.norm() < 1e-9) up_mix = w < 0.5 ? table_up_[i] : table_up_[i + 1];
   Eigen::Vector3d up =
       orthonormalise(up_mix, f, orthonormalise(table_up_[w < 0.5 ? i : i + 1], f, anyPerpendicular(f)));
   if (tilt_) {
-    const double tilt = tilt_->scalarAt(t) * kPi / 180.0;
-    up = Eigen::AngleAxisd(tilt, -f) * up;
+    double tilt_deg = 0.0;
+    if (!tilt_->evaluate(t, std::span<double>(&tilt_deg, 1))) return false;
+    up = Eigen::AngleAxisd(tilt_deg * kPi / 180.0, -f) * up;
   }
   switch (view_) {
     case ViewMode::kCenterOfInterest:
-      cam.target = (center_ - cam.eye).norm() > kTinyDirection ? center_ : Eigen::Vector3d(cam.eye + f);
+      cam.target = directionOf(center_ - cam.eye) ? center_ : pointAhead(cam.eye, f);
       break;
     case ViewMode::kMovingTarget: {
-      const Eigen::Vector3d target = cam.eye + rawForward(t, cam.eye);
-      cam.target = (target - cam.eye).norm() > kTinyDirection ? target : Eigen::Vector3d(cam.eye + f);
+      const Eigen::Vector3d target = cam.eye + raw_f;
+      cam.target = directionOf(target - cam.eye) ? target : pointAhead(cam.eye, f);
       break;
     }
     case ViewMode::kAlongTangent:
-      cam.target = cam.eye + f;
+      cam.target = pointAhead(cam.eye, f);
       break;
   }
   cam.up = up;
   cam.fov_deg = fov_deg_;
   cam.ortho_height = ortho_height_;
-  return cam;
+  out = cam;
+  return true;
 }
 
 }  // namespace vdg::anim

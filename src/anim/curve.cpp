@@ -6,7 +6,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
+#include <string>
 
 #include "vdg/geom/error.h"
 
@@ -27,6 +29,8 @@ Vec parabolaDerivative(double x0, const Vec& y0, double x1, const Vec& y1, doubl
 }
 
 }  // namespace
+
+bool isUsableTimeSpan(double span) { return std::isfinite(span) && span >= std::numeric_limits<double>::min(); }
 
 const char* curveKindName(CurveKind kind) {
   switch (kind) {
@@ -65,6 +69,11 @@ void RawCurve::validate(const std::string& where) const {
   }
   const auto dim = points[0].size();
   if (dim < 1) fail("'points'[0]: a point needs at least one coordinate");
+  if (dim > kMaxCurveDimension) {
+    std::ostringstream out;
+    out << "'points'[0]: " << dim << " coordinates; a curve point may have at most " << kMaxCurveDimension;
+    fail(out.str());
+  }
   for (std::size_t i = 0; i < n; ++i) {
     std::ostringstream out;
     if (points[i].size() != dim) {
@@ -92,6 +101,11 @@ void RawCurve::validate(const std::string& where) const {
     }
     if (i > 0 && !(times[i] > times[i - 1])) {
       out << "'times'[" << i << "]: key times must strictly increase (" << times[i - 1] << " then " << times[i] << ")";
+      fail(out.str());
+    }
+    if (i > 0 && !isUsableTimeSpan(times[i] - times[i - 1])) {
+      out << "'times'[" << i << "]: the span from " << times[i - 1] << " to " << times[i]
+          << (std::isinf(times[i] - times[i - 1]) ? " overflows a double" : " is too small to divide by");
       fail(out.str());
     }
   }
@@ -235,6 +249,16 @@ Curve Curve::build(const RawCurve& raw, const std::string& where) {
       }
       break;
   }
+  // Finite keys can still give infinite slopes (1e308 then -1e308, or a tiny time span): reject
+  // them here rather than evaluate to inf or NaN later.
+  for (std::size_t i = 0; i < c.controls_.size(); ++i) {
+    if (!std::isfinite(c.controls_[i])) {
+      std::ostringstream out;
+      out << where << ": 'points': segment " << i / (4 * static_cast<std::size_t>(dim))
+          << " overflows: its coordinates or slopes are too large for doubles";
+      throw Error(out.str());
+    }
+  }
   return c;
 }
 
@@ -255,11 +279,15 @@ int Curve::segmentAt(double t, double* u) const {
 }
 
 std::span<const double> Curve::segmentControls(int segment) const {
+  if (segment < 0 || segment >= segmentCount())
+    throw Error("curve: segment " + std::to_string(segment) + " out of range (the curve has " +
+                std::to_string(segmentCount()) + " segments)");
   return std::span<const double>(controls_).subspan(static_cast<std::size_t>(segment) * 4 * dimension_,
                                                     4 * static_cast<std::size_t>(dimension_));
 }
 
-void Curve::evaluate(double t, std::span<double> out) const {
+bool Curve::evaluate(double t, std::span<double> out) const {
+  if (out.size() != static_cast<std::size_t>(dimension_) || !std::isfinite(t)) return false;
   double u = 0.0;
   const int s = segmentAt(t, &u);
   const double* c = controls_.data() + static_cast<std::size_t>(s) * 4 * dimension_;
@@ -273,9 +301,11 @@ void Curve::evaluate(double t, std::span<double> out) const {
     const double be = b + u * (e - b);
     out[d] = ab + u * (be - ab);
   }
+  return true;
 }
 
-void Curve::derivative(double t, std::span<double> out) const {
+bool Curve::derivative(double t, std::span<double> out) const {
+  if (out.size() != static_cast<std::size_t>(dimension_) || !std::isfinite(t)) return false;
   double u = 0.0;
   const int s = segmentAt(t, &u);
   const double* c = controls_.data() + static_cast<std::size_t>(s) * 4 * dimension_;
@@ -287,17 +317,20 @@ void Curve::derivative(double t, std::span<double> out) const {
     const double b = d1 + u * (d2 - d1);
     out[d] = scale * (a + u * (b - a));
   }
+  return true;
 }
 
 Eigen::VectorXd Curve::at(double t) const {
   Eigen::VectorXd v(dimension_);
-  evaluate(t, std::span<double>(v.data(), static_cast<std::size_t>(dimension_)));
+  if (!evaluate(t, std::span<double>(v.data(), static_cast<std::size_t>(dimension_))))
+    throw Error("curve: time " + std::to_string(t) + " is not finite");
   return v;
 }
 
 Eigen::VectorXd Curve::derivativeAt(double t) const {
   Eigen::VectorXd v(dimension_);
-  derivative(t, std::span<double>(v.data(), static_cast<std::size_t>(dimension_)));
+  if (!derivative(t, std::span<double>(v.data(), static_cast<std::size_t>(dimension_))))
+    throw Error("curve: time " + std::to_string(t) + " is not finite");
   return v;
 }
 

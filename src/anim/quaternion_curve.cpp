@@ -5,8 +5,11 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <string>
 
+#include "vdg/anim/curve.h"
 #include "vdg/geom/error.h"
+#include "vdg/geom/normalize.h"
 
 namespace vdg::anim {
 
@@ -36,13 +39,13 @@ QuaternionCurve QuaternionCurve::build(const std::vector<Quaternion>& keys, cons
   }
   QuaternionCurve c;
   for (int i = 0; i < n; ++i) {
-    const double norm = keys[i].norm();
-    if (!keys[i].coeffs().allFinite() || !(norm > 0.0)) {
+    const std::optional<Quaternion> unit = normalizedOrNone(keys[i]);  // any finite length, 1e-200 or 1e200
+    if (!unit) {
       std::ostringstream out;
       out << "key " << i << ": quaternion must be finite and non-zero";
       fail(out.str());
     }
-    Quaternion q(keys[i].coeffs() / norm);
+    Quaternion q = *unit;
     if (i > 0 && c.keys_.back().coeffs().dot(q.coeffs()) < 0.0) q.coeffs() = -q.coeffs();
     c.keys_.push_back(q);
   }
@@ -55,6 +58,12 @@ QuaternionCurve QuaternionCurve::build(const std::vector<Quaternion>& keys, cons
     if (!std::isfinite(times[i]) || (i > 0 && !(times[i] > times[i - 1]))) {
       std::ostringstream out;
       out << "'times'[" << i << "]: key times must be finite and strictly increase";
+      fail(out.str());
+    }
+    if (i > 0 && !isUsableTimeSpan(times[i] - times[i - 1])) {
+      std::ostringstream out;
+      out << "'times'[" << i << "]: the span from " << times[i - 1] << " to " << times[i]
+          << (std::isinf(times[i] - times[i - 1]) ? " overflows a double" : " is too small to divide by");
       fail(out.str());
     }
   }
@@ -81,7 +90,8 @@ QuaternionCurve QuaternionCurve::build(const std::vector<Quaternion>& keys, cons
   return c;
 }
 
-Quaternion QuaternionCurve::evaluate(double t) const {
+bool QuaternionCurve::evaluate(double t, Quaternion& out) const {
+  if (!std::isfinite(t)) return false;
   const int segments = segmentCount();
   int s = 0;
   double u = 0.0;
@@ -93,7 +103,14 @@ Quaternion QuaternionCurve::evaluate(double t) const {
     s = std::clamp(static_cast<int>(it - times_.begin()) - 1, 0, segments - 1);
     u = std::clamp((t - times_[s]) / (times_[s + 1] - times_[s]), 0.0, 1.0);
   }
-  return sphericalBezier(keys_[s], a_[s], b_[s + 1], keys_[s + 1], u);
+  out = sphericalBezier(keys_[s], a_[s], b_[s + 1], keys_[s + 1], u);
+  return true;
+}
+
+Quaternion QuaternionCurve::at(double t) const {
+  Quaternion q;
+  if (!evaluate(t, q)) throw Error("quaternion curve: time " + std::to_string(t) + " is not finite");
+  return q;
 }
 
 }  // namespace vdg::anim

@@ -7,15 +7,15 @@
 #include <cmath>
 #include <numbers>
 
+#include "vdg/geom/normalize.h"
+
 namespace vdg::anim {
 namespace {
 
 constexpr double kSlerpLinearThreshold = 1e-6;  // below this angle slerp falls back to nlerp
 
-Quaternion normalised(const Quaternion& q) {
-  const double n = q.norm();
-  return n > 0.0 ? Quaternion(q.coeffs() / n) : Quaternion::Identity();
-}
+// Robust (vdg/geom/normalize.h): a quaternion 1e200 or 1e-200 long keeps its rotation.
+Quaternion normalised(const Quaternion& q) { return vdg::normalizedOrNone(q).value_or(Quaternion::Identity()); }
 
 }  // namespace
 
@@ -81,9 +81,9 @@ Eigen::Vector3d translationPart(const Eigen::Matrix4d& m) { return m.topRightCor
 
 // Parent 4.3: Rot((x,y,z), theta) = [cos(theta/2), sin(theta/2) (x,y,z)].
 Quaternion axisAngleToQuaternion(const Eigen::Vector3d& axis, double angle) {
-  const double n = axis.norm();
-  if (!(n > 0.0)) return Quaternion::Identity();
-  const Eigen::Vector3d v = axis / n * std::sin(angle / 2);
+  const std::optional<Eigen::Vector3d> unit = vdg::normalizedOrNone(axis);  // any finite length
+  if (!unit) return Quaternion::Identity();
+  const Eigen::Vector3d v = *unit * std::sin(angle / 2);
   return Quaternion(std::cos(angle / 2), v.x(), v.y(), v.z());
 }
 
@@ -121,18 +121,32 @@ Quaternion multiply(const Quaternion& q1, const Quaternion& q2) {
 }
 
 // Parent 4.3: q^-1 = (1/|q|^2) [s, -v].
+// Computed as conj(q / m) / |q / m|^2 / m with m = max |q_i|, so that |q|^2 neither overflows
+// (|q| > 1e154) nor underflows (|q| < 1e-154).
 Quaternion inverse(const Quaternion& q) {
-  const double n2 = q.squaredNorm();
-  return Quaternion(q.w() / n2, -q.x() / n2, -q.y() / n2, -q.z() / n2);
+  const double m = q.coeffs().cwiseAbs().maxCoeff();
+  if (!(m > 0.0) || !std::isfinite(m)) {  // contract violation: the plain formula (inf or NaN)
+    const double n2 = q.squaredNorm();
+    return Quaternion(q.w() / n2, -q.x() / n2, -q.y() / n2, -q.z() / n2);
+  }
+  const Eigen::Vector4d s = q.coeffs() / m;
+  const double k = 1.0 / (s.squaredNorm() * m);
+  return Quaternion(s.w() * k, -s.x() * k, -s.y() * k, -s.z() * k);
 }
 
-Eigen::Vector3d rotate(const Quaternion& q, const Eigen::Vector3d& v) {
+// Any non-zero multiple of q is the same rotation, so q is normalised first: q [0, v] q^-1 then
+// stays finite for huge and tiny q alike.
+Eigen::Vector3d rotate(const Quaternion& q_in, const Eigen::Vector3d& v) {
+  const Quaternion q = normalised(q_in);
   const Quaternion p(0.0, v.x(), v.y(), v.z());
   return multiply(multiply(q, p), inverse(q)).vec();
 }
 
 bool sameRotation(const Quaternion& q1, const Quaternion& q2, double tol) {
-  return std::abs(std::abs(q1.coeffs().dot(q2.coeffs())) - q1.norm() * q2.norm()) <= tol;
+  // On the unit quaternions (robustly normalised), so that huge and tiny ones compare too.
+  const std::optional<Quaternion> a = vdg::normalizedOrNone(q1), b = vdg::normalizedOrNone(q2);
+  if (!a || !b) return false;
+  return std::abs(std::abs(a->coeffs().dot(b->coeffs())) - 1.0) <= tol;
 }
 
 double angleBetween(const Quaternion& q1, const Quaternion& q2) {

@@ -6,8 +6,10 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <string>
 
 #include "vdg/geom/error.h"
+#include "vdg/geom/normalize.h"
 
 namespace vdg::anim {
 namespace {
@@ -98,14 +100,36 @@ void RawTrack::validate(const std::string& where) const {
       out << at.str() << "'time' " << k.time << " must be greater than the previous key's " << keys[i - 1].time;
       fail(out.str());
     }
+    // Spans are divided by (segment parameters) and the whole range is the loop period.
+    if (i > 0) {
+      const double span = k.time - keys[i - 1].time, range = k.time - keys[0].time;
+      std::ostringstream out;
+      if (!isUsableTimeSpan(span)) {
+        out << at.str() << "'time' " << k.time << ": the span from the previous key's " << keys[i - 1].time
+            << (std::isinf(span) ? " overflows a double" : " is too small to divide by");
+        fail(out.str());
+      }
+      if (!isUsableTimeSpan(range)) {
+        out << at.str() << "'time' " << k.time << ": the span from the first key's " << keys[0].time
+            << " overflows a double";
+        fail(out.str());
+      }
+    }
     if (k.value.size() != expected || expected < 1) {
       std::ostringstream out;
       out << at.str() << "'value': expected " << expected << (expected == 1 ? " number" : " numbers")
           << (rotation ? " (quaternion w, x, y, z)" : "") << ", got " << k.value.size();
       fail(out.str());
     }
+    if (expected > kMaxCurveDimension) {
+      std::ostringstream out;
+      out << at.str() << "'value': " << expected << " numbers; a track value may have at most " << kMaxCurveDimension;
+      fail(out.str());
+    }
     if (!k.value.allFinite()) fail(at.str() + "'value' must be finite");
-    if (rotation && !(k.value.norm() > 0.0)) fail(at.str() + "'value': a rotation quaternion must not be zero");
+    // Any finite non-zero length is a rotation (1e-200 too): a robust norm, not sum of squares.
+    if (rotation && !(robustNorm(std::span<const double>(k.value.data(), 4)) > 0.0))
+      fail(at.str() + "'value': a rotation quaternion must not be zero");
     for (const auto* handle : {&k.in_handle, &k.out_handle}) {
       if (!handle->has_value()) continue;
       const char* key_name = handle == &k.in_handle ? "'in'" : "'out'";
@@ -139,8 +163,8 @@ Track Track::build(const RawTrack& raw, const std::string& where) {
     std::vector<Quaternion> qs;
     for (int i = 0; i < n; ++i) {
       const Eigen::VectorXd& v = raw.keys[i].value;
-      Quaternion q(v[0], v[1], v[2], v[3]);
-      q.normalize();
+      // Robust normalisation: a quaternion 1e200 long is still its rotation, not the identity.
+      Quaternion q = normalizedOrNone(Quaternion(v[0], v[1], v[2], v[3])).value_or(Quaternion::Identity());
       if (i > 0 && qs.back().coeffs().dot(q.coeffs()) < 0.0) q.coeffs() = -q.coeffs();
       qs.push_back(q);
       t.values_.insert(t.values_.end(), {q.w(), q.x(), q.y(), q.z()});
@@ -188,6 +212,7 @@ double Track::curveTime(double t) const {
   if (std::isnan(t)) t = t0;
   if (extrapolation_ == Extrapolation::kLoop && period > 0.0 && (t < t0 || t >= t1)) {
     double r = std::fmod(t - t0, period);
+    if (!std::isfinite(r)) r = 0.0;  // t = +-inf (or t - t0 overflowing): no phase; the first key
     if (r < 0.0) r += period;
     t = t0 + r;
   }
@@ -200,7 +225,8 @@ double Track::curveTime(double t) const {
   return times_[s] + eases_[s].evaluate((t - times_[s]) / h) * h;
 }
 
-void Track::evaluate(double t, std::span<double> out) const {
+bool Track::evaluate(double t, std::span<double> out) const {
+  if (out.size() != static_cast<std::size_t>(dimension_) || !std::isfinite(t)) return false;
   const double ct = curveTime(t);
   const int n = keyCount();
   const auto key = [&](int i) { return values_.data() + static_cast<std::size_t>(i) * dimension_; };
@@ -212,12 +238,12 @@ void Track::evaluate(double t, std::span<double> out) const {
   }
   if (n == 1 || interpolation_ == Interpolation::kStep) {
     std::copy(key(s), key(s) + dimension_, out.begin());
-    return;
+    return true;
   }
   if (type_ == TrackType::kRotation) {
     Quaternion q;
     if (quaternion_curve_) {
-      q = quaternion_curve_->evaluate(ct);
+      if (!quaternion_curve_->evaluate(ct, q)) return false;
     } else {  // slerp between the two keys of the segment
       const int seg = std::min(s, n - 2);
       const double u = std::clamp((ct - times_[seg]) / (times_[seg + 1] - times_[seg]), 0.0, 1.0);
@@ -229,27 +255,35 @@ void Track::evaluate(double t, std::span<double> out) const {
     out[1] = q.x();
     out[2] = q.y();
     out[3] = q.z();
-    return;
+    return true;
   }
-  curve_->evaluate(ct, out);
+  return curve_->evaluate(ct, out);
 }
+
+namespace {
+[[noreturn]] void throwBadTime(const std::string& name, double t) {
+  throw Error("track '" + name + "': time " + std::to_string(t) + " is not finite");
+}
+}  // namespace
 
 Eigen::VectorXd Track::at(double t) const {
   Eigen::VectorXd v(dimension_);
-  evaluate(t, std::span<double>(v.data(), static_cast<std::size_t>(dimension_)));
+  if (!evaluate(t, std::span<double>(v.data(), static_cast<std::size_t>(dimension_)))) throwBadTime(name_, t);
   return v;
 }
 
 double Track::scalarAt(double t) const {
   if (dimension_ > 4) return at(t)[0];
   double v[4] = {0, 0, 0, 0};
-  evaluate(t, std::span<double>(v, static_cast<std::size_t>(dimension_)));
+  if (!evaluate(t, std::span<double>(v, static_cast<std::size_t>(dimension_)))) throwBadTime(name_, t);
   return v[0];
 }
 
 Quaternion Track::rotationAt(double t) const {
+  if (type_ != TrackType::kRotation)
+    throw Error("track '" + name_ + "': rotationAt on a " + trackTypeName(type_) + " track");
   double v[4] = {1, 0, 0, 0};
-  if (type_ == TrackType::kRotation) evaluate(t, std::span<double>(v, 4));
+  if (!evaluate(t, std::span<double>(v, 4))) throwBadTime(name_, t);
   return Quaternion(v[0], v[1], v[2], v[3]);
 }
 

@@ -5,18 +5,24 @@
 #include <numbers>
 
 #include "vdg/geom/error.h"
+#include "vdg/geom/normalize.h"
 
 namespace vdg {
 
 CameraFrame cameraFrame(const Camera& camera) {
+  // Normalised robustly (vdg/geom/normalize.h): a far eye (1e200) or a huge or tiny up vector
+  // still gives the right frame; only zero and non-finite directions are errors.
   const Eigen::Vector3d back_raw = camera.eye - camera.target;
-  if (!(back_raw.norm() > 0.0)) throw Error("camera: eye and target are the same point");
-  const Eigen::Vector3d back = back_raw.normalized();
-  const Eigen::Vector3d right_raw = camera.up.cross(back);
-  if (!(right_raw.norm() > 1e-12 * camera.up.norm()))
-    throw Error("camera: up vector is parallel to the viewing direction");
-  const Eigen::Vector3d right = right_raw.normalized();
-  return {right, back.cross(right), back};
+  if (!back_raw.allFinite())
+    throw Error("camera: eye or target is not finite, or too far apart to represent eye - target");
+  const std::optional<Eigen::Vector3d> back = normalizedOrNone(back_raw);
+  if (!back) throw Error("camera: eye and target are the same point");
+  const std::optional<Eigen::Vector3d> up = normalizedOrNone(camera.up);
+  if (!up) throw Error("camera: up vector is zero or not finite");
+  const Eigen::Vector3d right_raw = up->cross(*back);
+  if (!(right_raw.norm() > 1e-12)) throw Error("camera: up vector is parallel to the viewing direction");
+  const Eigen::Vector3d right = right_raw.normalized();  // length in (1e-12, 1]: no overflow
+  return {right, back->cross(right), *back};
 }
 
 Eigen::Matrix4d viewMatrix(const Camera& camera) {

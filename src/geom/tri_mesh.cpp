@@ -7,14 +7,31 @@
 #include "vdg/geom/error.h"
 
 namespace vdg {
+namespace {
+
+// Normals only need directions, so the edges may be scaled by any positive factor. Float edge
+// cross products overflow once coordinates pass about 1e19 (and their squared lengths already
+// near 1e9 on high-valence vertices), and underflow for coordinates near 1e-19. Meshes whose
+// largest |coordinate| lies outside [2^-20, 2^20] are therefore scaled by a power of two that
+// brings it to [1/2, 1) (exact: no rounding); all other meshes are left bit-for-bit as they are.
+float normalScale(std::span<const float> positions) {
+  float largest = 0.0f;
+  for (const float p : positions) largest = std::max(largest, std::abs(p));  // NaN is skipped
+  if (!(largest > 0.0f) || !std::isfinite(largest)) return 1.0f;
+  if (largest >= 0x1p-20f && largest <= 0x1p20f) return 1.0f;
+  return std::ldexp(1.0f, std::min(-std::ilogb(largest) - 1, 127));  // 2^127: subnormal inputs
+}
+
+}  // namespace
 
 std::array<float, 3> Bounds::center() const {
   return {(min[0] + max[0]) * 0.5f, (min[1] + max[1]) * 0.5f, (min[2] + max[2]) * 0.5f};
 }
 
 float Bounds::diagonal() const {
-  const float dx = max[0] - min[0], dy = max[1] - min[1], dz = max[2] - min[2];
-  return std::sqrt(dx * dx + dy * dy + dz * dz);
+  // In double: float squares overflow for extents past about 1e19.
+  const double dx = double(max[0]) - min[0], dy = double(max[1]) - min[1], dz = double(max[2]) - min[2];
+  return static_cast<float>(std::sqrt(dx * dx + dy * dy + dz * dz));
 }
 
 Bounds computeBounds(std::span<const float> positions) {
@@ -30,17 +47,24 @@ Bounds computeBounds(std::span<const float> positions) {
   return b;
 }
 
-void computeVertexNormals(std::span<const float> positions, std::span<const std::int32_t> triangles,
+bool computeVertexNormals(std::span<const float> positions, std::span<const std::int32_t> triangles,
                           std::span<float> normals) {
+  if (positions.size() % 3 != 0 || normals.size() != positions.size() || triangles.size() % 3 != 0) return false;
+  const auto vertex_count = static_cast<std::int64_t>(positions.size() / 3);
+  for (const std::int32_t v : triangles)
+    if (v < 0 || v >= vertex_count) return false;
   std::fill(normals.begin(), normals.end(), 0.0f);
-  for (std::size_t t = 0; t + 2 < triangles.size(); t += 3) {
+  const float scale = normalScale(positions);
+  for (std::size_t t = 0; t < triangles.size(); t += 3) {
     const std::size_t a = 3 * static_cast<std::size_t>(triangles[t]);
     const std::size_t b = 3 * static_cast<std::size_t>(triangles[t + 1]);
     const std::size_t c = 3 * static_cast<std::size_t>(triangles[t + 2]);
-    const float e1x = positions[b] - positions[a], e1y = positions[b + 1] - positions[a + 1],
-                e1z = positions[b + 2] - positions[a + 2];
-    const float e2x = positions[c] - positions[a], e2y = positions[c + 1] - positions[a + 1],
-                e2z = positions[c + 2] - positions[a + 2];
+    const float e1x = positions[b] * scale - positions[a] * scale,
+                e1y = positions[b + 1] * scale - positions[a + 1] * scale,
+                e1z = positions[b + 2] * scale - positions[a + 2] * scale;
+    const float e2x = positions[c] * scale - positions[a] * scale,
+                e2y = positions[c + 1] * scale - positions[a + 1] * scale,
+                e2z = positions[c + 2] * scale - positions[a + 2] * scale;
     const float nx = e1y * e2z - e1z * e2y, ny = e1z * e2x - e1x * e2z, nz = e1x * e2y - e1y * e2x;
     for (const std::size_t v : {a, b, c}) {
       normals[v] += nx;
@@ -48,7 +72,7 @@ void computeVertexNormals(std::span<const float> positions, std::span<const std:
       normals[v + 2] += nz;
     }
   }
-  for (std::size_t v = 0; v + 2 < normals.size(); v += 3) {
+  for (std::size_t v = 0; v < normals.size(); v += 3) {
     const float len =
         std::sqrt(normals[v] * normals[v] + normals[v + 1] * normals[v + 1] + normals[v + 2] * normals[v + 2]);
     if (len > 0.0f) {
@@ -58,6 +82,7 @@ void computeVertexNormals(std::span<const float> positions, std::span<const std:
       normals[v + 2] *= inv;
     }
   }
+  return true;
 }
 
 void validateMesh(const TriMesh& mesh, const std::string& what) {

@@ -251,9 +251,12 @@ RawCameraPath parseCameraPath(std::string_view json_text, const std::string& whe
 }
 
 AnimSpec parseAnimSpec(std::string_view json_text, const std::string& where) {
-  const Json j = io::parseJson(json_text, where);
+  Json j = io::parseJson(json_text, where);
   const Ctx ctx{where, ""};
   if (!j.is_object()) ctx.fail("expected an object with 'ease', 'curve', 'track' or 'camera_path'");
+  // Specs written before the format was versioned have no "version": they are version 1.
+  io::formatVersion(j, ctx, "animation specs", 1, kAnimSpecVersion, /*missing=*/1);
+  j.erase("version");
   const int kinds = j.contains("ease") + j.contains("curve") + j.contains("track") + j.contains("camera_path");
   if (kinds != 1) ctx.fail("expected exactly one of the keys 'ease', 'curve', 'track', 'camera_path'");
   AnimSpec spec;

@@ -6,12 +6,19 @@
 #include <cmath>
 #include <numbers>
 #include <set>
+#include <string>
 #include <utility>
 
 #include "vdg/geom/error.h"
 
 namespace vdg::render {
 namespace {
+
+// The renderer's per-frame calls return false on a broken contract; every call here passes sizes
+// and views built by this file, so a refusal is a bug of ours, reported as such.
+void check(bool ok, const char* what) {
+  if (!ok) throw Error(std::string("render: ") + what + " was refused (internal error)");
+}
 
 constexpr double kDegToRad = std::numbers::pi / 180.0;
 constexpr double kFovDeg = 30.0;
@@ -91,8 +98,8 @@ struct ModelRenderer::Impl {
     observer = options.observer_camera ? *options.observer_camera
                                        : orbitCamera(center, fitDistance(radius, kFovDeg, aspect), 35.0, 25.0, kFovDeg);
     if (!model) {
-      computeVertexNormals(positions, mesh.triangles, normals);
-      renderer.updateMesh(mesh_id, positions, normals);
+      check(computeVertexNormals(positions, mesh.triangles, normals), "computeVertexNormals");
+      check(renderer.updateMesh(mesh_id, positions, normals), "updateMesh");
       return;
     }
     buildSphereDiagram();
@@ -157,7 +164,7 @@ struct ModelRenderer::Impl {
     v.z_far = dist + 2.0;
     const float unit = std::max(1.0f, side / 120.0f);
 
-    renderer.drawLines(guide, v, unit, kGuideColor, false);
+    check(renderer.drawLines(guide, v, unit, kGuideColor, false), "drawLines");
     hull_rest.clear();
     active_tri.clear();
     active_dots.clear();
@@ -170,29 +177,29 @@ struct ModelRenderer::Impl {
     hull_style.shading.ka = 1.0f;  // a diagram: mostly its own colours, lightly shaded
     hull_style.shading.vary_by_hue = false;
     hull_style.shading.k = {1.0f, 0.15f, 1.0f, 0.3f};
-    renderer.drawTriangles(hull_rest, v, hull_style);
+    check(renderer.drawTriangles(hull_rest, v, hull_style), "drawTriangles");
     MeshStyle active_style = hull_style;
     active_style.color = kActiveColor;
     active_style.shading.vary_by_hue = false;
-    renderer.drawTriangles(active_tri, v, active_style);
-    renderer.drawLines(wire, v, unit * 1.2f, kWireColor, true, 2.0f);
-    renderer.drawDots(key_dots, v, unit * 6.0f, kKeyColor, true, 4.0f);
-    renderer.drawDots(dummy_dots, v, unit * 5.0f, kDummyColor, true, 4.0f);
-    renderer.drawDots(dummy_dots, v, unit * 2.5f, kPanelColor, true, 5.0f);
+    check(renderer.drawTriangles(active_tri, v, active_style), "drawTriangles");
+    check(renderer.drawLines(wire, v, unit * 1.2f, kWireColor, true, 2.0f), "drawLines");
+    check(renderer.drawDots(key_dots, v, unit * 6.0f, kKeyColor, true, 4.0f), "drawDots");
+    check(renderer.drawDots(dummy_dots, v, unit * 5.0f, kDummyColor, true, 4.0f), "drawDots");
+    check(renderer.drawDots(dummy_dots, v, unit * 2.5f, kPanelColor, true, 5.0f), "drawDots");
     for (int i = 0; i < 3; ++i)
       if (w.key[i] >= 0 && w.weight[i] > 0.0f) push(active_dots, pts[w.key[i]]);
     if (w.triangle >= 0) {  // the triangle's three corners, dummies included (Figure 4's red keys)
       active_dots.clear();
       for (int i = 0; i < 3; ++i) push(active_dots, pts[tris[w.triangle][i]]);
     }
-    renderer.drawDots(active_dots, v, unit * 8.0f, kActiveKeyColor, true, 6.0f);
+    check(renderer.drawDots(active_dots, v, unit * 8.0f, kActiveKeyColor, true, 6.0f), "drawDots");
     view_ray.clear();
     view_dot.clear();
     push(view_ray, Eigen::Vector3d::Zero());
     push(view_ray, view * 1.25);
     push(view_dot, view);
-    renderer.drawLines(view_ray, v, unit * 1.5f, kViewColor, true, 2.0f);
-    renderer.drawDots(view_dot, v, unit * 7.0f, kViewColor, true, 8.0f);
+    check(renderer.drawLines(view_ray, v, unit * 1.5f, kViewColor, true, 2.0f), "drawLines");
+    check(renderer.drawDots(view_dot, v, unit * 7.0f, kViewColor, true, 8.0f), "drawDots");
   }
 };
 
@@ -225,6 +232,7 @@ const TriMesh& ModelRenderer::baseMesh() const { return impl_->base(); }
 
 ViewWeights ModelRenderer::render(const Camera& camera, Image& out) {
   Impl& m = *impl_;
+  (void)cameraFrame(camera);  // throws vdg::Error naming a degenerate camera (eye == target, ...)
   const FrameOptions& o = m.options;
   ViewWeights w;
   w.base = 1.0f;
@@ -234,10 +242,15 @@ ViewWeights ModelRenderer::render(const Camera& camera, Image& out) {
     // (for a parallel camera, the reversed viewing axis).
     view = camera.isOrtho() ? Eigen::Vector3d((camera.eye - camera.target).normalized())
                             : m.model->viewFromEye(camera.eye);
-    w = m.model->weights(view, o.sharpness);
-    m.model->blend(w, m.positions);
-    computeVertexNormals(m.positions, m.model->base().triangles, m.normals);
-    m.renderer.updateMesh(m.mesh_id, m.positions, m.normals);
+    if (view.allFinite() && view.norm() > 0.0) {
+      check(m.model->weights(view, o.sharpness, w), "weights");
+    } else {  // the eye at the model's centre: no view direction, so the base model
+      w = ViewWeights{};
+      w.base = 1.0f;
+    }
+    check(m.model->blend(w, m.positions), "blend");
+    check(computeVertexNormals(m.positions, m.model->base().triangles, m.normals), "computeVertexNormals");
+    check(m.renderer.updateMesh(m.mesh_id, m.positions, m.normals), "updateMesh");
   }
 
   m.renderer.clear(o.background);
@@ -256,21 +269,19 @@ ViewWeights ModelRenderer::render(const Camera& camera, Image& out) {
   main.viewport = {0, 0, o.width, o.height};
   main.camera = camera;
   clip(main);
-  m.renderer.drawMesh(m.mesh_id, main, style);
+  check(m.renderer.drawMesh(m.mesh_id, main, style), "drawMesh");
 
   if (o.observer) {
     View obs;
     obs.viewport = {o.width, 0, o.width, o.height};
     obs.camera = m.observer;
     clip(obs);
-    m.renderer.drawMesh(m.mesh_id, obs, [&] {
-      MeshStyle s = style;
-      s.color = o.observer_color;
-      s.shading.vary_by_hue = false;
-      s.shading.k = effectiveConstants(o.shading, o.observer_color);
-      s.shading.k.k2 *= 0.25f;
-      return s;
-    }());
+    MeshStyle observer_style = style;
+    observer_style.color = o.observer_color;
+    observer_style.shading.vary_by_hue = false;
+    observer_style.shading.k = effectiveConstants(o.shading, o.observer_color);
+    observer_style.shading.k.k2 *= 0.25f;
+    check(m.renderer.drawMesh(m.mesh_id, obs, observer_style), "drawMesh");
     // Where the main camera is: a short orange ray from the centre towards its eye.
     std::array<float, 6> ray;
     const Eigen::Vector3d tip = m.center + view * (1.5 * m.radius);
@@ -279,9 +290,10 @@ ViewWeights ModelRenderer::render(const Camera& camera, Image& out) {
       ray[i] = static_cast<float>(root[i]);
       ray[3 + i] = static_cast<float>(tip[i]);
     }
-    m.renderer.drawLines(ray, obs, std::max(1.5f, o.silhouette_width), kCameraMarkColor, true);
-    m.renderer.drawDots(std::span<const float>(ray).subspan(3), obs, 3.0f * std::max(1.5f, o.silhouette_width),
-                        kCameraMarkColor, true);
+    check(m.renderer.drawLines(ray, obs, std::max(1.5f, o.silhouette_width), kCameraMarkColor, true), "drawLines");
+    check(m.renderer.drawDots(std::span<const float>(ray).subspan(3), obs, 3.0f * std::max(1.5f, o.silhouette_width),
+                              kCameraMarkColor, true),
+          "drawDots");
     // A thin separator between the two panels.
     const Viewport sep{o.width, 0, std::max(1, o.width / 256), o.height};
     m.renderer.clear(kBorderColor, &sep);

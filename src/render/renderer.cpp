@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstring>
 #include <numbers>
+#include <string>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -292,6 +293,28 @@ Renderer::~Renderer() = default;
 Renderer::Renderer(Renderer&&) noexcept = default;
 Renderer& Renderer::operator=(Renderer&&) noexcept = default;
 
+namespace {
+
+bool finite3(const Eigen::Vector3d& v) { return v.allFinite(); }
+
+// The conditions under which viewMatrix / projectionMatrix are defined (see cameraFrame), checked
+// without throwing.
+bool validView(const View& v) {
+  if (v.viewport.width < 1 || v.viewport.height < 1) return false;
+  if (!std::isfinite(v.z_near) || !std::isfinite(v.z_far) || !(v.z_near > 0.0) || !(v.z_far > v.z_near)) return false;
+  const Camera& c = v.camera;
+  if (!finite3(c.eye) || !finite3(c.target) || !finite3(c.up)) return false;
+  if (!std::isfinite(c.ortho_height) || !std::isfinite(c.fov_deg)) return false;
+  const Eigen::Vector3d back = c.eye - c.target;
+  if (!(back.norm() > 0.0)) return false;
+  if (!(c.up.cross(back.normalized()).norm() > 1e-12 * c.up.norm())) return false;
+  return c.isOrtho() || (c.fov_deg > 0.0 && c.fov_deg < 180.0);
+}
+
+bool positiveFinite(float x) { return std::isfinite(x) && x > 0.0f; }
+
+}  // namespace
+
 int Renderer::width() const { return impl_->width; }
 int Renderer::height() const { return impl_->height; }
 int Renderer::samples() const { return impl_->samples; }
@@ -299,6 +322,13 @@ std::string Renderer::glInfo() const { return impl_->info; }
 
 int Renderer::addMesh(std::span<const std::int32_t> triangles, std::size_t vertex_count) {
   Impl& m = *impl_;
+  if (triangles.size() % 3 != 0)
+    throw Error("render: addMesh: " + std::to_string(triangles.size()) + " triangle indices is not a multiple of 3");
+  for (std::size_t i = 0; i < triangles.size(); ++i) {
+    if (triangles[i] < 0 || static_cast<std::size_t>(triangles[i]) >= vertex_count)
+      throw Error("render: addMesh: triangle " + std::to_string(i / 3) + " refers to vertex " +
+                  std::to_string(triangles[i]) + ", but the mesh has " + std::to_string(vertex_count) + " vertices");
+  }
   m.context.makeCurrent();
   auto mesh = std::make_unique<GpuMesh>();
   mesh->triangles.assign(triangles.begin(), triangles.end());
@@ -335,19 +365,22 @@ int Renderer::addMesh(std::span<const std::int32_t> triangles, std::size_t verte
   return static_cast<int>(m.meshes.size()) - 1;
 }
 
-void Renderer::updateMesh(int mesh_id, std::span<const float> positions, std::span<const float> normals) {
+bool Renderer::updateMesh(int mesh_id, std::span<const float> positions, std::span<const float> normals) {
   Impl& m = *impl_;
+  if (mesh_id < 0 || static_cast<std::size_t>(mesh_id) >= m.meshes.size()) return false;
+  GpuMesh& mesh = *m.meshes[static_cast<std::size_t>(mesh_id)];
+  const std::size_t n = mesh.positions.size();
+  if (positions.size() != n || (!normals.empty() && normals.size() != n)) return false;
   m.context.makeCurrent();
-  GpuMesh& mesh = *m.meshes.at(static_cast<std::size_t>(mesh_id));
-  const std::size_t n = std::min(positions.size(), mesh.positions.size());
   std::copy_n(positions.begin(), n, mesh.positions.begin());
   glBindBuffer(GL_ARRAY_BUFFER, mesh.position_buffer.get());
   glBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(n * sizeof(float)), positions.data());
-  mesh.has_normals = normals.size() >= n && !normals.empty();
+  mesh.has_normals = !normals.empty();
   if (mesh.has_normals) {
     glBindBuffer(GL_ARRAY_BUFFER, mesh.normal_buffer.get());
     glBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(n * sizeof(float)), normals.data());
   }
+  return true;
 }
 
 void Renderer::clear(const Rgb& color, const Viewport* viewport) {
@@ -363,10 +396,11 @@ void Renderer::clear(const Rgb& color, const Viewport* viewport) {
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
 }
 
-void Renderer::drawMesh(int mesh_id, const View& view, const MeshStyle& style) {
+bool Renderer::drawMesh(int mesh_id, const View& view, const MeshStyle& style) {
   Impl& m = *impl_;
+  if (mesh_id < 0 || static_cast<std::size_t>(mesh_id) >= m.meshes.size() || !validView(view)) return false;
+  GpuMesh& mesh = *m.meshes[static_cast<std::size_t>(mesh_id)];
   m.context.makeCurrent();
-  GpuMesh& mesh = *m.meshes.at(static_cast<std::size_t>(mesh_id));
   glBindFramebuffer(GL_FRAMEBUFFER, m.ms_fbo.get());
   m.setView(view);
 
@@ -386,7 +420,7 @@ void Renderer::drawMesh(int mesh_id, const View& view, const MeshStyle& style) {
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, mesh.triangle_buffer.get());
   glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(mesh.triangles.size()), GL_UNSIGNED_INT, nullptr);
   glDisable(GL_CULL_FACE);
-  if (style.silhouette_width <= 0.0f) return;
+  if (style.silhouette_width <= 0.0f) return true;
 
   // Pass 2: silhouette edges (one face towards the eye, the other away), found on the CPU.
   Eigen::Vector3f eye = view.camera.eye.cast<float>();
@@ -396,7 +430,7 @@ void Renderer::drawMesh(int mesh_id, const View& view, const MeshStyle& style) {
   }
   faceFacing(mesh.positions, mesh.triangles, eye, mesh.front);
   silhouetteEdges(mesh.topology, mesh.front, mesh.silhouette);
-  if (mesh.silhouette.empty()) return;
+  if (mesh.silhouette.empty()) return true;
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, mesh.silhouette_buffer.get());
   glBufferSubData(GL_ELEMENT_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(mesh.silhouette.size() * sizeof(std::uint32_t)),
                   mesh.silhouette.data());
@@ -415,11 +449,13 @@ void Renderer::drawMesh(int mesh_id, const View& view, const MeshStyle& style) {
   glDisable(GL_SAMPLE_ALPHA_TO_COVERAGE);
   glDepthMask(GL_TRUE);
   glBindVertexArray(0);
+  return true;
 }
 
-void Renderer::drawTriangles(std::span<const float> positions, const View& view, const MeshStyle& style) {
+bool Renderer::drawTriangles(std::span<const float> positions, const View& view, const MeshStyle& style) {
   Impl& m = *impl_;
-  if (positions.size() < 9) return;
+  if (positions.size() % 9 != 0 || !validView(view)) return false;
+  if (positions.empty()) return true;
   m.context.makeCurrent();
   glBindFramebuffer(GL_FRAMEBUFFER, m.ms_fbo.get());
   m.setView(view);
@@ -435,12 +471,14 @@ void Renderer::drawTriangles(std::span<const float> positions, const View& view,
   m.setShading(flat);
   glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(positions.size() / 3));
   glBindVertexArray(0);
+  return true;
 }
 
-void Renderer::drawLines(std::span<const float> segments, const View& view, float width, const Rgb& color,
+bool Renderer::drawLines(std::span<const float> segments, const View& view, float width, const Rgb& color,
                          bool depth_test, float pull) {
   Impl& m = *impl_;
-  if (segments.size() < 6) return;
+  if (segments.size() % 6 != 0 || !validView(view) || !positiveFinite(width) || !std::isfinite(pull)) return false;
+  if (segments.empty()) return true;
   m.beginOverlay(view, segments, depth_test);
   const auto count = static_cast<GLsizei>(segments.size() / 3 / 2 * 2);
   const float pull_px = depth_test ? pull : 0.0f;
@@ -449,15 +487,18 @@ void Renderer::drawLines(std::span<const float> segments, const View& view, floa
   glDrawArrays(GL_LINES, 0, count);
   m.drawRoundDots(view, count, width, color, pull_px);  // round joints between segments
   m.endOverlay();
+  return true;
 }
 
-void Renderer::drawDots(std::span<const float> points, const View& view, float diameter, const Rgb& color,
+bool Renderer::drawDots(std::span<const float> points, const View& view, float diameter, const Rgb& color,
                         bool depth_test, float pull) {
   Impl& m = *impl_;
-  if (points.size() < 3) return;
+  if (points.size() % 3 != 0 || !validView(view) || !positiveFinite(diameter) || !std::isfinite(pull)) return false;
+  if (points.empty()) return true;
   m.beginOverlay(view, points, depth_test);
   m.drawRoundDots(view, static_cast<GLsizei>(points.size() / 3), diameter, color, depth_test ? pull : 0.0f);
   m.endOverlay();
+  return true;
 }
 
 void Renderer::readPixels(Image& out) {

@@ -3,11 +3,13 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <set>
 
 #include "vdg/geom/error.h"
+#include "vdg/geom/normalize.h"
 
 namespace vdg {
 namespace {
@@ -16,9 +18,17 @@ std::string where(const RawViewDependentModel& model) {
   return model.source.empty() ? std::string("model") : model.source;
 }
 
-std::string keyLabel(const RawViewDependentModel& model, std::size_t k) {
-  return where(model) + ": key '" + model.keys[k].name + "' (keys[" + std::to_string(k) + "])";
+std::string rawKeyName(const RawViewDependentModel& model, std::size_t k) {
+  return "key '" + model.keys[k].name + "' (keys[" + std::to_string(k) + "])";
 }
+
+std::string keyLabel(const RawViewDependentModel& model, std::size_t k) {
+  return where(model) + ": " + rawKeyName(model, k);
+}
+
+// validate() without, when `check_view_pairs` is false, the search for two keys with the same
+// view: ViewDependentModel::build leaves that to ViewSphere::build, so that it runs once per build.
+void validateRaw(const RawViewDependentModel& raw, bool check_view_pairs);
 
 }  // namespace
 
@@ -31,23 +41,39 @@ Eigen::Vector3d RawViewDependentModel::resolvedCenter() const {
 void RawViewDependentModel::resolveViews() {
   const Eigen::Vector3d c = resolvedCenter();
   for (RawKey& key : keys) {
-    if (key.camera) key.view = (key.camera->eye - c).normalized();
+    if (!key.camera) continue;
+    const Eigen::Vector3d d = key.camera->eye - c;
+    // Zero or non-finite differences stay as they are, for validate() to report.
+    key.view = normalizedOrNone(d).value_or(d);
   }
 }
 
-void RawViewDependentModel::validate() const {
-  validateMesh(base, where(*this) + ": base mesh" + (base_path.empty() ? std::string() : " '" + base_path + "'"));
+void RawViewDependentModel::validate() const { validateRaw(*this, true); }
+
+namespace {
+
+void validateRaw(const RawViewDependentModel& raw, bool check_view_pairs) {
+  const std::string& base_path = raw.base_path;
+  const TriMesh& base = raw.base;
+  const std::vector<RawKey>& keys = raw.keys;
+  const double sharpness = raw.sharpness;
+  const ViewSphereSettings& sphere = raw.sphere;
+  const std::optional<Eigen::Vector3d>& center = raw.center;
+  validateMesh(base, where(raw) + ": base mesh" + (base_path.empty() ? std::string() : " '" + base_path + "'"));
+  if (keys.size() > kMaxKeys)
+    throw Error(where(raw) + ": " + std::to_string(keys.size()) + " keys; a model may have at most " +
+                std::to_string(kMaxKeys));
   if (!(sharpness > 0.0) || !std::isfinite(sharpness))
-    throw Error(where(*this) + ": 'sharpness' must be a positive number, got " + std::to_string(sharpness));
+    throw Error(where(raw) + ": 'sharpness' must be a positive number, got " + std::to_string(sharpness));
   if (!(sphere.base_falloff_deg > 0.0 && sphere.base_falloff_deg <= 70.0))
-    throw Error(where(*this) + ": 'base_falloff_deg' must be in (0, 70] degrees, got " +
+    throw Error(where(raw) + ": 'base_falloff_deg' must be in (0, 70] degrees, got " +
                 std::to_string(sphere.base_falloff_deg));
-  if (center && !center->allFinite()) throw Error(where(*this) + ": 'center' is not finite");
+  if (center && !center->allFinite()) throw Error(where(raw) + ": 'center' is not finite");
   std::set<std::string> names;
   for (std::size_t k = 0; k < keys.size(); ++k) {
     const RawKey& key = keys[k];
-    const std::string label = keyLabel(*this, k);
-    if (key.name.empty()) throw Error(where(*this) + ": keys[" + std::to_string(k) + "] has an empty name");
+    const std::string label = keyLabel(raw, k);
+    if (key.name.empty()) throw Error(where(raw) + ": keys[" + std::to_string(k) + "] has an empty name");
     if (!names.insert(key.name).second) throw Error(label + ": another key has the same name");
     if (key.mesh.vertexCount() != base.vertexCount())
       throw Error(label + ": mesh has " + std::to_string(key.mesh.vertexCount()) + " vertices but the base has " +
@@ -68,30 +94,44 @@ void RawViewDependentModel::validate() const {
     for (std::size_t i = 0; i < key.mesh.positions.size(); ++i) {
       if (!std::isfinite(key.mesh.positions[i]))
         throw Error(label + ": vertex " + std::to_string(i / 3) + " has a non-finite coordinate (NaN or Inf)");
+      // The key is stored as its offset from the base (a float); it must not overflow.
+      if (!std::isfinite(key.mesh.positions[i] - base.positions[i]))
+        throw Error(label + ": vertex " + std::to_string(i / 3) +
+                    " moves too far from the base's (the offset overflows a float)");
     }
-    if (!key.view.allFinite()) throw Error(label + ": view direction is not finite");
-    if (!(key.view.norm() > 0.0))
+    if (!key.view.allFinite())
+      throw Error(label + (key.camera ? ": camera eye is not finite or too far from the model centre"
+                                      : ": view direction is not finite"));
+    if (!normalizedOrNone(key.view))  // any finite non-zero length works, 1e-300 or 1e300
       throw Error(label + (key.camera ? ": camera eye is at the model centre, so it gives no view direction"
                                       : ": view direction has zero length"));
-    for (std::size_t j = 0; j < k; ++j) {
-      const Eigen::Vector3d a = key.view.normalized(), b = keys[j].view.normalized();
-      if (std::atan2(a.cross(b).norm(), a.dot(b)) < 1e-6)
-        throw Error(label + ": same view direction as key '" + keys[j].name + "' (within 1e-6 rad)");
-    }
   }
+  if (!check_view_pairs) return;
+  std::vector<Eigen::Vector3d> views;
+  views.reserve(keys.size());
+  for (const RawKey& key : keys) views.push_back(*normalizedOrNone(key.view));
+  forEachCloseViewPair(views, ViewSphere::kSameViewRad, [&](std::size_t k, std::size_t j, double) -> bool {
+    throw Error(keyLabel(raw, k) + ": same view direction as key '" + keys[j].name + "' (within 1e-6 rad)");
+  });
 }
 
+}  // namespace
+
 ViewDependentModel ViewDependentModel::build(const RawViewDependentModel& raw) {
-  raw.validate();
+  validateRaw(raw, false);  // ViewSphere::build below finds coinciding views, naming the keys
   if (raw.keys.empty()) throw Error(where(raw) + ": the model has no keys (add at least one key deformation)");
   ViewDependentModel model;
   model.base_ = raw.base;
   model.center_ = raw.resolvedCenter();
   model.sharpness_ = raw.sharpness;
   std::vector<Eigen::Vector3d> views;
-  for (const RawKey& key : raw.keys) views.push_back(key.view);
+  std::vector<std::string> labels;
+  for (std::size_t k = 0; k < raw.keys.size(); ++k) {
+    views.push_back(raw.keys[k].view);
+    labels.push_back(rawKeyName(raw, k));
+  }
   try {
-    model.sphere_ = ViewSphere::build(views, raw.sphere);
+    model.sphere_ = ViewSphere::build(views, raw.sphere, labels);
   } catch (const Error& e) {
     throw Error(where(raw) + ": " + e.what());
   }
@@ -124,15 +164,50 @@ ViewDependentModel ViewDependentModel::build(const RawViewDependentModel& raw) {
   return model;
 }
 
-ViewWeights ViewDependentModel::weights(const Eigen::Vector3d& view, double sharpness, int* hint) const {
-  return sphere_.weights(view, sharpness > 0.0 ? sharpness : sharpness_, hint);
+Eigen::Vector3d ViewDependentModel::viewFromEye(const Eigen::Vector3d& eye) const {
+  return normalizedOrNone(Eigen::Vector3d(eye - center_)).value_or(Eigen::Vector3d::Zero());
+}
+
+namespace {
+[[noreturn]] void throwKeyOutOfRange(std::size_t key, std::size_t count) {
+  throw Error("key " + std::to_string(key) + " out of range (the model has " + std::to_string(count) + " keys)");
+}
+}  // namespace
+
+const std::string& ViewDependentModel::keyName(std::size_t key) const {
+  if (key >= keys_.size()) throwKeyOutOfRange(key, keys_.size());
+  return keys_[key].name;
+}
+
+const Eigen::Vector3d& ViewDependentModel::keyView(std::size_t key) const {
+  if (key >= keys_.size()) throwKeyOutOfRange(key, keys_.size());
+  return sphere_.points()[key];
+}
+
+const std::optional<Camera>& ViewDependentModel::keyCamera(std::size_t key) const {
+  if (key >= keys_.size()) throwKeyOutOfRange(key, keys_.size());
+  return keys_[key].camera;
+}
+
+std::size_t ViewDependentModel::keyMovedCount(std::size_t key) const {
+  if (key >= keys_.size()) throwKeyOutOfRange(key, keys_.size());
+  return keys_[key].moved_count;
+}
+
+bool ViewDependentModel::weights(const Eigen::Vector3d& view, double sharpness, ViewWeights& out, int* hint) const {
+  if (!std::isfinite(sharpness)) return false;
+  return sphere_.weights(view, sharpness > 0.0 ? sharpness : sharpness_, out, hint);
 }
 
 // Section 3.2.3: v = sum_i w_i v^i, written as base + sum_i w_i (v^i - base) because the weights,
 // base included, sum to 1. Only the moved vertices of sparse keys are touched.
-void ViewDependentModel::blend(const ViewWeights& w, std::span<float> out) const {
+bool ViewDependentModel::blend(const ViewWeights& w, std::span<float> out) const {
   const std::size_t n = base_.positions.size();
-  if (out.size() < n) return;  // contract violation; never write past the caller's buffer
+  if (out.size() != n) return false;
+  for (int slot = 0; slot < 3; ++slot) {
+    if (w.key[slot] < -1 || w.key[slot] >= static_cast<int>(keys_.size())) return false;
+    if (!std::isfinite(w.weight[slot])) return false;
+  }
   // Dense keys are fused into one pass over the base (one read of each array, one write);
   // sparse keys then scatter their moved vertices.
   const float* dense_delta[3] = {nullptr, nullptr, nullptr};
@@ -187,19 +262,30 @@ void ViewDependentModel::blend(const ViewWeights& w, std::span<float> out) const
       v[2] += weight * d[3 * i + 2];
     }
   }
+  return true;
 }
 
-void ViewDependentModel::keyPositions(std::size_t key, std::span<float> out) const {
+bool ViewDependentModel::keyPositions(std::size_t key, std::span<float> out) const {
+  if (key >= keys_.size()) return false;
   ViewWeights w;
   w.key[0] = static_cast<int>(key);
   w.weight[0] = 1.0f;
-  blend(w, out);
+  return blend(w, out);
 }
 
-void ViewDependentModel::evaluate(const Eigen::Vector3d& view, double sharpness, std::span<float> out_positions,
+bool ViewDependentModel::evaluate(const Eigen::Vector3d& view, double sharpness, std::span<float> out_positions,
                                   std::span<float> out_normals, int* hint) const {
-  blend(weights(view, sharpness, hint), out_positions);
-  if (!out_normals.empty()) computeVertexNormals(out_positions, base_.triangles, out_normals);
+  // Every check happens before the first write: sizes here, view/sharpness/hint in a trial
+  // weights() on a local hint, which is only stored once everything has succeeded.
+  if (out_positions.size() != base_.positions.size()) return false;
+  if (!out_normals.empty() && out_normals.size() != base_.positions.size()) return false;
+  int local_hint = hint ? *hint : -1;
+  ViewWeights w;
+  if (!weights(view, sharpness, w, &local_hint)) return false;
+  if (!blend(w, out_positions)) return false;  // cannot fail: w comes from this model's sphere
+  if (!out_normals.empty() && !computeVertexNormals(out_positions, base_.triangles, out_normals)) return false;
+  if (hint) *hint = local_hint;
+  return true;
 }
 
 }  // namespace vdg

@@ -12,20 +12,21 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <map>
 #include <numbers>
 #include <string>
 
 #include "convex_hull.h"
 #include "vdg/geom/error.h"
+#include "vdg/geom/normalize.h"
 
 namespace vdg {
 namespace {
 
 using Eigen::Vector3d;
 
-// Two key directions closer than this are the same viewpoint.
-constexpr double kSameViewRad = 1e-6;
+constexpr double kSameViewRad = ViewSphere::kSameViewRad;
 // A hull facet whose plane passes closer than this to the centre does not enclose it.
 constexpr double kEnclosureMargin = 1e-4;
 // Cone coordinates down to -kInsideTol still count as inside a triangle (edges are shared).
@@ -127,25 +128,29 @@ const char* uncoveredName(Uncovered uncovered) {
   return "base";
 }
 
-ViewSphere ViewSphere::build(std::span<const Eigen::Vector3d> key_directions, const ViewSphereSettings& settings) {
+ViewSphere ViewSphere::build(std::span<const Eigen::Vector3d> key_directions, const ViewSphereSettings& settings,
+                             std::span<const std::string> key_labels) {
   if (key_directions.empty()) throw Error("view sphere: a view-dependent model needs at least one key");
   if (!(settings.base_falloff_deg > 0.0 && settings.base_falloff_deg <= 70.0))
     throw Error("view sphere: base_falloff_deg must be in (0, 70] degrees");
+  if (!key_labels.empty() && key_labels.size() != key_directions.size())
+    throw Error("view sphere: " + std::to_string(key_labels.size()) + " key labels for " +
+                std::to_string(key_directions.size()) + " keys (internal error)");
+  auto label = [&](std::size_t i) { return key_labels.empty() ? "key " + std::to_string(i) : key_labels[i]; };
   ViewSphere sphere;
   sphere.settings_ = settings;
   sphere.key_count_ = key_directions.size();
   for (std::size_t i = 0; i < key_directions.size(); ++i) {
     const Vector3d& d = key_directions[i];
-    if (!d.allFinite()) throw Error("key " + std::to_string(i) + ": view direction is not finite");
-    if (!(d.norm() > 0.0)) throw Error("key " + std::to_string(i) + ": view direction has zero length");
-    const Vector3d u = d.normalized();
-    for (std::size_t j = 0; j < i; ++j) {
-      const double angle = std::atan2(u.cross(sphere.points_[j]).norm(), u.dot(sphere.points_[j]));
-      if (angle < kSameViewRad)
-        throw Error("key " + std::to_string(i) + ": same view direction as key " + std::to_string(j));
-    }
-    sphere.points_.push_back(u);
+    if (!d.allFinite()) throw Error(label(i) + ": view direction is not finite");
+    const std::optional<Vector3d> u = normalizedOrNone(d);  // any finite length, 1e-300 or 1e300
+    if (!u) throw Error(label(i) + ": view direction has zero length");
+    sphere.points_.push_back(*u);
   }
+  // One O(n log n) pass over all keys (a grid on the sphere), not a comparison of every pair.
+  forEachCloseViewPair(sphere.points_, kSameViewRad, [&](std::size_t i, std::size_t j, double) -> bool {
+    throw Error(label(i) + ": same view direction as " + label(j) + " (within 1e-6 rad)");
+  });
 
   const std::vector<Vector3d> keys = sphere.points_;
   const std::size_t n = keys.size();
@@ -263,16 +268,23 @@ ViewWeights ViewSphere::locateInTriangle(int t, const Eigen::Vector3d& lambda) c
 }
 
 // Sharpens the three slot weights (section 3.2.2) and moves dummy points' weight to the base.
+// w_i^a / sum_j w_j^a is computed as r_i^a / sum_j r_j^a with r_i = w_i / max_j w_j: the same
+// value, but the largest term is exactly 1, so the sum never underflows to 0 (plain w^a does for
+// a above ~1100 when w <= 1/2) and never overflows. Ties for the largest weight share it evenly.
 void ViewSphere::finishWeights(ViewWeights& w, double sharpness) const {
   if (sharpness != 1.0) {
+    double largest = 0.0;
+    for (int k = 0; k < 3; ++k)
+      if (w.key[k] >= 0) largest = std::max(largest, static_cast<double>(w.weight[k]));
     double powered[3] = {0, 0, 0};
     double sum = 0.0;
     for (int k = 0; k < 3; ++k) {
-      if (w.key[k] < 0 || w.weight[k] <= 0.0f) continue;
-      powered[k] = std::pow(static_cast<double>(w.weight[k]), sharpness);
+      if (w.key[k] < 0 || !(w.weight[k] > 0.0f)) continue;
+      const double r = static_cast<double>(w.weight[k]) / largest;  // in (0, 1]
+      powered[k] = r >= 1.0 ? 1.0 : std::pow(r, sharpness);         // pow(r < 1, +inf) = 0
       sum += powered[k];
     }
-    if (sum > 0.0)
+    if (sum > 0.0)  // sum >= 1 whenever some weight is positive
       for (int k = 0; k < 3; ++k) w.weight[k] = static_cast<float>(powered[k] / sum);
   }
   for (int k = 0; k < 3; ++k) {
@@ -331,15 +343,24 @@ ViewWeights ViewSphere::falloff(const Eigen::Vector3d& v, double& nearest_cos) c
   return best.key[0] < 0 ? ViewWeights{} : best;
 }
 
-ViewWeights ViewSphere::weights(const Eigen::Vector3d& view, double sharpness, int* hint) const {
+bool ViewSphere::weights(const Eigen::Vector3d& view, double sharpness, ViewWeights& out, int* hint) const {
+  if (!normalizedOrNone(view)) return false;  // zero or non-finite; 1e200 and 1e-200 are fine
+  if (!(sharpness > 0.0) || !std::isfinite(sharpness)) return false;
+  int local_hint = hint ? *hint : -1;
+  if (local_hint < -1 || local_hint >= static_cast<int>(triangles_.size())) return false;
+  out = locate(view, sharpness, &local_hint);
+  if (hint) *hint = local_hint;
+  return true;
+}
+
+ViewWeights ViewSphere::locate(const Eigen::Vector3d& view, double sharpness, int* hint) const {
   ViewWeights result;
-  const double len = view.norm();
-  if (!(len > 0.0) || !std::isfinite(len)) {
+  const std::optional<Vector3d> unit = normalizedOrNone(view);  // any finite length, 1e-300 or 1e300
+  if (!unit) {
     result.base = 1.0f;
     return result;
   }
-  if (!(sharpness > 0.0) || !std::isfinite(sharpness)) sharpness = 1.0;
-  const Vector3d v = view / len;
+  const Vector3d v = *unit;
 
   // Section 3.2.1: the triangle whose cone (centre + triangle) contains the view ray. The cone
   // coordinates lambda = [a b c]^-1 v are non-negative exactly there, and lambda / sum(lambda) are
@@ -392,6 +413,59 @@ ViewWeights ViewSphere::weights(const Eigen::Vector3d& view, double sharpness, i
   for (int k = 0; k < 3; ++k) result.weight[k] = static_cast<float>(result.weight[k] * f);
   result.base = static_cast<float>(1.0 - f);
   return result;
+}
+
+std::size_t forEachCloseViewPair(std::span<const Eigen::Vector3d> directions, double max_angle_rad,
+                                 const std::function<bool(std::size_t, std::size_t, double)>& visit) {
+  const std::size_t n = directions.size();
+  if (n < 2 || !(max_angle_rad > 0.0)) return 0;
+  // Two unit vectors less than `max_angle_rad` apart are less than the chord 2 sin(angle / 2)
+  // apart in every coordinate, so with cells at least that wide they lie in the same or in
+  // adjacent cells of a grid over [-1, 1]^3. Cells narrower than 1e-6 bring nothing but large
+  // cell numbers, so the width is at least that (cell numbers then fit 21 bits per axis).
+  constexpr double kMinCell = 1e-6;
+  constexpr std::int64_t kBias = std::int64_t{1} << 20;
+  const double chord = max_angle_rad >= std::numbers::pi ? 2.0 : 2.0 * std::sin(0.5 * max_angle_rad);
+  const double cell = std::max(chord * (1.0 + 1e-9), kMinCell);
+  auto cellOf = [&](const Vector3d& d) {
+    std::array<std::int64_t, 3> c{};
+    for (int a = 0; a < 3; ++a) {
+      const double x = std::isfinite(d[a]) ? std::floor(d[a] / cell) : 0.0;
+      c[a] = static_cast<std::int64_t>(std::clamp(x, static_cast<double>(-kBias + 2), static_cast<double>(kBias - 2)));
+    }
+    return c;
+  };
+  auto keyOf = [&](const std::array<std::int64_t, 3>& c) {
+    return static_cast<std::uint64_t>(((c[0] + kBias) << 42) | ((c[1] + kBias) << 21) | (c[2] + kBias));
+  };
+  std::vector<std::pair<std::uint64_t, std::size_t>> sorted(n);
+  for (std::size_t i = 0; i < n; ++i) sorted[i] = {keyOf(cellOf(directions[i])), i};
+  std::sort(sorted.begin(), sorted.end());
+
+  std::size_t visited = 0;
+  std::vector<std::pair<std::size_t, double>> close;  // (j, angle) for the current i
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vector3d& a = directions[i];
+    const std::array<std::int64_t, 3> c = cellOf(a);
+    close.clear();
+    for (int dx = -1; dx <= 1; ++dx)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dz = -1; dz <= 1; ++dz) {
+          const std::uint64_t key = keyOf({c[0] + dx, c[1] + dy, c[2] + dz});
+          auto it = std::lower_bound(sorted.begin(), sorted.end(), std::pair<std::uint64_t, std::size_t>{key, 0});
+          for (; it != sorted.end() && it->first == key && it->second < i; ++it) {
+            const Vector3d& b = directions[it->second];
+            const double angle = std::atan2(a.cross(b).norm(), a.dot(b));
+            if (angle < max_angle_rad) close.emplace_back(it->second, angle);
+          }
+        }
+    std::sort(close.begin(), close.end());
+    for (const auto& [j, angle] : close) {
+      ++visited;
+      if (!visit(i, j, angle)) return visited;
+    }
+  }
+  return visited;
 }
 
 }  // namespace vdg

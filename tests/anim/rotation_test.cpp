@@ -134,17 +134,17 @@ TEST(QuaternionCurve, InterpolatesKeysStaysUnitAndIsSmooth) {
                                         fixedAnglesToQuaternion(deg(100, 0, 120))};
   const std::vector<double> times = {0, 1, 2, 3, 4};
   const QuaternionCurve c = QuaternionCurve::build(keys, times);
-  for (std::size_t i = 0; i < keys.size(); ++i) EXPECT_TRUE(sameRotation(c.evaluate(times[i]), keys[i], 1e-12));
-  for (double t = 0; t <= 4.0; t += 0.01) EXPECT_NEAR(c.evaluate(t).norm(), 1.0, kTol);
+  for (std::size_t i = 0; i < keys.size(); ++i) EXPECT_TRUE(sameRotation(c.at(times[i]), keys[i], 1e-12));
+  for (double t = 0; t <= 4.0; t += 0.01) EXPECT_NEAR(c.at(t).norm(), 1.0, kTol);
   // C1 at interior keys: angular velocity on both sides agrees (equal key spacing).
   const double h = 1e-5;
   for (double t : {1.0, 2.0, 3.0}) {
-    const double left = angleBetween(c.evaluate(t - h), c.evaluate(t)) / h;
-    const double right = angleBetween(c.evaluate(t), c.evaluate(t + h)) / h;
+    const double left = angleBetween(c.at(t - h), c.at(t)) / h;
+    const double right = angleBetween(c.at(t), c.at(t + h)) / h;
     EXPECT_NEAR(left, right, 1e-3 * std::max(1.0, left)) << t;
     // ...and the same axis of angular velocity.
-    const Quaternion dl = multiply(c.evaluate(t), inverse(c.evaluate(t - h)));
-    const Quaternion dr = multiply(c.evaluate(t + h), inverse(c.evaluate(t)));
+    const Quaternion dl = multiply(c.at(t), inverse(c.at(t - h)));
+    const Quaternion dr = multiply(c.at(t + h), inverse(c.at(t)));
     EXPECT_GT(dl.vec().normalized().dot(dr.vec().normalized() * (dl.w() * dr.w() > 0 ? 1 : -1)), 1 - 1e-4);
   }
   // Control points follow the construction: b_i mirrors a_i about q_i.
@@ -160,15 +160,15 @@ TEST(QuaternionCurve, KeysOnOneGreatArcReproduceSlerp) {
   for (int i = 0; i < 5; ++i) keys.push_back(axisAngleToQuaternion(Eigen::Vector3d(1, 1, 0), 0.4 * i));
   const QuaternionCurve c = QuaternionCurve::build(keys);
   for (double t = 0; t <= 4.0; t += 0.1) {
-    EXPECT_TRUE(sameRotation(c.evaluate(t), slerp(a, keys[4], t / 4), 1e-9)) << t;
+    EXPECT_TRUE(sameRotation(c.at(t), slerp(a, keys[4], t / 4), 1e-9)) << t;
   }
   // Two keys: plain slerp.
   const QuaternionCurve two = QuaternionCurve::build({keys[0], keys[3]}, {0, 2});
-  EXPECT_TRUE(sameRotation(two.evaluate(0.5), slerp(keys[0], keys[3], 0.25), 1e-12));
+  EXPECT_TRUE(sameRotation(two.at(0.5), slerp(keys[0], keys[3], 0.25), 1e-12));
   // The text's literal control points (control_fraction = 1): a_n = slerp(extend(q_{n-1}, q_n), q_{n+1}, 1/2).
   const QuaternionCurve literal = QuaternionCurve::build(keys, {}, {1.0});
   EXPECT_TRUE(sameRotation(literal.controlsAfter()[1], slerp(extend(keys[0], keys[1]), keys[2], 0.5), 1e-12));
-  for (std::size_t i = 0; i < keys.size(); ++i) EXPECT_TRUE(sameRotation(literal.evaluate(double(i)), keys[i], 1e-12));
+  for (std::size_t i = 0; i < keys.size(); ++i) EXPECT_TRUE(sameRotation(literal.at(double(i)), keys[i], 1e-12));
 }
 
 TEST(QuaternionCurve, DeCasteljauWithSlerp) {

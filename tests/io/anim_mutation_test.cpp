@@ -41,18 +41,19 @@ void exercise(const AnimSpec& spec) {
     case AnimSpec::Kind::kCurve: {
       const Curve curve = Curve::build(spec.curve);
       std::vector<double> out(static_cast<std::size_t>(curve.dimension()));
-      for (double t : {-1.0, 0.0, 0.7, 2.0, 100.0}) curve.evaluate(t, out);
+      for (double t : {-1.0, 0.0, 0.7, 2.0, 100.0}) EXPECT_TRUE(curve.evaluate(t, out)) << t;
       break;
     }
     case AnimSpec::Kind::kTrack: {
       const Track track = Track::build(spec.track);
       std::vector<double> out(static_cast<std::size_t>(track.dimension()));
-      for (double t : {-5.0, 0.0, 0.5, 13.0, 1e6}) track.evaluate(t, out);
+      for (double t : {-5.0, 0.0, 0.5, 13.0, 1e6}) EXPECT_TRUE(track.evaluate(t, out)) << t;
       break;
     }
     case AnimSpec::Kind::kCameraPath: {
       const CameraPath path = CameraPath::build(spec.camera_path);
-      for (double t : {-1.0, 0.0, 5.0, 10.0, 20.0}) (void)path.evaluate(t);
+      Camera camera;
+      for (double t : {-1.0, 0.0, 5.0, 10.0, 20.0}) EXPECT_TRUE(path.evaluate(t, camera)) << t;
       break;
     }
   }

@@ -38,7 +38,7 @@ TEST(Robustness, MutatedManifestsLoadOrFailCleanly) {
     try {
       const ViewDependentModel model = ViewDependentModel::build(loadManifest(dir.file("m.vdg.json")));
       std::vector<float> out(3 * model.vertexCount());
-      model.evaluate(Eigen::Vector3d(0.3, 0.4, 0.5), 0.0, out);
+      EXPECT_TRUE(model.evaluate(Eigen::Vector3d(0.3, 0.4, 0.5), 0.0, out)) << "mutant " << i;
       ++loaded;
     } catch (const Error&) {
     } catch (const std::exception& e) {

@@ -290,10 +290,16 @@ TEST(Silhouette, OpenBoundaryIsAlwaysDrawn) {
 // ---------------------------------------------------------------------------------------------
 // Images (need an OpenGL context: failing to create one is a test failure, never a skip).
 
-TEST(RenderImage, ContextIsAvailable) {
+TEST(RenderImage, ContextIsAvailableWithTheSamplesAskedFor) {
+  // OpenGL 3.0 and later guarantee at least 4 MSAA samples (GL_MAX_SAMPLES >= 4), so 4 are given
+  // exactly; 1 means no multisampling; a request beyond the driver's maximum is clamped to it.
   Renderer r(RendererSettings{16, 16, 4});
-  EXPECT_GE(r.samples(), 1);
+  EXPECT_EQ(r.samples(), 4);
   std::printf("OpenGL: %s, %d samples\n", r.glInfo().c_str(), r.samples());
+  EXPECT_EQ(Renderer(RendererSettings{16, 16, 1}).samples(), 1);
+  const int clamped = Renderer(RendererSettings{16, 16, 1000}).samples();
+  EXPECT_GE(clamped, 4);
+  EXPECT_LT(clamped, 1000);
 }
 
 TEST(RenderImage, SphereGolden) {
@@ -366,7 +372,7 @@ TEST(RenderImage, KeyViewRendersExactlyTheKeyMesh) {
   ModelRenderer blended(model, o);
   for (std::size_t k = 0; k < model.keyCount(); ++k) {
     TriMesh key_mesh = model.base();
-    model.keyPositions(k, key_mesh.positions);
+    ASSERT_TRUE(model.keyPositions(k, key_mesh.positions));
     ModelRenderer plain(key_mesh, o);
     const Camera cam = cameraToward(model.keyView(k));
     Image a, b;

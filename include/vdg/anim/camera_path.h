@@ -43,6 +43,9 @@
 
 namespace vdg::anim {
 
+// Most up-vector samples: each costs an arc-length lookup at build time; 32 times the default.
+inline constexpr int kMaxCameraPathUpSamples = 65536;
+
 enum class ViewMode { kCenterOfInterest, kAlongTangent, kMovingTarget };
 const char* viewModeName(ViewMode mode);  // "center", "tangent", "target-path"
 
@@ -59,28 +62,35 @@ struct RawCameraPath {
   std::optional<RawTrack> tilt_deg;                  // scalar track, degrees
   double fov_deg = 40.0;                             // copied to the Camera
   double ortho_height = 0.0;
-  int up_samples = 2048;  // up-vector table size (>= 2)
+  int up_samples = 2048;  // up-vector table size, 2..kMaxCameraPathUpSamples
 };
 
 class CameraPath {
  public:
   // Throws vdg::Error naming `where` and the field for bad input (non-3D curves, end_time <=
-  // start_time, a missing target path, zero up, bad tilt track, fov outside (0, 180), ...).
+  // start_time or end_time - start_time overflowing, a missing target path, a zero or non-finite
+  // up (any finite length is fine), bad tilt track, fov outside (0, 180), up_samples outside
+  // 2..kMaxCameraPathUpSamples, and everything Curve::build and ArcLengthCurve::build reject).
   static CameraPath build(const RawCameraPath& raw, const std::string& where = "camera path");
 
   double startTime() const { return start_time_; }
   double endTime() const { return end_time_; }
   const ArcLengthCurve& path() const { return path_; }
 
-  // Eye position at animation time t (clamped to [startTime, endTime]).
+  // The camera at animation time t (clamped to [startTime, endTime]) into `out`: eye on the path,
+  // target = eye + d * view direction, d = max(1, |eye|) (or the centre of interest / moving target itself), orthonormal
+  // up. Per-frame contract of curve.h: violation (returns false, `out` untouched): t not finite.
+  [[nodiscard]] bool evaluate(double t, Camera& out) const;
+  // Convenience forms (tools and tests): eye position / camera at t; throw vdg::Error for a
+  // non-finite t.
   Eigen::Vector3d eyeAt(double t) const;
-  // The camera at animation time t: eye on the path, target = eye + view direction (or the centre of
-  // interest / moving target itself), orthonormal up. Never throws.
-  Camera evaluate(double t) const;
+  // The camera at t as evaluate() gives it: target = eye + d * view direction with d = max(1, |eye|)
+  // (so that a far eye does not absorb the offset), directions normalised robustly.
+  Camera cameraAt(double t) const;
 
  private:
-  Eigen::Vector3d rawForward(double t, const Eigen::Vector3d& eye) const;  // may be zero
-  Eigen::Vector3d forwardAt(double t, const Eigen::Vector3d& eye) const;   // unit
+  bool eyePosition(double t, Eigen::Vector3d& out) const;                             // t finite
+  bool rawForward(double t, const Eigen::Vector3d& eye, Eigen::Vector3d& out) const;  // may be zero
 
   ArcLengthCurve path_;
   Ease speed_;

@@ -2,7 +2,11 @@
 //
 // An ease function maps normalised time t in [0, 1] to normalised distance t' in [0, 1]:
 // ease(0) = 0, ease(1) = 1, continuous and monotonically non-decreasing. Inputs outside [0, 1] are
-// clamped. All functions here are pure and allocation-free.
+// clamped and NaN counts as 0. All functions here are pure and allocation-free.
+// Per-frame contract (curve.h): ease functions write no caller memory and have no input they
+// reject, so Ease::evaluate has nothing to report: it returns a double, never throws and never
+// allocates. Only the parameters (t1, t2 / a, b) can be wrong, and those are checked once, by
+// the named constructors.
 #pragma once
 
 #include <string>
@@ -46,7 +50,7 @@ class Ease {
   double first() const { return p1_; }
   double second() const { return p2_; }
 
-  // t clamped to [0, 1]; result in [0, 1].
+  // t clamped to [0, 1] (NaN counts as 0); result in [0, 1]. Never throws, never allocates.
   double evaluate(double t) const;
   double operator()(double t) const { return evaluate(t); }
 

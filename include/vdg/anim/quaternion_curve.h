@@ -16,8 +16,9 @@
 // direction (and in magnitude for equal key spacing).
 // Ends: a_0 = slerp(q_0, b_1, 1/2) and b_{n-1} = slerp(q_{n-1}, a_{n-2}, 1/2) (two keys: plain slerp).
 // Consecutive keys are first made to lie in the same hemisphere (q_{i+1} negated if q_i.q_{i+1} < 0),
-// so every segment takes the short way. Evaluation (6 slerps) allocates nothing and never throws;
-// times outside the key range are clamped.
+// so every segment takes the short way. Evaluation (6 slerps) follows the per-frame contract of
+// curve.h: checked on entry, false on a violation, nothing written, no throw, no allocation;
+// finite times outside the key range are clamped.
 #pragma once
 
 #include <string>
@@ -33,9 +34,10 @@ struct QuaternionCurveOptions {
 
 class QuaternionCurve {
  public:
-  // keys: non-zero quaternions (normalised here); times: empty or one per key, strictly increasing.
+  // keys: non-zero quaternions of any finite length (normalised here, robustly); times: empty or
+  // one per key, strictly increasing, with usable spans (isUsableTimeSpan, curve.h).
   // Throws vdg::Error naming `where` for fewer than 2 keys, a zero or non-finite quaternion, bad times
-  // or a control_fraction outside (0, 1].
+  // (including a span that overflows) or a control_fraction outside (0, 1].
   static QuaternionCurve build(const std::vector<Quaternion>& keys, const std::vector<double>& times = {},
                                const QuaternionCurveOptions& options = {},
                                const std::string& where = "quaternion curve");
@@ -49,8 +51,11 @@ class QuaternionCurve {
   const std::vector<Quaternion>& controlsAfter() const { return a_; }
   const std::vector<Quaternion>& controlsBefore() const { return b_; }
 
-  // Unit quaternion at time t (clamped).
-  Quaternion evaluate(double t) const;
+  // Unit quaternion at time t (clamped) into `out`. Violation (returns false, `out` untouched):
+  // t not finite.
+  [[nodiscard]] bool evaluate(double t, Quaternion& out) const;
+  // Convenience form; throws vdg::Error for a non-finite t.
+  Quaternion at(double t) const;
 
  private:
   std::vector<double> times_;

@@ -43,7 +43,7 @@ Eigen::Matrix3d rotationPart(const Eigen::Matrix4d& m);
 Eigen::Vector3d translationPart(const Eigen::Matrix4d& m);
 
 // Axis-angle: Parent 4.3 q = Rot(axis, theta) = [cos(theta/2), sin(theta/2) axis]. `axis` is
-// normalised; a zero axis gives the identity.
+// normalised (robustly: any finite length); a zero or non-finite axis gives the identity.
 Quaternion axisAngleToQuaternion(const Eigen::Vector3d& axis, double angle);
 // Unit axis and angle in [0, pi] (axis (1,0,0) for the identity). q is normalised first.
 void quaternionToAxisAngle(const Quaternion& q, Eigen::Vector3d* axis, double* angle);
@@ -55,12 +55,16 @@ Eigen::Vector3d quaternionToFixedAngles(const Quaternion& q);
 
 // Parent 4.3: [s1,v1][s2,v2] = [s1 s2 - v1.v2, s1 v2 + s2 v1 + v1 x v2].
 Quaternion multiply(const Quaternion& q1, const Quaternion& q2);
-// Parent 4.3: q^-1 = (1 / |q|^2) [s, -v]. q must be non-zero.
+// Parent 4.3: q^-1 = (1 / |q|^2) [s, -v], computed with q scaled by its largest component so
+// that |q|^2 neither overflows nor underflows. q must be non-zero and finite.
 Quaternion inverse(const Quaternion& q);
 // Rotation of v by q: q [0, v] q^-1 (the text's q^-1 v q in its row-vector convention). Any
-// non-zero multiple of q gives the same result.
+// finite non-zero multiple of q gives the same result (q is normalised robustly first: 1e200 q
+// is q's rotation, not the identity); a zero or non-finite q rotates by the identity.
 Eigen::Vector3d rotate(const Quaternion& q, const Eigen::Vector3d& v);
-// q and k q (k != 0, in particular -q) are the same rotation: |q1.q2| = |q1| |q2| within `tol`.
+// q and k q (k != 0, in particular -q) are the same rotation: | |u1.u2| - 1 | <= tol for the unit
+// quaternions u = q / |q| (robustly normalised, any finite magnitude). False when either is zero
+// or not finite.
 bool sameRotation(const Quaternion& q1, const Quaternion& q2, double tol = 1e-9);
 // Angle in [0, pi] of the rotation taking q1 to q2.
 double angleBetween(const Quaternion& q1, const Quaternion& q2);

@@ -5,7 +5,8 @@
 // display parameter ... linear, parabolic, cubic interpolation with ease-in/ease-out").
 //
 //   RawTrack (mutable, what a file holds) --Track::build (validates)--> Track (immutable)
-//   --evaluate(t, out)--> value, allocation-free, never throws.
+//   --evaluate(t, out)--> value, under the per-frame contract of curve.h (checked on entry, false
+//   on a violation with nothing written, no throw, no allocation).
 //
 // Values: kScalar has 1 component; kVector n >= 1 components (all keys alike); kRotation is a
 // quaternion given and returned as 4 numbers (w, x, y, z) — keys are normalised at build time.
@@ -72,8 +73,11 @@ struct RawTrack {
   std::vector<RawKey> keys;
 
   // Throws vdg::Error "WHERE: track 'NAME': ..." naming the key index, for: no keys, key times not
-  // finite or not strictly increasing, value sizes wrong or differing, non-finite values, a zero
-  // quaternion, an interpolation not available for the type, handles on a non-Bezier track.
+  // finite or not strictly increasing, a span between two keys (or from the first key, the loop
+  // period) that overflows or is too small to divide by (isUsableTimeSpan), value sizes wrong or
+  // differing or above kMaxCurveDimension, non-finite values, a zero quaternion (any finite
+  // non-zero length is fine), an interpolation not available for the type, handles on a
+  // non-Bezier track. Track::build also throws when the built curve overflows (see Curve::build).
   void validate(const std::string& where = "track") const;
 };
 
@@ -90,14 +94,17 @@ class Track {
   double endTime() const { return times_.back(); }
   int keyCount() const { return static_cast<int>(times_.size()); }
 
-  // Value at time t (any t; clamped or looped); `out` must have dimension() entries.
-  void evaluate(double t, std::span<double> out) const;
-  Eigen::VectorXd at(double t) const;     // allocating convenience form
+  // Value at time t (any finite t; clamped or looped) into `out`. Violations (return false, `out`
+  // untouched): out.size() != dimension(), t not finite.
+  [[nodiscard]] bool evaluate(double t, std::span<double> out) const;
+  // Convenience forms (tools and tests); they throw vdg::Error "track 'NAME': ..." for a
+  // non-finite t, and rotationAt for a track that is not kRotation.
+  Eigen::VectorXd at(double t) const;     // allocates
   double scalarAt(double t) const;        // first component
   Quaternion rotationAt(double t) const;  // kRotation tracks: unit quaternion
 
   // The time at which the underlying curve is evaluated for time t: after clamping or looping and
-  // after the segment's ease.
+  // after the segment's ease (NaN counts as startTime()).
   double curveTime(double t) const;
 
  private:

@@ -27,7 +27,9 @@ struct Camera {
 struct CameraFrame {
   Eigen::Vector3d right, up, back;
 };
-// Throws vdg::Error when eye == target or up is parallel to the view axis.
+// Throws vdg::Error when eye == target, up is zero or parallel to the view axis, or a vector is
+// not finite (or eye - target overflows). Any finite magnitudes work otherwise (robust
+// normalisation, vdg/geom/normalize.h): an eye 1e200 away still gives the right frame.
 CameraFrame cameraFrame(const Camera& camera);
 
 // World -> camera (OpenGL convention: camera looks down -Z).

@@ -39,9 +39,18 @@ Bounds computeBounds(std::span<const float> positions);
 
 // Area-weighted vertex normals: each triangle adds its (unnormalised) cross product, whose length
 // is twice its area, to its three vertices; the sums are then normalised. A vertex touched only by
-// degenerate triangles gets (0, 0, 0). `normals` must hold #V x 3 floats. Allocates nothing.
-void computeVertexNormals(std::span<const float> positions, std::span<const std::int32_t> triangles,
-                          std::span<float> normals);
+// degenerate triangles gets (0, 0, 0). Non-finite positions are not checked (they give non-finite
+// normals, never a memory error).
+//
+// Per-frame contract (the rule of every vdg evaluation function, after ozz-animation's jobs):
+// sizes, indices and values are checked on entry; on a violation the function returns false and
+// has written nothing; it never throws and never allocates. Here a violation is
+//   positions.size() not a multiple of 3, normals.size() != positions.size(),
+//   triangles.size() not a multiple of 3, or a triangle index outside [0, #V).
+// The index check is per call (this free function takes any arrays): one read pass over the
+// #F x 3 indices before the first write, small next to the cross products that follow.
+[[nodiscard]] bool computeVertexNormals(std::span<const float> positions, std::span<const std::int32_t> triangles,
+                                        std::span<float> normals);
 
 // Checks the mesh's own consistency (array sizes, indices in range, finite coordinates) and
 // throws vdg::Error naming `what` (usually the file) and the first offending vertex or triangle.

@@ -29,6 +29,10 @@ RawTrack parseTrack(std::string_view json_text, const std::string& where);
 //  "up"?, "tilt"?: TRACK, "fov_deg"?, "ortho_height"?}
 RawCameraPath parseCameraPath(std::string_view json_text, const std::string& where);
 
+// Current version of the animation spec format: a spec may carry "version": 1 at its top level
+// (files without it are read as version 1).
+inline constexpr int kAnimSpecVersion = 1;
+
 // What `vdg sample` evaluates: exactly one of an ease, a curve, a track or a camera path.
 struct AnimSpec {
   enum class Kind { kEase, kCurve, kTrack, kCameraPath };

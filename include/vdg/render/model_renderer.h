@@ -62,7 +62,9 @@ class ModelRenderer {
   const TriMesh& baseMesh() const;
 
   // Renders the frame seen by `camera` into `out`. Returns the blending weights used (all-base
-  // for a plain mesh).
+  // for a plain mesh, and for an eye at the model's centre, which has no view direction).
+  // Throws vdg::Error for a degenerate camera (see cameraFrame), and "render: ... (internal
+  // error)" if an evaluation or draw call it makes refuses its input (a bug, never bad data).
   ViewWeights render(const Camera& camera, Image& out);
 
  private:

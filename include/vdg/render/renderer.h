@@ -9,8 +9,9 @@
 // display existed (to test the error path).
 //
 // Created once (owns the context, programs, framebuffers and buffers); per-frame calls reuse
-// buffers and allocate nothing once the largest mesh has been seen. Output is deterministic: the
-// same calls give byte-identical images, whatever was drawn before. Not thread-safe; one thread.
+// buffers and allocate nothing once the largest mesh has been seen. Per-frame calls check their
+// input and return false on a violation (see updateMesh); they never throw std::out_of_range. Output is deterministic:
+// the same calls give byte-identical images, whatever was drawn before. Not thread-safe; one thread.
 //
 // Silhouettes: the paper draws the faces that span a silhouette edge a second time as thick back-
 // face wireframe, depth-tested against the front faces, and a third time as points to fill the
@@ -86,26 +87,43 @@ class Renderer {
   int samples() const;         // the MSAA sample count in use
   std::string glInfo() const;  // "GL_RENDERER / GL_VERSION / EGL platform"
 
-  // Registers a mesh of `vertex_count` vertices and #F x 3 triangles (indices < vertex_count; the
-  // caller guarantees this, e.g. by validateMesh). Builds its edge topology. Returns its handle.
+  // Registers a mesh of `vertex_count` vertices and #F x 3 triangles. Builds its edge topology.
+  // Returns its handle (0, 1, 2, ... in order of registration). Set-up, not per-frame: throws
+  // vdg::Error "render: addMesh: ..." naming the triangle for a size that is not a multiple of 3
+  // or an index outside [0, vertex_count).
   int addMesh(std::span<const std::int32_t> triangles, std::size_t vertex_count);
+
+  // Per-frame calls follow the contract of every vdg evaluation function (after ozz-animation's
+  // jobs): sizes, handles and values are checked on entry; a violation returns false and has
+  // changed nothing (no GPU buffer, no canvas pixel, no GL state the next call depends on); no
+  // throw. Unlike the evaluation functions they may allocate (buffers grow to the largest data
+  // seen), so a check failing is never an out-of-memory question but always a caller's bug.
+  // A View is valid when its viewport has width, height >= 1, 0 < z_near < z_far (finite), and
+  // its camera has finite eye, target and up, eye != target, up not parallel to the view axis and
+  // (perspective) fov_deg in (0, 180).
+
   // Uploads this frame's positions (#V x 3) and normals (#V x 3, or empty: flat shading only).
-  void updateMesh(int mesh, std::span<const float> positions, std::span<const float> normals);
+  // Violations: `mesh` not a handle from addMesh; positions.size() != 3 * vertex_count; normals
+  // neither empty nor positions.size().
+  [[nodiscard]] bool updateMesh(int mesh, std::span<const float> positions, std::span<const float> normals);
 
   // Fills the whole canvas (viewport == nullptr) or one viewport with `color`, and clears depth.
   void clear(const Rgb& color, const Viewport* viewport = nullptr);
-  // Shaded mesh (back faces culled) and its silhouettes as seen from view.camera.
-  void drawMesh(int mesh, const View& view, const MeshStyle& style);
+  // Shaded mesh (back faces culled) and its silhouettes as seen from view.camera. Violations: a
+  // bad handle, an invalid View.
+  [[nodiscard]] bool drawMesh(int mesh, const View& view, const MeshStyle& style);
   // Overlays, for diagrams such as the viewing sphere:
   //  triangles #3N x 3 positions, shaded flat with `style` (no silhouettes, both sides drawn);
   //  line segments #2N x 3 positions (pairs), `width` pixels, round joints;
   //  dots #N x 3 positions, `diameter` pixels.
   // With depth_test, lines and dots are pulled towards the eye by `pull` pixels' worth of depth.
-  void drawTriangles(std::span<const float> positions, const View& view, const MeshStyle& style);
-  void drawLines(std::span<const float> segments, const View& view, float width, const Rgb& color, bool depth_test,
-                 float pull = 1.0f);
-  void drawDots(std::span<const float> points, const View& view, float diameter, const Rgb& color, bool depth_test,
-                float pull = 1.0f);
+  // Empty input draws nothing (true). Violations: a size that is not a multiple of 9 / 6 / 3, an
+  // invalid View, a width or diameter that is not finite or not > 0, a non-finite pull.
+  [[nodiscard]] bool drawTriangles(std::span<const float> positions, const View& view, const MeshStyle& style);
+  [[nodiscard]] bool drawLines(std::span<const float> segments, const View& view, float width, const Rgb& color,
+                               bool depth_test, float pull = 1.0f);
+  [[nodiscard]] bool drawDots(std::span<const float> points, const View& view, float diameter, const Rgb& color,
+                              bool depth_test, float pull = 1.0f);
 
   // Resolves the multisampled canvas into `out` (resized on first use; alpha = 255).
   void readPixels(Image& out);

@@ -25,8 +25,10 @@
 
 namespace vdg {
 
-// The most keys a model may have: far more than any drawn model sheet, and a bound on the work and
-// memory a hostile manifest can ask for.
+// Most keys a model may have. Far more than any model sheet (a few to a few dozen drawings), yet
+// small enough that building the viewing sphere (Qhull, O(n log n)) and a view's un-hinted
+// triangle search (linear in the hull's ~2n triangles) stay fast, and that the keys' meshes are
+// what limits memory. validate() rejects more; the manifest reader refuses more before reading.
 inline constexpr std::size_t kMaxKeys = 100'000;
 
 struct RawKey {
@@ -45,51 +47,71 @@ struct RawViewDependentModel {
   std::string comment;    // free text kept with the model (the manifest's "comment")
   TriMesh base;
   std::vector<RawKey> keys;
-  double sharpness = 1.0;  // alpha of section 3.2.2, > 0
+  double sharpness = 1.0;  // alpha of section 3.2.2, finite and > 0 (see view_sphere.h)
   ViewSphereSettings sphere;
   std::optional<Eigen::Vector3d> center;  // default: the base's bounding-box centre
 
   // The centre the views are measured from.
   Eigen::Vector3d resolvedCenter() const;
-  // Sets view = normalize(camera.eye - centre) for every key given by a camera.
+  // Sets view = normalize(camera.eye - centre) for every key given by a camera (robustly: any
+  // finite distance works; an eye at the centre leaves a zero view for validate() to report).
   void resolveViews();
   // Throws vdg::Error naming the manifest, key and vertex for: a key whose vertex count
-  // or triangles differ from the base, non-finite coordinates, a zero or non-finite view, two keys
-  // with the same view (within 1e-6 rad), duplicate names, sharpness <= 0, a bad falloff angle.
+  // or triangles differ from the base, non-finite coordinates, a vertex whose offset from the base
+  // overflows a float, a zero or non-finite view (any finite non-zero length is fine), two keys
+  // with the same view (within ViewSphere::kSameViewRad; an O(n log n) search), duplicate names,
+  // a sharpness that is not finite and > 0, a bad falloff angle, more than kMaxKeys keys.
   void validate() const;
 };
 
 class ViewDependentModel {
  public:
-  // Validates `raw` and builds the viewing sphere and the (sparse) key deltas. A model without keys
-  // can be loaded and saved (an editor starts from one) but not built: that throws vdg::Error.
+  // Validates `raw` (everything validate() checks; the same-view search runs once, in the viewing
+  // sphere's build) and builds the viewing sphere and the (sparse) key deltas. A model without
+  // keys can be loaded and saved (an editor starts from one) but not built: that throws vdg::Error.
   static ViewDependentModel build(const RawViewDependentModel& raw);
 
   const TriMesh& base() const { return base_; }
   std::size_t vertexCount() const { return base_.vertexCount(); }
   std::size_t keyCount() const { return keys_.size(); }
-  const std::string& keyName(std::size_t key) const { return keys_[key].name; }
-  const Eigen::Vector3d& keyView(std::size_t key) const { return sphere_.points()[key]; }
-  const std::optional<Camera>& keyCamera(std::size_t key) const { return keys_[key].camera; }
+  // Accessors by key index (tools and editors, not per-frame): `key` must be < keyCount(); an
+  // index out of range throws vdg::Error "key K out of range (the model has N keys)".
+  const std::string& keyName(std::size_t key) const;
+  const Eigen::Vector3d& keyView(std::size_t key) const;
+  const std::optional<Camera>& keyCamera(std::size_t key) const;
   // Number of vertices key `key` moves (its delta is stored sparse when this is small).
-  std::size_t keyMovedCount(std::size_t key) const { return keys_[key].moved_count; }
+  std::size_t keyMovedCount(std::size_t key) const;
   const Eigen::Vector3d& center() const { return center_; }
   double sharpness() const { return sharpness_; }
   const ViewSphere& sphere() const { return sphere_; }
 
-  // normalize(eye - centre), the view direction for an eye position in model space.
-  Eigen::Vector3d viewFromEye(const Eigen::Vector3d& eye) const { return (eye - center_).normalized(); }
+  // normalize(eye - centre), the view direction for an eye position in model space, for any finite
+  // distance (robust normalisation); the zero vector when the eye is at the centre or not finite.
+  Eigen::Vector3d viewFromEye(const Eigen::Vector3d& eye) const;
 
-  // Weights of a view direction; sharpness <= 0 means "the model's own".
-  ViewWeights weights(const Eigen::Vector3d& view, double sharpness = 0.0, int* hint = nullptr) const;
+  // Per-frame contract (the rule of every vdg evaluation function, after ozz-animation's jobs):
+  // weights(), blend(), keyPositions() and evaluate() check their sizes, indices and values on
+  // entry; on a violation they return false and have written nothing (no output span, no `out`,
+  // no `*hint`); they never throw and never allocate. Spans must have exactly the size stated.
+  // The model's triangles are trusted from build() (validated there); normals still go through
+  // computeVertexNormals, whose per-call index pass is cheap next to the blend.
 
-  // Blended positions for `w` into `out_positions` (#V x 3, caller-owned). No allocation, no throw.
-  void blend(const ViewWeights& w, std::span<float> out_positions) const;
-  // Positions of key `key` (its full mesh) into `out_positions` (#V x 3).
-  void keyPositions(std::size_t key, std::span<float> out_positions) const;
-  // weights + blend + (optional, when out_normals is non-empty) recomputed normals.
-  void evaluate(const Eigen::Vector3d& view, double sharpness, std::span<float> out_positions,
-                std::span<float> out_normals = {}, int* hint = nullptr) const;
+  // Weights of a view direction into `out`. sharpness <= 0 means "the model's own"; `hint` as in
+  // ViewSphere::weights (-1 or a triangle index of sphere()). Violations: a zero or non-finite
+  // view, a non-finite sharpness, a hint out of range.
+  [[nodiscard]] bool weights(const Eigen::Vector3d& view, double sharpness, ViewWeights& out,
+                             int* hint = nullptr) const;
+  // Blended positions for `w` into `out_positions` (#V x 3). Violations: out_positions.size() !=
+  // 3 * vertexCount(); a slot's key index >= keyCount() or < -1; a non-finite weight.
+  [[nodiscard]] bool blend(const ViewWeights& w, std::span<float> out_positions) const;
+  // Positions of key `key` (its full mesh) into `out_positions` (#V x 3). Violations: key >=
+  // keyCount(), out_positions.size() != 3 * vertexCount().
+  [[nodiscard]] bool keyPositions(std::size_t key, std::span<float> out_positions) const;
+  // weights + blend + (when out_normals is non-empty) normals recomputed from the blended
+  // positions. Violations: those of weights(); out_positions.size() != 3 * vertexCount();
+  // out_normals neither empty nor 3 * vertexCount() floats.
+  [[nodiscard]] bool evaluate(const Eigen::Vector3d& view, double sharpness, std::span<float> out_positions,
+                              std::span<float> out_normals = {}, int* hint = nullptr) const;
 
  private:
   struct Key {

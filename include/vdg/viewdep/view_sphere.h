@@ -2,7 +2,8 @@
 // the blending weights of any view direction (Rademacher 99, sections 3.2.1-3.2.2 and 3.3).
 //
 // Built once from the key directions (an immutable run-time object); weights() is then a pure,
-// allocation-free, non-throwing query that a renderer calls every frame.
+// allocation-free, non-throwing query that a renderer calls every frame (its inputs are checked
+// and a violation returns false, see weights()).
 //
 // Uncovered regions (section 3.3), for key sets whose hull does not enclose the sphere's centre:
 //  - Uncovered::Base: dummy "base" points are added on the sphere wherever no key lies within
@@ -19,11 +20,18 @@
 //    1 - w, so that the weights sum to 1 even behind the key); weights are continuous because p
 //    moves continuously wherever c > 0 and f reaches 0 where p may jump.
 // Sharpness alpha (section 3.2.2): the (up to three) triangle weights become w^a / sum w^a. In
-// the cosine modes the sharpening applies among the keys, before the falloff f.
+// the cosine modes the sharpening applies among the keys, before the falloff f. It is computed
+// relative to the largest weight, (w_i / w_max)^a / sum_j (w_j / w_max)^a, so any alpha > 0 is
+// exact: alpha = 5000 gives (to float rounding) weight 1 to the largest key (ties share it evenly),
+// never the unsharpened weights. Accepted values: finite alpha > 0. weights() is a per-frame query
+// and never throws: it refuses (returns false) a NaN, infinite, zero or negative alpha. Builders
+// and loaders (RawViewDependentModel::validate) reject such a model sharpness with vdg::Error.
 #pragma once
 
 #include <array>
+#include <functional>
 #include <span>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -54,16 +62,29 @@ struct ViewWeights {
 class ViewSphere {
  public:
   static constexpr int kDummyCandidates = 64;
+  // Two key directions closer than this angle are the same viewpoint.
+  static constexpr double kSameViewRad = 1e-6;
 
-  // key_directions: one direction per key, towards the eye, any non-zero length. Throws vdg::Error
-  // when there are no keys, a direction is zero or not finite, or two directions coincide
-  // (within 1e-6 rad). Messages name the key by index; callers add names.
-  static ViewSphere build(std::span<const Eigen::Vector3d> key_directions, const ViewSphereSettings& settings = {});
+  // key_directions: one direction per key, towards the eye, any finite non-zero length (1e-300 and
+  // 1e300 are fine: normalised robustly, vdg/geom/normalize.h). Throws vdg::Error when there are
+  // no keys, a direction is zero or not finite, or two directions coincide (within kSameViewRad;
+  // found in O(n log n) by forEachCloseViewPair). Messages name keys by `key_labels[i]` when
+  // given (one per key, e.g. "key 'front' (keys[0])"), by index ("key 3") otherwise.
+  static ViewSphere build(std::span<const Eigen::Vector3d> key_directions, const ViewSphereSettings& settings = {},
+                          std::span<const std::string> key_labels = {});
 
-  // Weights of the view direction `view` (towards the eye; any non-zero length; a zero or
-  // non-finite vector gives the base model). sharpness > 0 (values <= 0 are treated as 1).
-  // `hint` (optional, in/out) remembers the last triangle to speed up coherent queries.
-  ViewWeights weights(const Eigen::Vector3d& view, double sharpness = 1.0, int* hint = nullptr) const;
+  // Weights of the view direction `view` (towards the eye; any finite non-zero length, normalised
+  // robustly, so 1e-200 and 1e200 give the unit view's weights) into `out`. sharpness: see
+  // "Sharpness alpha" above. `hint` (optional, in/out) is -1 (no hint) or a triangle index from an
+  // earlier call on this sphere; it speeds up coherent queries and is set to the triangle found
+  // (left as it is when the view falls in an uncovered region).
+  // Per-frame contract (the rule of every vdg evaluation function, after ozz-animation's jobs):
+  // inputs are checked on entry; on a violation weights() returns false and has written nothing
+  // (neither `out` nor `*hint`); it never throws and never allocates. Violations: a zero or
+  // non-finite view, a sharpness that is not finite or not > 0, a hint other than -1 or an index
+  // into triangles().
+  [[nodiscard]] bool weights(const Eigen::Vector3d& view, double sharpness, ViewWeights& out,
+                             int* hint = nullptr) const;
 
   std::size_t keyCount() const { return key_count_; }
   // Unit directions of all points: the keys first (in input order), then the dummy base points.
@@ -81,6 +102,8 @@ class ViewSphere {
   struct Cone {
     Eigen::Matrix3d inverse;  // inverse of [a b c]: lambda = inverse * v
   };
+  // weights() after its checks: view non-zero and finite, sharpness > 0, hint valid.
+  ViewWeights locate(const Eigen::Vector3d& view, double sharpness, int* hint) const;
   ViewWeights locateInTriangle(int t, const Eigen::Vector3d& lambda) const;
   ViewWeights falloff(const Eigen::Vector3d& v, double& nearest_cos) const;
   void finishWeights(ViewWeights& w, double sharpness) const;
@@ -94,5 +117,13 @@ class ViewSphere {
   std::vector<int> isolated_;  // cosine modes: keys that belong to no triangle and no arc
   double covered_fraction_ = 0.0;
 };
+
+// Pairs of `unit_directions` less than `max_angle_rad` apart (angle atan2(|a x b|, a.b)), found
+// through a grid on the sphere: O(n log n) plus the number of close pairs, not O(n^2). Calls
+// visit(i, j, angle_rad) with j < i, in increasing order of i and then of j; the search stops
+// early when visit returns false. Returns the number of pairs visited. Inputs are expected unit
+// (non-finite components are tolerated: such a direction is near nothing).
+std::size_t forEachCloseViewPair(std::span<const Eigen::Vector3d> unit_directions, double max_angle_rad,
+                                 const std::function<bool(std::size_t i, std::size_t j, double angle_rad)>& visit);
 
 }  // namespace vdg
