@@ -12,7 +12,6 @@
 #include "cli.h"
 #include "vdg/deform/edits.h"
 #include "vdg/geom/error.h"
-#include "vdg/geom/normalize.h"
 #include "vdg/io/camera_json.h"
 #include "vdg/io/edit_script.h"
 #include "vdg/io/manifest.h"
