@@ -1,9 +1,135 @@
 #include "cli.h"
 
 #include <unistd.h>
+
+#include <cctype>
 #include <charconv>
+#include <cmath>
+
+#include "vdg/geom/error.h"
+#include "vdg/geom/normalize.h"
 
 namespace vdg::cli {
+namespace {
+
+// A range bound as people write it: whole values without a fraction or exponent ("1000000").
+std::string numberText(double v) {
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  if (v == std::floor(v) && std::abs(v) < 1e15) return std::to_string(static_cast<long long>(v));
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%g", v);
+  return buffer;
+}
+
+}  // namespace
+
+std::string shown(std::string_view text) {
+  constexpr std::size_t kShown = 60;
+  std::string s = oneLineText(text.substr(0, kShown));
+  if (text.size() > kShown) s += "...";
+  return "'" + s + "'";
+}
+
+bool hasExtension(std::string_view path, std::string_view extension) {
+  if (path.size() < extension.size()) return false;
+  const std::string_view tail = path.substr(path.size() - extension.size());
+  for (std::size_t i = 0; i < tail.size(); ++i)
+    if (std::tolower(static_cast<unsigned char>(tail[i])) != std::tolower(static_cast<unsigned char>(extension[i])))
+      return false;
+  return true;
+}
+
+std::string describeRange(const NumberRange& r) {
+  const std::string kind = r.whole ? "a whole number" : "a number";
+  const bool lo = r.lo_end != End::kUnbounded, hi = r.hi_end != End::kUnbounded;
+  if (lo && hi)
+    return kind + " in " + (r.lo_end == End::kOpen ? "(" : "[") + numberText(r.lo) + ", " + numberText(r.hi) +
+           (r.hi_end == End::kOpen ? ")" : "]");
+  if (lo) return kind + (r.lo_end == End::kOpen ? " > " : " >= ") + numberText(r.lo);
+  if (hi) return kind + (r.hi_end == End::kOpen ? " < " : " <= ") + numberText(r.hi);
+  return r.whole ? kind : "a finite number";
+}
+
+std::optional<double> parseNumberIn(std::string_view text, const NumberRange& r) {
+  if (!text.empty() && text.front() == '+') text.remove_prefix(1);
+  if (text.empty() || text.front() == '+') return std::nullopt;
+  const char* const end = text.data() + text.size();
+  double value = 0.0;
+  if (r.whole) {
+    long long whole = 0;
+    const auto [next, ec] = std::from_chars(text.data(), end, whole);
+    if (ec != std::errc() || next != end) return std::nullopt;
+    value = static_cast<double>(whole);
+  } else {
+    const auto [next, ec] = std::from_chars(text.data(), end, value);
+    if (ec != std::errc() || next != end || !std::isfinite(value)) return std::nullopt;
+  }
+  if ((r.lo_end == End::kClosed && !(value >= r.lo)) || (r.lo_end == End::kOpen && !(value > r.lo)) ||
+      (r.hi_end == End::kClosed && !(value <= r.hi)) || (r.hi_end == End::kOpen && !(value < r.hi)))
+    return std::nullopt;
+  return value;
+}
+
+CLI::Validator numberIn(const NumberRange& range) {
+  std::string help = describeRange(range);
+  help = help.substr(help.find(' ') + 1);  // "number in (0, 180)" after the type name
+  return CLI::Validator(
+      [range](std::string& text) -> std::string {
+        if (parseNumberIn(text, range)) return {};
+        return "expected " + describeRange(range) + ", got " + shown(text);
+      },
+      help);
+}
+
+CLI::Validator finiteNumber() { return numberIn({}); }
+
+CLI::Validator positiveNumber(double hi) {
+  return numberIn({0.0, End::kOpen, hi, hi > 0.0 ? End::kClosed : End::kUnbounded});
+}
+
+CLI::Validator openRange(double lo, double hi) { return numberIn({lo, End::kOpen, hi, End::kOpen}); }
+
+CLI::Validator wholeNumber(long lo, long hi) {
+  return numberIn({static_cast<double>(lo), End::kClosed, static_cast<double>(hi), End::kClosed, true});
+}
+
+namespace {
+
+// The message of a bad image size, or empty when `text` is one; fills `size`.
+std::string checkImageSize(const std::string& text, char separator, int max_side, ImageSize& size) {
+  const NumberRange side{1, End::kClosed, static_cast<double>(max_side), End::kClosed, true};
+  const auto sep = text.find(separator);
+  std::optional<double> w, h;
+  if (sep != std::string::npos) {
+    w = parseNumberIn(std::string_view(text).substr(0, sep), side);
+    h = parseNumberIn(std::string_view(text).substr(sep + 1), side);
+  }
+  if (!w || !h) {
+    const std::string form = separator == 'x' ? "WIDTHxHEIGHT" : std::string("WIDTH") + separator + "HEIGHT";
+    return "expected " + form + " in pixels, each side a whole number in [1, " + std::to_string(max_side) + "], got " +
+           shown(text);
+  }
+  size = {static_cast<int>(*w), static_cast<int>(*h)};
+  return {};
+}
+
+}  // namespace
+
+ImageSize parseImageSize(const std::string& text, char separator, int max_side, const std::string& option) {
+  ImageSize size;
+  if (const std::string message = checkImageSize(text, separator, max_side, size); !message.empty())
+    throw UsageError(option + ": " + message);
+  return size;
+}
+
+CLI::Validator imageSize(char separator, int max_side) {
+  return CLI::Validator(
+      [separator, max_side](std::string& text) {
+        ImageSize size;
+        return checkImageSize(text, separator, max_side, size);
+      },
+      "sides in [1, " + std::to_string(max_side) + "]");
+}
 
 Eigen::Vector3d parseVec3(const std::string& text, const std::string& option) {
   Eigen::Vector3d v;
@@ -14,17 +140,23 @@ Eigen::Vector3d parseVec3(const std::string& text, const std::string& option) {
     double value = 0;
     auto [next, ec] = std::from_chars(p, end, value);
     if (ec != std::errc() || !std::isfinite(value))
-      throw UsageError(option + ": expected three numbers X,Y,Z, got '" + text + "'");
+      throw UsageError(option + ": expected three finite numbers X,Y,Z, got " + shown(text));
     v[i] = value;
     p = next;
     while (p < end && *p == ' ') ++p;
     if (i < 2) {
-      if (p == end || *p != ',') throw UsageError(option + ": expected three numbers X,Y,Z, got '" + text + "'");
+      if (p == end || *p != ',') throw UsageError(option + ": expected three finite numbers X,Y,Z, got " + shown(text));
       ++p;
     }
   }
-  if (p != end) throw UsageError(option + ": expected three numbers X,Y,Z, got '" + text + "'");
+  if (p != end) throw UsageError(option + ": expected three finite numbers X,Y,Z, got " + shown(text));
   return v;
+}
+
+Eigen::Vector3d parseDirection(const std::string& text, const std::string& option) {
+  const std::optional<Eigen::Vector3d> unit = normalizedOrNone(parseVec3(text, option));  // 1e308 too
+  if (!unit) throw UsageError(option + ": the direction must not be zero, got " + shown(text));
+  return *unit;
 }
 
 FrameRange parseFrameRange(const std::string& text, const std::string& option) {
@@ -34,7 +166,7 @@ FrameRange parseFrameRange(const std::string& text, const std::string& option) {
     int value = 0;
     auto [next, ec] = std::from_chars(s.data(), s.data() + s.size(), value);
     if (ec != std::errc() || next != s.data() + s.size() || value < 0)
-      throw UsageError(option + ": expected a frame range A-B or a frame N, got '" + text + "'");
+      throw UsageError(option + ": expected a frame range A-B or a frame N (whole numbers >= 0), got " + shown(text));
     return value;
   };
   if (dash == std::string::npos) {
@@ -42,7 +174,7 @@ FrameRange parseFrameRange(const std::string& text, const std::string& option) {
   } else {
     r.first = parse_int(text.substr(0, dash));
     r.last = parse_int(text.substr(dash + 1));
-    if (r.last < r.first) throw UsageError(option + ": range '" + text + "' ends before it starts");
+    if (r.last < r.first) throw UsageError(option + ": expected A-B with A <= B, got " + shown(text));
   }
   return r;
 }

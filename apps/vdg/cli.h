@@ -5,7 +5,10 @@
 #include <CLI/CLI.hpp>
 #include <Eigen/Core>
 #include <cstdio>
+#include <optional>
+#include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace vdg::cli {
 
@@ -19,8 +22,60 @@ struct UsageError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// ---- Numeric options: one rule for every subcommand ----------------------------------------
+// A numeric option's text is accepted only when it is a number of the stated kind inside the
+// stated range; anything else (empty, "nan", "inf", "1e999", "12abc", out of range) stops parsing
+// with a usage error (exit status 2) whose one line names the option and the accepted range:
+//   "--sharpness: expected a number > 0, got 'nan'"
+// The checks are CLI11 validators, attached with ->check(...); their description also appears in
+// the option's --help line, so the help text and the check cannot disagree.
+
+// How an end of a range is bounded.
+enum class End { kClosed, kOpen, kUnbounded };
+
+// An interval of accepted values; `whole` demands an integer (no fraction, no exponent).
+struct NumberRange {
+  double lo = 0.0;
+  End lo_end = End::kUnbounded;
+  double hi = 0.0;
+  End hi_end = End::kUnbounded;
+  bool whole = false;
+};
+
+// "a finite number", "a number > 0", "a number in (0, 180)", "a whole number in [1, 64]".
+std::string describeRange(const NumberRange& range);
+// The value of `text` when it is a number inside `range` (the whole text, no spaces), else nullopt.
+std::optional<double> parseNumberIn(std::string_view text, const NumberRange& range);
+// A validator accepting exactly the texts parseNumberIn accepts.
+CLI::Validator numberIn(const NumberRange& range);
+
+// Shorthands for the usual ranges.
+CLI::Validator finiteNumber();                   // any finite number
+CLI::Validator positiveNumber(double hi = 0.0);  // (0, hi], or (0, inf) when hi <= 0
+CLI::Validator openRange(double lo, double hi);  // (lo, hi)
+CLI::Validator wholeNumber(long lo, long hi);    // [lo, hi], integers only
+
+// Image sizes "W<sep>H" (render --size 512x512, align --size 640,480): both sides whole numbers in
+// [1, max_side]. Throws UsageError "OPTION: expected WIDTHxHEIGHT ..., got 'TEXT'".
+struct ImageSize {
+  int width = 0, height = 0;
+};
+ImageSize parseImageSize(const std::string& text, char separator, int max_side, const std::string& option);
+// A validator for the same texts (so that bad sizes stop at parse time).
+CLI::Validator imageSize(char separator, int max_side);
+
+// `text` made safe to quote in a one-line message: control characters escaped, cut to 60 bytes.
+std::string shown(std::string_view text);
+
+// True when `path` ends with `extension` (".obj"), in any letter case ("X.OBJ" is an OBJ file).
+bool hasExtension(std::string_view path, std::string_view extension);
+
 // "X,Y,Z" -> vector; throws UsageError naming the option.
 Eigen::Vector3d parseVec3(const std::string& text, const std::string& option);
+
+// "X,Y,Z" -> unit vector (any finite, non-zero length, however large); throws UsageError naming
+// the option.
+Eigen::Vector3d parseDirection(const std::string& text, const std::string& option);
 
 // Parses "A-B" or "N" into an inclusive frame range; throws UsageError.
 struct FrameRange {

@@ -6,10 +6,8 @@
 #include <stb/stb_image.h>
 
 #include <cstdio>
-#include <fstream>
 #include <memory>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "cli.h"
 #include "vdg/deform/align.h"
@@ -18,6 +16,8 @@
 #include "vdg/io/camera_json.h"
 #include "vdg/io/manifest.h"
 #include "vdg/io/obj.h"
+#include "vdg/io/point_pairs.h"
+#include "vdg/io/read_file.h"
 #include "vdg/viewdep/model.h"
 
 namespace vdg::cli {
@@ -28,70 +28,30 @@ struct AlignCliOptions {
   bool ortho = false, json = false;
 };
 
-Eigen::Vector2d readVec2(const nlohmann::json& v, const std::string& where) {
-  if (!v.is_array() || v.size() != 2 || !v[0].is_number() || !v[1].is_number())
-    throw Error(where + " must be [x, y] (pixels)");
-  return {v[0].get<double>(), v[1].get<double>()};
-}
+// Drawings larger than this a side are refused (a scan at 600 dpi of an A0 sheet is about 28000).
+constexpr int kMaxDrawingSide = 65536;
 
-void readPairs(const std::string& path, const TriMesh& mesh, std::vector<Eigen::Vector3d>& points,
-               std::vector<Eigen::Vector2d>& pixels) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path + ": cannot open the point pairs");
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::exception& e) {
-    throw Error(path + ": invalid JSON: " + e.what());
-  }
-  const nlohmann::json* pairs = &j;
-  if (j.is_object()) {
-    if (!j.contains("pairs")) throw Error(path + ": expected {\"pairs\": [...]} or an array of pairs");
-    pairs = &j.at("pairs");
-  }
-  if (!pairs->is_array()) throw Error(path + ": 'pairs' must be an array");
-  for (std::size_t i = 0; i < pairs->size(); ++i) {
-    const nlohmann::json& p = (*pairs)[i];
-    const std::string where = path + ": pairs[" + std::to_string(i) + "]";
-    if (!p.is_object() || !p.contains("pixel")) throw Error(where + ": needs 'pixel' and 'vertex' or 'point'");
-    for (auto it = p.begin(); it != p.end(); ++it)
-      if (it.key() != "pixel" && it.key() != "vertex" && it.key() != "point")
-        throw Error(where + ": unknown field '" + it.key() + "'");
-    if (p.contains("vertex") == p.contains("point")) throw Error(where + ": give exactly one of 'vertex' or 'point'");
-    if (p.contains("vertex")) {
-      if (!p["vertex"].is_number_integer()) throw Error(where + ": 'vertex' must be an integer");
-      const std::int64_t v = p["vertex"].get<std::int64_t>();
-      if (v < 0 || v >= static_cast<std::int64_t>(mesh.vertexCount()))
-        throw Error(where + ": 'vertex' = " + std::to_string(v) + " is out of range (the base has " +
-                    std::to_string(mesh.vertexCount()) + " vertices)");
-      points.emplace_back(mesh.positions[3 * v], mesh.positions[3 * v + 1], mesh.positions[3 * v + 2]);
-    } else {
-      const nlohmann::json& q = p["point"];
-      if (!q.is_array() || q.size() != 3 || !q[0].is_number() || !q[1].is_number() || !q[2].is_number())
-        throw Error(where + ": 'point' must be [x, y, z]");
-      points.emplace_back(q[0].get<double>(), q[1].get<double>(), q[2].get<double>());
-    }
-    pixels.push_back(readVec2(p["pixel"], where + ": 'pixel'"));
-  }
+// The pixel size of a drawing, read from its header only.
+ImageSize drawingSize(const std::string& path) {
+  checkInputFile(path, "drawing");
+  int width = 0, height = 0, channels = 0;
+  if (!stbi_info(path.c_str(), &width, &height, &channels))
+    throw Error(path + ": cannot read the drawing's size (" +
+                (stbi_failure_reason() ? stbi_failure_reason() : "unknown format") + ")");
+  if (width < 1 || height < 1 || width > kMaxDrawingSide || height > kMaxDrawingSide)
+    throw Error(path + ": the drawing claims to be " + std::to_string(width) + "x" + std::to_string(height) +
+                " pixels; vdg reads drawings of 1 to " + std::to_string(kMaxDrawingSide) + " pixels a side");
+  return {width, height};
 }
 
 void runAlign(const AlignCliOptions& opt) {
   if (opt.drawing.empty() == opt.size.empty()) throw UsageError("give exactly one of --drawing IMG or --size W,H");
-  int width = 0, height = 0;
-  if (!opt.drawing.empty()) {
-    int channels = 0;
-    if (!stbi_info(opt.drawing.c_str(), &width, &height, &channels))
-      throw Error(opt.drawing + ": cannot read the drawing's size (" +
-                  (stbi_failure_reason() ? stbi_failure_reason() : "unknown format") + ")");
-  } else {
-    char sep = 0;
-    std::istringstream s(opt.size);
-    if (!(s >> width >> sep >> height) || sep != ',' || width <= 0 || height <= 0 || !s.eof())
-      throw UsageError("--size: expected W,H in pixels, got '" + opt.size + "'");
-  }
   if (opt.output.empty() && opt.key.empty()) throw UsageError("give -o CAMERA.json, --key NAME, or both");
-  const bool is_obj = opt.model.size() > 4 && opt.model.substr(opt.model.size() - 4) == ".obj";
+  const bool is_obj = hasExtension(opt.model, ".obj");
   if (is_obj && !opt.key.empty()) throw UsageError("--key needs a model manifest, not a mesh");
+  const ImageSize size =
+      opt.drawing.empty() ? parseImageSize(opt.size, ',', kMaxDrawingSide, "--size") : drawingSize(opt.drawing);
+  const int width = size.width, height = size.height;
   RawViewDependentModel raw;
   if (is_obj)
     raw.base = readMesh(opt.model);
@@ -108,7 +68,15 @@ void runAlign(const AlignCliOptions& opt) {
   }
   std::vector<Eigen::Vector3d> points;
   std::vector<Eigen::Vector2d> pixels;
-  readPairs(opt.points, base, points, pixels);
+  for (const PointPair& pair : readPointPairs(opt.points, base.vertexCount())) {
+    if (pair.vertex) {
+      const auto v = static_cast<std::size_t>(*pair.vertex);
+      points.emplace_back(base.positions[3 * v], base.positions[3 * v + 1], base.positions[3 * v + 2]);
+    } else {
+      points.push_back(pair.point);
+    }
+    pixels.push_back(pair.pixel);
+  }
   AlignOptions options;
   options.ortho = opt.ortho;
   const AlignResult r = alignCamera(points, pixels, width, height, options);
@@ -148,7 +116,8 @@ void addAlignCommand(CLI::App& app) {
   sub->add_option("MODEL", opt->model, "Model manifest (*.vdg.json; its base mesh is used) or a mesh (.obj)")
       ->required();
   sub->add_option("--drawing", opt->drawing, "The drawing (PNG, JPEG, ...), read for its pixel size");
-  sub->add_option("--size", opt->size, "Drawing size W,H in pixels instead of --drawing");
+  sub->add_option("--size", opt->size, "Drawing size W,H in pixels instead of --drawing")
+      ->check(imageSize(',', kMaxDrawingSide));
   sub->add_option("--points", opt->points,
                   "Point pairs JSON: {\"pairs\": [{\"vertex\": I | \"point\": [x,y,z], \"pixel\": [x,y]}, ...]}")
       ->required();

@@ -15,7 +15,6 @@
 #include "vdg/deform/edits.h"
 #include "vdg/deform/key_edit.h"
 #include "vdg/geom/error.h"
-#include "vdg/geom/normalize.h"
 #include "vdg/io/camera_json.h"
 #include "vdg/io/edit_script.h"
 #include "vdg/io/file_transaction.h"
@@ -127,10 +126,7 @@ void runDeform(const DeformOptions& opt) {
   }
   if (!opt.view.empty()) {
     if (given_camera || given_view) throw UsageError("--view: a camera or view is already given");
-    const Eigen::Vector3d v = parseVec3(opt.view, "--view");
-    const std::optional<Eigen::Vector3d> unit = normalizedOrNone(v);  // any finite length: 1e155 too
-    if (!unit) throw UsageError("--view: the view direction must be finite and not zero");
-    given_view = *unit;
+    given_view = parseDirection(opt.view, "--view");
   }
   if (!new_key) {
     const RawKey& key = raw.keys[key_index];

@@ -25,7 +25,8 @@ void addEvalCommand(CLI::App& app) {
   sub->add_option("-o,--output", opt->output, "Output mesh (.obj)")->required();
   sub->add_flag("-q,--quiet", opt->quiet, "Print nothing on success");
   sub->callback([opt] {
-    if (!opt->output.ends_with(".obj")) throw UsageError("-o: the output must be an .obj file");
+    if (!hasExtension(opt->output, ".obj"))
+      throw UsageError("-o: expected an .obj file name, got " + shown(opt->output));
     const ViewDependentModel model = ViewDependentModel::build(loadManifest(opt->model));
     const Eigen::Vector3d view = opt->view.resolve(model);
     ViewWeights w;

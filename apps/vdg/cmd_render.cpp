@@ -20,6 +20,7 @@
 #include "vdg/io/atomic_file.h"
 #include "vdg/io/manifest.h"
 #include "vdg/io/obj.h"
+#include "vdg/io/read_file.h"
 #include "vdg/render/model_renderer.h"
 
 namespace vdg::cli {
@@ -34,31 +35,34 @@ struct RenderOptions {
   bool observer = false, sphere = false, flat = false, quiet = false;
 };
 
-void parseSize(const std::string& text, int& width, int& height) {
-  const auto x = text.find('x');
-  long w = -1, h = -1;
-  try {
-    std::size_t used_w = 0, used_h = 0;
-    if (x != std::string::npos) {
-      w = std::stol(text.substr(0, x), &used_w);
-      h = std::stol(text.substr(x + 1), &used_h);
-    }
-    if (x == std::string::npos || used_w != x || used_h != text.size() - x - 1) w = h = -1;
-  } catch (const std::exception&) {
-    w = h = -1;
-  }
-  if (w < 0 || h < 0) throw UsageError("--size: expected WIDTHxHEIGHT in pixels, e.g. 512x512, got '" + text + "'");
-  if (w < 1 || h < 1 || w > render::kMaxImageSize || h > render::kMaxImageSize)
-    throw Error("--size " + text + ": each side must be between 1 and " + std::to_string(render::kMaxImageSize) +
-                " pixels");
-  width = static_cast<int>(w);
-  height = static_cast<int>(h);
+// Option ranges (checked at parse time by the validators in cli.h; see docs/render.md).
+constexpr long kMaxOrbitFrames = 1000000;
+constexpr int kMaxSamples = 64;           // the driver caps it further
+constexpr double kMaxLineWidth = 1000.0;  // pixels
+constexpr int kDriverQuerySide = 4096;
+// Beyond these the camera frame cannot be computed in double precision (the eye-target distance
+// overflows, or a near-zero field of view fits the model at an overflowing distance).
+constexpr double kMaxDistance = 1e15;
+constexpr double kMinFovDeg = 0.01, kMaxFovDeg = 179.99;  // larger canvases are checked against the driver's limit
+
+// The canvas is twice as wide with the observer panel; both sides must fit the OpenGL driver.
+void checkCanvas(const std::string& size_text, const render::FrameOptions& fo) {
+  const int canvas_width = fo.observer ? 2 * fo.width : fo.width;
+  const std::string observer = fo.observer ? " (with --observer the canvas is twice as wide)" : "";
+  if (canvas_width > render::kMaxImageSize)
+    throw UsageError("--size: expected a width in [1, " + std::to_string(render::kMaxImageSize / 2) +
+                     "] with --observer (the canvas is twice as wide), got " + shown(size_text));
+  if (std::max(canvas_width, fo.height) <= kDriverQuerySide) return;
+  const int limit = render::maxImageSide();
+  if (canvas_width > limit || fo.height > limit)
+    throw UsageError("--size: this machine's OpenGL driver draws at most " + std::to_string(limit) + " pixels a side" +
+                     observer + ", got " + shown(size_text));
 }
 
 render::Rgb parseColor(const std::string& text, const std::string& option) {
   const Eigen::Vector3d v = parseVec3(text, option);
   if (v.minCoeff() < 0.0 || v.maxCoeff() > 1.0)
-    throw UsageError(option + ": each channel must be in [0, 1], got '" + text + "'");
+    throw UsageError(option + ": expected R,G,B with each channel in [0, 1], got " + shown(text));
   return {static_cast<float>(v.x()), static_cast<float>(v.y()), static_cast<float>(v.z())};
 }
 
@@ -81,12 +85,12 @@ std::string shellQuote(const std::string& s) {
 }
 
 void run(const RenderOptions& opt) {
-  if (opt.orbit < 1) throw UsageError("--orbit: the number of frames must be at least 1");
-  if (!(opt.fov > 0.0 && opt.fov < 180.0)) throw UsageError("--fov: expected degrees in (0, 180)");
-  if (!(std::abs(opt.elevation) < 90.0)) throw UsageError("--elevation: expected degrees in (-90, 90)");
-  if (opt.distance < 0.0) throw UsageError("--distance: must be positive");
+  // Numeric options were range-checked while parsing (addRenderCommand); what is left here needs
+  // several options together, or the OpenGL driver.
   render::FrameOptions fo;
-  parseSize(opt.size, fo.width, fo.height);
+  const ImageSize size = parseImageSize(opt.size, 'x', render::kMaxImageSize, "--size");
+  fo.width = size.width;
+  fo.height = size.height;
   fo.samples = opt.samples;
   fo.observer = opt.observer;
   fo.sphere = opt.sphere;
@@ -100,10 +104,12 @@ void run(const RenderOptions& opt) {
   if (!opt.frames.empty()) {
     range = parseFrameRange(opt.frames, "--frames");
     if (range.last >= opt.orbit)
-      throw UsageError("--frames " + opt.frames + ": the orbit has frames 0-" + std::to_string(opt.orbit - 1));
+      throw UsageError("--frames: expected frames within 0-" + std::to_string(opt.orbit - 1) + " (--orbit " +
+                       std::to_string(opt.orbit) + "), got " + shown(opt.frames));
   }
+  checkCanvas(opt.size, fo);
 
-  const bool video = opt.output.ends_with(".mp4") || opt.output.ends_with(".gif");
+  const bool video = hasExtension(opt.output, ".mp4") || hasExtension(opt.output, ".gif");
   if (video && !findOnPath("ffmpeg"))
     throw Error("-o " + opt.output +
                 ": writing a video needs the 'ffmpeg' program, which is not on PATH; "
@@ -112,8 +118,9 @@ void run(const RenderOptions& opt) {
   // The model: a manifest, or a plain mesh.
   std::unique_ptr<ViewDependentModel> model;
   std::unique_ptr<render::ModelRenderer> renderer;
-  const bool plain = opt.model.ends_with(".obj") || opt.model.ends_with(".gltf") || opt.model.ends_with(".glb");
-  if (!fs::exists(opt.model)) throw Error(opt.model + ": no such file");
+  const bool plain =
+      hasExtension(opt.model, ".obj") || hasExtension(opt.model, ".gltf") || hasExtension(opt.model, ".glb");
+  checkInputFile(opt.model, plain ? "mesh" : "model");
   TriMesh mesh;
   if (plain) {
     mesh = readMesh(opt.model);
@@ -172,7 +179,7 @@ void run(const RenderOptions& opt) {
     (void)::fchmod(temp_fd, ::stat(real.c_str(), &existing) == 0 ? existing.st_mode & 07777 : 0666 & ~mask);
     ::close(temp_fd);
     const std::string temp = temp_name;
-    const std::string filter = opt.output.ends_with(".gif")
+    const std::string filter = hasExtension(opt.output, ".gif")
                                    ? "-vf 'split[a][b];[a]palettegen[p];[b][p]paletteuse'"
                                    : "-c:v libx264 -pix_fmt yuv420p -vf 'pad=ceil(iw/2)*2:ceil(ih/2)*2'";
     const std::string cmd = "ffmpeg -loglevel error -y -framerate 24 -start_number " + std::to_string(range.first) +
@@ -204,21 +211,32 @@ void addRenderCommand(CLI::App& app) {
   sub->add_option("MODEL", opt->model, "Model manifest (*.vdg.json), or a plain mesh (.obj)")->required();
   sub->add_option("-o,--output", opt->output, "Output folder for frame_NNNN.png, or OUT.mp4 / OUT.gif (needs ffmpeg)")
       ->required();
-  sub->add_option("--orbit", opt->orbit, "Frames for one turn of the camera around the model (default 1)");
-  sub->add_option("--azimuth", opt->azimuth, "Camera azimuth of frame 0 in degrees, from +Z towards +X (default 0)");
-  sub->add_option("--elevation", opt->elevation, "Camera elevation in degrees (default 15)");
-  sub->add_option("--distance", opt->distance, "Camera distance from the model centre (default: fit the model)");
-  sub->add_option("--fov", opt->fov, "Vertical field of view in degrees (default 30)");
-  sub->add_option("--size", opt->size, "Image size WxH of the main view (default 512x512)");
-  sub->add_option("--frames", opt->frames, "Render only frames A-B (or N) of the orbit");
+  sub->add_option("--orbit", opt->orbit, "Frames for one turn of the camera around the model (default 1)")
+      ->check(wholeNumber(1, kMaxOrbitFrames));
+  sub->add_option("--azimuth", opt->azimuth, "Camera azimuth of frame 0 in degrees, from +Z towards +X (default 0)")
+      ->check(finiteNumber());
+  sub->add_option("--elevation", opt->elevation, "Camera elevation in degrees (default 15)")
+      ->check(openRange(-90.0, 90.0));
+  sub->add_option("--distance", opt->distance, "Camera distance from the model centre (default: fit the model)")
+      ->check(positiveNumber(kMaxDistance));
+  sub->add_option("--fov", opt->fov, "Vertical field of view in degrees (default 30)")
+      ->check(numberIn({kMinFovDeg, End::kClosed, kMaxFovDeg, End::kClosed}));
+  sub->add_option("--size", opt->size,
+                  "Image size WxH of the main view, each side in [1, " + std::to_string(render::kMaxImageSize) +
+                      "] and within the OpenGL driver's limits (default 512x512)")
+      ->check(imageSize('x', render::kMaxImageSize));
+  sub->add_option("--frames", opt->frames, "Render only frames A-B (or N) of the orbit, 0 <= A <= B < --orbit");
   sub->add_flag("--observer", opt->observer, "Add the model seen from a fixed observer camera, to the right");
   sub->add_flag("--sphere", opt->sphere, "Add an inset of the viewing sphere (keys, hull, active triangle, view)");
-  sub->add_option("--sharpness", opt->sharpness, "Blend sharpness alpha (default: the model's own)");
+  sub->add_option("--sharpness", opt->sharpness, "Blend sharpness alpha (default: the model's own)")
+      ->check(positiveNumber());
   sub->add_option("--color", opt->color, "Base colour R,G,B in [0,1] (default 1,1,1)");
   sub->add_option("--background", opt->background, "Background colour R,G,B in [0,1] (default 0.97,0.97,0.95)");
   sub->add_flag("--flat", opt->flat, "Flat (per-face) shading, for hard-edged models");
-  sub->add_option("--line-width", opt->line_width, "Silhouette stroke width in pixels (default: max(3, height/100))");
-  sub->add_option("--samples", opt->samples, "Multisample anti-aliasing samples (default 8, capped by the driver)");
+  sub->add_option("--line-width", opt->line_width, "Silhouette stroke width in pixels (default: max(3, height/100))")
+      ->check(positiveNumber(kMaxLineWidth));
+  sub->add_option("--samples", opt->samples, "Multisample anti-aliasing samples (default 8, capped by the driver)")
+      ->check(wholeNumber(1, kMaxSamples));
   sub->add_flag("-q,--quiet", opt->quiet, "No progress bar and no summary line");
   sub->callback([opt] { run(*opt); });
 }

@@ -19,6 +19,8 @@
 namespace vdg::cli {
 namespace {
 
+constexpr long kMaxSamples = 1000000;
+
 struct Sampled {
   std::vector<std::string> header;  // parameter name, then the components
   std::vector<double> params;
@@ -36,7 +38,7 @@ std::vector<double> parseList(const std::string& text) {
     double v = 0;
     auto [end, ec] = std::from_chars(item.data(), item.data() + item.size(), v);
     if (item.empty() || ec != std::errc() || end != item.data() + item.size() || !std::isfinite(v)) {
-      throw UsageError("--at: expected numbers separated by commas, got '" + text + "'");
+      throw UsageError("--at: expected finite numbers separated by commas, got " + shown(text));
     }
     out.push_back(v);
     pos = comma + 1;
@@ -153,6 +155,23 @@ void printTable(const Sampled& s, bool csv) {
   std::cout << o.str();
 }
 
+// `text` (a file name) safe inside an SVG element: markup characters as entities, control
+// characters escaped.
+std::string xmlText(const std::string& text) {
+  std::string out;
+  for (char c : oneLineText(text)) {
+    if (c == '<')
+      out += "&lt;";
+    else if (c == '>')
+      out += "&gt;";
+    else if (c == '&')
+      out += "&amp;";
+    else
+      out += c;
+  }
+  return out;
+}
+
 // Left panel: every component against the parameter. Right panel (2+ components): the path in
 // the plane of the first two components with a dot per sample, so uneven spacing shows.
 void writeSvg(const std::string& path, const Sampled& s, const std::string& title) {
@@ -175,7 +194,7 @@ void writeSvg(const std::string& path, const Sampled& s, const std::string& titl
   const double width = path_panel ? 2 * kW : kW;
   o << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "\" height=\"" << kH + 30
     << "\" font-family=\"sans-serif\" font-size=\"11\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
-  o << "<text x=\"8\" y=\"16\">" << title << "</text>\n";
+  o << "<text x=\"8\" y=\"16\">" << xmlText(title) << "</text>\n";
   auto frame = [&](double x0, const std::string& xl, const std::string& yl, double xlo, double xhi, double ylo,
                    double yhi) {
     o << "<rect x=\"" << x0 + kPad << "\" y=\"" << 30 + kPad / 2 << "\" width=\"" << kW - 1.5 * kPad << "\" height=\""
@@ -238,12 +257,12 @@ void addSampleCommand(CLI::App& app) {
       ->required();
   cmd->add_option("--at", opt->at, "Comma-separated parameter values T1,T2,... (time, or arc-length fraction)");
   cmd->add_option("--samples", opt->samples, "N evenly spaced samples over the spec's range")
-      ->check(CLI::Range(1, 1000000));
+      ->check(wholeNumber(1, kMaxSamples));
   cmd->add_flag("--csv", opt->csv, "Print CSV: a header line, then the parameter and the value's components");
   cmd->add_option("-o,--output", opt->svg, "Write an SVG plot to this file instead of printing");
   cmd->callback([opt]() {
-    if (opt->at.empty() == (opt->samples == 0)) throw UsageError("sample: give exactly one of --at or --samples");
-    if (opt->csv && !opt->svg.empty()) throw UsageError("sample: --csv and -o exclude each other");
+    if (opt->at.empty() == (opt->samples == 0)) throw UsageError("give exactly one of --at T1,T2,... or --samples N");
+    if (opt->csv && !opt->svg.empty()) throw UsageError("--csv and -o exclude each other");
     const std::vector<double> at = opt->at.empty() ? std::vector<double>{} : parseList(opt->at);
     const anim::AnimSpec spec = anim::loadAnimSpec(opt->spec);
     const Sampled s = sample(spec, at, opt->samples);

@@ -1,12 +1,41 @@
-// vdg — the command-line tool. One file per subcommand; this one dispatches and turns errors
-// into one line on stderr: exit status 1 for bad input (vdg::Error), 2 for bad usage.
+// vdg — the command-line tool. One file per subcommand; this one dispatches and turns every error
+// into ONE line on stderr (control characters in names escaped, see vdg::oneLineText):
+//   exit status 1 for bad input:  "vdg: error: FILE: what is wrong"
+//   exit status 2 for bad usage:  "vdg: render: --size: expected ..., got '0x0' (see vdg render --help)"
+// Running out of memory is reported as such (exit status 1), with what to try.
 #include <cstdio>
 #include <exception>
+#include <new>
 #include <string>
 
 #include "cli.h"
 #include "vdg/geom/error.h"
 #include "vdg/version.h"
+
+namespace {
+
+// The subcommand named on the command line ("render"), or "" before one was recognised.
+std::string subcommandOf(const CLI::App& app) {
+  const auto subs = app.get_subcommands();
+  return subs.empty() ? std::string() : subs.front()->get_name();
+}
+
+int usage(const CLI::App& app, const std::string& message) {
+  const std::string sub = subcommandOf(app);
+  const std::string help = sub.empty() ? "vdg --help" : "vdg " + sub + " --help";
+  std::fprintf(stderr, "vdg: %s%s (see %s)\n", sub.empty() ? "" : (sub + ": ").c_str(),
+               vdg::oneLineText(message).c_str(), help.c_str());
+  return 2;
+}
+
+// What a subcommand can do with less memory.
+const char* memoryHint(const std::string& sub) {
+  if (sub == "render") return "try a smaller --size, fewer --samples or a smaller model";
+  if (sub == "sample") return "try fewer --samples or a smaller spec";
+  return "try a smaller model or mesh, or free some memory";
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{
@@ -32,18 +61,27 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "vdg: %s\nRun 'vdg --help' (or 'vdg SUBCOMMAND --help') for usage.\n", e.what());
-    return 2;
+    if (app.get_subcommands().empty()) {
+      std::string names;
+      for (const CLI::App* sub : app.get_subcommands({})) names += (names.empty() ? "" : ", ") + sub->get_name();
+      if (argc < 2) return usage(app, "give a subcommand: one of " + names);
+      if (argv[1][0] != '-')
+        return usage(app, "unknown subcommand " + vdg::cli::shown(argv[1]) + " (expected one of " + names + ")");
+    }
+    return usage(app, e.what());
   } catch (const vdg::cli::UsageError& e) {
-    std::fprintf(stderr, "vdg: %s\n", e.what());
-    return 2;
+    return usage(app, e.what());
   } catch (const vdg::cli::Exit& e) {
     return e.code;
   } catch (const vdg::Error& e) {
     std::fprintf(stderr, "vdg: error: %s\n", e.what());
     return 1;
+  } catch (const std::bad_alloc&) {
+    const std::string sub = subcommandOf(app);
+    std::fprintf(stderr, "vdg: error: %s ran out of memory; %s\n", sub.empty() ? "vdg" : sub.c_str(), memoryHint(sub));
+    return 1;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "vdg: error: %s\n", e.what());
+    std::fprintf(stderr, "vdg: error: %s\n", vdg::oneLineText(e.what()).c_str());
     return 1;
   }
   return 0;

@@ -20,22 +20,22 @@ struct ViewOptions {
     auto* eye = sub.add_option("--eye", eye_text, "Eye position X,Y,Z in model space (view = eye - centre)");
     view->excludes(eye);
     sub.add_option("--sharpness", sharpness, "Sharpness alpha of the blend (default: the model's)")
-        ->check(CLI::PositiveNumber);
+        ->check(positiveNumber());
   }
 
   // The view direction; throws UsageError unless exactly one of --view / --eye was given.
   Eigen::Vector3d resolve(const ViewDependentModel& model) const {
     if (view_text.empty() == eye_text.empty()) throw UsageError("give exactly one of --view X,Y,Z or --eye X,Y,Z");
     if (!view_text.empty()) {
-      const Eigen::Vector3d v = parseVec3(view_text, "--view");
-      const std::optional<Eigen::Vector3d> unit = normalizedOrNone(v);  // any finite length: 1e155 too
-      if (!unit) throw UsageError("--view: the view direction must be finite and not zero");
-      return *unit;
+      return parseDirection(view_text, "--view");
     }
-    const Eigen::Vector3d eye = parseVec3(eye_text, "--eye");
-    const Eigen::Vector3d v = model.viewFromEye(eye);
-    if (!(v.norm() > 0.0)) throw UsageError("--eye: the eye is at the model centre, so there is no view direction");
-    return v;
+    // view = normalize(eye - centre), as ViewDependentModel::viewFromEye, without overflow for a
+    // far eye (1e300).
+    const Eigen::Vector3d d = parseVec3(eye_text, "--eye") - model.center();
+    if (!d.allFinite()) throw UsageError("--eye: too far from the model centre, got " + shown(eye_text));
+    const std::optional<Eigen::Vector3d> unit = normalizedOrNone(d);
+    if (!unit) throw UsageError("--eye: the eye is at the model centre, so there is no view direction");
+    return *unit;
   }
 };
 

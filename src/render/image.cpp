@@ -9,6 +9,8 @@
 
 #include "vdg/geom/error.h"
 #include "vdg/io/atomic_file.h"
+#include "vdg/io/read_file.h"
+#include "vdg/render/renderer.h"
 
 namespace vdg::render {
 
@@ -28,7 +30,11 @@ void writePng(const std::string& path, const Image& image) {
 }
 
 Image readPng(const std::string& path) {
+  checkInputFile(path, "PNG image");  // a FIFO or a device would block or never end
   int w = 0, h = 0, channels = 0;
+  if (stbi_info(path.c_str(), &w, &h, &channels) && (w > kMaxImageSize || h > kMaxImageSize))
+    throw Error("PNG " + path + ": " + std::to_string(w) + "x" + std::to_string(h) + " pixels, more than " +
+                std::to_string(kMaxImageSize) + " a side");
   std::unique_ptr<stbi_uc, void (*)(void*)> data(stbi_load(path.c_str(), &w, &h, &channels, 4), stbi_image_free);
   if (!data) {
     const char* reason = stbi_failure_reason();

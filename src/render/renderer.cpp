@@ -214,6 +214,16 @@ struct Renderer::Impl {
   }
 };
 
+int maxImageSide() {
+  GlContext context;
+  GLint renderbuffer = 0, texture = 0, viewport[2] = {0, 0};
+  glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &renderbuffer);
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &texture);
+  glGetIntegerv(GL_MAX_VIEWPORT_DIMS, viewport);
+  return std::min({static_cast<int>(renderbuffer), static_cast<int>(texture), static_cast<int>(viewport[0]),
+                   static_cast<int>(viewport[1]), kMaxImageSize});
+}
+
 Renderer::Renderer(const RendererSettings& settings) {
   if (settings.width < 1 || settings.height < 1 || settings.width > kMaxImageSize || settings.height > kMaxImageSize)
     throw Error("render: image size " + std::to_string(settings.width) + "x" + std::to_string(settings.height) +
@@ -244,8 +254,11 @@ Renderer::Renderer(const RendererSettings& settings) {
   glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, m.ms_color.get());
   glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, m.ms_depth.get());
   if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-    throw Error("OpenGL: the multisampled framebuffer is incomplete (" + std::to_string(m.samples) + " samples, " +
-                std::to_string(m.width) + "x" + std::to_string(m.height) + "; out of memory?)");
+    throw Error("OpenGL: the driver (" + std::string(reinterpret_cast<const char*>(glGetString(GL_RENDERER))) +
+                ") cannot allocate a " + std::to_string(m.width) + "x" + std::to_string(m.height) + " canvas with " +
+                std::to_string(m.samples) + (m.samples == 1 ? " sample" : " samples") + " (its limit is " +
+                std::to_string(max_size) + " pixels a side, but the memory it allows runs out first); " +
+                "try a smaller size" + (m.samples > 1 ? " or fewer samples" : ""));
   m.resolve_fbo = makeFramebuffer();
   m.resolve_color = makeRenderbuffer();
   glBindRenderbuffer(GL_RENDERBUFFER, m.resolve_color.get());

@@ -37,6 +37,13 @@ namespace vdg::render {
 // Largest canvas side accepted, in pixels.
 inline constexpr int kMaxImageSize = 16384;
 
+// Largest canvas side this machine's OpenGL driver reports: the smallest of GL_MAX_RENDERBUFFER_SIZE,
+// GL_MAX_TEXTURE_SIZE and both GL_MAX_VIEWPORT_DIMS, and at most kMaxImageSize. Creates (and
+// destroys) a context for the query; throws vdg::Error "EGL: ..." as Renderer does without GL.
+// A driver may still fail to allocate a canvas below this limit when it needs more memory than
+// the driver allows (llvmpipe: about 8192x8192 with 4 samples); Renderer then says so.
+int maxImageSide();
+
 struct RendererSettings {
   int width = 512, height = 512;  // canvas size in pixels, each in [1, kMaxImageSize]
   int samples = 8;                // MSAA samples; clamped to the driver's maximum; 1 = none
@@ -67,8 +74,9 @@ struct MeshStyle {
 class Renderer {
  public:
   // Creates the EGL context and the framebuffers. Throws vdg::Error: "EGL: ..." when no display
-  // or context can be had, "OpenGL: ..." when a shader or framebuffer fails, "render: ..." for a
-  // size outside [1, kMaxImageSize].
+  // or context can be had, "OpenGL: ..." when a shader fails or the driver cannot allocate the
+  // canvas (the message gives the size, the samples and the driver), "render: ..." for a size
+  // outside [1, kMaxImageSize].
   explicit Renderer(const RendererSettings& settings);
   ~Renderer();
   Renderer(Renderer&&) noexcept;
