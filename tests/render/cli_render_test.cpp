@@ -87,8 +87,9 @@ TEST(CliRender, UnknownModelFile) {
 }
 
 TEST(CliRender, SizeZeroOrHuge) {
-  expectOneLineError(vdg("render " + kSpot + " -o " + freshDir("x").string() + " --size 0x64"), 1, "--size");
-  expectOneLineError(vdg("render " + kSpot + " -o " + freshDir("x").string() + " --size 20000x64"), 1, "16384");
+  // A bad option value is bad usage (exit status 2), whatever is wrong with it.
+  expectOneLineError(vdg("render " + kSpot + " -o " + freshDir("x").string() + " --size 0x64"), 2, "--size");
+  expectOneLineError(vdg("render " + kSpot + " -o " + freshDir("x").string() + " --size 20000x64"), 2, "16384");
   expectOneLineError(vdg("render " + kSpot + " -o " + freshDir("x").string() + " --size big"), 2, "--size");
 }
 
