@@ -22,7 +22,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     else if (script.view)
       camera = cameraFromView(Eigen::Vector3d::Zero(), script.view->normalized(), 3.0, 2.0);
     TriMesh mesh = kBase;
-    const auto reports = applyEdits(camera, mesh.triangles, mesh.positions, script.ops, script.image_size, "EDITS.json");
+    const auto reports =
+        applyEdits(camera, mesh.triangles, mesh.positions, script.ops, script.image_size, "EDITS.json");
     fuzz::require(reports.size() == script.ops.size(), "applyEdits gave one report per op");
   });
   return 0;
