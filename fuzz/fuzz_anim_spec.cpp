@@ -31,8 +31,8 @@ void exercise(AnimSpec& spec) {
       const Curve curve = Curve::build(spec.curve);
       std::vector<double> out(static_cast<std::size_t>(curve.dimension()));
       for (double t : {-1.0, 0.0, 0.7, 2.0, 100.0}) {
-        curve.evaluate(t, out);
-        curve.derivative(t, out);
+        vdg::fuzz::require(curve.evaluate(t, out), "Curve::evaluate refused a finite time");
+        vdg::fuzz::require(curve.derivative(t, out), "Curve::derivative refused a finite time");
       }
       if (spec.arc_length) {
         ArcLengthOptions options = *spec.arc_length;
@@ -40,7 +40,7 @@ void exercise(AnimSpec& spec) {
         const ArcLengthCurve arc = ArcLengthCurve::build(curve, options);
         for (double f : {-0.5, 0.0, 0.25, 0.5, 1.0, 3.0}) {
           (void)arc.timeAtFraction(f);
-          arc.evaluateAtFraction(f, out);
+          vdg::fuzz::require(arc.evaluateAtFraction(f, out), "ArcLengthCurve::evaluateAtFraction refused");
         }
       }
       break;
@@ -48,14 +48,17 @@ void exercise(AnimSpec& spec) {
     case AnimSpec::Kind::kTrack: {
       const Track track = Track::build(spec.track);
       std::vector<double> out(static_cast<std::size_t>(track.dimension()));
-      for (double t : {-5.0, 0.0, 0.5, 13.0, 1e6, -1e300}) track.evaluate(t, out);
+      for (double t : {-5.0, 0.0, 0.5, 13.0, 1e6, -1e300})
+        vdg::fuzz::require(track.evaluate(t, out), "Track::evaluate refused a finite time");
       break;
     }
     case AnimSpec::Kind::kCameraPath: {
       if (spec.camera_path.arc_length.table_samples > kMaxTableSamples)
         spec.camera_path.arc_length.table_samples = kMaxTableSamples;
       const CameraPath path = CameraPath::build(spec.camera_path);
-      for (double t : {-1.0, 0.0, 0.5, 5.0, 10.0, 20.0}) (void)path.evaluate(t);
+      vdg::Camera camera;
+      for (double t : {-1.0, 0.0, 0.5, 5.0, 10.0, 20.0})
+        vdg::fuzz::require(path.evaluate(t, camera), "CameraPath::evaluate refused a finite time");
       break;
     }
   }

@@ -18,7 +18,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     for (int k = 0; k < 3; ++k) fuzz::require(b.min[k] <= b.max[k], "computeBounds: min > max");
     // Huge (finite) coordinates may overflow to non-finite normals; only memory safety is checked.
     std::vector<float> normals(mesh.positions.size());
-    computeVertexNormals(mesh.positions, mesh.triangles, normals);
+    fuzz::require(computeVertexNormals(mesh.positions, mesh.triangles, normals),
+                  "computeVertexNormals refused an accepted mesh");
   });
   return 0;
 }
