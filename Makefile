@@ -1,13 +1,16 @@
 # The two commands a newcomer needs (see README.md):
 #   make demo   install dependencies, build, run the main job on the shipped example -> out/demo/
 #   make test   install dependencies, build (warnings as errors) and run every test, then the
-#               same tests again under AddressSanitizer + UndefinedBehaviorSanitizer
-# Other targets: build, bench, format, clean.
+#               same tests again under AddressSanitizer + UndefinedBehaviorSanitizer, then a
+#               bounded run of every fuzz target (make fuzz)
+# Other targets: build, bench, fuzz (FUZZ_SECONDS per target, default 45), format, clean.
 JOBS ?= 2
 BUILD := build/release
 ASAN_BUILD := build/asan
+FUZZ_BUILD := build/fuzz
+FUZZ_SECONDS ?= 45
 
-.PHONY: deps build demo test test-release test-asan bench format clean
+.PHONY: deps build demo test test-release test-asan fuzz bench format clean
 
 deps:
 	@scripts/install-deps
@@ -31,7 +34,14 @@ test-asan: deps
 	cmake --build $(ASAN_BUILD) -j $(JOBS)
 	ctest --test-dir $(ASAN_BUILD) --output-on-failure -j $(JOBS)
 
-test: test-release test-asan
+# libFuzzer + ASan + UBSan (clang): each target FUZZ_SECONDS on a copy of fuzz/corpus in build/fuzz;
+# fails on any finding (see CONTRIBUTING.md, "Fuzzing").
+fuzz: deps
+	cmake --preset fuzz
+	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target vdg_fuzzers
+	fuzz/run-fuzzers $(FUZZ_BUILD) $(FUZZ_SECONDS)
+
+test: test-release test-asan fuzz
 
 bench: build
 	@for b in $(BUILD)/bench/vdg_bench_*; do echo "== $$b"; $$b; done

@@ -33,18 +33,32 @@ std::string oneLine(std::string text) {
 
 // The strict pass over the text: every v/vt/vn/f line is checked before tinyobjloader, which is
 // lenient about exactly the things that silently change a shape, builds the mesh.
+//
+// tinyobjloader only ever sees what was checked: check() returns the text with every line vdg
+// does not read (skin weights `vw`, tags `t`, lines `l`, points `p`, materials, smoothing groups,
+// unknown statements) blanked, comments cut off and carriage returns made spaces, one output line
+// per input line (so tinyobjloader's line numbers stay right). Those statements are ignored by vdg
+// anyway, and tinyobjloader parses some of them unsafely (a `vw` joint id of 1e21 is converted to
+// int, undefined behaviour; a `t` line can ask for 3 x 8192 values).
 class ObjChecker {
  public:
   explicit ObjChecker(const std::string& source) : source_(source) {}
 
-  void check(std::string_view text) {
+  std::string check(std::string_view text) {
+    std::string checked;
+    checked.reserve(text.size());
     std::size_t line_no = 0;
     std::size_t start = 0;
     while (start <= text.size()) {
       std::size_t end = text.find('\n', start);
       if (end == std::string_view::npos) end = text.size();
       ++line_no;
-      checkLine(text.substr(start, end - start), line_no);
+      std::string_view line = text.substr(start, end - start);
+      if (checkLine(line, line_no)) {
+        line = line.substr(0, line.find('#'));
+        for (char c : line) checked += c == '\r' ? ' ' : c;
+      }
+      checked += '\n';
       start = end + 1;
     }
     for (const auto& [index, line] : {std::pair{max_v_, max_v_line_}}) {
@@ -58,6 +72,7 @@ class ObjChecker {
     if (max_vn_ > counts_[2])
       fail(max_vn_line_,
            "a face refers to normal " + std::to_string(max_vn_) + " but the file has " + std::to_string(counts_[2]));
+    return checked;
   }
 
  private:
@@ -119,12 +134,14 @@ class ObjChecker {
     return value;
   }
 
-  void checkLine(std::string_view line, std::size_t line_no) {
+  // Checks one line; true when it is a statement tinyobjloader should see (v, vt, vn, f, o, g).
+  bool checkLine(std::string_view line, std::size_t line_no) {
     const auto hash = line.find('#');
     if (hash != std::string_view::npos) line = line.substr(0, hash);
     const auto t = tokens(line);
-    if (t.empty()) return;
+    if (t.empty()) return false;
     const std::string_view tag = t[0];
+    if (tag == "o" || tag == "g") return true;  // object and group names (shapes in messages)
     if (tag == "v") {
       const std::string what = "vertex " + std::to_string(counts_[0] + 1);
       if (t.size() < 4) fail(line_no, what + ": expected 3 coordinates x y z, got " + std::to_string(t.size() - 1));
@@ -166,7 +183,10 @@ class ObjChecker {
           if (ni > max_vn_) max_vn_ = ni, max_vn_line_ = line_no;
         }
       }
+    } else {
+      return false;
     }
+    return true;
   }
 
   static constexpr std::int64_t kMaxIndex = std::numeric_limits<std::int32_t>::max();
@@ -179,14 +199,14 @@ class ObjChecker {
 }  // namespace
 
 TriMesh parseObj(const std::string& text, const std::string& source) {
-  ObjChecker(source).check(text);
+  const std::string checked = ObjChecker(source).check(text);
 
   tinyobj::ObjReaderConfig config;
   config.triangulate = true;
   config.vertex_color = false;
   tinyobj::ObjReader reader;
   // Materials are not used: an empty material text means `mtllib` lines open no file.
-  if (!reader.ParseFromString(text, std::string(), config)) {
+  if (!reader.ParseFromString(checked, std::string(), config)) {
     throw Error(source + ": cannot read OBJ: " + oneLine(reader.Error()));
   }
   const auto& attrib = reader.GetAttrib();
