@@ -11,6 +11,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #ifdef VDG_CLI
 
@@ -75,6 +76,25 @@ TEST(CliRender, OrbitWritesFramesAndRangesAreByteIdentical) {
   EXPECT_NE(readBytes(all / "frame_0000.png"), readBytes(all / "frame_0003.png"));
 }
 
+// A full disk (here a file size limit, which fails writes the same way) is an error naming the
+// frame, exit status 1, and a frame already there stays byte-identical.
+TEST(CliRender, FullDiskFailsAndKeepsExistingFrames) {
+  const fs::path dir = freshDir("vdg_render_full");
+  Result r = vdg("render " + kSpot + " -o " + dir.string() + " --size 96x96 --quiet");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const std::string frame = readBytes(dir / "frame_0000.png");
+  ASSERT_GT(frame.size(), 1024u);  // more than the 1-block limit below
+  r = vdg("render " + kSpot + " -o " + dir.string() + " --size 96x96 --azimuth 90 --quiet",
+          "trap '' XFSZ; ulimit -f 1;");
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("frame_0000.png: cannot write file: File too large"), std::string::npos) << r.output;
+  EXPECT_EQ(readBytes(dir / "frame_0000.png"), frame);
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
+  EXPECT_EQ(names, std::vector<std::string>{"frame_0000.png"});
+  fs::remove_all(dir);
+}
+
 void expectOneLineError(const Result& r, int status, const std::string& needle) {
   EXPECT_EQ(r.status, status) << r.output;
   EXPECT_NE(r.output.find(needle), std::string::npos) << r.output;
@@ -87,7 +107,7 @@ TEST(CliRender, UnknownModelFile) {
 }
 
 TEST(CliRender, SizeZeroOrHuge) {
-  // A bad option value is bad usage (exit status 2), whatever is wrong with it.
+  // A bad option value is bad usage (exit 2), whatever makes it bad.
   expectOneLineError(vdg("render " + kSpot + " -o " + freshDir("x").string() + " --size 0x64"), 2, "--size");
   expectOneLineError(vdg("render " + kSpot + " -o " + freshDir("x").string() + " --size 20000x64"), 2, "16384");
   expectOneLineError(vdg("render " + kSpot + " -o " + freshDir("x").string() + " --size big"), 2, "--size");
