@@ -7,6 +7,7 @@
 #include <numbers>
 #include <string>
 
+#include "support/error_of.h"
 #include "vdg/anim/arc_length.h"
 #include "vdg/anim/camera_path.h"
 #include "vdg/anim/curve.h"
@@ -30,15 +31,7 @@ Eigen::VectorXd vec(std::initializer_list<double> v) {
 }
 
 // The message of the vdg::Error that `f` throws ("" if none).
-template <typename F>
-std::string errorOf(F f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using testing::errorOf;
 
 void expectErrorContaining(const std::string& message, const std::string& part) {
   EXPECT_NE(message.find(part), std::string::npos) << "message: '" << message << "', expected: '" << part << "'";

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <utility>
 
+#include "support/error_of.h"
 #include "support/test_meshes.h"
 #include "test_meshes.h"
 #include "vdg/deform/edits.h"
@@ -23,15 +24,7 @@ Camera frontCamera() {
   return c;
 }
 
-template <typename F>
-std::string errorOf(F f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using testing::errorOf;
 
 VertexPick pick(std::int32_t vertex, double radius) {
   VertexPick p;

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "file_limit.h"
+#include "support/error_of.h"
 #include "support/test_meshes.h"
 #include "vdg/geom/error.h"
 #include "vdg/io/atomic_file.h"
@@ -20,15 +21,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-template <typename F>
-std::string errorOf(F f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using testing::errorOf;
 
 // Every entry of `dir` (names), to check that no temporary file is left behind.
 std::vector<std::string> entries(const fs::path& dir) {

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "file_limit.h"
+#include "support/error_of.h"
 #include "support/test_meshes.h"
 #include "vdg/geom/error.h"
 #include "vdg/io/file_transaction.h"
@@ -15,15 +16,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-template <typename F>
-std::string errorOf(F f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using testing::errorOf;
 
 std::vector<std::string> entries(const fs::path& dir) {
   std::vector<std::string> names;

@@ -7,20 +7,14 @@
 
 #include <functional>
 
+#include "support/error_of.h"
 #include "support/test_meshes.h"
 #include "vdg/io/read_file.h"
 
 namespace vdg::io {
 namespace {
 
-std::string errorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
+using testing::errorOf;
 
 std::string nested(int levels) { return std::string(levels, '[') + std::string(levels, ']'); }
 

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 
+#include "support/error_of.h"
 #include "support/test_meshes.h"
 #include "vdg/geom/error.h"
 #include "vdg/io/atomic_file.h"
@@ -11,14 +12,7 @@
 namespace vdg {
 namespace {
 
-std::string errorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
+using testing::errorOf;
 
 TEST(ObjIo, RoundTripIsExact) {
   testing::TempDir dir;
