@@ -3,12 +3,12 @@
 #   make test   install dependencies, build (warnings as errors) and run every test, then the
 #               same tests again under AddressSanitizer + UndefinedBehaviorSanitizer, then a
 #               bounded run of every fuzz target (make fuzz)
-# Other targets: build, bench, fuzz (FUZZ_SECONDS per target, default 45), format, clean.
+# Other targets: build, bench, fuzz (FUZZ_SECONDS per target, default 40), format, clean.
 JOBS ?= 2
 BUILD := build/release
 ASAN_BUILD := build/asan
 FUZZ_BUILD := build/fuzz
-FUZZ_SECONDS ?= 45
+FUZZ_SECONDS ?= 40
 
 .PHONY: deps build demo test test-release test-asan fuzz bench format clean
 
