@@ -23,15 +23,8 @@ namespace fs = std::filesystem;
 
 using testing::errorOf;
 
-// Every entry of `dir` (names), to check that no temporary file is left behind.
-std::vector<std::string> entries(const fs::path& dir) {
-  std::vector<std::string> names;
-  for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
-  std::sort(names.begin(), names.end());
-  return names;
-}
-
-constexpr long kFileLimit = 4096;
+using testing::entries;
+using testing::kFileLimit;
 
 TEST(AtomicFile, DiskFullLeavesTheTargetByteIdentical) {
   testing::TempDir dir;

@@ -8,12 +8,26 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <filesystem>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "vdg/geom/error.h"
 
 namespace vdg::testing {
+
+// The file size limit the disk-full tests write under (bytes).
+inline constexpr long kFileLimit = 4096;
+
+// The names of every entry of `dir`, sorted: checks that no temporary file is left behind.
+inline std::vector<std::string> entries(const std::filesystem::path& dir) {
+  std::vector<std::string> names;
+  for (const auto& e : std::filesystem::directory_iterator(dir)) names.push_back(e.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
 
 // Runs `f` in a child process whose files may not grow beyond `limit_bytes` (SIGXFSZ ignored, so a
 // write past it fails with EFBIG). Returns the vdg::Error message `f` threw, "" when it returned

@@ -78,8 +78,8 @@ class CameraPath {
   const ArcLengthCurve& path() const { return path_; }
 
   // The camera at animation time t (clamped to [startTime, endTime]) into `out`: eye on the path,
-  // target = eye + d * view direction, d = max(1, |eye|) (or the centre of interest / moving target itself), orthonormal
-  // up. Per-frame contract of curve.h: violation (returns false, `out` untouched): t not finite.
+  // target = eye + d * view direction, d = max(1, |eye|) (or the centre of interest / moving target itself),
+  // orthonormal up. Per-frame contract of curve.h: violation (returns false, `out` untouched): t not finite.
   [[nodiscard]] bool evaluate(double t, Camera& out) const;
   // Convenience forms (tools and tests): eye position / camera at t; throw vdg::Error for a
   // non-finite t.
