@@ -15,6 +15,7 @@
 #include "vdg/deform/edits.h"
 #include "vdg/deform/key_edit.h"
 #include "vdg/geom/error.h"
+#include "vdg/geom/normalize.h"
 #include "vdg/io/camera_json.h"
 #include "vdg/io/edit_script.h"
 #include "vdg/io/file_transaction.h"
@@ -126,7 +127,11 @@ void runDeform(const DeformOptions& opt) {
   }
   if (!opt.view.empty()) {
     if (given_camera || given_view) throw UsageError("--view: a camera or view is already given");
-    given_view = parseDirection(opt.view, "--view");
+    // (parseDirection's check, written out: assigning its result here trips GCC 12's
+    // -Wmaybe-uninitialized on the optionals at -O2.)
+    const std::optional<Eigen::Vector3d> unit = normalizedOrNone(parseVec3(opt.view, "--view"));
+    if (!unit) throw UsageError("--view: the direction must not be zero, got " + shown(opt.view));
+    given_view = *unit;
   }
   if (!new_key) {
     const RawKey& key = raw.keys[key_index];
