@@ -30,6 +30,8 @@ std::string position(std::string_view text, std::size_t byte) {
 // syntax error while parsing value - invalid literal; last read: 'x'"; keep the reason only.
 std::string reason(const std::string& what) {
   std::string text = what;
+  if (text.rfind("[json.exception.", 0) == 0 && text.find("] ") != std::string::npos)
+    text = text.substr(text.find("] ") + 2);
   const auto colon = text.find(": ");
   if (colon != std::string::npos) text = text.substr(colon + 2);
   const auto last_read = text.find("; last read:");

@@ -21,6 +21,12 @@ std::string kindOf(mode_t mode) {
   return "not a regular file";
 }
 
+// "a model", "an edit script".
+std::string withArticle(const std::string& noun) {
+  const bool vowel = !noun.empty() && std::string("aeiouAEIOU").find(noun[0]) != std::string::npos;
+  return (vowel ? "an " : "a ") + noun;
+}
+
 std::string sizeText(std::size_t bytes) {
   if (bytes >= (std::size_t{1} << 20)) return std::to_string(bytes >> 20) + " MiB";
   return std::to_string(bytes) + " bytes";
@@ -34,13 +40,13 @@ int openRegular(const std::string& path, const std::string& what, struct stat& i
   if (fd < 0) {
     const int err = errno;
     if (err == ENOENT) throw Error(path + ": no such file (" + what + ")");
-    if (err == EISDIR) throw Error(path + ": is a folder, not a " + what + " file");
+    if (err == EISDIR) throw Error(path + ": is a folder, not " + withArticle(what) + " file");
     throw Error(path + ": cannot open " + what + ": " + std::strerror(err));
   }
   if (::fstat(fd, &info) != 0 || !S_ISREG(info.st_mode)) {
     const std::string kind = S_ISREG(info.st_mode) ? "cannot be examined" : "is " + kindOf(info.st_mode);
     ::close(fd);
-    throw Error(path + ": " + kind + ", not a " + what + " file");
+    throw Error(path + ": " + kind + ", not " + withArticle(what) + " file");
   }
   return fd;
 }
