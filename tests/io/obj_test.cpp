@@ -91,6 +91,15 @@ TEST(ObjIo, RelativeIndicesAndCommentsStillRead) {
   EXPECT_EQ(m.triangles, (std::vector<std::int32_t>{0, 1, 2}));
 }
 
+TEST(ObjIo, StatementsVdgDoesNotUseAreIgnored) {
+  // Skin weights, tags, lines and points are not read: a huge joint id (once undefined behaviour
+  // inside tinyobjloader, found by fuzz_obj) or a tag asking for thousands of values changes nothing.
+  const TriMesh m = parseObj(
+      "vw 2 1.5E21 2\nt crease 8192/8192/8192 1 2\nl 1 2\np 1\ns 1\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "m.obj");
+  EXPECT_EQ(m.vertexCount(), 3u);
+  EXPECT_EQ(m.triangles, (std::vector<std::int32_t>{0, 1, 2}));
+}
+
 TEST(ObjIo, MaterialLibrariesAreNeverOpened) {
   // vdg uses no materials: an mtllib naming /dev/zero or a FIFO must neither hang nor exhaust memory.
   testing::TempDir dir;
