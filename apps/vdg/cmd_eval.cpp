@@ -1,4 +1,7 @@
-// vdg eval MODEL (--view X,Y,Z | --eye X,Y,Z) [--sharpness A] -o OUT.obj
+// vdg eval MODEL (--view X,Y,Z | --eye X,Y,Z) [--sharpness A] [--frame F] -o OUT.obj
+//
+// --frame F picks the frame of an animated model (manifest "base_animation", frames 0..N-1); it is
+// required for an animated model and refused (usage error) for a static one.
 #include <cstdio>
 #include <memory>
 
@@ -6,15 +9,24 @@
 #include "vdg/geom/error.h"
 #include "vdg/io/manifest.h"
 #include "vdg/io/obj.h"
+#include "vdg/viewdep/animated_model.h"
 #include "view_options.h"
 
 namespace vdg::cli {
+namespace {
+
+std::string viewText(const Eigen::Vector3d& view) {
+  return std::to_string(view.x()) + " " + std::to_string(view.y()) + " " + std::to_string(view.z());
+}
+
+}  // namespace
 
 void addEvalCommand(CLI::App& app) {
   struct Options {
     std::string model;
     ViewOptions view;
     std::string output;
+    int frame = -1;
     bool quiet = false;
   };
   auto opt = std::make_shared<Options>();
@@ -22,24 +34,55 @@ void addEvalCommand(CLI::App& app) {
       app.add_subcommand("eval", "Write the blended mesh for one view (same vertices and faces as the base)");
   sub->add_option("MODEL", opt->model, "Model manifest (*.vdg.json)")->required();
   opt->view.add(*sub);
+  sub->add_option("--frame", opt->frame, "Frame of an animated model (0 .. its frame count - 1)")
+      ->check(wholeNumber(0, static_cast<long>(kMaxBaseFrames) - 1));
   sub->add_option("-o,--output", opt->output, "Output mesh (.obj)")->required();
   sub->add_flag("-q,--quiet", opt->quiet, "Print nothing on success");
   sub->callback([opt] {
     if (!hasExtension(opt->output, ".obj"))
       throw UsageError("-o: expected an .obj file name, got " + shown(opt->output));
-    const ViewDependentModel model = ViewDependentModel::build(loadManifest(opt->model));
-    const Eigen::Vector3d view = opt->view.resolve(model);
+    const RawViewDependentModel raw = loadManifest(opt->model);
+    TriMesh out;
+    std::string header = "vdg eval " + opt->model;
     ViewWeights w;
-    TriMesh out = model.base();
-    // resolve() gives a unit view, the sharpness is checked positive and `out` has the base's size.
-    if (!model.weights(view, opt->view.sharpness, w) || !model.blend(w, out.positions))
-      throw Error("eval: the model refused view " + std::to_string(view.x()) + "," + std::to_string(view.y()) + "," +
-                  std::to_string(view.z()) + " (internal error)");
-    std::string header = "vdg eval " + opt->model + "\nview " + std::to_string(view.x()) + " " +
-                         std::to_string(view.y()) + " " + std::to_string(view.z()) + "\nweights:";
-    for (int k = 0; k < 3; ++k)
-      if (w.key[k] >= 0)
-        header += " " + model.keyName(static_cast<std::size_t>(w.key[k])) + "=" + std::to_string(w.weight[k]);
+    if (raw.animated()) {
+      const AnimatedViewDependentModel model = AnimatedViewDependentModel::build(raw);
+      const int n = model.frameCount();
+      if (opt->frame < 0)
+        throw UsageError("--frame: " + shown(opt->model) + " is animated (" + std::to_string(n) +
+                         " frames); give --frame F with F in 0.." + std::to_string(n - 1));
+      if (opt->frame >= n)
+        throw UsageError("--frame: expected a frame in 0.." + std::to_string(n - 1) + " (the model has " +
+                         std::to_string(n) + " frames), got " + std::to_string(opt->frame));
+      const Eigen::Vector3d view = opt->view.resolve(model.center());
+      out = model.base();
+      // resolve() gives a unit view, the sharpness is checked positive, the frame is in range and
+      // `out` has the base's size.
+      if (!model.weights(view, opt->view.sharpness, w) ||
+          !model.evaluate(opt->frame, view, opt->view.sharpness, out.positions))
+        throw Error("eval: the model refused view " + viewText(view) + " at frame " + std::to_string(opt->frame) +
+                    " (internal error)");
+      header += "\nframe " + std::to_string(opt->frame) + "\nview " + viewText(view) + "\nweights:";
+      for (int k = 0; k < 3; ++k)
+        if (w.key[k] >= 0)
+          header +=
+              " view of " + model.keyName(static_cast<std::size_t>(w.key[k]), 0) + "=" + std::to_string(w.weight[k]);
+    } else {
+      if (opt->frame >= 0)
+        throw UsageError("--frame: " + shown(opt->model) +
+                         " is not animated (no 'base_animation'); --frame applies to animated models only");
+      const ViewDependentModel model = ViewDependentModel::build(raw);
+      const Eigen::Vector3d view = opt->view.resolve(model);
+      out = model.base();
+      // resolve() gives a unit view, the sharpness is checked positive and `out` has the base's size.
+      if (!model.weights(view, opt->view.sharpness, w) || !model.blend(w, out.positions))
+        throw Error("eval: the model refused view " + std::to_string(view.x()) + "," + std::to_string(view.y()) + "," +
+                    std::to_string(view.z()) + " (internal error)");
+      header += "\nview " + viewText(view) + "\nweights:";
+      for (int k = 0; k < 3; ++k)
+        if (w.key[k] >= 0)
+          header += " " + model.keyName(static_cast<std::size_t>(w.key[k])) + "=" + std::to_string(w.weight[k]);
+    }
     header += " base=" + std::to_string(w.base);
     writeObj(opt->output, out, header);
     if (!opt->quiet)

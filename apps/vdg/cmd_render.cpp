@@ -4,6 +4,11 @@
 // frame (DIR/frame_0000.png ...), the camera going once around the model in N frames. A frame's
 // image depends only on its number and the options, so --frames ranges can be split across
 // machines and give byte-identical frames.
+//
+// An animated model (manifest "base_animation", M frames) advances one animation frame per output
+// frame: output frame f shows animation frame f mod M when the animation loops, min(f, M - 1)
+// (the last pose held) when it does not. The frame depends only on f, so ranges stay
+// byte-identical.
 #include <sys/stat.h>
 #include <unistd.h>
 #include <cerrno>
@@ -22,6 +27,7 @@
 #include "vdg/io/obj.h"
 #include "vdg/io/read_file.h"
 #include "vdg/render/model_renderer.h"
+#include "vdg/viewdep/animated_model.h"
 
 namespace vdg::cli {
 namespace {
@@ -117,6 +123,7 @@ void run(const RenderOptions& opt) {
 
   // The model: a manifest, or a plain mesh.
   std::unique_ptr<ViewDependentModel> model;
+  std::unique_ptr<AnimatedViewDependentModel> animated;
   std::unique_ptr<render::ModelRenderer> renderer;
   const bool plain =
       hasExtension(opt.model, ".obj") || hasExtension(opt.model, ".gltf") || hasExtension(opt.model, ".glb");
@@ -126,24 +133,35 @@ void run(const RenderOptions& opt) {
     mesh = readMesh(opt.model);
     fo.sphere = false;
   } else {
-    model = std::make_unique<ViewDependentModel>(ViewDependentModel::build(loadManifest(opt.model)));
+    const RawViewDependentModel raw = loadManifest(opt.model);
+    if (raw.animated())
+      animated = std::make_unique<AnimatedViewDependentModel>(AnimatedViewDependentModel::build(raw));
+    else
+      model = std::make_unique<ViewDependentModel>(ViewDependentModel::build(raw));
   }
-  const TriMesh& base = model ? model->base() : mesh;
+  const TriMesh& base = model ? model->base() : animated ? animated->base() : mesh;
   const Bounds bounds = computeBounds(base.positions);
   const auto bc = bounds.center();
-  const Eigen::Vector3d center = model ? model->center() : Eigen::Vector3d(bc[0], bc[1], bc[2]);
-  double radius = 0.0;  // bounding sphere about the centre
-  for (std::size_t v = 0; v < base.vertexCount(); ++v)
-    radius = std::max(
-        radius,
-        (Eigen::Vector3d(base.positions[v * 3], base.positions[v * 3 + 1], base.positions[v * 3 + 2]) - center).norm());
+  const Eigen::Vector3d center = model      ? model->center()
+                                 : animated ? animated->center()
+                                            : Eigen::Vector3d(bc[0], bc[1], bc[2]);
+  double radius = 0.0;  // bounding sphere about the centre (of every frame of an animated base)
+  const auto grow = [&](std::span<const float> positions) {
+    for (std::size_t v = 0; v < positions.size() / 3; ++v)
+      radius = std::max(
+          radius, (Eigen::Vector3d(positions[v * 3], positions[v * 3 + 1], positions[v * 3 + 2]) - center).norm());
+  };
+  grow(base.positions);
+  if (animated)
+    for (int f = 0; f < animated->frameCount(); ++f) grow(animated->baseFrame(f));
   radius = std::max(radius, 1e-6);
   const double aspect = static_cast<double>(fo.width) / fo.height;
   const double distance = opt.distance > 0.0 ? opt.distance : render::fitDistance(radius, opt.fov, aspect);
   fo.observer_camera =
       render::orbitCamera(center, render::fitDistance(radius, opt.fov, aspect), opt.azimuth + 35.0, 25.0, opt.fov);
-  renderer =
-      model ? std::make_unique<render::ModelRenderer>(*model, fo) : std::make_unique<render::ModelRenderer>(mesh, fo);
+  renderer = model      ? std::make_unique<render::ModelRenderer>(*model, fo)
+             : animated ? std::make_unique<render::ModelRenderer>(*animated, fo)
+                        : std::make_unique<render::ModelRenderer>(mesh, fo);
 
   // Frames go to DIR, or for a video to a scratch folder beside it.
   const fs::path out_dir = video ? fs::path(opt.output + ".frames") : fs::path(opt.output);
@@ -156,6 +174,10 @@ void run(const RenderOptions& opt) {
   char name[32];
   for (int f = range.first; f <= range.last; ++f) {
     const double azimuth = opt.azimuth + 360.0 * f / opt.orbit;
+    if (animated) {  // one animation frame per output frame (see the top of this file)
+      const int count = animated->frameCount();
+      renderer->setFrame(animated->loop() ? f % count : std::min(f, count - 1));
+    }
     renderer->render(render::orbitCamera(center, distance, azimuth, opt.elevation, opt.fov), image);
     std::snprintf(name, sizeof name, "frame_%04d.png", f);
     render::writePng((out_dir / name).string(), image);

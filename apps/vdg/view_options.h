@@ -24,14 +24,16 @@ struct ViewOptions {
   }
 
   // The view direction; throws UsageError unless exactly one of --view / --eye was given.
-  Eigen::Vector3d resolve(const ViewDependentModel& model) const {
+  Eigen::Vector3d resolve(const ViewDependentModel& model) const { return resolve(model.center()); }
+  // The same for a model whose views are measured from `center` (an animated model's).
+  Eigen::Vector3d resolve(const Eigen::Vector3d& center) const {
     if (view_text.empty() == eye_text.empty()) throw UsageError("give exactly one of --view X,Y,Z or --eye X,Y,Z");
     if (!view_text.empty()) {
       return parseDirection(view_text, "--view");
     }
     // view = normalize(eye - centre), as ViewDependentModel::viewFromEye, without overflow for a
     // far eye (1e300).
-    const Eigen::Vector3d d = parseVec3(eye_text, "--eye") - model.center();
+    const Eigen::Vector3d d = parseVec3(eye_text, "--eye") - center;
     if (!d.allFinite()) throw UsageError("--eye: too far from the model centre, got " + shown(eye_text));
     const std::optional<Eigen::Vector3d> unit = normalizedOrNone(d);
     if (!unit) throw UsageError("--eye: the eye is at the model centre, so there is no view direction");

@@ -1,6 +1,7 @@
 // The model manifest *.vdg.json (format documented in docs/model-format.md).
 #include "vdg/io/manifest.h"
 
+#include <cstdint>
 #include <filesystem>
 
 #include "camera_fields.h"
@@ -30,20 +31,168 @@ TriMesh readReferencedMesh(const fs::path& folder, const std::string& relative, 
   }
 }
 
+constexpr std::pair<const char*, OffsetSpace> kOffsetSpaces[] = {{"world", OffsetSpace::kWorld},
+                                                                 {"skinned", OffsetSpace::kSkinned}};
+
+// The frame numbers an OBJ sequence may use, and the most memory its frames may take together
+// (positions only; a frame of a million vertices may have about 178 frames).
+constexpr std::int64_t kMaxSequenceNumber = 999'999'999;
+constexpr std::size_t kMaxBaseAnimationBytes = std::size_t{2} << 30;
+constexpr double kMaxFps = 1000.0;
+
+BaseAnimationSpec parseBaseAnimation(const Json& j, const Ctx& ctx) {
+  io::allowKeys(j, ctx, {"obj_sequence", "frames", "gltf", "animation", "fps", "mesh", "loop"});
+  BaseAnimationSpec spec;
+  const bool sequence = j.contains("obj_sequence"), gltf = j.contains("gltf");
+  if (sequence == gltf)
+    ctx.fail("give exactly one of 'obj_sequence' (\"walk/frame_%03d.obj\") or 'gltf' (a .gltf or .glb file)");
+  if (sequence) {
+    for (const char* field : {"animation", "fps", "mesh"})
+      if (j.contains(field)) ctx.key(field).fail("applies to a 'gltf' base, not to an 'obj_sequence'");
+    spec.obj_sequence = io::string(j.at("obj_sequence"), ctx.key("obj_sequence"));
+    io::withContext(ctx.key("obj_sequence"), [&] { checkSequencePattern(spec.obj_sequence); });
+    const Ctx frames = ctx.key("frames");
+    const Json& range = io::required(j, "frames", ctx);
+    if (!range.is_array() || range.size() != 2)
+      frames.fail("expected [first, last] (two file numbers), got " + io::describe(range));
+    spec.first = static_cast<int>(io::integer(range[0], frames.index(0), 0, kMaxSequenceNumber));
+    spec.last = static_cast<int>(io::integer(range[1], frames.index(1), 0, kMaxSequenceNumber));
+    if (spec.last < spec.first)
+      frames.fail("the last frame " + std::to_string(spec.last) + " comes before the first " +
+                  std::to_string(spec.first));
+    if (static_cast<std::size_t>(spec.last - spec.first) + 1 > kMaxBaseFrames)
+      frames.fail(std::to_string(static_cast<std::int64_t>(spec.last) - spec.first + 1) +
+                  " frames; a base animation may have at most " + std::to_string(kMaxBaseFrames));
+  } else {
+    if (j.contains("frames"))
+      ctx.key("frames").fail("applies to an 'obj_sequence' base; a 'gltf' base takes 'animation' and 'fps'");
+    spec.gltf = io::string(j.at("gltf"), ctx.key("gltf"));
+    if (spec.gltf.empty()) ctx.key("gltf").fail("expected a .gltf or .glb file name, got an empty string");
+    if (j.contains("animation"))
+      spec.animation = static_cast<int>(io::integer(j.at("animation"), ctx.key("animation"), 0, 1'000'000));
+    if (j.contains("fps")) {
+      spec.fps = io::number(j.at("fps"), ctx.key("fps"));
+      if (!(spec.fps > 0.0 && spec.fps <= kMaxFps))
+        ctx.key("fps").fail("expected frames per second in (0, " + std::to_string(static_cast<int>(kMaxFps)) +
+                            "], got " + io::describe(j.at("fps")));
+    }
+    if (j.contains("mesh")) spec.mesh = io::string(j.at("mesh"), ctx.key("mesh"));
+  }
+  if (j.contains("loop")) spec.loop = io::boolean(j.at("loop"), ctx.key("loop"));
+  return spec;
+}
+
+// Reads every frame of an OBJ-sequence base into model.base (frame 0: topology, uvs, positions)
+// and model.base_frames.
+void loadObjSequence(RawViewDependentModel& model, const fs::path& folder, const std::string& path) {
+  const BaseAnimationSpec& spec = *model.base_animation;
+  const std::size_t count = static_cast<std::size_t>(spec.last - spec.first) + 1;
+  std::string first_name;
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::string name = sequenceFileName(spec.obj_sequence, spec.first + static_cast<int>(i));
+    TriMesh frame = readReferencedMesh(folder, name, path + ": base_animation frame " + std::to_string(i));
+    if (i == 0) {
+      first_name = name;
+      const std::size_t bytes = frame.positions.size() * sizeof(float);
+      if (bytes > 0 && count > kMaxBaseAnimationBytes / bytes)
+        throw Error(path + ": base_animation: " + std::to_string(count) + " frames of " +
+                    std::to_string(frame.vertexCount()) + " vertices exceed the limit of " +
+                    std::to_string(kMaxBaseAnimationBytes >> 20) + " MiB of positions");
+      model.base_frames.reserve(count);
+      model.base = std::move(frame);
+      model.base_frames.push_back(model.base.positions);
+      continue;
+    }
+    const std::string label = path + ": base_animation frame " + std::to_string(i) + " (" + name + ")";
+    if (frame.vertexCount() != model.base.vertexCount())
+      throw Error(label + ": " + std::to_string(frame.vertexCount()) + " vertices but frame 0 (" + first_name +
+                  ") has " + std::to_string(model.base.vertexCount()) + "; every frame must have the same topology");
+    if (frame.triangles != model.base.triangles)
+      throw Error(label + ": its triangles differ from frame 0's (" + first_name +
+                  "); every frame must have the same topology");
+    model.base_frames.push_back(std::move(frame.positions));
+  }
+}
+
+// ---- glTF animated bases: HOOK for the lead to glue in after merging -------------------------
+// Fill model.base (rest topology with frame 0's positions), model.base_frames (frame i = time
+// i / fps; N = round(duration * fps) + 1, or round(duration * fps) with loop) and, for a skinned
+// mesh, model.base_skin (Rig::evaluate's out_skin), from readGltfRig(folder / spec.gltf, {spec.mesh})
+// and Rig::evaluate(spec.animation, i / spec.fps, ...). Until then glTF bases are refused.
+void loadGltfBaseAnimation(RawViewDependentModel& model, const fs::path& folder, const std::string& path) {
+  (void)model;
+  (void)folder;
+  throw Error(path + ": base_animation.gltf: glTF animated bases are not supported by this build of vdg yet");
+}
+
 }  // namespace
+
+std::string sequenceFileName(const std::string& pattern, int number) {
+  checkSequencePattern(pattern);
+  const std::size_t percent = pattern.find('%');
+  std::size_t end = percent + 1;
+  int width = 0;
+  while (pattern[end] >= '0' && pattern[end] <= '9') width = 10 * width + (pattern[end++] - '0');
+  std::string digits = std::to_string(number);
+  if (number >= 0 && digits.size() < static_cast<std::size_t>(width))
+    digits.insert(0, static_cast<std::size_t>(width) - digits.size(), '0');
+  return pattern.substr(0, percent) + digits + pattern.substr(end + 1);
+}
+
+void checkSequencePattern(const std::string& pattern) {
+  const std::size_t percent = pattern.find('%');
+  const auto bad = [&](const std::string& why) {
+    throw Error("expected a file pattern with one %d or %0Nd (\"walk/frame_%03d.obj\"), got '" +
+                (pattern.size() > 60 ? pattern.substr(0, 60) + "..." : pattern) + "': " + why);
+  };
+  if (percent == std::string::npos) bad("it has no %d");
+  std::size_t end = percent + 1;
+  if (end < pattern.size() && pattern[end] == '0') {
+    ++end;
+    const std::size_t digits = end;
+    while (end < pattern.size() && pattern[end] >= '0' && pattern[end] <= '9') ++end;
+    if (end == digits || end - digits > 1 || pattern[digits] == '0')
+      bad("the width of %0Nd must be one digit from 1 to 9");
+  }
+  if (end >= pattern.size() || pattern[end] != 'd') bad("the only conversion allowed is %d or %0Nd");
+  if (pattern.find('%', end + 1) != std::string::npos) bad("it has more than one %");
+}
 
 RawViewDependentModel parseManifest(const std::string& text, const std::string& source) {
   const Json doc = io::parseJson(text, source);
   const Ctx top{source, ""};
-  io::formatVersion(doc, top, "model manifests", 1, kManifestVersion);
-  io::allowKeys(doc, top,
-                {"version", "base", "keys", "sharpness", "uncovered", "base_falloff_deg", "center", "comment"});
+  const int version = io::formatVersion(doc, top, "model manifests", 1, kManifestVersion);
+  if (version == 1) {
+    for (const char* field : {"base_animation", "offsets"})
+      if (doc.is_object() && doc.contains(field))
+        top.key(field).fail("needs manifest version 2 (this file says \"version\": 1)");
+    io::allowKeys(doc, top,
+                  {"version", "base", "keys", "sharpness", "uncovered", "base_falloff_deg", "center", "comment"});
+  } else {
+    io::allowKeys(doc, top,
+                  {"version", "base", "base_animation", "offsets", "keys", "sharpness", "uncovered", "base_falloff_deg",
+                   "center", "comment"});
+  }
 
   RawViewDependentModel model;
   model.source = source;
-  if (!doc.contains("base")) top.fail("missing 'base' (the base mesh file)");
-  model.base_path = io::string(doc.at("base"), top.key("base"));
-  if (model.base_path.empty()) top.key("base").fail("expected a mesh file name, got an empty string");
+  const bool has_base = doc.contains("base"), has_animation = doc.contains("base_animation");
+  if (has_base && has_animation)
+    top.fail("give exactly one of 'base' (a mesh file) or 'base_animation' (an animated base), not both");
+  if (!has_base && !has_animation)
+    top.fail(version == 1 ? "missing 'base' (the base mesh file)"
+                          : "missing 'base' (the base mesh file) or 'base_animation' (an animated base)");
+  if (has_base) {
+    model.base_path = io::string(doc.at("base"), top.key("base"));
+    if (model.base_path.empty()) top.key("base").fail("expected a mesh file name, got an empty string");
+  } else {
+    model.base_animation = parseBaseAnimation(doc.at("base_animation"), top.key("base_animation"));
+  }
+  if (doc.contains("offsets")) {
+    model.offsets = io::enumValue(doc.at("offsets"), top.key("offsets"), kOffsetSpaces);
+    if (!has_animation && model.offsets == OffsetSpace::kSkinned)
+      top.key("offsets").fail("'skinned' needs an animated, skinned base ('base_animation')");
+  }
   if (doc.contains("comment")) model.comment = io::string(doc.at("comment"), top.key("comment"));
   if (doc.contains("sharpness")) model.sharpness = io::number(doc.at("sharpness"), top.key("sharpness"));
   if (doc.contains("uncovered"))
@@ -68,8 +217,11 @@ RawViewDependentModel parseManifest(const std::string& text, const std::string& 
     key.name = entry.contains("name") ? io::string(entry.at("name"), ctx.key("name"))
                                       : fs::path(key.mesh_path).stem().string();
     ctx = ctx.labelled("key '" + key.name + "' (keys[" + std::to_string(k) + "])");
-    if (entry.contains("frame"))
-      ctx.fail("'frame' needs an animated base model, which this version of vdg does not read yet");
+    if (entry.contains("frame")) {
+      if (!has_animation) ctx.fail("'frame' needs an animated base model ('base_animation', manifest version 2)");
+      key.frame = static_cast<int>(
+          io::integer(entry.at("frame"), ctx.key("frame"), 0, static_cast<std::int64_t>(kMaxBaseFrames) - 1));
+    }
     const bool has_view = entry.contains("view"), has_camera = entry.contains("camera");
     if (has_view == has_camera) ctx.fail("give exactly one of 'view' [x, y, z] or 'camera' {eye, target, ...}");
     if (has_view) key.view = io::vector3(entry.at("view"), ctx.key("view"));
@@ -82,7 +234,12 @@ RawViewDependentModel parseManifest(const std::string& text, const std::string& 
 RawViewDependentModel loadManifest(const std::string& path) {
   RawViewDependentModel model = parseManifest(readFileLimited(path, "model", kMaxJsonFileBytes), path);
   const fs::path folder = fs::path(path).parent_path();
-  model.base = readReferencedMesh(folder, model.base_path, path + ": base");
+  if (!model.base_animation)
+    model.base = readReferencedMesh(folder, model.base_path, path + ": base");
+  else if (!model.base_animation->obj_sequence.empty())
+    loadObjSequence(model, folder, path);
+  else
+    loadGltfBaseAnimation(model, folder, path);
   for (std::size_t k = 0; k < model.keys.size(); ++k) {
     RawKey& key = model.keys[k];
     key.mesh =
@@ -97,7 +254,24 @@ std::string formatManifest(const RawViewDependentModel& model) {
   nlohmann::ordered_json doc;
   doc["version"] = kManifestVersion;
   if (!model.comment.empty()) doc["comment"] = model.comment;
-  doc["base"] = model.base_path;
+  if (model.base_animation) {
+    const BaseAnimationSpec& spec = *model.base_animation;
+    nlohmann::ordered_json animation;
+    if (!spec.obj_sequence.empty()) {
+      animation["obj_sequence"] = spec.obj_sequence;
+      animation["frames"] = {spec.first, spec.last};
+    } else {
+      animation["gltf"] = spec.gltf;
+      animation["animation"] = spec.animation;
+      animation["fps"] = spec.fps;
+      if (!spec.mesh.empty()) animation["mesh"] = spec.mesh;
+    }
+    if (spec.loop) animation["loop"] = true;
+    doc["base_animation"] = std::move(animation);
+    doc["offsets"] = offsetSpaceName(model.offsets);
+  } else {
+    doc["base"] = model.base_path;
+  }
   if (model.center) doc["center"] = {model.center->x(), model.center->y(), model.center->z()};
   doc["sharpness"] = model.sharpness;
   doc["uncovered"] = uncoveredName(model.sphere.uncovered);
@@ -108,6 +282,7 @@ std::string formatManifest(const RawViewDependentModel& model) {
     nlohmann::ordered_json entry;
     entry["name"] = key.name;
     entry["mesh"] = key.mesh_path;
+    if (model.base_animation) entry["frame"] = key.frame;
     if (key.camera)
       entry["camera"] = io::cameraJson(*key.camera);
     else

@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "vdg/geom/error.h"
+#include "vdg/geom/normalize.h"
 
 namespace vdg::render {
 namespace {
@@ -67,7 +68,9 @@ double fitDistance(double radius, double fov_deg, double aspect) {
 
 struct ModelRenderer::Impl {
   const ViewDependentModel* model = nullptr;
-  TriMesh plain;  // the plain mesh (no model)
+  const AnimatedViewDependentModel* animated = nullptr;  // section 4; `model` is then null
+  int frame = 0;                                         // of `animated`
+  TriMesh plain;                                         // the plain mesh (no model)
   FrameOptions options;
   Renderer renderer;
   int mesh_id = -1;
@@ -81,7 +84,9 @@ struct ModelRenderer::Impl {
   Impl(const FrameOptions& o, int image_width)
       : options(o), renderer(RendererSettings{image_width, o.height, o.samples}) {}
 
-  const TriMesh& base() const { return model ? model->base() : plain; }
+  const TriMesh& base() const { return model ? model->base() : animated ? animated->base() : plain; }
+  bool viewDependent() const { return model || animated; }
+  const ViewSphere& sphere() const { return model ? model->sphere() : animated->sphere(); }
 
   void setup() {
     const TriMesh& mesh = base();
@@ -90,14 +95,17 @@ struct ModelRenderer::Impl {
     mesh_id = renderer.addMesh(mesh.triangles, mesh.vertexCount());
     const Bounds b = computeBounds(mesh.positions);
     const auto c = b.center();
-    center = model ? model->center() : Eigen::Vector3d(c[0], c[1], c[2]);
+    center = model ? model->center() : animated ? animated->center() : Eigen::Vector3d(c[0], c[1], c[2]);
     radius = std::max(1e-6, 0.5 * static_cast<double>(b.diagonal()));
+    if (animated)  // every frame of the base must fit the clip planes
+      for (int f = 0; f < animated->frameCount(); ++f)
+        radius = std::max(radius, 0.5 * static_cast<double>(computeBounds(animated->baseFrame(f)).diagonal()));
     if (options.silhouette_width <= 0.0f)
       options.silhouette_width = std::max(3.0f, static_cast<float>(options.height) / 100.0f);
     const double aspect = static_cast<double>(options.width) / options.height;
     observer = options.observer_camera ? *options.observer_camera
                                        : orbitCamera(center, fitDistance(radius, kFovDeg, aspect), 35.0, 25.0, kFovDeg);
-    if (!model) {
+    if (!viewDependent()) {
       check(computeVertexNormals(positions, mesh.triangles, normals), "computeVertexNormals");
       check(renderer.updateMesh(mesh_id, positions, normals), "updateMesh");
       return;
@@ -106,7 +114,7 @@ struct ModelRenderer::Impl {
   }
 
   void buildSphereDiagram() {
-    const ViewSphere& s = model->sphere();
+    const ViewSphere& s = sphere();
     const auto pts = s.points();
     std::set<std::pair<int, int>> edges;
     for (const auto& t : s.triangles())
@@ -143,7 +151,7 @@ struct ModelRenderer::Impl {
   }
 
   void drawSphereInset(const Eigen::Vector3d& view, const ViewWeights& w) {
-    const ViewSphere& s = model->sphere();
+    const ViewSphere& s = sphere();
     const auto pts = s.points();
     const int side = std::max(48, static_cast<int>(0.28 * std::min(options.width, options.height)));
     const int margin = std::max(2, side / 20);
@@ -212,6 +220,15 @@ ModelRenderer::ModelRenderer(const ViewDependentModel& model, const FrameOptions
   impl_->setup();
 }
 
+ModelRenderer::ModelRenderer(const AnimatedViewDependentModel& model, const FrameOptions& options) {
+  checkSize(options.width, options.height, "image size");
+  const int image_width = options.observer ? options.width * 2 : options.width;
+  checkSize(image_width, options.height, "image size with the observer panel");
+  impl_ = std::make_unique<Impl>(options, image_width);
+  impl_->animated = &model;
+  impl_->setup();
+}
+
 ModelRenderer::ModelRenderer(const TriMesh& mesh, const FrameOptions& options) {
   checkSize(options.width, options.height, "image size");
   const int image_width = options.observer ? options.width * 2 : options.width;
@@ -229,6 +246,14 @@ int ModelRenderer::imageWidth() const { return impl_->renderer.width(); }
 int ModelRenderer::imageHeight() const { return impl_->renderer.height(); }
 Renderer& ModelRenderer::renderer() { return impl_->renderer; }
 const TriMesh& ModelRenderer::baseMesh() const { return impl_->base(); }
+
+void ModelRenderer::setFrame(int frame) {
+  const int count = impl_->animated ? impl_->animated->frameCount() : 1;
+  if (frame < 0 || frame >= count)
+    throw Error("render: frame " + std::to_string(frame) + " out of range (the model has " + std::to_string(count) +
+                " frame" + (count == 1 ? "" : "s") + ")");
+  impl_->frame = frame;
+}
 
 ViewWeights ModelRenderer::render(const Camera& camera, Image& out) {
   Impl& m = *impl_;
@@ -250,6 +275,22 @@ ViewWeights ModelRenderer::render(const Camera& camera, Image& out) {
     }
     check(m.model->blend(w, m.positions), "blend");
     check(computeVertexNormals(m.positions, m.model->base().triangles, m.normals), "computeVertexNormals");
+    check(m.renderer.updateMesh(m.mesh_id, m.positions, m.normals), "updateMesh");
+  } else if (m.animated) {
+    // Section 4.1: the same per frame, on the animated base at frame m.frame.
+    view = camera.isOrtho()
+               ? Eigen::Vector3d((camera.eye - camera.target).normalized())
+               : normalizedOrNone(Eigen::Vector3d(camera.eye - m.center)).value_or(Eigen::Vector3d::Zero());
+    if (view.allFinite() && view.norm() > 0.0) {
+      check(m.animated->weights(view, o.sharpness, w), "weights");
+      check(m.animated->evaluate(m.frame, view, o.sharpness, m.positions, m.normals), "evaluate");
+    } else {  // the eye at the model's centre: the base at this frame
+      w = ViewWeights{};
+      w.base = 1.0f;
+      const auto frame = m.animated->baseFrame(m.frame);
+      std::copy(frame.begin(), frame.end(), m.positions.begin());
+      check(computeVertexNormals(m.positions, m.animated->base().triangles, m.normals), "computeVertexNormals");
+    }
     check(m.renderer.updateMesh(m.mesh_id, m.positions, m.normals), "updateMesh");
   }
 
@@ -298,7 +339,7 @@ ViewWeights ModelRenderer::render(const Camera& camera, Image& out) {
     const Viewport sep{o.width, 0, std::max(1, o.width / 256), o.height};
     m.renderer.clear(kBorderColor, &sep);
   }
-  if (o.sphere && m.model) m.drawSphereInset(view, w);
+  if (o.sphere && m.viewDependent()) m.drawSphereInset(view, w);
   m.renderer.readPixels(out);
   return w;
 }

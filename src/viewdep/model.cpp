@@ -8,10 +8,66 @@
 #include <filesystem>
 #include <set>
 
+#include "key_views.h"
 #include "vdg/geom/error.h"
 #include "vdg/geom/normalize.h"
 
 namespace vdg {
+
+const char* offsetSpaceName(OffsetSpace space) { return space == OffsetSpace::kSkinned ? "skinned" : "world"; }
+
+namespace detail {
+
+KeyViewGroups groupKeyViews(std::span<const Eigen::Vector3d> unit_views) {
+  const std::size_t n = unit_views.size();
+  // Identical directions first: sort indices by (x, y, z), each run maps to its first index.
+  std::vector<std::size_t> order(n);
+  for (std::size_t i = 0; i < n; ++i) order[i] = i;
+  const auto less = [&](std::size_t a, std::size_t b) {
+    const Eigen::Vector3d &u = unit_views[a], &v = unit_views[b];
+    if (u.x() != v.x()) return u.x() < v.x();
+    if (u.y() != v.y()) return u.y() < v.y();
+    if (u.z() != v.z()) return u.z() < v.z();
+    return a < b;
+  };
+  std::sort(order.begin(), order.end(), less);
+  std::vector<std::size_t> parent(n);
+  std::vector<std::size_t> distinct;  // indices of distinct directions (smallest index of each run)
+  for (std::size_t r = 0; r < n;) {
+    std::size_t e = r;
+    while (e < n && unit_views[order[e]] == unit_views[order[r]]) parent[order[e++]] = order[r];
+    distinct.push_back(order[r]);
+    r = e;
+  }
+  std::sort(distinct.begin(), distinct.end());
+  const auto find = [&](std::size_t i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  std::vector<Eigen::Vector3d> views;
+  views.reserve(distinct.size());
+  for (const std::size_t i : distinct) views.push_back(unit_views[i]);
+  forEachCloseViewPair(views, ViewSphere::kSameViewRad, [&](std::size_t i, std::size_t j, double) {
+    const std::size_t a = find(distinct[i]), b = find(distinct[j]);
+    if (a != b) parent[std::max(a, b)] = std::min(a, b);
+    return true;
+  });
+  KeyViewGroups groups;
+  groups.group_of_key.assign(n, -1);
+  std::vector<int> group_of_root(n, -1);
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t root = find(k);
+    if (group_of_root[root] < 0) {
+      group_of_root[root] = static_cast<int>(groups.first_key.size());
+      groups.first_key.push_back(k);
+    }
+    groups.group_of_key[k] = group_of_root[root];
+  }
+  return groups;
+}
+
+}  // namespace detail
+
 namespace {
 
 std::string where(const RawViewDependentModel& model) {
@@ -29,6 +85,96 @@ std::string keyLabel(const RawViewDependentModel& model, std::size_t k) {
 // validate() without, when `check_view_pairs` is false, the search for two keys with the same
 // view: ViewDependentModel::build leaves that to ViewSphere::build, so that it runs once per build.
 void validateRaw(const RawViewDependentModel& raw, bool check_view_pairs);
+
+// A skin linear part (column-major 3x3) whose inverse is usable: finite, and a determinant that is
+// not tiny next to the product of its column lengths (so a uniform scale of any size is fine).
+bool invertibleSkin(const float* m) {
+  const Eigen::Matrix3d a = Eigen::Map<const Eigen::Matrix3f>(m).cast<double>();
+  if (!a.allFinite()) return false;
+  const double scale = a.col(0).norm() * a.col(1).norm() * a.col(2).norm();
+  constexpr double kMinRelativeDeterminant = 1e-9;
+  return scale > 0.0 && std::abs(a.determinant()) > kMinRelativeDeterminant * scale;
+}
+
+// The animation fields (section 4.1) before the keys are looked at.
+void validateAnimation(const RawViewDependentModel& raw) {
+  if (!raw.animated()) {
+    if (!raw.base_frames.empty())
+      throw Error(where(raw) + ": base_frames are given but the base is static (no 'base_animation')");
+    if (!raw.base_skin.empty())
+      throw Error(where(raw) + ": base_skin is given but the base is static (no 'base_animation')");
+    if (raw.offsets != OffsetSpace::kWorld)
+      throw Error(where(raw) + ": 'offsets': 'skinned' needs an animated, skinned base ('base_animation')");
+    return;
+  }
+  const std::size_t n = raw.base_frames.size(), size = raw.base.positions.size();
+  if (n == 0) throw Error(where(raw) + ": the base animation has no frames");
+  if (n > kMaxBaseFrames)
+    throw Error(where(raw) + ": the base animation has " + std::to_string(n) + " frames; at most " +
+                std::to_string(kMaxBaseFrames) + " are allowed");
+  for (std::size_t f = 0; f < n; ++f) {
+    const std::vector<float>& frame = raw.base_frames[f];
+    if (frame.size() != size)
+      throw Error(where(raw) + ": base animation frame " + std::to_string(f) + " has " + std::to_string(frame.size()) +
+                  " coordinates; expected 3 per vertex of the base (" + std::to_string(size) + ")");
+    for (std::size_t i = 0; i < size; ++i)
+      if (!std::isfinite(frame[i]))
+        throw Error(where(raw) + ": base animation frame " + std::to_string(f) + ": vertex " + std::to_string(i / 3) +
+                    " has a non-finite coordinate (NaN or Inf)");
+  }
+  if (!raw.base_skin.empty()) {
+    if (raw.base_skin.size() != n)
+      throw Error(where(raw) + ": base_skin has " + std::to_string(raw.base_skin.size()) +
+                  " frames but the base animation has " + std::to_string(n));
+    for (std::size_t f = 0; f < n; ++f) {
+      if (raw.base_skin[f].size() != 3 * size)
+        throw Error(where(raw) + ": base_skin frame " + std::to_string(f) + " has " +
+                    std::to_string(raw.base_skin[f].size()) + " floats; expected 9 per vertex (" +
+                    std::to_string(3 * size) + ")");
+      for (std::size_t i = 0; i < 3 * size; ++i)
+        if (!std::isfinite(raw.base_skin[f][i]))
+          throw Error(where(raw) + ": base_skin frame " + std::to_string(f) + ": vertex " + std::to_string(i / 9) +
+                      " has a non-finite skin matrix");
+    }
+  }
+  if (raw.offsets == OffsetSpace::kSkinned && raw.base_skin.empty())
+    throw Error(where(raw) + ": 'offsets': 'skinned' needs a skinned base (the base animation has no skin)");
+}
+
+// Animated keys, after each was checked alone: views grouped into sphere points; within a group the
+// frames must differ; at most kMaxKeyFramesPerView per group; skinned offsets need an invertible
+// skin at every key's frame.
+void validateAnimatedKeys(const RawViewDependentModel& raw) {
+  const std::vector<RawKey>& keys = raw.keys;
+  std::vector<Eigen::Vector3d> views;
+  views.reserve(keys.size());
+  for (const RawKey& key : keys) views.push_back(*normalizedOrNone(key.view));
+  const detail::KeyViewGroups groups = detail::groupKeyViews(views);
+  std::vector<std::vector<std::size_t>> members(groups.first_key.size());
+  for (std::size_t k = 0; k < keys.size(); ++k) members[static_cast<std::size_t>(groups.group_of_key[k])].push_back(k);
+  for (std::vector<std::size_t>& group : members) {
+    std::sort(group.begin(), group.end(), [&](std::size_t a, std::size_t b) {
+      return keys[a].frame != keys[b].frame ? keys[a].frame < keys[b].frame : a < b;
+    });
+    for (std::size_t i = 1; i < group.size(); ++i)
+      if (keys[group[i]].frame == keys[group[i - 1]].frame) {
+        const std::size_t k = std::max(group[i], group[i - 1]), j = std::min(group[i], group[i - 1]);
+        throw Error(keyLabel(raw, k) + ": same view direction (within 1e-6 rad) and same frame " +
+                    std::to_string(keys[k].frame) + " as key '" + keys[j].name + "'");
+      }
+    if (group.size() > kMaxKeyFramesPerView)
+      throw Error(keyLabel(raw, group.front()) + ": its view has " + std::to_string(group.size()) +
+                  " key frames; one view may have at most " + std::to_string(kMaxKeyFramesPerView));
+  }
+  if (raw.offsets != OffsetSpace::kSkinned) return;
+  for (std::size_t k = 0; k < keys.size(); ++k) {
+    const std::vector<float>& skin = raw.base_skin[static_cast<std::size_t>(keys[k].frame)];
+    for (std::size_t v = 0; v < raw.base.vertexCount(); ++v)
+      if (!invertibleSkin(&skin[9 * v]))
+        throw Error(keyLabel(raw, k) + ": vertex " + std::to_string(v) + ": the skin matrix at frame " +
+                    std::to_string(keys[k].frame) + " is singular, so 'offsets': 'skinned' cannot un-skin the offset");
+  }
+}
 
 }  // namespace
 
@@ -69,6 +215,7 @@ void validateRaw(const RawViewDependentModel& raw, bool check_view_pairs) {
     throw Error(where(raw) + ": 'base_falloff_deg' must be in (0, 70] degrees, got " +
                 std::to_string(sphere.base_falloff_deg));
   if (center && !center->allFinite()) throw Error(where(raw) + ": 'center' is not finite");
+  validateAnimation(raw);
   std::set<std::string> names;
   for (std::size_t k = 0; k < keys.size(); ++k) {
     const RawKey& key = keys[k];
@@ -91,11 +238,22 @@ void validateRaw(const RawViewDependentModel& raw, bool check_view_pairs) {
                     std::to_string(base.triangles[3 * t + 2]) + "); the connectivity must not change");
       }
     }
+    if (raw.animated()) {
+      if (key.frame < 0 || static_cast<std::size_t>(key.frame) >= raw.frameCount())
+        throw Error(label + ": frame " + std::to_string(key.frame) + " is outside the base animation's frames 0.." +
+                    std::to_string(raw.frameCount() - 1));
+    } else if (key.frame != 0) {
+      throw Error(label + ": frame " + std::to_string(key.frame) +
+                  " needs an animated base ('base_animation'); a static base has only frame 0");
+    }
+    // Animated: the key's offset is measured from the base at the key's frame.
+    const std::vector<float>& from =
+        raw.animated() ? raw.base_frames[static_cast<std::size_t>(key.frame)] : base.positions;
     for (std::size_t i = 0; i < key.mesh.positions.size(); ++i) {
       if (!std::isfinite(key.mesh.positions[i]))
         throw Error(label + ": vertex " + std::to_string(i / 3) + " has a non-finite coordinate (NaN or Inf)");
       // The key is stored as its offset from the base (a float); it must not overflow.
-      if (!std::isfinite(key.mesh.positions[i] - base.positions[i]))
+      if (!std::isfinite(key.mesh.positions[i] - from[i]))
         throw Error(label + ": vertex " + std::to_string(i / 3) +
                     " moves too far from the base's (the offset overflows a float)");
     }
@@ -105,6 +263,10 @@ void validateRaw(const RawViewDependentModel& raw, bool check_view_pairs) {
     if (!normalizedOrNone(key.view))  // any finite non-zero length works, 1e-300 or 1e300
       throw Error(label + (key.camera ? ": camera eye is at the model centre, so it gives no view direction"
                                       : ": view direction has zero length"));
+  }
+  if (raw.animated()) {
+    validateAnimatedKeys(raw);
+    return;
   }
   if (!check_view_pairs) return;
   std::vector<Eigen::Vector3d> views;
@@ -118,6 +280,10 @@ void validateRaw(const RawViewDependentModel& raw, bool check_view_pairs) {
 }  // namespace
 
 ViewDependentModel ViewDependentModel::build(const RawViewDependentModel& raw) {
+  if (raw.animated())
+    throw Error(where(raw) +
+                ": has an animated base ('base_animation'); build it as an AnimatedViewDependentModel "
+                "(vdg/viewdep/animated_model.h)");
   validateRaw(raw, false);  // ViewSphere::build below finds coinciding views, naming the keys
   if (raw.keys.empty()) throw Error(where(raw) + ": the model has no keys (add at least one key deformation)");
   ViewDependentModel model;

@@ -103,6 +103,44 @@ TEST(Cli, EvalWritesTheBlendedMeshWithTheBaseTopology) {
       << "at a key's view, eval writes that key's mesh";
 }
 
+// An animated model (manifest version 2): --frame picks the frame; at the key's frame and view
+// eval writes the key mesh, at another frame the offset rides on the moving base.
+TEST(Cli, EvalAnimatedModelsTakeAFrame) {
+  vdg::testing::TempDir dir;
+  const std::string model = "tests/io/formats/tetra_walk_v2.vdg.json", out = dir.file("o.obj");
+  Result r = run("eval " + model + " --view 0,1,0 --frame 1 -o " + out);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string key = vdg::testing::readText(VDG_SOURCE_DIR "/tests/io/formats/tetra_walk_up1.obj");
+  std::string text = vdg::testing::readText(out);
+  EXPECT_EQ(text.substr(text.find("\nv ")), key.substr(key.find("\nv "))) << text;
+  r = run("eval " + model + " --view 0,1,0 --frame 2 -o " + out);
+  ASSERT_EQ(r.code, 0) << r.err;
+  text = vdg::testing::readText(out);
+  EXPECT_NE(text.find("\nv 2 1.5 0\n"), std::string::npos) << text;
+
+  const std::string keep = dir.file("keep.obj");
+  vdg::testing::writeText(keep, "keep");
+  const std::pair<std::string, std::string> usage[] = {
+      {"eval " + model + " --view 0,1,0 -o " + keep,
+       "vdg: eval: --frame: 'tests/io/formats/tetra_walk_v2.vdg.json' is animated (3 frames); give --frame F with F "
+       "in 0..2 (see vdg eval --help)\n"},
+      {"eval " + model + " --view 0,1,0 --frame 3 -o " + keep,
+       "vdg: eval: --frame: expected a frame in 0..2 (the model has 3 frames), got 3 (see vdg eval --help)\n"},
+      {"eval tests/io/formats/tetra_v1.vdg.json --view 0,1,0 --frame 0 -o " + keep,
+       "vdg: eval: --frame: 'tests/io/formats/tetra_v1.vdg.json' is not animated (no 'base_animation'); --frame "
+       "applies to animated models only (see vdg eval --help)\n"},
+  };
+  for (const auto& [args, message] : usage) {
+    r = run(args);
+    EXPECT_EQ(r.code, 2) << args;
+    EXPECT_EQ(r.err, message) << args;
+  }
+  r = run("eval " + model + " --view 0,1,0 --frame -1 -o " + keep);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(lineCount(r.err), 1) << r.err;
+  EXPECT_EQ(vdg::testing::readText(keep), "keep");
+}
+
 TEST(Cli, BadInputIsOneLineAndExitOneAndLeavesFilesAlone) {
   vdg::testing::TempDir dir;
   const std::string keep = dir.file("keep.obj");

@@ -11,6 +11,7 @@
 #include "vdg/io/camera_json.h"
 #include "vdg/io/edit_script.h"
 #include "vdg/io/manifest.h"
+#include "vdg/viewdep/animated_model.h"
 #include "vdg/viewdep/model.h"
 
 namespace vdg {
@@ -29,6 +30,25 @@ TEST(FormatVersions, ManifestVersion1) {
   std::vector<float> positions(3 * model.vertexCount());
   // Seen from the key's own view the model is the key mesh: vertex 3 is raised to y = 1.5.
   ASSERT_TRUE(model.evaluate(Eigen::Vector3d(0, 1, 0), 0.0, positions));
+  EXPECT_NEAR(positions[3 * 2 + 1], 1.5, 1e-6);
+}
+
+TEST(FormatVersions, ManifestVersion2AnimatedBase) {
+  const RawViewDependentModel raw = loadManifest(formats("tetra_walk_v2.vdg.json"));
+  ASSERT_TRUE(raw.animated());
+  EXPECT_TRUE(raw.base_animation->loop);
+  ASSERT_EQ(raw.frameCount(), 3u);
+  EXPECT_EQ(raw.base_frames[2][0], 2.0f);  // frame 2 moved +2 in x
+  ASSERT_EQ(raw.keys.size(), 1u);
+  EXPECT_EQ(raw.keys[0].frame, 1);
+  const AnimatedViewDependentModel model = AnimatedViewDependentModel::build(raw);
+  std::vector<float> positions(3 * model.vertexCount());
+  // Seen from the key's view at its frame the model is the key mesh: vertex 3 raised to y = 1.5.
+  ASSERT_TRUE(model.evaluate(1, Eigen::Vector3d(0, 1, 0), 0.0, positions));
+  EXPECT_NEAR(positions[3 * 2 + 1], 1.5, 1e-6);
+  // One key frame: a constant offset, added to the moving base at every frame.
+  ASSERT_TRUE(model.evaluate(2, Eigen::Vector3d(0, 1, 0), 0.0, positions));
+  EXPECT_NEAR(positions[3 * 2], 2.0, 1e-6);
   EXPECT_NEAR(positions[3 * 2 + 1], 1.5, 1e-6);
 }
 

@@ -76,6 +76,23 @@ TEST(CliRender, OrbitWritesFramesAndRangesAreByteIdentical) {
   EXPECT_NE(readBytes(all / "frame_0000.png"), readBytes(all / "frame_0003.png"));
 }
 
+// An animated model advances one animation frame per output frame; the frame follows from the
+// output frame's number alone, so ranges stay byte-identical. A near-still camera (a huge orbit)
+// makes the animation the visible change: the tetrahedron moves by its own size each frame.
+TEST(CliRender, AnimatedModelsAdvanceOneFramePerOutputFrameAndRangesAreByteIdentical) {
+  const std::string model = kSource + "/tests/io/formats/tetra_walk_v2.vdg.json";
+  const fs::path all = freshDir("vdg_render_anim_all"), part = freshDir("vdg_render_anim_part");
+  const std::string common = " --orbit 1000000 --size 128x128 --quiet";
+  Result r = vdg("render " + model + " -o " + all.string() + common + " --frames 0-4");
+  ASSERT_EQ(r.status, 0) << r.output;
+  r = vdg("render " + model + " -o " + part.string() + common + " --frames 3-4");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(readBytes(all / "frame_0003.png"), readBytes(part / "frame_0003.png"));
+  EXPECT_EQ(readBytes(all / "frame_0004.png"), readBytes(part / "frame_0004.png"));
+  EXPECT_NE(readBytes(all / "frame_0000.png"), readBytes(all / "frame_0001.png"));
+  EXPECT_NE(readBytes(all / "frame_0001.png"), readBytes(all / "frame_0002.png"));
+}
+
 // A full disk (here a file size limit, which fails writes the same way) is an error naming the
 // frame, exit status 1, and a frame already there stays byte-identical.
 TEST(CliRender, FullDiskFailsAndKeepsExistingFrames) {

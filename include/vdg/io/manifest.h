@@ -8,8 +8,10 @@
 
 namespace vdg {
 
-// Current manifest format version (the "version" field of *.vdg.json).
-inline constexpr int kManifestVersion = 1;
+// Current manifest format version (the "version" field of *.vdg.json). Version 2 added animated
+// bases ("base_animation", "offsets", each key's "frame"); version 1 files load unchanged, and
+// saveManifest always writes version 2.
+inline constexpr int kManifestVersion = 2;
 
 // Parses a manifest's text into a raw model WITHOUT reading any mesh: base_path and every key's
 // mesh_path are filled, the meshes are left empty. Throws vdg::Error naming `source` and the key
@@ -17,12 +19,21 @@ inline constexpr int kManifestVersion = 1;
 RawViewDependentModel parseManifest(const std::string& text, const std::string& source);
 
 // Reads a *.vdg.json manifest and every mesh it names (paths relative to the manifest), resolves
-// camera keys' views and validates. Throws vdg::Error naming the file and key for missing files,
-// unknown fields, a wrong or missing version, bad values, and everything validate() checks.
+// camera keys' views and validates. An animated base is read too: every file of an OBJ sequence
+// (frame i is file first + i; each frame must have frame 0's vertex count and triangles; at most
+// kMaxBaseFrames frames and 2 GiB of positions in all) into raw.base (frame 0) and raw.base_frames.
+// A glTF base is refused for now ("FILE: base_animation.gltf: ..."). Throws vdg::Error naming the file and key for
+// missing files, unknown fields, a wrong or missing version, bad values, and everything validate() checks.
 RawViewDependentModel loadManifest(const std::string& path);
 // The manifest text saveManifest writes (for callers that write it themselves).
 std::string formatManifest(const RawViewDependentModel& model);
 // Writes the manifest (not the meshes) atomically, with mesh paths as stored in the raw model.
 void saveManifest(const std::string& path, const RawViewDependentModel& model);
+
+// OBJ-sequence file patterns: exactly one %d or %0Nd conversion (N one digit, 1-9) and no other
+// '%'. checkSequencePattern throws vdg::Error "expected a file pattern with one %d or %0Nd ...,
+// got 'PATTERN': WHY"; sequenceFileName gives the file name of `number` (checking the pattern).
+void checkSequencePattern(const std::string& pattern);
+std::string sequenceFileName(const std::string& pattern, int number);
 
 }  // namespace vdg

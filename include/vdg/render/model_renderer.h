@@ -18,6 +18,7 @@
 #include "vdg/geom/tri_mesh.h"
 #include "vdg/render/image.h"
 #include "vdg/render/renderer.h"
+#include "vdg/viewdep/animated_model.h"
 #include "vdg/viewdep/model.h"
 
 namespace vdg::render {
@@ -52,6 +53,9 @@ class ModelRenderer {
  public:
   // `model` must outlive the renderer. Throws vdg::Error for bad sizes or no GL (see Renderer).
   ModelRenderer(const ViewDependentModel& model, const FrameOptions& options);
+  // An animated model (section 4), drawn at frame 0 until setFrame(); `model` must outlive the
+  // renderer. The clip planes and the observer camera fit the base over all its frames.
+  ModelRenderer(const AnimatedViewDependentModel& model, const FrameOptions& options);
   // A plain mesh (no view dependence, no sphere inset); the mesh is copied.
   ModelRenderer(const TriMesh& mesh, const FrameOptions& options);
   ~ModelRenderer();
@@ -60,6 +64,10 @@ class ModelRenderer {
   int imageHeight() const;
   Renderer& renderer();
   const TriMesh& baseMesh() const;
+  // The animation frame the next render() calls draw, for an animated model: in [0, frameCount()),
+  // else vdg::Error "render: frame F out of range (the model has N frames)". Other renderers
+  // accept only 0.
+  void setFrame(int frame);
 
   // Renders the frame seen by `camera` into `out`. Returns the blending weights used (all-base
   // for a plain mesh, and for an eye at the model's centre, which has no view direction).

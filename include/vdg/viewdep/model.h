@@ -31,6 +31,36 @@ namespace vdg {
 // what limits memory. validate() rejects more; the manifest reader refuses more before reading.
 inline constexpr std::size_t kMaxKeys = 100'000;
 
+// Animated bases (Rademacher 99, section 4): most frames a base animation may have, and most key
+// frames one key view may have (its time spline keeps an m x m table of exact cardinal
+// coefficients, see vdg/viewdep/animated_model.h). validate() rejects more.
+inline constexpr std::size_t kMaxBaseFrames = 100'000;
+inline constexpr std::size_t kMaxKeyFramesPerView = 256;
+
+// Where an animated base comes from (the manifest's "base_animation"; docs/model-format.md).
+// Exactly one source: an OBJ sequence (obj_sequence, a printf pattern with one %d or %0Nd, and the
+// file numbers first..last; frame i is file first + i) or a glTF animation (gltf, animation index,
+// fps, optional mesh or node name; frame i is time i / fps). `loop`: the animation is a cycle of
+// frameCount() frames, frame N being frame 0 again (the time splines are then periodic).
+struct BaseAnimationSpec {
+  std::string obj_sequence;
+  int first = 0, last = 0;
+  std::string gltf;
+  int animation = 0;
+  double fps = 24;
+  std::string mesh;
+  bool loop = false;
+};
+
+// Space the key offsets of an animated model live in (section 4.2 and beyond):
+//  - kWorld: o = key - base(frame), interpolated and added in model space (the paper's);
+//  - kSkinned: o = L_v(frame)^-1 (key - base(frame)), with L_v the linear part of vertex v's
+//    skinning matrix, interpolated in the rest pose and re-skinned at every frame, so an
+//    exaggeration follows a swinging limb.
+enum class OffsetSpace { kWorld, kSkinned };
+// "world" or "skinned": the names the manifest uses.
+const char* offsetSpaceName(OffsetSpace space);
+
 struct RawKey {
   std::string name;       // unique within the model; defaults to the mesh file's stem
   std::string mesh_path;  // as written in the manifest (relative to the manifest's folder)
@@ -39,6 +69,9 @@ struct RawKey {
   // normalize(camera.eye - centre) and is filled in by resolveViews().
   Eigen::Vector3d view = Eigen::Vector3d::Zero();
   std::optional<Camera> camera;  // the aligned key camera, when the key was made from a drawing
+  // Frame of the base animation this key deforms: 0 for a static base; in [0, frameCount()) for
+  // an animated one. Keys with the same view and different frames share one viewing-sphere point.
+  int frame = 0;
 };
 
 struct RawViewDependentModel {
@@ -51,6 +84,21 @@ struct RawViewDependentModel {
   ViewSphereSettings sphere;
   std::optional<Eigen::Vector3d> center;  // default: the base's bounding-box centre
 
+  // Animated base (section 4.1). Without base_animation the model is static: base_frames and
+  // base_skin must be empty, every key's frame 0 and offsets kWorld. With it, `base` holds the
+  // topology (and, as the loader fills it, frame 0's positions), and the loader fills
+  //   base_frames: frameCount() x (#V x 3), the base's positions at every frame;
+  //   base_skin:   empty, or frameCount() x (#V x 9), each vertex's skin linear part (the upper
+  //                left 3x3 of its blended skinning matrix, COLUMN-major), as vdg::Rig gives it.
+  std::optional<BaseAnimationSpec> base_animation;
+  OffsetSpace offsets = OffsetSpace::kWorld;
+  std::vector<std::vector<float>> base_frames;
+  std::vector<std::vector<float>> base_skin;
+
+  bool animated() const { return base_animation.has_value(); }
+  // Frames of the base animation: base_frames.size() when animated, 1 for a static base.
+  std::size_t frameCount() const { return animated() ? base_frames.size() : 1; }
+
   // The centre the views are measured from.
   Eigen::Vector3d resolvedCenter() const;
   // Sets view = normalize(camera.eye - centre) for every key given by a camera (robustly: any
@@ -61,6 +109,15 @@ struct RawViewDependentModel {
   // overflows a float, a zero or non-finite view (any finite non-zero length is fine), two keys
   // with the same view (within ViewSphere::kSameViewRad; an O(n log n) search), duplicate names,
   // a sharpness that is not finite and > 0, a bad falloff angle, more than kMaxKeys keys.
+  // Animated bases (section 4) add: two keys may share a view only when their frames differ (they
+  // become one viewing-sphere point with several key frames; the same view AND frame is an
+  // error); a key frame outside [0, frameCount()); no frames or more than kMaxBaseFrames; a
+  // base_frames entry that is not #V x 3 finite floats; base_skin neither empty nor frameCount()
+  // entries of #V x 9 finite floats; offsets kSkinned without base_skin, or with a skin linear
+  // part that is singular at a key's frame (naming the key and vertex); more than
+  // kMaxKeyFramesPerView key frames for one view. A static model refuses a key frame other than
+  // 0, base_frames, base_skin and offsets kSkinned. For an animated base a key's offset is
+  // measured from base_frames[frame], and must not overflow a float.
   void validate() const;
 };
 
@@ -69,6 +126,9 @@ class ViewDependentModel {
   // Validates `raw` (everything validate() checks; the same-view search runs once, in the viewing
   // sphere's build) and builds the viewing sphere and the (sparse) key deltas. A model without
   // keys can be loaded and saved (an editor starts from one) but not built: that throws vdg::Error.
+  // An animated raw model (raw.animated()) is refused with vdg::Error "MODEL: has an animated base
+  // ('base_animation'); build it as an AnimatedViewDependentModel (vdg/viewdep/animated_model.h)"
+  // rather than silently dropping its animation.
   static ViewDependentModel build(const RawViewDependentModel& raw);
 
   const TriMesh& base() const { return base_; }
