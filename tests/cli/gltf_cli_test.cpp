@@ -207,3 +207,38 @@ TEST(GltfCli, EveryKindOfExportPassesTheKhronosValidator) {
 }
 
 }  // namespace
+
+namespace {
+
+// The extras of an export, and of a model with a camera key, against docs/schema (needs python3's
+// jsonschema; skipped without it).
+TEST(GltfCli, ExtrasFollowTheirJsonSchema) {
+  if (runShell("python3 -c 'import jsonschema'").code != 0) GTEST_SKIP() << "python3 jsonschema is not installed";
+  vdg::testing::TempDir dir;
+  vdg::testing::writeText(dir.file("m/m.vdg.json"),
+                          R"({"version": 1, "base": ")" VDG_SOURCE_DIR R"(/examples/spot/spot.obj", "keys": [
+        {"mesh": ")" VDG_SOURCE_DIR R"(/examples/spot/keys/front.obj", "view": [0, 0, -1]},
+        {"mesh": ")" VDG_SOURCE_DIR R"(/examples/spot/keys/top.obj",
+         "camera": {"eye": [0, 5, 0.1], "target": [0, 0, 0], "fov_deg": 30}}]})");
+  ASSERT_EQ(run("export " + dir.file("m/m.vdg.json") + " -q -o " + dir.file("m.gltf")).code, 0);
+  ASSERT_EQ(run("bake " + kSpot + " -q --orbit 3 -o " + dir.file("b.gltf")).code, 0);
+  const std::string check =
+      "python3 -c 'import json, sys, jsonschema\n"
+      "schema = json.load(open(sys.argv[1]))\n"
+      "jsonschema.Draft202012Validator.check_schema(schema)\n"
+      "for f in sys.argv[2:]:\n"
+      "    jsonschema.validate(json.load(open(f))[\"meshes\"][0][\"extras\"], schema)\n"
+      "bad = json.load(open(sys.argv[2]))[\"meshes\"][0][\"extras\"]\n"
+      "bad[\"vdg\"][\"uncovered\"] = \"nowhere\"\n"
+      "try:\n"
+      "    jsonschema.validate(bad, schema)\n"
+      "    sys.exit(3)\n"
+      "except jsonschema.ValidationError:\n"
+      "    pass' docs/schema/vdg-gltf-extras.schema.json '" +
+      dir.file("m.gltf") + "' '" + dir.file("b.gltf") + "'";
+  const Result r = runShell(check);
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(readText(dir.file("m.gltf")).find("\"camera\""), std::string::npos);
+}
+
+}  // namespace
