@@ -474,7 +474,7 @@ GltfBakedAnimation bakeCameraPath(const ViewDependentModel& model, std::span<con
 std::string gltfToGlb(const GltfExportInput& input, const std::string& where, GltfExportReport* report) {
   Built built = build(input, where, report);
   built.doc["buffers"][0].erase("uri");
-  std::string json = built.doc.dump();
+  std::string json = built.doc.dump(-1, ' ', false, OJson::error_handler_t::replace);
   json.resize(pad4(json.size()), ' ');
   const std::size_t total = 12 + 8 + json.size() + 8 + built.bin.size();
   if (total > std::numeric_limits<std::uint32_t>::max())
@@ -498,7 +498,7 @@ std::string gltfToJson(const GltfExportInput& input, const std::string& where, c
                        std::string& bin, GltfExportReport* report) {
   Built built = build(input, where, report);
   built.doc["buffers"][0]["uri"] = bin_uri;
-  std::string json = built.doc.dump(1);
+  std::string json = built.doc.dump(1, ' ', false, OJson::error_handler_t::replace);
   json += '\n';
   bin = std::move(built.bin);
   if (report) report->bytes = json.size() + bin.size();

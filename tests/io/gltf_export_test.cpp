@@ -345,6 +345,13 @@ TEST(GltfExport, BakeOptions) {
     }
 }
 
+TEST(GltfExport, NamesThatAreNotUtf8AreWrittenWithReplacementCharacters) {
+  GltfExportInput input = gltfExportInput(ViewDependentModel::build(sphereModel()));
+  input.targets[0].name = "bad\xff";
+  const DecodedGltf g = testing::decodeGlb(gltfToGlb(input, "t.glb"));
+  EXPECT_EQ(g.doc.at("meshes").at(0).at("extras").at("targetNames").at(0), "bad\xef\xbf\xbd");
+}
+
 TEST(GltfExport, BadBakeInputsAreRefused) {
   const auto model = ViewDependentModel::build(sphereModel());
   auto cams = orbit(model, 3);

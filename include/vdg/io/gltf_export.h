@@ -118,10 +118,11 @@ struct GltfExportReport {
 
 // Serialises `input` in memory: the GLB bytes (12-byte header, JSON chunk, BIN chunk), or for the
 // .gltf form the JSON text with the buffer's "uri" set to `bin_uri` and the buffer returned in
-// `bin`. Throws vdg::Error naming `where` and the element for an inconsistent input: an empty
-// base, array sizes that do not match #V, a triangle index out of range, non-finite values, a
-// target count that differs from mesh.extras consistency rules (duplicate or empty names), a bake
-// whose arrays do not match its times or #targets, times not strictly increasing.
+// `bin`. Names that are not valid UTF-8 are written with U+FFFD in place of the bad bytes (JSON
+// is UTF-8). Throws vdg::Error naming `where` and the element for an inconsistent input: an empty
+// base, array sizes that do not match #V, a triangle index out of range, non-finite values, normals
+// that are not unit length, empty or duplicate target names, a zero target view, a bake whose
+// arrays do not match its times or #targets, times not strictly increasing.
 std::string gltfToGlb(const GltfExportInput& input, const std::string& where, GltfExportReport* report = nullptr);
 std::string gltfToJson(const GltfExportInput& input, const std::string& where, const std::string& bin_uri,
                        std::string& bin, GltfExportReport* report = nullptr);
@@ -133,14 +134,15 @@ std::string gltfToJson(const GltfExportInput& input, const std::string& where, c
 GltfExportReport writeGltfExport(const std::string& path, const GltfExportInput& input);
 
 // Reading back. `mesh_extras_json` is the text of the mesh's "extras" object (with "targetNames"
-// and "vdg"), `base` the mesh as decoded from the file (positions, triangles, uvs), and
+// and "vdg"), `base` the mesh as decoded from the file (positions, triangles, and uvs as vdg holds
+// them: a reader flips TEXCOORD_0's v back to 1 - v), and
 // `target_deltas` the POSITION deltas of the mesh's morph targets in order (#V x 3 each, sparse
 // accessors expanded). Returns a raw model (no meshes' paths; each key's mesh = base + deltas, its
 // view, camera and name from the extras) that ViewDependentModel::build accepts. Throws vdg::Error
-// "WHERE: 'vdg'.'keys'[2].'view': ..." for a missing or malformed description, a version this vdg
+// "WHERE: mesh extras: 'vdg'.'keys'[2].'view': ..." for a missing or malformed description, a version this vdg
 // does not read, a key count that differs from the target count, names that differ from
-// targetNames, and an animated description (key frames other than 0 or an "animation"), which
-// this vdg does not read yet.
+// targetNames, an animated description (key frames other than 0 or an "animation"), which this
+// vdg does not read yet, and everything RawViewDependentModel::validate checks.
 RawViewDependentModel rawModelFromGltfExtras(std::string_view mesh_extras_json, const TriMesh& base,
                                              std::span<const std::vector<float>> target_deltas,
                                              const std::string& where);
