@@ -107,5 +107,7 @@ void addSampleCommand(CLI::App& app);
 void addAlignCommand(CLI::App& app);
 void addDeformCommand(CLI::App& app);
 void addRenderCommand(CLI::App& app);
+void addExportCommand(CLI::App& app);
+void addBakeCommand(CLI::App& app);
 
 }  // namespace vdg::cli

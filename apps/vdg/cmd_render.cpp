@@ -21,6 +21,7 @@
 #include <sstream>
 
 #include "cli.h"
+#include "orbit_options.h"
 #include "vdg/geom/error.h"
 #include "vdg/io/atomic_file.h"
 #include "vdg/io/manifest.h"
@@ -35,21 +36,18 @@ namespace {
 namespace fs = std::filesystem;
 
 struct RenderOptions {
-  std::string model, output, size = "512x512", frames, color, background;
-  int orbit = 1, samples = 8;
-  double azimuth = 0.0, elevation = 15.0, distance = 0.0, fov = 30.0, sharpness = 0.0, line_width = 0.0;
+  std::string model, output, size = "512x512", color, background;
+  OrbitOptions camera;  // --orbit, --azimuth, --elevation, --distance, --fov, --frames
+  int samples = 8;
+  double sharpness = 0.0, line_width = 0.0;
   bool observer = false, sphere = false, flat = false, quiet = false;
 };
 
-// Option ranges (checked at parse time by the validators in cli.h; see docs/render.md).
-constexpr long kMaxOrbitFrames = 1000000;
+// Option ranges (checked at parse time by the validators in cli.h; see docs/render.md; the
+// camera's are in orbit_options.h).
 constexpr int kMaxSamples = 64;           // the driver caps it further
 constexpr double kMaxLineWidth = 1000.0;  // pixels
-constexpr int kDriverQuerySide = 4096;
-// Beyond these the camera frame cannot be computed in double precision (the eye-target distance
-// overflows, or a near-zero field of view fits the model at an overflowing distance).
-constexpr double kMaxDistance = 1e15;
-constexpr double kMinFovDeg = 0.01, kMaxFovDeg = 179.99;  // larger canvases are checked against the driver's limit
+constexpr int kDriverQuerySide = 4096;    // larger canvases are checked against the driver's limit
 
 // The canvas is twice as wide with the observer panel; both sides must fit the OpenGL driver.
 void checkCanvas(const std::string& size_text, const render::FrameOptions& fo) {
@@ -106,13 +104,7 @@ void run(const RenderOptions& opt) {
   if (!opt.color.empty()) fo.color = parseColor(opt.color, "--color");
   if (!opt.background.empty()) fo.background = parseColor(opt.background, "--background");
 
-  FrameRange range{0, opt.orbit - 1};
-  if (!opt.frames.empty()) {
-    range = parseFrameRange(opt.frames, "--frames");
-    if (range.last >= opt.orbit)
-      throw UsageError("--frames: expected frames within 0-" + std::to_string(opt.orbit - 1) + " (--orbit " +
-                       std::to_string(opt.orbit) + "), got " + shown(opt.frames));
-  }
+  const FrameRange range = opt.camera.range();
   checkCanvas(opt.size, fo);
 
   const bool video = hasExtension(opt.output, ".mp4") || hasExtension(opt.output, ".gif");
@@ -145,20 +137,15 @@ void run(const RenderOptions& opt) {
   const Eigen::Vector3d center = model      ? model->center()
                                  : animated ? animated->center()
                                             : Eigen::Vector3d(bc[0], bc[1], bc[2]);
-  double radius = 0.0;  // bounding sphere about the centre (of every frame of an animated base)
-  const auto grow = [&](std::span<const float> positions) {
-    for (std::size_t v = 0; v < positions.size() / 3; ++v)
-      radius = std::max(
-          radius, (Eigen::Vector3d(positions[v * 3], positions[v * 3 + 1], positions[v * 3 + 2]) - center).norm());
-  };
-  grow(base.positions);
+  // Bounding sphere about the centre, of every frame of an animated base.
+  double radius = OrbitOptions::radiusAbout(base.positions, center);
   if (animated)
-    for (int f = 0; f < animated->frameCount(); ++f) grow(animated->baseFrame(f));
-  radius = std::max(radius, 1e-6);
+    for (int f = 0; f < animated->frameCount(); ++f)
+      radius = std::max(radius, OrbitOptions::radiusAbout(animated->baseFrame(f), center));
   const double aspect = static_cast<double>(fo.width) / fo.height;
-  const double distance = opt.distance > 0.0 ? opt.distance : render::fitDistance(radius, opt.fov, aspect);
-  fo.observer_camera =
-      render::orbitCamera(center, render::fitDistance(radius, opt.fov, aspect), opt.azimuth + 35.0, 25.0, opt.fov);
+  const double distance = opt.camera.cameraDistance(radius, aspect);
+  fo.observer_camera = render::orbitCamera(center, render::fitDistance(radius, opt.camera.fov, aspect),
+                                           opt.camera.azimuth + 35.0, 25.0, opt.camera.fov);
   renderer = model      ? std::make_unique<render::ModelRenderer>(*model, fo)
              : animated ? std::make_unique<render::ModelRenderer>(*animated, fo)
                         : std::make_unique<render::ModelRenderer>(mesh, fo);
@@ -173,12 +160,11 @@ void run(const RenderOptions& opt) {
   render::Image image;
   char name[32];
   for (int f = range.first; f <= range.last; ++f) {
-    const double azimuth = opt.azimuth + 360.0 * f / opt.orbit;
     if (animated) {  // one animation frame per output frame (see the top of this file)
       const int count = animated->frameCount();
       renderer->setFrame(animated->loop() ? f % count : std::min(f, count - 1));
     }
-    renderer->render(render::orbitCamera(center, distance, azimuth, opt.elevation, opt.fov), image);
+    renderer->render(opt.camera.camera(f, center, distance), image);
     std::snprintf(name, sizeof name, "frame_%04d.png", f);
     render::writePng((out_dir / name).string(), image);
     progress.step(f - range.first + 1);
@@ -233,21 +219,12 @@ void addRenderCommand(CLI::App& app) {
   sub->add_option("MODEL", opt->model, "Model manifest (*.vdg.json), or a plain mesh (.obj)")->required();
   sub->add_option("-o,--output", opt->output, "Output folder for frame_NNNN.png, or OUT.mp4 / OUT.gif (needs ffmpeg)")
       ->required();
-  sub->add_option("--orbit", opt->orbit, "Frames for one turn of the camera around the model (default 1)")
-      ->check(wholeNumber(1, kMaxOrbitFrames));
-  sub->add_option("--azimuth", opt->azimuth, "Camera azimuth of frame 0 in degrees, from +Z towards +X (default 0)")
-      ->check(finiteNumber());
-  sub->add_option("--elevation", opt->elevation, "Camera elevation in degrees (default 15)")
-      ->check(openRange(-90.0, 90.0));
-  sub->add_option("--distance", opt->distance, "Camera distance from the model centre (default: fit the model)")
-      ->check(positiveNumber(kMaxDistance));
-  sub->add_option("--fov", opt->fov, "Vertical field of view in degrees (default 30)")
-      ->check(numberIn({kMinFovDeg, End::kClosed, kMaxFovDeg, End::kClosed}));
+  opt->camera.add(*sub);
   sub->add_option("--size", opt->size,
                   "Image size WxH of the main view, each side in [1, " + std::to_string(render::kMaxImageSize) +
                       "] and within the OpenGL driver's limits (default 512x512)")
       ->check(imageSize('x', render::kMaxImageSize));
-  sub->add_option("--frames", opt->frames, "Render only frames A-B (or N) of the orbit, 0 <= A <= B < --orbit");
+  sub->add_option("--frames", opt->camera.frames, "Render only frames A-B (or N) of the orbit, 0 <= A <= B < --orbit");
   sub->add_flag("--observer", opt->observer, "Add the model seen from a fixed observer camera, to the right");
   sub->add_flag("--sphere", opt->sphere, "Add an inset of the viewing sphere (keys, hull, active triangle, view)");
   sub->add_option("--sharpness", opt->sharpness, "Blend sharpness alpha (default: the model's own)")

@@ -51,6 +51,8 @@ int main(int argc, char** argv) {
   vdg::cli::addAlignCommand(app);
   vdg::cli::addDeformCommand(app);
   vdg::cli::addRenderCommand(app);
+  vdg::cli::addExportCommand(app);
+  vdg::cli::addBakeCommand(app);
 
   try {
     app.parse(argc, argv);

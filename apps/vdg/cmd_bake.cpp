@@ -1,0 +1,80 @@
+// vdg bake MODEL -o OUT.glb|OUT.gltf [--orbit N] [--frames A-B] [--fps F] [camera options of render]
+//
+// The export of `vdg export` plus one animation for the camera path of `vdg render`: at the time
+// of output frame f (f / fps seconds, counted from the first frame baked) the morph weights are
+// exactly the view-dependent weights of frame f's camera, and an animated camera node is that
+// camera, so a glTF viewer playing the animation through that camera shows what `vdg render`
+// draws at each frame (docs/gltf-export.md, "Baked camera paths").
+#include <cstdio>
+#include <memory>
+#include <vector>
+
+#include "cli.h"
+#include "orbit_options.h"
+#include "vdg/geom/error.h"
+#include "vdg/io/gltf_export.h"
+#include "vdg/io/manifest.h"
+#include "vdg/render/renderer.h"
+
+namespace vdg::cli {
+
+void writeGltfForCli(const std::string& output, const GltfExportInput& input, bool quiet);  // cmd_export.cpp
+void checkGltfOutput(const std::string& output);                                            // cmd_export.cpp
+
+namespace {
+
+constexpr double kMaxFps = 1000.0;
+
+struct BakeOptions {
+  std::string model, output, size = "512x512";
+  OrbitOptions camera;
+  double fps = 24.0, sharpness = 0.0;
+  bool step = false, quiet = false;
+};
+
+void run(const BakeOptions& opt) {
+  checkGltfOutput(opt.output);
+  const ImageSize size = parseImageSize(opt.size, 'x', render::kMaxImageSize, "--size");
+  const FrameRange range = opt.camera.range();
+  const ViewDependentModel model = ViewDependentModel::build(loadManifest(opt.model));
+  const double aspect = static_cast<double>(size.width) / size.height;
+  const double distance =
+      opt.camera.cameraDistance(OrbitOptions::radiusAbout(model.base().positions, model.center()), aspect);
+  std::vector<Camera> cameras;
+  for (int f = range.first; f <= range.last; ++f) cameras.push_back(opt.camera.camera(f, model.center(), distance));
+  // The whole orbit closes on itself: one more sample, frame 0 again, lets a looping viewer play it
+  // without a seam.
+  const bool whole_orbit = opt.camera.frames.empty() && opt.camera.orbit > 1;
+  GltfExportInput input = gltfExportInput(model);
+  input.bake = bakeCameraPath(model, cameras, opt.fps, aspect, opt.sharpness, whole_orbit);
+  input.bake->step = opt.step;
+  input.bake->description = "vdg bake: orbit " + std::to_string(opt.camera.orbit) + " frames " +
+                            std::to_string(range.first) + "-" + std::to_string(range.last) + " at " +
+                            std::to_string(opt.fps) + " fps" + (whole_orbit ? ", closed loop" : "");
+  writeGltfForCli(opt.output, input, opt.quiet);
+}
+
+}  // namespace
+
+void addBakeCommand(CLI::App& app) {
+  auto opt = std::make_shared<BakeOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "bake",
+      "Export the model as glTF 2.0 with an animation: the morph weights and the camera of vdg render's camera path");
+  sub->add_option("MODEL", opt->model, "Model manifest (*.vdg.json)")->required();
+  sub->add_option("-o,--output", opt->output, "Output OUT.glb, or OUT.gltf with its buffer in OUT.bin beside it")
+      ->required();
+  opt->camera.add(*sub);
+  sub->add_option("--size", opt->size, "Image size WxH whose aspect ratio the camera gets (default 512x512)")
+      ->check(imageSize('x', render::kMaxImageSize));
+  sub->add_option("--frames", opt->camera.frames, "Bake only frames A-B (or N) of the orbit, 0 <= A <= B < --orbit");
+  sub->add_option("--fps", opt->fps, "Frames per second of the animation (default 24)")->check(positiveNumber(kMaxFps));
+  sub->add_option("--sharpness", opt->sharpness, "Blend sharpness alpha (default: the model's own)")
+      ->check(positiveNumber());
+  sub->add_flag("--step", opt->step,
+                "STEP interpolation: hold each frame's weights and camera (default LINEAR: blend between frames)");
+  sub->add_flag("-q,--quiet", opt->quiet, "Print nothing on success");
+  sub->callback([opt] { run(*opt); });
+}
+
+}  // namespace vdg::cli

@@ -1,0 +1,150 @@
+// glTF 2.0 output of a view-dependent model (format documented in docs/gltf-export.md, the
+// extras in docs/schema/vdg-gltf-extras.schema.json), and the reader of vdg's own description
+// back from a glTF file.
+//
+// What is written: one mesh (one triangle primitive) whose attributes are the base model
+// (POSITION, NORMAL, TEXCOORD_0 when the base's uvs map one to one onto its vertices), and one
+// morph target per key (per key view and key frame; Rademacher 99, section 3.2.3 writes the blend
+// as base + sum_i w_i (key_i - base), which is exactly glTF's morph target formula with the key
+// deltas as targets and the view's weights as morph weights). mesh.weights are all zero (the
+// base). mesh.extras.targetNames names the targets (the convention three.js and Blender read);
+// mesh.extras.vdg holds the view-dependent description (key views and frames, sharpness,
+// uncovered mode, offset mode, centre), from which vdg rebuilds the model.
+//
+// The writer is independent of tinygltf: the JSON is built with nlohmann-json and the binary
+// buffer is laid out here (every bufferView starts on a 4-byte boundary).
+//
+// A model goes through the neutral GltfExportInput, so that other sources (an animated model:
+// one target per (key view, key frame), a skinned base and its animation) fill the same struct.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "vdg/geom/camera.h"
+#include "vdg/geom/tri_mesh.h"
+#include "vdg/viewdep/model.h"
+#include "vdg/viewdep/view_sphere.h"
+
+namespace vdg {
+
+// Version of the mesh.extras.vdg object ("version" field).
+inline constexpr int kGltfExtrasVersion = 1;
+
+// One morph target: a key deformation as position deltas from the base.
+struct GltfTarget {
+  std::string name;                                // unique; written in mesh.extras.targetNames
+  Eigen::Vector3d view = Eigen::Vector3d::Zero();  // key view, towards the eye (any finite non-zero length)
+  int frame = 0;                                   // key frame (0 for a static model)
+  std::optional<Camera> camera;                    // the aligned key camera, when the key has one
+  std::vector<float> deltas;                       // #V x 3: key - base (positions)
+  std::vector<float> normal_deltas;                // empty, or #V x 3: key normals - base normals
+};
+
+// How key offsets are carried (manifest "offsets"; only kWorld exists for static models).
+enum class GltfOffsetMode { kWorld, kSkinned };
+const char* gltfOffsetModeName(GltfOffsetMode mode);  // "world", "skinned"
+
+// An animated base (written into mesh.extras.vdg."animation"; none for a static model).
+struct GltfBaseAnimation {
+  int frame_count = 1;  // frames 0 .. frame_count-1
+  double fps = 24.0;    // > 0
+  bool loop = false;
+  int animation = -1;  // index of the glTF animation that plays the base, or -1 when none is written
+};
+
+// A camera path baked into one glTF animation: the morph weights of each sample time (exactly the
+// view-dependent weights of that time's camera) and, optionally, the camera as an animated node.
+struct GltfBakedAnimation {
+  std::string name = "view-dependent";
+  bool step = false;           // sampler interpolation: STEP, or LINEAR (the default)
+  std::vector<float> times;    // seconds, strictly increasing, at least one
+  std::vector<float> weights;  // times.size() x #targets (row per time)
+  // The camera node (written when `translations` is non-empty): a perspective camera looking
+  // down its node's -Z with +Y up, as glTF cameras do.
+  std::vector<float> translations;    // empty, or times.size() x 3 (the eye)
+  std::vector<float> rotations;       // times.size() x 4, unit quaternions x y z w
+  double yfov_rad = 0.5;              // in (0, pi)
+  double aspect = 1.0;                // width / height, > 0
+  double znear = 0.01, zfar = 100.0;  // 0 < znear < zfar
+  // Free description kept in the animation's extras.vdg (camera options, fps); may be empty.
+  std::string description;
+};
+
+// Everything a glTF export writes.
+struct GltfExportInput {
+  TriMesh base;                // positions, triangles, uvs (per corner, see tri_mesh.h)
+  std::vector<float> normals;  // empty (no NORMAL) or #V x 3 unit normals
+  std::vector<GltfTarget> targets;
+  // The view-dependent description (mesh.extras.vdg).
+  double sharpness = 1.0;
+  ViewSphereSettings sphere;
+  Eigen::Vector3d center = Eigen::Vector3d::Zero();
+  GltfOffsetMode offsets = GltfOffsetMode::kWorld;
+  std::optional<GltfBaseAnimation> base_animation;
+  std::optional<GltfBakedAnimation> bake;
+  std::string mesh_name = "vdg-model";
+};
+
+// Fills the input from a built static model: its base, normals computed from the base positions
+// (area-weighted, vertex normals of tri_mesh.h; a vertex on no triangle gets (0, 1, 0)), one target
+// per key in key order with deltas keyPositions - base and normal deltas, the model's sharpness,
+// sphere settings and centre. Throws vdg::Error when a key's positions cannot be read.
+GltfExportInput gltfExportInput(const ViewDependentModel& model);
+
+// Bakes a camera path: for each camera (all perspective; sample i at time i / fps, plus, when
+// `close_loop`, one more sample at cameras.size() / fps equal to sample 0, so a looping viewer
+// plays the cycle without a seam), the model's weights for the view from that camera's eye
+// (viewFromEye, `sharpness` <= 0: the model's own), and the camera's translation and rotation.
+// Consecutive rotations are given the same hemisphere (q or -q), so glTF's slerp never turns the
+// long way. `aspect` = width / height. Throws vdg::Error for no cameras, an orthographic camera, a
+// degenerate camera frame, an eye at the model centre, fps not finite or <= 0.
+GltfBakedAnimation bakeCameraPath(const ViewDependentModel& model, std::span<const Camera> cameras, double fps,
+                                  double aspect, double sharpness, bool close_loop);
+
+// What an export left out, for the command line to tell the user.
+struct GltfExportReport {
+  bool uvs_written = false;
+  std::string note;                // empty, or one line (for instance why the uvs were not written)
+  std::size_t bytes = 0;           // size of the .glb, or of the .gltf plus its .bin
+  std::size_t sparse_targets = 0;  // targets whose POSITION deltas went into sparse accessors
+};
+
+// Serialises `input` in memory: the GLB bytes (12-byte header, JSON chunk, BIN chunk), or for the
+// .gltf form the JSON text with the buffer's "uri" set to `bin_uri` and the buffer returned in
+// `bin`. Names that are not valid UTF-8 are written with U+FFFD in place of the bad bytes (JSON
+// is UTF-8). Throws vdg::Error naming `where` and the element for an inconsistent input: an empty
+// base, array sizes that do not match #V, a triangle index out of range, non-finite values, normals
+// that are not unit length, empty or duplicate target names, a zero target view, a bake whose
+// arrays do not match its times or #targets, times not strictly increasing.
+std::string gltfToGlb(const GltfExportInput& input, const std::string& where, GltfExportReport* report = nullptr);
+std::string gltfToJson(const GltfExportInput& input, const std::string& where, const std::string& bin_uri,
+                       std::string& bin, GltfExportReport* report = nullptr);
+
+// Writes `path`: a .glb, or a .gltf with its buffer in a file beside it named after the .gltf's
+// stem ("out.gltf" -> "out.bin"); the two are replaced together as one step (a FileTransaction
+// with its journal ".vdg-journal" in the output folder, under that folder's lock). Any other
+// extension is an error. Throws vdg::Error naming `path`.
+GltfExportReport writeGltfExport(const std::string& path, const GltfExportInput& input);
+
+// Reading back. `mesh_extras_json` is the text of the mesh's "extras" object (with "targetNames"
+// and "vdg"), `base` the mesh as decoded from the file (positions, triangles, and uvs as vdg holds
+// them: a reader flips TEXCOORD_0's v back to 1 - v), and
+// `target_deltas` the POSITION deltas of the mesh's morph targets in order (#V x 3 each, sparse
+// accessors expanded). Returns a raw model (no meshes' paths; each key's mesh = base + deltas, its
+// view, camera and name from the extras) that ViewDependentModel::build accepts. Throws vdg::Error
+// "WHERE: mesh extras: 'vdg'.'keys'[2].'view': ..." for a missing or malformed description, a version this vdg
+// does not read, a key count that differs from the target count, names that differ from
+// targetNames, an animated description (key frames other than 0 or an "animation"), which this
+// vdg does not read yet, and everything RawViewDependentModel::validate checks.
+RawViewDependentModel rawModelFromGltfExtras(std::string_view mesh_extras_json, const TriMesh& base,
+                                             std::span<const std::vector<float>> target_deltas,
+                                             const std::string& where);
+
+}  // namespace vdg

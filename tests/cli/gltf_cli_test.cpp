@@ -1,0 +1,244 @@
+// `vdg export` and `vdg bake` as a user runs them: files written, the baked animation against
+// `vdg eval`, usage and input errors, and the Khronos glTF validator on every kind of export.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "io/gltf_test_decoder.h"
+#include "support/test_meshes.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using vdg::testing::decodeGlb;
+using vdg::testing::readAccessor;
+using vdg::testing::readText;
+
+// A baked frame against `vdg eval` at that frame's eye: the eye goes through text and float
+// storage, and OBJ coordinates are written with 9 significant digits.
+constexpr double kBakeVsEvalTol = 1e-4;
+
+struct Result {
+  int code;
+  std::string out, err;
+};
+
+Result runShell(const std::string& cmd_line) {
+  vdg::testing::TempDir dir;
+  const std::string out = dir.file("out"), err = dir.file("err");
+  const std::string cmd = "cd '" VDG_SOURCE_DIR "' && " + cmd_line + " >'" + out + "' 2>'" + err + "'";
+  const int status = std::system(cmd.c_str());
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, readText(out), readText(err)};
+}
+
+Result run(const std::string& args) { return runShell("'" VDG_BINARY "' " + args); }
+
+const std::string kSpot = "examples/spot/spot.vdg.json";
+
+std::vector<double> objPositions(const std::string& text) {
+  std::vector<double> out;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("v ", 0) != 0) continue;
+    std::istringstream l(line.substr(2));
+    double x, y, z;
+    l >> x >> y >> z;
+    out.insert(out.end(), {x, y, z});
+  }
+  return out;
+}
+
+TEST(GltfCli, ExportWritesGlbAndGltfWithTheSameContents) {
+  vdg::testing::TempDir dir;
+  Result r = run("export " + kSpot + " -o " + dir.file("spot.glb"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("5 morph targets"), std::string::npos) << r.out;
+  // The spot's OBJ has uv seams: the uvs are left out, and the user is told why.
+  EXPECT_NE(r.err.find("TEXCOORD_0 not written"), std::string::npos) << r.err;
+  r = run("export " + kSpot + " -o " + dir.file("spot.gltf") + " -q");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.out, "");
+  const auto glb = decodeGlb(readText(dir.file("spot.glb")));
+  const auto gltf = vdg::testing::decodeGltfFile(dir.file("spot.gltf"));
+  EXPECT_EQ(glb.bin, gltf.bin);
+  EXPECT_EQ(gltf.doc.at("buffers").at(0).at("uri"), "spot.bin");
+  EXPECT_EQ(glb.doc.at("meshes").at(0).at("extras").at("targetNames"),
+            nlohmann::json({"front", "left", "right", "back", "top"}));
+  EXPECT_EQ(glb.doc.at("meshes").at(0).at("extras").at("vdg").at("version"), 1);
+  EXPECT_FALSE(glb.doc.contains("animations"));
+}
+
+TEST(GltfCli, BakedFramesEqualVdgEvalAtEachFramesCamera) {
+  vdg::testing::TempDir dir;
+  constexpr int kOrbit = 8;
+  const Result r = run("bake " + kSpot + " -o " + dir.file("bake.glb") + " --orbit " + std::to_string(kOrbit) +
+                       " --elevation 25 --fps 12 -q");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto g = decodeGlb(readText(dir.file("bake.glb")));
+  const auto& prim = g.doc.at("meshes").at(0).at("primitives").at(0);
+  const auto base = readAccessor(g, prim.at("attributes").at("POSITION"));
+  std::vector<std::vector<double>> deltas;
+  for (const auto& t : prim.at("targets")) deltas.push_back(readAccessor(g, t.at("POSITION")));
+  const auto& anim = g.doc.at("animations").at(0);
+  const auto times = readAccessor(g, anim.at("samplers").at(0).at("input"));
+  const auto weights = readAccessor(g, anim.at("samplers").at(0).at("output"));
+  const auto eyes = readAccessor(g, anim.at("samplers").at(1).at("output"));
+  ASSERT_EQ(times.size(), kOrbit + 1u) << "the whole orbit gets a closing sample";
+  EXPECT_NEAR(times.back(), kOrbit / 12.0, 1e-6);
+  for (int f : {0, 1, 3, 6}) {
+    EXPECT_NEAR(times[f], f / 12.0, 1e-6);
+    char eye[128];
+    std::snprintf(eye, sizeof eye, "%.9g,%.9g,%.9g", eyes[f * 3], eyes[f * 3 + 1], eyes[f * 3 + 2]);
+    const std::string obj = dir.file("eval" + std::to_string(f) + ".obj");
+    const Result e = run("eval " + kSpot + " --eye " + eye + " -o " + obj + " -q");
+    ASSERT_EQ(e.code, 0) << e.err;
+    const auto expected = objPositions(readText(obj));
+    ASSERT_EQ(expected.size(), base.size());
+    for (std::size_t i = 0; i < base.size(); ++i) {
+      double p = base[i];
+      for (std::size_t k = 0; k < deltas.size(); ++k) p += weights[f * deltas.size() + k] * deltas[k][i];
+      ASSERT_NEAR(p, expected[i], kBakeVsEvalTol) << "frame " << f << " value " << i;
+    }
+  }
+  // The camera sees the model from render's orbit: frame 0 at azimuth 0 looks along -Z.
+  const auto rotations = readAccessor(g, anim.at("samplers").at(2).at("output"));
+  EXPECT_GT(eyes[2], 0.0);
+  EXPECT_NEAR(rotations[1], 0.0, 1e-6);  // no yaw at azimuth 0: q = (x, 0, 0, w)
+}
+
+TEST(GltfCli, BakeFramesRangeStartsAtTimeZeroWithoutAClosingSample) {
+  vdg::testing::TempDir dir;
+  const Result r = run("bake " + kSpot + " -o " + dir.file("b.gltf") + " --orbit 10 --frames 3-5 --step -q");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto g = vdg::testing::decodeGltfFile(dir.file("b.gltf"));
+  const auto& anim = g.doc.at("animations").at(0);
+  EXPECT_EQ(anim.at("samplers").at(0).at("interpolation"), "STEP");
+  EXPECT_EQ(readAccessor(g, anim.at("samplers").at(0).at("input")), (std::vector<double>{0.0, 1 / 24.0f, 2 / 24.0f}));
+}
+
+TEST(GltfCli, BadUsageAndBadInput) {
+  vdg::testing::TempDir dir;
+  EXPECT_EQ(run("export " + kSpot + " -o " + dir.file("x.obj")).code, 2);
+  EXPECT_EQ(run("export " + kSpot).code, 2);
+  EXPECT_EQ(run("bake " + kSpot + " -o " + dir.file("x.glb") + " --fps 0").code, 2);
+  EXPECT_EQ(run("bake " + kSpot + " -o " + dir.file("x.glb") + " --orbit 4 --frames 2-4").code, 2);
+  EXPECT_EQ(run("bake " + kSpot + " -o " + dir.file("x.glb") + " --size 0x1").code, 2);
+  const Result r = run("export " + dir.file("missing.vdg.json") + " -o " + dir.file("x.glb"));
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("missing.vdg.json"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir.file("x.glb")));
+  EXPECT_EQ(run("export " + kSpot + " -o " + dir.file("no/such/dir/x.gltf")).code, 1);
+}
+
+// A model whose base has one uv per vertex and more than 65535 vertices (so TEXCOORD_0, 32-bit
+// indices and 32-bit sparse indices are all written), with a dense and a sparse key.
+std::string writeGridModel(const vdg::testing::TempDir& dir) {
+  constexpr int kSide = 260;  // 67600 vertices
+  std::ostringstream base, dense, sparse, faces;
+  for (int j = 0; j < kSide; ++j)
+    for (int i = 0; i < kSide; ++i) {
+      const double x = i / double(kSide - 1), y = j / double(kSide - 1);
+      base << "v " << x << " " << y << " 0\n";
+      dense << "v " << x << " " << y << " " << 0.1 * std::sin(6 * x) << "\n";
+      sparse << "v " << x << " " << y << " " << (i == 7 && j == 250 ? 0.3 : 0.0) << "\n";
+      faces << "vt " << x << " " << y << "\n";
+    }
+  for (int j = 0; j + 1 < kSide; ++j)
+    for (int i = 0; i + 1 < kSide; ++i) {
+      const int a = j * kSide + i + 1, b = a + 1, c = a + kSide, d = c + 1;
+      faces << "f " << a << "/" << a << " " << b << "/" << b << " " << d << "/" << d << "\n";
+      faces << "f " << a << "/" << a << " " << d << "/" << d << " " << c << "/" << c << "\n";
+    }
+  vdg::testing::writeText(dir.file("grid/base.obj"), base.str() + faces.str());
+  vdg::testing::writeText(dir.file("grid/dense.obj"), dense.str() + faces.str());
+  vdg::testing::writeText(dir.file("grid/sparse.obj"), sparse.str() + faces.str());
+  vdg::testing::writeText(dir.file("grid/grid.vdg.json"),
+                          R"({"version": 1, "base": "base.obj", "uncovered": "cosine", "keys": [
+                             {"mesh": "dense.obj", "view": [0, 0, 1]}, {"mesh": "sparse.obj", "view": [1, 0, 1]}]})");
+  return dir.file("grid/grid.vdg.json");
+}
+
+// The validator: $VDG_GLTF_VALIDATOR (a command taking files), else scripts/validate-gltf when it,
+// node and the validator package are there. Empty when none is.
+std::string validatorCommand() {
+  if (const char* v = std::getenv("VDG_GLTF_VALIDATOR"); v && *v) return v;
+  const fs::path script = fs::path(VDG_SOURCE_DIR) / "scripts/validate-gltf";
+  const bool package = fs::exists(fs::path(VDG_SOURCE_DIR) / "tools/gltf-validator/node_modules/gltf-validator");
+  if (!fs::exists(script) || !package || runShell("command -v node").code != 0) return "";
+  return "'" + script.string() + "'";
+}
+
+TEST(GltfCli, EveryKindOfExportPassesTheKhronosValidator) {
+  const std::string validator = validatorCommand();
+  if (validator.empty()) {
+    const char* required = std::getenv("VDG_REQUIRE_GLTF_VALIDATOR");
+    if (required && std::string(required) == "1")
+      FAIL() << "VDG_REQUIRE_GLTF_VALIDATOR=1 but the glTF validator is not installed (scripts/install-deps "
+                "installs node and tools/gltf-validator)";
+    GTEST_SKIP() << "the Khronos glTF validator is not installed (scripts/validate-gltf, node, "
+                    "tools/gltf-validator/node_modules); set VDG_REQUIRE_GLTF_VALIDATOR=1 to make this a failure";
+  }
+  vdg::testing::TempDir dir;
+  const std::string grid = writeGridModel(dir);
+  const std::vector<std::pair<std::string, std::string>> exports = {
+      {"export " + kSpot, "spot.glb"},                                    // sparse targets, 16-bit indices
+      {"export " + kSpot, "spot.gltf"},                                   // external buffer
+      {"export examples/building/building.vdg.json", "building.glb"},     // a dense target
+      {"export " + grid, "grid.glb"},                                     // uvs, 32-bit indices
+      {"bake " + kSpot + " --orbit 12", "bake.glb"},                      // LINEAR weights + camera
+      {"bake " + grid + " --orbit 5 --frames 1-3 --step", "bake.gltf"}};  // STEP, external buffer
+  std::string files;
+  for (const auto& [args, name] : exports) {
+    const Result r = run(args + " -q -o " + dir.file(name));
+    ASSERT_EQ(r.code, 0) << args << ": " << r.err;
+    files += " '" + dir.file(name) + "'";
+  }
+  const auto grid_doc = decodeGlb(readText(dir.file("grid.glb"))).doc;
+  EXPECT_TRUE(grid_doc.at("meshes").at(0).at("primitives").at(0).at("attributes").contains("TEXCOORD_0"));
+  const Result v = runShell(validator + files);
+  EXPECT_EQ(v.code, 0) << v.out << v.err;
+}
+
+}  // namespace
+
+namespace {
+
+// The extras of an export, and of a model with a camera key, against docs/schema (needs python3's
+// jsonschema; skipped without it).
+TEST(GltfCli, ExtrasFollowTheirJsonSchema) {
+  if (runShell("python3 -c 'import jsonschema'").code != 0) GTEST_SKIP() << "python3 jsonschema is not installed";
+  vdg::testing::TempDir dir;
+  vdg::testing::writeText(dir.file("m/m.vdg.json"),
+                          R"({"version": 1, "base": ")" VDG_SOURCE_DIR R"(/examples/spot/spot.obj", "keys": [
+        {"mesh": ")" VDG_SOURCE_DIR R"(/examples/spot/keys/front.obj", "view": [0, 0, -1]},
+        {"mesh": ")" VDG_SOURCE_DIR R"(/examples/spot/keys/top.obj",
+         "camera": {"eye": [0, 5, 0.1], "target": [0, 0, 0], "fov_deg": 30}}]})");
+  ASSERT_EQ(run("export " + dir.file("m/m.vdg.json") + " -q -o " + dir.file("m.gltf")).code, 0);
+  ASSERT_EQ(run("bake " + kSpot + " -q --orbit 3 -o " + dir.file("b.gltf")).code, 0);
+  const std::string check =
+      "python3 -c 'import json, sys, jsonschema\n"
+      "schema = json.load(open(sys.argv[1]))\n"
+      "jsonschema.Draft202012Validator.check_schema(schema)\n"
+      "for f in sys.argv[2:]:\n"
+      "    jsonschema.validate(json.load(open(f))[\"meshes\"][0][\"extras\"], schema)\n"
+      "bad = json.load(open(sys.argv[2]))[\"meshes\"][0][\"extras\"]\n"
+      "bad[\"vdg\"][\"uncovered\"] = \"nowhere\"\n"
+      "try:\n"
+      "    jsonschema.validate(bad, schema)\n"
+      "    sys.exit(3)\n"
+      "except jsonschema.ValidationError:\n"
+      "    pass' docs/schema/vdg-gltf-extras.schema.json '" +
+      dir.file("m.gltf") + "' '" + dir.file("b.gltf") + "'";
+  const Result r = runShell(check);
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(readText(dir.file("m.gltf")).find("\"camera\""), std::string::npos);
+}
+
+}  // namespace

@@ -1,0 +1,476 @@
+// glTF export: the file's structure (decoded by an independent reader, gltf_test_decoder.h), the
+// round trip through mesh.extras.vdg, sparse targets, uvs, the camera bake, and every bad input.
+#include "vdg/io/gltf_export.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+
+#include <cmath>
+#include <filesystem>
+#include <functional>
+#include <numbers>
+
+#include "gltf_test_decoder.h"
+#include "support/error_of.h"
+#include "support/test_meshes.h"
+
+namespace vdg {
+namespace {
+
+using testing::DecodedGltf;
+using testing::errorOf;
+using testing::readAccessor;
+using testing::toFloats;
+
+// The round-trip bound on positions; float storage of deltas loses far less.
+constexpr double kRoundTripTol = 1e-4;
+// Baked weights are floats: a blend of float weights and float deltas.
+constexpr double kBakeTol = 1e-5;
+constexpr double kQuatTol = 1e-6;
+
+// A sphere with keys that push different regions outwards; `moved` limits a key to a few vertices.
+RawViewDependentModel sphereModel(Uncovered uncovered = Uncovered::Base, double sharpness = 1.0) {
+  RawViewDependentModel raw;
+  raw.base = testing::uvSphere(8, 12);
+  const std::size_t n = raw.base.vertexCount();
+  const auto key = [&](const std::string& name, const Eigen::Vector3d& dir, double amount) {
+    RawKey k;
+    k.name = name;
+    k.mesh = raw.base;
+    k.view = dir;
+    for (std::size_t v = 0; v < n; ++v) {
+      Eigen::Vector3d p(k.mesh.positions[v * 3], k.mesh.positions[v * 3 + 1], k.mesh.positions[v * 3 + 2]);
+      const double s = std::max(0.0, p.dot(dir.normalized()));
+      p *= 1.0 + amount * s * s;
+      for (int c = 0; c < 3; ++c) k.mesh.positions[v * 3 + c] = static_cast<float>(p[c]);
+    }
+    return k;
+  };
+  raw.keys.push_back(key("front", {0, 0, 1}, 0.5));
+  raw.keys.push_back(key("side", {1, 0.2, 0}, 0.3));
+  Camera cam;
+  cam.eye = {0.1, 4, 0.3};
+  cam.target = {0, 0, 0};
+  cam.up = {0, 0, -1};
+  cam.fov_deg = 35;
+  RawKey top = key("top", {0, 1, 0}, 0.4);
+  top.camera = cam;
+  raw.keys.push_back(top);
+  raw.sharpness = sharpness;
+  raw.sphere.uncovered = uncovered;
+  raw.center = Eigen::Vector3d(0.01, -0.02, 0.0);
+  raw.resolveViews();
+  return raw;
+}
+
+// Base mesh and target deltas as decoded from the file, and the mesh's extras as text.
+struct DecodedModel {
+  TriMesh base;
+  std::vector<std::vector<float>> deltas;
+  std::string extras;
+};
+
+DecodedModel decodeModel(const DecodedGltf& g) {
+  DecodedModel out;
+  const auto& prim = g.doc.at("meshes").at(0).at("primitives").at(0);
+  out.base.positions = toFloats(readAccessor(g, prim.at("attributes").at("POSITION")));
+  for (double i : readAccessor(g, prim.at("indices"))) out.base.triangles.push_back(static_cast<std::int32_t>(i));
+  if (prim.contains("targets"))
+    for (const auto& t : prim.at("targets")) out.deltas.push_back(toFloats(readAccessor(g, t.at("POSITION"))));
+  out.extras = g.doc.at("meshes").at(0).at("extras").dump();
+  return out;
+}
+
+std::vector<Eigen::Vector3d> testViews() {
+  return {{0, 0, 1}, {1, 0.2, 0}, {0.3, 0.9, 0.2}, {0.5, 0.5, 0.7}, {-1, 0.1, -0.3}, {0, -1, 0.01}, {0.7, -0.2, 0.6}};
+}
+
+void expectSameEvaluation(const ViewDependentModel& a, const ViewDependentModel& b, double tol) {
+  ASSERT_EQ(a.vertexCount(), b.vertexCount());
+  std::vector<float> pa(a.vertexCount() * 3), pb(pa.size());
+  for (const Eigen::Vector3d& view : testViews()) {
+    ASSERT_TRUE(a.evaluate(view, 0.0, pa));
+    ASSERT_TRUE(b.evaluate(view, 0.0, pb));
+    for (std::size_t i = 0; i < pa.size(); ++i)
+      ASSERT_NEAR(pa[i], pb[i], tol) << "view " << view.transpose() << " i " << i;
+  }
+}
+
+ViewDependentModel roundTrip(const DecodedGltf& g) {
+  const DecodedModel d = decodeModel(g);
+  return ViewDependentModel::build(rawModelFromGltfExtras(d.extras, d.base, d.deltas, "test.glb"));
+}
+
+TEST(GltfExport, GlbHasTheSpecifiedLayout) {
+  const auto model = ViewDependentModel::build(sphereModel());
+  GltfExportReport report;
+  const std::string bytes = gltfToGlb(gltfExportInput(model), "t.glb", &report);
+  EXPECT_EQ(bytes.size() % 4, 0u);
+  EXPECT_EQ(report.bytes, bytes.size());
+  const DecodedGltf g = testing::decodeGlb(bytes);
+  EXPECT_EQ(g.doc.at("asset").at("version"), "2.0");
+  EXPECT_EQ(g.doc.at("buffers").at(0).at("byteLength").get<std::size_t>(), g.bin.size());
+  EXPECT_FALSE(g.doc.at("buffers").at(0).contains("uri"));
+  for (const auto& view : g.doc.at("bufferViews")) {
+    EXPECT_EQ(view.at("byteOffset").get<std::size_t>() % 4, 0u);
+    EXPECT_LE(view.at("byteOffset").get<std::size_t>() + view.at("byteLength").get<std::size_t>(), g.bin.size());
+  }
+  const auto& mesh = g.doc.at("meshes").at(0);
+  const auto& prim = mesh.at("primitives").at(0);
+  EXPECT_EQ(prim.at("targets").size(), 3u);
+  EXPECT_EQ(mesh.at("weights"), nlohmann::json({0.0, 0.0, 0.0}));
+  EXPECT_EQ(mesh.at("extras").at("targetNames"), nlohmann::json({"front", "side", "top"}));
+  EXPECT_EQ(g.doc.at("accessors").at(prim.at("indices").get<int>()).at("componentType"), 5123);
+  // The base decodes to the model's base exactly.
+  const DecodedModel d = decodeModel(g);
+  EXPECT_EQ(d.base.positions, model.base().positions);
+  EXPECT_EQ(d.base.triangles, model.base().triangles);
+  // POSITION accessors carry exact min/max (the validator checks them against the data).
+  std::vector<int> position_accessors{prim.at("attributes").at("POSITION").get<int>()};
+  for (const auto& t : prim.at("targets")) position_accessors.push_back(t.at("POSITION"));
+  for (int a : position_accessors) {
+    const auto values = readAccessor(g, a);
+    const auto& acc = g.doc.at("accessors").at(a);
+    for (int c = 0; c < 3; ++c) {
+      double lo = values[c], hi = values[c];
+      for (std::size_t i = c; i < values.size(); i += 3) lo = std::min(lo, values[i]), hi = std::max(hi, values[i]);
+      EXPECT_EQ(acc.at("min").at(c).get<double>(), lo);
+      EXPECT_EQ(acc.at("max").at(c).get<double>(), hi);
+    }
+  }
+  // NORMAL: unit vectors.
+  const auto normals = readAccessor(g, prim.at("attributes").at("NORMAL"));
+  for (std::size_t v = 0; v < normals.size() / 3; ++v)
+    EXPECT_NEAR(Eigen::Vector3d(normals[v * 3], normals[v * 3 + 1], normals[v * 3 + 2]).norm(), 1.0, 1e-6);
+}
+
+TEST(GltfExport, RoundTripEvaluatesLikeTheModel) {
+  for (const Uncovered mode : {Uncovered::Base, Uncovered::Cosine, Uncovered::Cosine2}) {
+    const auto model = ViewDependentModel::build(sphereModel(mode, 2.5));
+    const auto back = roundTrip(testing::decodeGlb(gltfToGlb(gltfExportInput(model), "t.glb")));
+    EXPECT_EQ(back.sphere().settings().uncovered, mode);
+    EXPECT_EQ(back.sharpness(), 2.5);
+    EXPECT_EQ(back.center(), model.center());
+    EXPECT_EQ(back.keyName(1), "side");
+    ASSERT_TRUE(back.keyCamera(2).has_value());
+    EXPECT_EQ(back.keyCamera(2)->eye, model.keyCamera(2)->eye);
+    // Views are written as the sphere holds them (unit); normalising again moves them by an ulp at most.
+    EXPECT_LT((back.keyView(2) - model.keyView(2)).norm(), 1e-15);
+    expectSameEvaluation(model, back, kRoundTripTol);
+  }
+}
+
+TEST(GltfExport, GltfWithExternalBufferRoundTrips) {
+  testing::TempDir dir;
+  const auto model = ViewDependentModel::build(sphereModel());
+  const std::string path = dir.file("out.gltf");
+  const GltfExportReport report = writeGltfExport(path, gltfExportInput(model));
+  ASSERT_TRUE(std::filesystem::exists(dir.file("out.bin")));
+  EXPECT_FALSE(std::filesystem::exists(dir.file(".vdg-journal")));
+  const DecodedGltf g = testing::decodeGltfFile(path);
+  EXPECT_EQ(g.doc.at("buffers").at(0).at("uri"), "out.bin");
+  EXPECT_EQ(g.doc.at("buffers").at(0).at("byteLength").get<std::size_t>(), g.bin.size());
+  EXPECT_EQ(report.bytes, std::filesystem::file_size(path) + g.bin.size());
+  expectSameEvaluation(model, roundTrip(g), kRoundTripTol);
+  // A .glb of the same model holds the same buffer.
+  writeGltfExport(dir.file("out.glb"), gltfExportInput(model));
+  EXPECT_EQ(testing::decodeGlb(testing::readText(dir.file("out.glb"))).bin, g.bin);
+}
+
+TEST(GltfExport, TargetsAreSparseExactlyWhenThatIsSmaller) {
+  RawViewDependentModel raw = sphereModel();
+  // "front" moves one vertex only; "side" (every vertex with a positive x) and "top" stay as they are.
+  raw.keys[0].mesh = raw.base;
+  raw.keys[0].mesh.positions[3 * 5 + 1] += 0.25f;
+  RawKey still = raw.keys[1];
+  still.name = "still";
+  still.mesh = raw.base;
+  still.view = {0, 0, -1};
+  raw.keys.push_back(still);
+  const auto model = ViewDependentModel::build(raw);
+  GltfExportInput input = gltfExportInput(model);
+  // A target that moves every vertex must stay dense.
+  for (float& d : input.targets[1].deltas) d += 0.01f;
+  GltfExportReport report;
+  const DecodedGltf g = testing::decodeGlb(gltfToGlb(input, "t.glb", &report));
+  const auto& targets = g.doc.at("meshes").at(0).at("primitives").at(0).at("targets");
+  const auto accessor = [&](int t) { return g.doc.at("accessors").at(targets.at(t).at("POSITION").get<int>()); };
+  EXPECT_TRUE(accessor(0).contains("sparse"));
+  EXPECT_EQ(accessor(0).at("sparse").at("count"), 1);
+  EXPECT_EQ(accessor(0).at("sparse").at("indices").at("componentType"), 5121);  // 86 vertices fit a byte
+  EXPECT_FALSE(accessor(0).contains("bufferView"));
+  EXPECT_FALSE(accessor(1).contains("sparse"));
+  EXPECT_TRUE(accessor(3).contains("sparse"));  // moves nothing: one zero entry
+  EXPECT_EQ(accessor(3).at("min"), nlohmann::json({0.0, 0.0, 0.0}));
+  EXPECT_EQ(report.sparse_targets, 3u);  // front, top (about half the sphere), still
+  // Decoded deltas equal the input's, sparse or dense.
+  for (std::size_t t = 0; t < input.targets.size(); ++t)
+    EXPECT_EQ(toFloats(readAccessor(g, targets.at(t).at("POSITION"))), input.targets[t].deltas) << t;
+  // The sparse target's bounds include the zeros of the vertices it leaves alone.
+  EXPECT_EQ(accessor(0).at("min"), nlohmann::json({0.0, 0.0, 0.0}));
+  EXPECT_EQ(accessor(0).at("max").at(1).get<double>(), static_cast<double>(input.targets[0].deltas[3 * 5 + 1]));
+}
+
+TEST(GltfExport, LargeMeshesUseUnsignedIntIndicesAndShortSparseIndices) {
+  // 70000 unshared vertices: indices past 65534 need UNSIGNED_INT.
+  GltfExportInput input;
+  constexpr int kTris = 70002 / 3;
+  for (int t = 0; t < kTris; ++t) {
+    const float x = static_cast<float>(t);
+    input.base.positions.insert(input.base.positions.end(), {x, 0, 0, x + 1, 0, 0, x, 1, 0});
+    input.base.triangles.insert(input.base.triangles.end(), {3 * t, 3 * t + 1, 3 * t + 2});
+  }
+  GltfTarget target;
+  target.name = "k";
+  target.view = {0, 0, 1};
+  target.deltas.assign(input.base.positions.size(), 0.0f);
+  target.deltas[3 * 69000 + 2] = 1.0f;
+  input.targets.push_back(target);
+  const DecodedGltf g = testing::decodeGlb(gltfToGlb(input, "t.glb"));
+  const auto& prim = g.doc.at("meshes").at(0).at("primitives").at(0);
+  EXPECT_EQ(g.doc.at("accessors").at(prim.at("indices").get<int>()).at("componentType"), 5125);
+  const auto idx = readAccessor(g, prim.at("indices"));
+  EXPECT_EQ(idx.back(), 3.0 * kTris - 1);
+  const auto& t = g.doc.at("accessors").at(prim.at("targets").at(0).at("POSITION").get<int>());
+  EXPECT_EQ(t.at("sparse").at("indices").at("componentType"), 5125);  // 70002 vertices need 32 bits
+  EXPECT_EQ(toFloats(readAccessor(g, prim.at("targets").at(0).at("POSITION"))), target.deltas);
+}
+
+TEST(GltfExport, UvsAreWrittenWhenOnePerVertexElseLeftOutWithANote) {
+  GltfExportInput input;
+  input.base.positions = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0};
+  input.base.triangles = {0, 1, 2, 2, 1, 3};
+  input.base.uvs = {0, 0, 1, 0, 0, 1, 1, 1};
+  input.base.uv_triangles = {0, 1, 2, 2, 1, 3};
+  GltfExportReport report;
+  DecodedGltf g = testing::decodeGlb(gltfToGlb(input, "t.glb", &report));
+  EXPECT_TRUE(report.uvs_written);
+  const auto& attrs = g.doc.at("meshes").at(0).at("primitives").at(0).at("attributes");
+  // glTF's uv origin is the top-left corner: v becomes 1 - v.
+  EXPECT_EQ(readAccessor(g, attrs.at("TEXCOORD_0")), (std::vector<double>{0, 1, 1, 1, 0, 0, 1, 0}));
+  // A seam: vertex 1 has two different uvs.
+  input.base.uvs.insert(input.base.uvs.end(), {0.5f, 0.5f});
+  input.base.uv_triangles = {0, 1, 2, 2, 4, 3};
+  g = testing::decodeGlb(gltfToGlb(input, "t.glb", &report));
+  EXPECT_FALSE(report.uvs_written);
+  EXPECT_NE(report.note.find("vertex 1 has different uvs"), std::string::npos);
+  EXPECT_FALSE(g.doc.at("meshes").at(0).at("primitives").at(0).at("attributes").contains("TEXCOORD_0"));
+}
+
+std::vector<Camera> orbit(const ViewDependentModel& model, int frames) {
+  std::vector<Camera> cams;
+  for (int f = 0; f < frames; ++f) {
+    const double az = 2.0 * std::numbers::pi * f / frames, el = 0.35;
+    Camera c;
+    c.target = model.center();
+    c.eye = c.target + 5.0 * Eigen::Vector3d(std::sin(az) * std::cos(el), std::sin(el), std::cos(az) * std::cos(el));
+    c.fov_deg = 30.0;
+    cams.push_back(c);
+  }
+  return cams;
+}
+
+TEST(GltfExport, BakedWeightsReproduceTheBlendAtEverySample) {
+  const auto model = ViewDependentModel::build(sphereModel(Uncovered::Base, 1.5));
+  const auto cams = orbit(model, 12);
+  GltfExportInput input = gltfExportInput(model);
+  input.bake = bakeCameraPath(model, cams, 24.0, 1.5, 0.0, true);
+  const DecodedGltf g = testing::decodeGlb(gltfToGlb(input, "t.glb"));
+  const DecodedModel d = decodeModel(g);
+  const auto& anim = g.doc.at("animations").at(0);
+  ASSERT_EQ(anim.at("channels").size(), 3u);
+  EXPECT_EQ(anim.at("channels").at(0).at("target").at("path"), "weights");
+  EXPECT_EQ(anim.at("samplers").at(0).at("interpolation"), "LINEAR");
+  const auto times = readAccessor(g, anim.at("samplers").at(0).at("input"));
+  const auto weights = readAccessor(g, anim.at("samplers").at(0).at("output"));
+  const auto translations = readAccessor(g, anim.at("samplers").at(1).at("output"));
+  const auto rotations = readAccessor(g, anim.at("samplers").at(2).at("output"));
+  ASSERT_EQ(times.size(), cams.size() + 1);  // the closing sample
+  const std::size_t keys = model.keyCount();
+  ASSERT_EQ(weights.size(), times.size() * keys);
+  std::vector<float> expected(model.vertexCount() * 3);
+  for (std::size_t s = 0; s < times.size(); ++s) {
+    const Camera& cam = cams[s % cams.size()];
+    EXPECT_NEAR(times[s], s / 24.0, 1e-6);
+    ASSERT_TRUE(model.evaluate(model.viewFromEye(cam.eye), 0.0, expected));
+    for (std::size_t i = 0; i < expected.size(); ++i) {
+      double p = d.base.positions[i];
+      for (std::size_t k = 0; k < keys; ++k) p += weights[s * keys + k] * d.deltas[k][i];
+      ASSERT_NEAR(p, expected[i], kBakeTol) << "sample " << s << " value " << i;
+    }
+    // The camera node: at the eye, its -Z towards the target, +Y on the up side.
+    const Eigen::Vector3d eye(translations[s * 3], translations[s * 3 + 1], translations[s * 3 + 2]);
+    EXPECT_NEAR((eye - cam.eye).norm(), 0.0, 1e-5);
+    const Eigen::Quaterniond q(rotations[s * 4 + 3], rotations[s * 4], rotations[s * 4 + 1], rotations[s * 4 + 2]);
+    EXPECT_NEAR(q.norm(), 1.0, kQuatTol);
+    const Eigen::Vector3d forward = q.normalized() * Eigen::Vector3d(0, 0, -1);
+    EXPECT_NEAR((forward - (cam.target - cam.eye).normalized()).norm(), 0.0, 1e-5);
+    EXPECT_GT((q.normalized() * Eigen::Vector3d::UnitY()).y(), 0.0);
+    if (s > 0) {
+      const Eigen::Vector4d a(rotations[s * 4], rotations[s * 4 + 1], rotations[s * 4 + 2], rotations[s * 4 + 3]);
+      const Eigen::Vector4d b(rotations[s * 4 - 4], rotations[s * 4 - 3], rotations[s * 4 - 2], rotations[s * 4 - 1]);
+      EXPECT_GE(a.dot(b), 0.0) << "consecutive rotations in one hemisphere";
+    }
+  }
+  const auto& cam = g.doc.at("cameras").at(0).at("perspective");
+  EXPECT_NEAR(cam.at("yfov").get<double>(), 30.0 * std::numbers::pi / 180.0, 1e-12);
+  EXPECT_EQ(cam.at("aspectRatio").get<double>(), 1.5);
+  EXPECT_LT(cam.at("znear").get<double>(), 5.0 - 1.0);
+  EXPECT_GT(cam.at("zfar").get<double>(), 5.0 + 1.0);
+  // Still the model: the bake reads back as the same view-dependent model.
+  expectSameEvaluation(model, roundTrip(g), kRoundTripTol);
+}
+
+TEST(GltfExport, BakeOptions) {
+  const auto model = ViewDependentModel::build(sphereModel());
+  const auto cams = orbit(model, 5);
+  GltfExportInput input = gltfExportInput(model);
+  input.bake = bakeCameraPath(model, cams, 10.0, 1.0, 7.0, false);
+  input.bake->step = true;
+  input.bake->translations.clear();
+  const DecodedGltf g = testing::decodeGlb(gltfToGlb(input, "t.glb"));
+  const auto& anim = g.doc.at("animations").at(0);
+  EXPECT_EQ(anim.at("channels").size(), 1u);
+  EXPECT_EQ(anim.at("samplers").at(0).at("interpolation"), "STEP");
+  EXPECT_FALSE(g.doc.contains("cameras"));
+  EXPECT_EQ(readAccessor(g, anim.at("samplers").at(0).at("input")).size(), 5u);
+  // Sharpness 7 (not the model's 1) is what the weights carry.
+  ViewWeights w;
+  ASSERT_TRUE(model.weights(model.viewFromEye(cams[2].eye), 7.0, w));
+  const auto weights = readAccessor(g, anim.at("samplers").at(0).at("output"));
+  for (int slot = 0; slot < 3; ++slot)
+    if (w.key[slot] >= 0) {
+      EXPECT_FLOAT_EQ(weights[2 * 3 + w.key[slot]], w.weight[slot]);
+    }
+}
+
+TEST(GltfExport, NamesThatAreNotUtf8AreWrittenWithReplacementCharacters) {
+  GltfExportInput input = gltfExportInput(ViewDependentModel::build(sphereModel()));
+  input.targets[0].name = "bad\xff";
+  const DecodedGltf g = testing::decodeGlb(gltfToGlb(input, "t.glb"));
+  EXPECT_EQ(g.doc.at("meshes").at(0).at("extras").at("targetNames").at(0), "bad\xef\xbf\xbd");
+}
+
+TEST(GltfExport, BadBakeInputsAreRefused) {
+  const auto model = ViewDependentModel::build(sphereModel());
+  auto cams = orbit(model, 3);
+  EXPECT_EQ(errorOf([&] { bakeCameraPath(model, {}, 24, 1, 0, false); }), "bake: no cameras");
+  EXPECT_EQ(errorOf([&] { bakeCameraPath(model, cams, 0, 1, 0, false); }),
+            "bake: the frame rate must be finite and > 0");
+  EXPECT_EQ(errorOf([&] { bakeCameraPath(model, cams, 24, -1, 0, false); }),
+            "bake: the aspect ratio must be finite and > 0");
+  cams[1].fov_deg = 50;
+  EXPECT_EQ(errorOf([&] { bakeCameraPath(model, cams, 24, 1, 0, false); }),
+            "bake: camera 1: every camera must have the same field of view");
+  cams[1].fov_deg = 30;
+  cams[2].ortho_height = 2;
+  EXPECT_EQ(errorOf([&] { bakeCameraPath(model, cams, 24, 1, 0, false); }),
+            "bake: camera 2: glTF bakes perspective cameras only");
+  cams[2].ortho_height = 0;
+  cams[0].eye = model.center();
+  EXPECT_EQ(errorOf([&] { bakeCameraPath(model, cams, 24, 1, 0, false); }),
+            "bake: camera 0: no view direction (the eye is at the model centre, or the sharpness is not > 0)");
+}
+
+TEST(GltfExport, BadInputsAreRefused) {
+  const auto model = ViewDependentModel::build(sphereModel());
+  const GltfExportInput good = gltfExportInput(model);
+  const auto refused = [&](const std::function<void(GltfExportInput&)>& change) {
+    GltfExportInput in = good;
+    change(in);
+    return errorOf([&] { (void)gltfToGlb(in, "out.glb"); });
+  };
+  EXPECT_EQ(refused([](auto& in) { in.base = TriMesh{}; }), "out.glb: the base mesh has no vertices or no triangles");
+  EXPECT_EQ(refused([](auto& in) { in.base.triangles[4] = 1000; }).rfind("out.glb: base", 0), 0u);
+  EXPECT_EQ(refused([](auto& in) { in.normals.pop_back(); }), "out.glb: normals: expected 86 x 3 floats, got 257");
+  EXPECT_EQ(refused([](auto& in) { in.normals[3] = 2; }), "out.glb: normals: vertex 1 is not unit length");
+  EXPECT_EQ(refused([](auto& in) { in.targets[1].name = ""; }), "out.glb: target 1 has no name");
+  EXPECT_EQ(refused([](auto& in) { in.targets[2].name = "front"; }),
+            "out.glb: target 2 'front': the name is used twice");
+  EXPECT_EQ(refused([](auto& in) { in.targets[0].deltas.resize(3); }),
+            "out.glb: target 0 'front': expected 86 x 3 deltas, got 3");
+  EXPECT_EQ(refused([](auto& in) { in.targets[0].deltas[7] = NAN; }),
+            "out.glb: target 0 'front': a delta is not finite");
+  EXPECT_EQ(refused([](auto& in) { in.targets[0].normal_deltas.resize(6); }),
+            "out.glb: target 0 'front': normal deltas need base normals and 86 x 3 floats");
+  EXPECT_EQ(refused([](auto& in) { in.targets[0].view = Eigen::Vector3d::Zero(); }),
+            "out.glb: target 0 'front': the view is zero or not finite");
+  EXPECT_EQ(refused([](auto& in) { in.targets[0].frame = -1; }), "out.glb: target 0 'front': the frame is negative");
+  EXPECT_EQ(refused([](auto& in) { in.sharpness = 0; }), "out.glb: the sharpness must be finite and > 0");
+  EXPECT_EQ(refused([](auto& in) { in.center.x() = INFINITY; }), "out.glb: the centre is not finite");
+  EXPECT_EQ(refused([](auto& in) {
+              in.base_animation = GltfBaseAnimation{0, 24, false, -1};
+            }),
+            "out.glb: base animation: expected frame_count >= 1 and fps > 0");
+  const auto cams = orbit(model, 3);
+  const GltfBakedAnimation bake = bakeCameraPath(model, cams, 24, 1, 0, false);
+  EXPECT_EQ(refused([&](auto& in) { in.bake = bake, in.bake->times.clear(); }), "out.glb: bake: no sample times");
+  EXPECT_EQ(refused([&](auto& in) { in.bake = bake, in.bake->times[2] = in.bake->times[1]; }),
+            "out.glb: bake: times are not strictly increasing at sample 2");
+  EXPECT_EQ(refused([&](auto& in) { in.bake = bake, in.bake->weights.pop_back(); }),
+            "out.glb: bake: expected 3 x 3 weights, got 8");
+  EXPECT_EQ(refused([&](auto& in) { in.bake = bake, in.bake->weights[0] = NAN; }),
+            "out.glb: bake: a weight is not finite");
+  EXPECT_EQ(refused([&](auto& in) { in.bake = bake, in.bake->rotations.pop_back(); }),
+            "out.glb: bake: expected 3 camera translations and rotations");
+  EXPECT_EQ(refused([&](auto& in) { in.bake = bake, in.bake->znear = 0; }),
+            "out.glb: bake: expected 0 < yfov < pi, aspect > 0 and 0 < znear < zfar");
+  EXPECT_EQ(refused([&](auto& in) { in.bake = bake, in.targets.clear(); }),
+            "out.glb: bake: the model has no morph targets to animate");
+  testing::TempDir dir;
+  EXPECT_EQ(errorOf([&] { writeGltfExport(dir.file("out.obj"), good); }),
+            dir.file("out.obj") + ": expected a .glb or .gltf file name");
+}
+
+TEST(GltfExport, BadExtrasAreRefusedByTheReader) {
+  const auto model = ViewDependentModel::build(sphereModel());
+  const DecodedModel d = decodeModel(testing::decodeGlb(gltfToGlb(gltfExportInput(model), "t.glb")));
+  const nlohmann::json good = nlohmann::json::parse(d.extras);
+  const auto refused = [&](const std::function<void(nlohmann::json&)>& change) {
+    nlohmann::json e = good;
+    change(e);
+    return errorOf([&] { (void)rawModelFromGltfExtras(e.dump(), d.base, d.deltas, "m.glb"); });
+  };
+  EXPECT_EQ(refused([](auto&) {}), "");
+  EXPECT_EQ(errorOf([&] {
+              (void)rawModelFromGltfExtras("{", d.base, d.deltas, "m.glb");
+            }).rfind("m.glb: mesh extras: not valid JSON", 0),
+            0u);
+  EXPECT_EQ(refused([](auto& e) { e = 3; }), "m.glb: mesh extras: expected an object, got the number 3");
+  EXPECT_EQ(refused([](auto& e) { e.erase("vdg"); }),
+            "m.glb: mesh extras: no 'vdg' description: this glTF file was not exported by vdg");
+  EXPECT_EQ(refused([](auto& e) { e.erase("targetNames"); }), "m.glb: mesh extras: missing key 'targetNames'");
+  EXPECT_EQ(refused([](auto& e) { e["vdg"]["version"] = 2; }),
+            "m.glb: mesh extras: 'vdg'.'version': this vdg reads view-dependent glTF extras version 1, got 2");
+  EXPECT_EQ(
+      refused([](auto& e) { e["vdg"]["colour"] = 2; }).rfind("m.glb: mesh extras: 'vdg': unknown key 'colour'", 0), 0u);
+  EXPECT_EQ(refused([](auto& e) {
+              e["vdg"]["animation"] = {{"frame_count", 40}};
+            }),
+            "m.glb: mesh extras: 'vdg'.'animation': an animated view-dependent model; this vdg reads static ones only");
+  EXPECT_EQ(refused([](auto& e) { e["vdg"]["keys"][1]["frame"] = 10; }),
+            "m.glb: mesh extras: 'vdg'.'keys'[1].'frame': a key at frame > 0 belongs to an animated model; this vdg "
+            "reads static ones only");
+  EXPECT_EQ(refused([](auto& e) { e["vdg"]["offsets"] = "skinned"; }),
+            "m.glb: mesh extras: 'vdg'.'offsets': expected \"world\" for a static model, got the string \"skinned\"");
+  EXPECT_EQ(refused([](auto& e) { e["vdg"]["keys"].erase(2); }),
+            "m.glb: mesh extras: 'vdg'.'keys': describes 2 keys, but the mesh has 3 morph targets");
+  EXPECT_EQ(refused([](auto& e) { e["targetNames"].erase(2); }),
+            "m.glb: mesh extras: 'targetNames': has 2 names for 3 morph targets");
+  EXPECT_EQ(refused([](auto& e) { e["targetNames"][1] = "other"; }),
+            "m.glb: mesh extras: 'vdg'.'keys'[1].'name': differs from targetNames[1] the string \"other\"");
+  EXPECT_EQ(refused([](auto& e) { e["vdg"]["keys"][0]["view"] = "up"; }),
+            "m.glb: mesh extras: 'vdg'.'keys'[0].'view': expected 3 numbers, got the string \"up\"");
+  EXPECT_EQ(
+      refused([](auto& e) { e["vdg"]["uncovered"] = "none"; }).rfind("m.glb: mesh extras: 'vdg'.'uncovered': ", 0), 0u);
+  EXPECT_EQ(refused([](auto& e) { e["vdg"]["sharpness"] = -1; }).rfind("m.glb: ", 0), 0u);
+  EXPECT_NE(refused([](auto& e) { e["vdg"]["sharpness"] = -1; }), "");
+  std::vector<std::vector<float>> short_deltas = d.deltas;
+  short_deltas[1].pop_back();
+  EXPECT_EQ(errorOf([&] { (void)rawModelFromGltfExtras(d.extras, d.base, short_deltas, "m.glb"); }),
+            "m.glb: mesh extras: 'vdg'.'keys'[1]: morph target 1 has 257 delta values, expected 258");
+}
+
+}  // namespace
+}  // namespace vdg
