@@ -12,8 +12,11 @@
 #define TINYGLTF_NO_FS
 #include "vdg/io/gltf.h"
 
+// tinygltf 2.7's writer uses std::ofstream even with TINYGLTF_NO_FS, which leaves <fstream> out.
+#include <fstream>
+// clang-format off
 #include <tiny_gltf.h>
-#include <fstream>  // tinygltf 2.7 needs it with TINYGLTF_NO_FS (its writer)
+// clang-format on
 
 #include <algorithm>
 #include <cmath>
