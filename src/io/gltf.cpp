@@ -67,16 +67,16 @@ bool uriOf(const std::string& path, std::string* uri) {
 
 // A URI vdg reads from the file's folder: relative, no "..", no backslash, no NUL.
 std::string uriProblem(const std::string& uri) {
-  if (uri.empty()) return "an empty file name";
-  if (uri.front() == '/') return "an absolute path";
-  if (uri.find('\\') != std::string::npos) return "a backslash";
-  if (uri.find('\0') != std::string::npos) return "a NUL character";
-  if (uri.find(':') != std::string::npos) return "a URI scheme other than data:";
+  if (uri.empty()) return "is an empty file name";
+  if (uri.front() == '/') return "is an absolute path";
+  if (uri.find('\\') != std::string::npos) return "has a backslash";
+  if (uri.find('\0') != std::string::npos) return "has a NUL character";
+  if (uri.find(':') != std::string::npos) return "has a URI scheme other than data:";
   std::size_t start = 0;
   while (start <= uri.size()) {
     std::size_t end = uri.find('/', start);
     if (end == std::string::npos) end = uri.size();
-    if (uri.compare(start, end - start, "..") == 0) return "a '..' component";
+    if (uri.compare(start, end - start, "..") == 0) return "has a '..' component";
     start = end + 1;
   }
   return {};
@@ -88,7 +88,7 @@ bool fileExists(const std::string& path, void* user) {
   if (!uriOf(path, &uri)) return false;
   const std::string problem = uriProblem(uri);
   if (!problem.empty()) {
-    access->error = "'" + uri + "' is " + problem + " (external files must lie in the glTF file's folder)";
+    access->error = "'" + uri + "' " + problem + " (external files must lie in the glTF file's folder)";
     return false;
   }
   if (access->folder.empty()) {
@@ -104,7 +104,7 @@ bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std:
   auto* access = static_cast<FileAccess*>(user);
   std::string uri;
   if (!uriOf(path, &uri) || !uriProblem(uri).empty() || access->folder.empty()) return false;
-  const std::string full = (std::filesystem::path(access->folder) / uri).string();
+  const std::string full = access->folder == "." ? uri : (std::filesystem::path(access->folder) / uri).string();
   const std::size_t budget = kMaxMeshFileBytes - std::min(kMaxMeshFileBytes, access->external_bytes);
   try {
     const std::string bytes = readFileLimited(full, "glTF buffer", budget);
@@ -919,6 +919,8 @@ RawRig parseGltfRig(std::string_view bytes, const std::string& source, const std
 
 std::string describeGltfData(std::string_view bytes, const std::string& source, const std::string& folder) {
   const Gltf g(bytes, source, folder);
+  // A file whose default mesh does not load is reported, not described.
+  if (!g.model().meshes.empty()) (void)buildRig(g, {});
   return describe(g);
 }
 

@@ -462,7 +462,7 @@ TEST(GltfHostile, EachGivesItsMessage) {
   j = triangle();
   j["buffers"][0]["uri"] = "../secret.bin";
   EXPECT_EQ(errorFor(j),
-            "t.gltf: buffers: '../secret.bin' is a '..' component (external files must lie in the "
+            "t.gltf: buffers: '../secret.bin' has a '..' component (external files must lie in the "
             "glTF file's folder)");
   j = triangle();
   j["buffers"][0]["uri"] = "/etc/passwd";

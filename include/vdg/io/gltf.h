@@ -55,7 +55,7 @@ TriMesh readGltfMesh(const std::string& path, const GltfSelect& select = {});
 
 // Human-readable description for `vdg info`: meshes (vertices, triangles, morph targets with
 // names), skins, animations with their channels and durations. Throws as readGltfRig for a file
-// that does not load.
+// that does not load, or whose default mesh (GltfSelect{}) does not.
 std::string describeGltf(const std::string& path);
 
 // The same from bytes in memory (tests, fuzzing): `source` names them in messages; `folder` is
