@@ -1,12 +1,15 @@
-// vdg info MODEL [--json]
+// vdg info MODEL [--json] | vdg info FILE.gltf|FILE.glb
+#include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <numbers>
 
 #include "cli.h"
+#include "vdg/io/gltf.h"
 #include "vdg/io/manifest.h"
 #include "vdg/viewdep/model.h"
 
@@ -54,6 +57,12 @@ std::vector<std::string> modelWarnings(const ViewDependentModel& model) {
   return warnings;
 }
 
+bool isGltf(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext == ".gltf" || ext == ".glb";
+}
+
 }  // namespace
 
 void addInfoCommand(CLI::App& app) {
@@ -63,10 +72,17 @@ void addInfoCommand(CLI::App& app) {
   };
   auto opt = std::make_shared<Options>();
   CLI::App* sub =
-      app.add_subcommand("info", "Describe a view-dependent model: mesh, keys, viewing-sphere hull, warnings");
-  sub->add_option("MODEL", opt->model, "Model manifest (*.vdg.json)")->required();
+      app.add_subcommand("info",
+                         "Describe a view-dependent model (mesh, keys, viewing-sphere hull, warnings) or a glTF file "
+                         "(meshes, morph targets, skins, animations)");
+  sub->add_option("MODEL", opt->model, "Model manifest (*.vdg.json), or a glTF 2.0 file (*.gltf, *.glb)")->required();
   sub->add_flag("--json", opt->json, "Print one JSON object instead of text");
   sub->callback([opt] {
+    if (isGltf(opt->model)) {
+      if (opt->json) throw UsageError("--json: only for model manifests, not for glTF files");
+      std::fputs(describeGltf(opt->model).c_str(), stdout);
+      return;
+    }
     const RawViewDependentModel raw = loadManifest(opt->model);
     const ViewDependentModel model = ViewDependentModel::build(raw);
     const ViewSphere& sphere = model.sphere();

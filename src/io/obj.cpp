@@ -12,6 +12,7 @@
 
 #include "vdg/geom/error.h"
 #include "vdg/io/atomic_file.h"
+#include "vdg/io/gltf.h"
 #include "vdg/io/read_file.h"
 
 namespace vdg {
@@ -294,7 +295,8 @@ TriMesh readMesh(const std::string& path) {
   std::string lower = ext;
   for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   if (lower == ".obj") return readObj(path);
-  throw Error(path + ": unsupported mesh format '" + ext + "' (expected .obj)");
+  if (lower == ".gltf" || lower == ".glb") return readGltfMesh(path);
+  throw Error(path + ": unsupported mesh format '" + ext + "' (expected .obj, .gltf or .glb)");
 }
 
 }  // namespace vdg

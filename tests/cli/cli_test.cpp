@@ -92,6 +92,24 @@ TEST(Cli, InfoDescribesTheModel) {
   EXPECT_LE(j["covered_fraction"].get<double>(), 1.0);
 }
 
+TEST(Cli, InfoDescribesGltfFiles) {
+  const Result glb = run("info tests/data/gltf/RiggedSimple/RiggedSimple.glb");
+  ASSERT_EQ(glb.code, 0) << glb.err;
+  EXPECT_NE(glb.out.find("[0] 'Cylinder': 1 triangle primitive, 96 vertices, 188 triangles, 0 morph targets"),
+            std::string::npos)
+      << glb.out;
+  EXPECT_NE(glb.out.find("[0] 'Armature': 2 joints"), std::string::npos) << glb.out;
+  EXPECT_NE(glb.out.find("6 channels, 2.083 s"), std::string::npos) << glb.out;
+  EXPECT_NE(glb.out.find("node 3 '' scale LINEAR, 3 keyframes"), std::string::npos) << glb.out;
+  const Result morph = run("info tests/data/gltf/AnimatedMorphCube/AnimatedMorphCube.gltf");
+  ASSERT_EQ(morph.code, 0) << morph.err;
+  EXPECT_NE(morph.out.find("24 vertices, 12 triangles, 2 morph targets"), std::string::npos) << morph.out;
+  EXPECT_NE(morph.out.find("weights LINEAR, 127 keyframes, 0 - 4.2 s"), std::string::npos) << morph.out;
+  const Result missing = run("info tests/data/gltf/none.glb");
+  EXPECT_EQ(missing.code, 1);
+  EXPECT_EQ(lineCount(missing.err), 1);
+}
+
 TEST(Cli, EvalWritesTheBlendedMeshWithTheBaseTopology) {
   vdg::testing::TempDir dir;
   const std::string out = dir.file("front.obj");

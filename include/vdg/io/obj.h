@@ -30,8 +30,9 @@ std::string formatObj(const TriMesh& mesh, const std::string& header = {});
 // Writes `mesh` to `path` atomically. `header` (may be empty) becomes leading comment lines.
 void writeObj(const std::string& path, const TriMesh& mesh, const std::string& header = {});
 
-// Reads a mesh by its extension (.obj, any letter case); other formats are refused with a clear
-// message until their readers land.
+// Reads a mesh by its extension (any letter case): .obj (readObj), .gltf and .glb (readGltfMesh,
+// vdg/io/gltf.h: the static rest pose of the file's first mesh); other formats are refused with a
+// clear message.
 TriMesh readMesh(const std::string& path);
 
 }  // namespace vdg

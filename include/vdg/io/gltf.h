@@ -1,0 +1,67 @@
+// glTF 2.0 input (.gltf and .glb): meshes, morph targets, the node hierarchy, skins and
+// animations, read into a RawRig (vdg/anim/rig.h) or a static TriMesh.
+//
+// tinygltf parses the JSON; vdg checks everything tinygltf does not before touching a byte:
+// the GLB header and chunks (a truncated file is refused), JSON nesting (at most 64 levels),
+// every accessor against its bufferView and buffer (offsets, strides, counts), component types and
+// element types per use (POSITION, NORMAL and morph targets: float VEC3; TEXCOORD_0: float or
+// normalized u8/u16 VEC2; JOINTS_0: u8/u16 VEC4; WEIGHTS_0: float or normalized u8/u16 VEC4;
+// indices: u8/u16/u32 SCALAR; inverse bind matrices: float MAT4; animation times: float SCALAR),
+// index ranges, sparse accessors (applied, their indices checked), node indices and cycles, a
+// node with two parents, counts above kMaxGltfElements. Every error is one vdg::Error line naming
+// the file and the element: "walk.glb: accessors[3]: bufferView 7 out of range (the file has 5)".
+//
+// Files: a .gltf/.glb is read as a regular file of at most kMaxMeshFileBytes (vdg/io/read_file.h).
+// External buffers (`"uri": "walk.bin"`) are read from the glTF file's folder only: an absolute
+// URI, a `..` component or a backslash is refused, and all external buffers together are bounded
+// by kMaxMeshFileBytes; `data:` URIs (base64) are fine. Images are never read (vdg does not use
+// textures yet).
+//
+// The mesh: all triangle primitives (mode 4) of the selected mesh, concatenated in order into one
+// TriMesh; primitives of other modes (points, lines, strips, fans) are ignored. NORMAL and
+// TEXCOORD_0 are kept when every primitive has them. Morph target names come from
+// mesh.extras.targetNames when it is an array of one string per target (otherwise none).
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <string_view>
+
+#include "vdg/anim/rig.h"
+#include "vdg/geom/tri_mesh.h"
+
+namespace vdg {
+
+// Most elements one accessor may hold (vertices, indices, keyframes): 2^24.
+inline constexpr std::size_t kMaxGltfElements = std::size_t{1} << 24;
+
+struct GltfSelect {
+  // A node's name, else a mesh's name (the first node instancing it, or no node). Empty: the
+  // first node with a mesh in the default scene (depth first), else the first node with a mesh,
+  // else mesh 0 without a node.
+  std::string mesh_or_node;
+};
+
+// The selected mesh as a RawRig: all of the file's nodes (same indices as the file), the mesh,
+// its morph targets, the skin of its node, and every animation (weights channels of other nodes
+// are left out). Validated (RawRig::validate) before it is returned. Throws vdg::Error
+// "FILE: ELEMENT: what".
+RawRig readGltfRig(const std::string& path, const GltfSelect& select = {});
+
+// The selected mesh as a static TriMesh: the rest pose (no animation) with the default morph
+// weights applied, skinned by the rest pose when skinned, otherwise placed by its node's world
+// transform. Throws as readGltfRig.
+TriMesh readGltfMesh(const std::string& path, const GltfSelect& select = {});
+
+// Human-readable description for `vdg info`: meshes (vertices, triangles, morph targets with
+// names), skins, animations with their channels and durations. Throws as readGltfRig for a file
+// that does not load, or whose default mesh (GltfSelect{}) does not.
+std::string describeGltf(const std::string& path);
+
+// The same from bytes in memory (tests, fuzzing): `source` names them in messages; `folder` is
+// where external buffers are read from (empty: external buffers are refused).
+RawRig parseGltfRig(std::string_view bytes, const std::string& source, const std::string& folder = {},
+                    const GltfSelect& select = {});
+std::string describeGltfData(std::string_view bytes, const std::string& source, const std::string& folder = {});
+
+}  // namespace vdg

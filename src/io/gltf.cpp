@@ -1,0 +1,943 @@
+// glTF 2.0 input: tinygltf parses, vdg checks every index, range and type before reading data.
+// Accessor, sparse accessor, skin and animation semantics: glTF 2.0 specification (Khronos),
+// sections 3.6 (buffers, accessors, sparse accessors), 3.7 (meshes, morph targets, skins) and
+// 3.11 (animations); GLB layout: section 4.4.
+//
+// The only translation unit with tinygltf's implementation (no image decoding, no file system of
+// its own: every file goes through vdg's bounded readers).
+#define TINYGLTF_IMPLEMENTATION
+#define TINYGLTF_NO_STB_IMAGE
+#define TINYGLTF_NO_STB_IMAGE_WRITE
+#define TINYGLTF_NO_EXTERNAL_IMAGE
+#define TINYGLTF_NO_FS
+#include "vdg/io/gltf.h"
+
+// tinygltf 2.7's writer uses std::ofstream even with TINYGLTF_NO_FS, which leaves <fstream> out.
+#include <fstream>
+// clang-format off
+#include <tiny_gltf.h>
+// clang-format on
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <functional>
+#include <limits>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "json_reader.h"
+#include "vdg/geom/error.h"
+#include "vdg/io/read_file.h"
+
+namespace vdg {
+namespace {
+
+namespace tg = tinygltf;
+
+// Stands for the glTF file's folder in the paths tinygltf hands to the file callbacks, so that the
+// callbacks see exactly the URI the file wrote (tinygltf also tries "./URI", which is refused).
+constexpr const char* kFolderToken = "<vdg-gltf-folder>";
+
+std::string oneLine(std::string text) {
+  while (!text.empty() && (text.back() == '\n' || text.back() == '\r' || text.back() == ' ')) text.pop_back();
+  for (char& c : text)
+    if (c == '\n' || c == '\r') c = ' ';
+  return text;
+}
+
+std::string idx(const char* array, std::size_t i) { return std::string(array) + "[" + std::to_string(i) + "]"; }
+
+struct FileAccess {
+  std::string source;
+  std::string folder;  // empty: external files are refused
+  std::size_t external_bytes = 0;
+  std::string error;  // why the last callback refused
+};
+
+// The URI part of a path tinygltf built as kFolderToken + "/" + URI; false when it is not one.
+bool uriOf(const std::string& path, std::string* uri) {
+  const std::string head = std::string(kFolderToken) + "/";
+  if (path.compare(0, head.size(), head) != 0) return false;
+  *uri = path.substr(head.size());
+  return true;
+}
+
+// A URI vdg reads from the file's folder: relative, no "..", no backslash, no NUL.
+std::string uriProblem(const std::string& uri) {
+  if (uri.empty()) return "is an empty file name";
+  if (uri.front() == '/') return "is an absolute path";
+  if (uri.find('\\') != std::string::npos) return "has a backslash";
+  if (uri.find('\0') != std::string::npos) return "has a NUL character";
+  if (uri.find(':') != std::string::npos) return "has a URI scheme other than data:";
+  std::size_t start = 0;
+  while (start <= uri.size()) {
+    std::size_t end = uri.find('/', start);
+    if (end == std::string::npos) end = uri.size();
+    if (uri.compare(start, end - start, "..") == 0) return "has a '..' component";
+    start = end + 1;
+  }
+  return {};
+}
+
+bool fileExists(const std::string& path, void* user) {
+  auto* access = static_cast<FileAccess*>(user);
+  std::string uri;
+  if (!uriOf(path, &uri)) return false;
+  const std::string problem = uriProblem(uri);
+  if (!problem.empty()) {
+    access->error = "'" + uri + "' " + problem + " (external files must lie in the glTF file's folder)";
+    return false;
+  }
+  if (access->folder.empty()) {
+    access->error = "'" + uri + "' is an external file, and these bytes come without a folder";
+    return false;
+  }
+  return true;
+}
+
+std::string expandPath(const std::string& path, void*) { return path; }
+
+bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
+  auto* access = static_cast<FileAccess*>(user);
+  std::string uri;
+  if (!uriOf(path, &uri) || !uriProblem(uri).empty() || access->folder.empty()) return false;
+  const std::string full = access->folder == "." ? uri : (std::filesystem::path(access->folder) / uri).string();
+  const std::size_t budget = kMaxMeshFileBytes - std::min(kMaxMeshFileBytes, access->external_bytes);
+  try {
+    const std::string bytes = readFileLimited(full, "glTF buffer", budget);
+    access->external_bytes += bytes.size();
+    out->assign(bytes.begin(), bytes.end());
+  } catch (const Error& e) {
+    access->error = e.what();
+    if (err) *err = e.what();
+    return false;
+  }
+  return true;
+}
+
+bool writeWholeFile(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
+  if (err) *err = "vdg does not write through tinygltf";
+  return false;
+}
+
+// Images are not used: accepted without decoding.
+bool ignoreImage(tg::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
+  return true;
+}
+
+std::uint32_t le32(std::string_view b, std::size_t at) {
+  return static_cast<std::uint32_t>(static_cast<unsigned char>(b[at])) |
+         static_cast<std::uint32_t>(static_cast<unsigned char>(b[at + 1])) << 8 |
+         static_cast<std::uint32_t>(static_cast<unsigned char>(b[at + 2])) << 16 |
+         static_cast<std::uint32_t>(static_cast<unsigned char>(b[at + 3])) << 24;
+}
+
+// GLB (section 4.4): 12-byte header, a JSON chunk, an optional BIN chunk. Returns the JSON text.
+std::string_view checkGlb(std::string_view b, const std::string& source) {
+  auto fail = [&](const std::string& what) { throw Error(source + ": " + what); };
+  if (b.size() < 20)
+    fail("truncated GLB: " + std::to_string(b.size()) + " bytes, less than the 20 of a header and a chunk header");
+  if (le32(b, 4) != 2) fail("GLB version " + std::to_string(le32(b, 4)) + ", vdg reads version 2");
+  const std::uint64_t length = le32(b, 8);
+  if (length > b.size())
+    fail("truncated GLB: the header says " + std::to_string(length) + " bytes, the file has " +
+         std::to_string(b.size()));
+  if (length < b.size())
+    fail("GLB header says " + std::to_string(length) + " bytes, the file has " + std::to_string(b.size()));
+  const std::uint64_t json_length = le32(b, 12);
+  if (le32(b, 16) != 0x4E4F534Au) fail("GLB: the first chunk is not JSON");
+  if (json_length == 0) fail("GLB: the JSON chunk is empty");
+  if (20 + json_length > length)
+    fail("truncated GLB: the JSON chunk needs " + std::to_string(json_length) + " bytes, " +
+         std::to_string(length - 20) + " remain");
+  const std::uint64_t bin_at = 20 + json_length;
+  if (bin_at < length) {
+    if (bin_at + 8 > length) fail("truncated GLB: the BIN chunk header is cut short");
+    const std::uint64_t bin_length = le32(b, bin_at);
+    if (le32(b, bin_at + 4) != 0x004E4942u) fail("GLB: the second chunk is not BIN");
+    if (bin_at + 8 + bin_length > length)
+      fail("truncated GLB: the BIN chunk needs " + std::to_string(bin_length) + " bytes, " +
+           std::to_string(length - bin_at - 8) + " remain");
+  }
+  return b.substr(20, json_length);
+}
+
+// Component size in bytes, 0 for an unknown type.
+std::size_t componentSize(int type) {
+  switch (type) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+      return 1;
+    case TINYGLTF_COMPONENT_TYPE_SHORT:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+      return 2;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+    case TINYGLTF_COMPONENT_TYPE_FLOAT:
+      return 4;
+    default:
+      return 0;
+  }
+}
+
+const char* componentName(int type) {
+  switch (type) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE:
+      return "BYTE";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+      return "UNSIGNED_BYTE";
+    case TINYGLTF_COMPONENT_TYPE_SHORT:
+      return "SHORT";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+      return "UNSIGNED_SHORT";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+      return "UNSIGNED_INT";
+    case TINYGLTF_COMPONENT_TYPE_FLOAT:
+      return "FLOAT";
+    default:
+      return "an unknown component type";
+  }
+}
+
+std::size_t componentCount(int type) {
+  switch (type) {
+    case TINYGLTF_TYPE_SCALAR:
+      return 1;
+    case TINYGLTF_TYPE_VEC2:
+      return 2;
+    case TINYGLTF_TYPE_VEC3:
+      return 3;
+    case TINYGLTF_TYPE_VEC4:
+    case TINYGLTF_TYPE_MAT2:
+      return 4;
+    case TINYGLTF_TYPE_MAT3:
+      return 9;
+    case TINYGLTF_TYPE_MAT4:
+      return 16;
+    default:
+      return 0;
+  }
+}
+
+const char* typeName(int type) {
+  switch (type) {
+    case TINYGLTF_TYPE_SCALAR:
+      return "SCALAR";
+    case TINYGLTF_TYPE_VEC2:
+      return "VEC2";
+    case TINYGLTF_TYPE_VEC3:
+      return "VEC3";
+    case TINYGLTF_TYPE_VEC4:
+      return "VEC4";
+    case TINYGLTF_TYPE_MAT2:
+      return "MAT2";
+    case TINYGLTF_TYPE_MAT3:
+      return "MAT3";
+    case TINYGLTF_TYPE_MAT4:
+      return "MAT4";
+    default:
+      return "an unknown type";
+  }
+}
+
+// One component as a double; normalized integers map to [0, 1] or [-1, 1] (section 3.11, "
+// Animation samplers", and 3.7.2.1).
+double component(const unsigned char* p, int type, bool normalized) {
+  switch (type) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE: {
+      const auto v = static_cast<std::int8_t>(*p);
+      return normalized ? std::max(v / 127.0, -1.0) : v;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+      return normalized ? *p / 255.0 : *p;
+    case TINYGLTF_COMPONENT_TYPE_SHORT: {
+      std::int16_t v;
+      std::memcpy(&v, p, 2);
+      return normalized ? std::max(v / 32767.0, -1.0) : v;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+      std::uint16_t v;
+      std::memcpy(&v, p, 2);
+      return normalized ? v / 65535.0 : v;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
+      std::uint32_t v;
+      std::memcpy(&v, p, 4);
+      return normalized ? v / 4294967295.0 : v;
+    }
+    default: {
+      float v;
+      std::memcpy(&v, p, 4);
+      return v;
+    }
+  }
+}
+
+// What an accessor may be for a given use.
+struct Want {
+  std::vector<int> types;  // element types allowed
+  // allowed component types: {componentType, normalized}
+  std::vector<std::pair<int, bool>> components;
+  const char* description;  // "float VEC3"
+};
+
+const Want kFloatVec3{{TINYGLTF_TYPE_VEC3}, {{TINYGLTF_COMPONENT_TYPE_FLOAT, false}}, "FLOAT VEC3"};
+const Want kTexcoord{{TINYGLTF_TYPE_VEC2},
+                     {{TINYGLTF_COMPONENT_TYPE_FLOAT, false},
+                      {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, true},
+                      {TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, true}},
+                     "VEC2 of FLOAT or normalized UNSIGNED_BYTE / UNSIGNED_SHORT"};
+const Want kJoints{{TINYGLTF_TYPE_VEC4},
+                   {{TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, false}, {TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, false}},
+                   "VEC4 of UNSIGNED_BYTE or UNSIGNED_SHORT"};
+const Want kWeights{{TINYGLTF_TYPE_VEC4},
+                    {{TINYGLTF_COMPONENT_TYPE_FLOAT, false},
+                     {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, true},
+                     {TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, true}},
+                    "VEC4 of FLOAT or normalized UNSIGNED_BYTE / UNSIGNED_SHORT"};
+const Want kIndices{{TINYGLTF_TYPE_SCALAR},
+                    {{TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, false},
+                     {TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, false},
+                     {TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, false}},
+                    "SCALAR of UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT"};
+const Want kMat4{{TINYGLTF_TYPE_MAT4}, {{TINYGLTF_COMPONENT_TYPE_FLOAT, false}}, "FLOAT MAT4"};
+const Want kTimes{{TINYGLTF_TYPE_SCALAR}, {{TINYGLTF_COMPONENT_TYPE_FLOAT, false}}, "FLOAT SCALAR"};
+const std::vector<std::pair<int, bool>> kFloatOrNormalized{{TINYGLTF_COMPONENT_TYPE_FLOAT, false},
+                                                           {TINYGLTF_COMPONENT_TYPE_BYTE, true},
+                                                           {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, true},
+                                                           {TINYGLTF_COMPONENT_TYPE_SHORT, true},
+                                                           {TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, true}};
+const Want kRotation{{TINYGLTF_TYPE_VEC4}, kFloatOrNormalized, "VEC4 of FLOAT or normalized integers"};
+const Want kMorphWeights{{TINYGLTF_TYPE_SCALAR}, kFloatOrNormalized, "SCALAR of FLOAT or normalized integers"};
+
+class Gltf {
+ public:
+  Gltf(std::string_view bytes, const std::string& source, const std::string& folder) : source_(source) {
+    const bool binary = bytes.size() >= 4 && bytes.substr(0, 4) == "glTF";
+    binary_ = binary;
+    const std::string_view json = binary ? checkGlb(bytes, source) : bytes;
+    if (bytes.size() > std::numeric_limits<unsigned int>::max())
+      throw Error(source + ": file is too large for the glTF reader");
+    // vdg's JSON layer first: its nesting limit and its message for malformed JSON.
+    (void)io::parseJson(json, source);
+
+    FileAccess access{source, folder, 0, {}};
+    tg::TinyGLTF loader;
+    tg::FsCallbacks fs{};
+    fs.FileExists = fileExists;
+    fs.ExpandFilePath = expandPath;
+    fs.ReadWholeFile = readWholeFile;
+    fs.WriteWholeFile = writeWholeFile;
+    fs.user_data = &access;
+    loader.SetFsCallbacks(fs);
+    loader.SetImageLoader(ignoreImage, nullptr);
+    std::string err, warn;
+    const bool ok =
+        binary ? loader.LoadBinaryFromMemory(&model_, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),
+                                             static_cast<unsigned int>(bytes.size()), kFolderToken)
+               : loader.LoadASCIIFromString(&model_, &err, &warn, json.data(), static_cast<unsigned int>(json.size()),
+                                            kFolderToken);
+    if (!access.error.empty() && !ok) throw Error(source + ": buffers: " + oneLine(access.error));
+    if (!ok) throw Error(source + ": " + (err.empty() ? std::string("not a valid glTF file") : oneLine(err)));
+    checkStructure();
+  }
+
+  const tg::Model& model() const { return model_; }
+  const std::string& source() const { return source_; }
+  bool binary() const { return binary_; }
+
+  [[noreturn]] void fail(const std::string& element, const std::string& what) const {
+    throw Error(source_ + ": " + element + ": " + what);
+  }
+
+  // Index `i` into an array of `size` named `array`, for `element`.
+  void checkIndex(const std::string& element, const char* array, long i, std::size_t size) const {
+    if (i < 0 || static_cast<std::size_t>(i) >= size)
+      fail(element,
+           std::string(array) + " " + std::to_string(i) + " out of range (the file has " + std::to_string(size) + ")");
+  }
+
+  // Every accessor's components as doubles (count x components), sparse values applied, after
+  // checking it against `want`. `user` names who refers to it ("meshes[0]: primitives[1]: POSITION").
+  std::vector<double> read(int accessor, const Want& want, const std::string& user) const {
+    checkIndex(user, "accessor", accessor, model_.accessors.size());
+    const tg::Accessor& a = model_.accessors[static_cast<std::size_t>(accessor)];
+    const std::string e = idx("accessors", static_cast<std::size_t>(accessor));
+    if (std::find(want.types.begin(), want.types.end(), a.type) == want.types.end() ||
+        std::find(want.components.begin(), want.components.end(), std::pair{a.componentType, a.normalized}) ==
+            want.components.end())
+      fail(user, e + " is " + std::string(a.normalized ? "normalized " : "") + componentName(a.componentType) + " " +
+                     typeName(a.type) + ", expected " + want.description);
+    const std::size_t n = componentCount(a.type);
+    std::vector<double> out(a.count * n, 0.0);
+    if (a.bufferView >= 0) {
+      const View v = view(a.bufferView);
+      const std::size_t elem = n * componentSize(a.componentType);
+      const std::size_t stride = v.stride ? v.stride : elem;
+      for (std::size_t i = 0; i < a.count; ++i)
+        for (std::size_t c = 0; c < n; ++c)
+          out[i * n + c] = component(v.data + a.byteOffset + i * stride + c * componentSize(a.componentType),
+                                     a.componentType, a.normalized);
+    }
+    if (a.sparse.isSparse) {
+      const std::size_t count = static_cast<std::size_t>(a.sparse.count);
+      const View iv = view(a.sparse.indices.bufferView);
+      const View vv = view(a.sparse.values.bufferView);
+      const std::size_t isize = componentSize(a.sparse.indices.componentType);
+      const std::size_t vsize = n * componentSize(a.componentType);
+      long previous = -1;
+      for (std::size_t k = 0; k < count; ++k) {
+        const double target = component(iv.data + static_cast<std::size_t>(a.sparse.indices.byteOffset) + k * isize,
+                                        a.sparse.indices.componentType, false);
+        if (target >= static_cast<double>(a.count) || static_cast<long>(target) <= previous)
+          fail(e, "sparse.indices[" + std::to_string(k) + "] = " + std::to_string(static_cast<long>(target)) +
+                      (target >= static_cast<double>(a.count)
+                           ? " out of range (the accessor has " + std::to_string(a.count) + " elements)"
+                           : " does not increase strictly"));
+        previous = static_cast<long>(target);
+        for (std::size_t c = 0; c < n; ++c)
+          out[static_cast<std::size_t>(target) * n + c] =
+              component(vv.data + static_cast<std::size_t>(a.sparse.values.byteOffset) + k * vsize +
+                            c * componentSize(a.componentType),
+                        a.componentType, a.normalized);
+      }
+    }
+    for (std::size_t i = 0; i < out.size(); ++i)
+      if (!std::isfinite(out[i])) fail(user, e + ": element " + std::to_string(i / n) + " is not finite");
+    return out;
+  }
+
+  std::size_t count(int accessor) const { return model_.accessors[static_cast<std::size_t>(accessor)].count; }
+
+ private:
+  struct View {
+    const unsigned char* data = nullptr;
+    std::size_t length = 0;
+    std::size_t stride = 0;
+  };
+
+  // A bufferView checked by checkStructure().
+  View view(int index) const {
+    const tg::BufferView& v = model_.bufferViews[static_cast<std::size_t>(index)];
+    const tg::Buffer& b = model_.buffers[static_cast<std::size_t>(v.buffer)];
+    return {b.data.data() + v.byteOffset, v.byteLength, v.byteStride};
+  }
+
+  // Every buffer, bufferView and accessor checked once, so that read() and describe only index
+  // into memory that exists.
+  void checkStructure() {
+    const auto& m = model_;
+    for (std::size_t i = 0; i < m.bufferViews.size(); ++i) {
+      const tg::BufferView& v = m.bufferViews[i];
+      const std::string e = idx("bufferViews", i);
+      checkIndex(e, "buffer", v.buffer, m.buffers.size());
+      const std::size_t have = m.buffers[static_cast<std::size_t>(v.buffer)].data.size();
+      if (v.byteOffset > have || v.byteLength > have - v.byteOffset)
+        fail(e, "bytes " + std::to_string(v.byteOffset) + " + " + std::to_string(v.byteLength) + " lie outside " +
+                    idx("buffers", static_cast<std::size_t>(v.buffer)) + " (" + std::to_string(have) + " bytes)");
+      if (v.byteStride != 0 && (v.byteStride < 4 || v.byteStride > 252 || v.byteStride % 4 != 0))
+        fail(e, "byteStride " + std::to_string(v.byteStride) + " is not a multiple of 4 in [4, 252]");
+    }
+    for (std::size_t i = 0; i < m.accessors.size(); ++i) {
+      const tg::Accessor& a = m.accessors[i];
+      const std::string e = idx("accessors", i);
+      const std::size_t csize = componentSize(a.componentType);
+      const std::size_t n = componentCount(a.type);
+      if (csize == 0) fail(e, "componentType " + std::to_string(a.componentType) + " is not a glTF component type");
+      if (n == 0) fail(e, "type is not a glTF accessor type");
+      if (a.count == 0) fail(e, "count is 0");
+      if (a.count > kMaxGltfElements)
+        fail(e, "count " + std::to_string(a.count) + " is more than the limit of " + std::to_string(kMaxGltfElements));
+      if (a.bufferView >= 0) {
+        checkIndex(e, "bufferView", a.bufferView, m.bufferViews.size());
+        const tg::BufferView& v = m.bufferViews[static_cast<std::size_t>(a.bufferView)];
+        const std::size_t elem = n * csize;
+        const std::size_t stride = v.byteStride ? v.byteStride : elem;
+        if (stride < elem)
+          fail(e, "byteStride " + std::to_string(stride) + " is less than an element's " + std::to_string(elem) +
+                      " bytes");
+        if (a.byteOffset % csize != 0) fail(e, "byteOffset " + std::to_string(a.byteOffset) + " is not aligned");
+        const std::uint64_t end = std::uint64_t{a.byteOffset} + std::uint64_t{stride} * (a.count - 1) + elem;
+        if (a.byteOffset > v.byteLength || end > v.byteLength)
+          fail(e, std::to_string(a.count) + " elements from byte " + std::to_string(a.byteOffset) + " need " +
+                      std::to_string(end) + " bytes, " + idx("bufferViews", static_cast<std::size_t>(a.bufferView)) +
+                      " has " + std::to_string(v.byteLength));
+      } else if (!a.sparse.isSparse) {
+        fail(e, "has neither a bufferView nor sparse values");
+      }
+      if (a.sparse.isSparse) {
+        const std::string es = e + ": sparse";
+        if (a.sparse.count <= 0 || static_cast<std::size_t>(a.sparse.count) > a.count)
+          fail(es, "count " + std::to_string(a.sparse.count) + " is not in [1, " + std::to_string(a.count) + "]");
+        const std::size_t isize = componentSize(a.sparse.indices.componentType);
+        if (a.sparse.indices.componentType == TINYGLTF_COMPONENT_TYPE_BYTE ||
+            a.sparse.indices.componentType == TINYGLTF_COMPONENT_TYPE_SHORT ||
+            a.sparse.indices.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT || isize == 0)
+          fail(es, "indices: componentType must be UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT");
+        const std::size_t count = static_cast<std::size_t>(a.sparse.count);
+        auto checkPart = [&](int view_index, int offset, std::size_t bytes, const char* part) {
+          const std::string ep = es + "." + part;
+          checkIndex(ep, "bufferView", view_index, m.bufferViews.size());
+          if (offset < 0) fail(ep, "byteOffset " + std::to_string(offset) + " is negative");
+          const std::size_t length = m.bufferViews[static_cast<std::size_t>(view_index)].byteLength;
+          const std::uint64_t end = std::uint64_t(offset) + std::uint64_t{bytes};
+          if (end > length)
+            fail(ep, std::to_string(count) + " elements need " + std::to_string(end) + " bytes, " +
+                         idx("bufferViews", static_cast<std::size_t>(view_index)) + " has " + std::to_string(length));
+        };
+        checkPart(a.sparse.indices.bufferView, a.sparse.indices.byteOffset, count * isize, "indices");
+        checkPart(a.sparse.values.bufferView, a.sparse.values.byteOffset, count * n * csize, "values");
+      }
+    }
+  }
+
+  std::string source_;
+  bool binary_ = false;
+  tg::Model model_;
+};
+
+// mesh.extras.targetNames when it is an array of `targets` strings, else empty.
+std::vector<std::string> targetNames(const tg::Mesh& mesh, std::size_t targets) {
+  if (!mesh.extras.IsObject() || !mesh.extras.Has("targetNames")) return {};
+  const tg::Value& names = mesh.extras.Get("targetNames");
+  if (!names.IsArray() || names.ArrayLen() != targets) return {};
+  std::vector<std::string> list;
+  for (std::size_t t = 0; t < targets; ++t) {
+    if (!names.Get(static_cast<int>(t)).IsString()) return {};
+    list.push_back(names.Get(static_cast<int>(t)).Get<std::string>());
+  }
+  return list;
+}
+
+// The node instancing the selected mesh (-1: none) and the mesh.
+struct Selection {
+  int node = -1;
+  int mesh = -1;
+};
+
+Selection select(const Gltf& g, const GltfSelect& want) {
+  const tg::Model& m = g.model();
+  auto meshOf = [&](int node) { return m.nodes[static_cast<std::size_t>(node)].mesh; };
+  if (!want.mesh_or_node.empty()) {
+    for (std::size_t i = 0; i < m.nodes.size(); ++i)
+      if (m.nodes[i].name == want.mesh_or_node) {
+        if (meshOf(static_cast<int>(i)) < 0) g.fail(idx("nodes", i), "'" + want.mesh_or_node + "' has no mesh");
+        return {static_cast<int>(i), meshOf(static_cast<int>(i))};
+      }
+    for (std::size_t k = 0; k < m.meshes.size(); ++k)
+      if (m.meshes[k].name == want.mesh_or_node) {
+        for (std::size_t i = 0; i < m.nodes.size(); ++i)
+          if (meshOf(static_cast<int>(i)) == static_cast<int>(k)) return {static_cast<int>(i), static_cast<int>(k)};
+        return {-1, static_cast<int>(k)};
+      }
+    throw Error(g.source() + ": no node or mesh named '" + want.mesh_or_node + "'");
+  }
+  // Depth first through the default scene (or scene 0); the walk is bounded by the node count,
+  // so a cycle cannot loop (validate reports it later).
+  const int scene = m.defaultScene >= 0 ? m.defaultScene : (m.scenes.empty() ? -1 : 0);
+  if (scene >= 0 && static_cast<std::size_t>(scene) < m.scenes.size()) {
+    std::vector<int> stack(m.scenes[static_cast<std::size_t>(scene)].nodes.rbegin(),
+                           m.scenes[static_cast<std::size_t>(scene)].nodes.rend());
+    std::size_t steps = 0;
+    while (!stack.empty() && steps++ <= m.nodes.size()) {
+      const int n = stack.back();
+      stack.pop_back();
+      if (n < 0 || static_cast<std::size_t>(n) >= m.nodes.size()) continue;
+      if (meshOf(n) >= 0) return {n, meshOf(n)};
+      const auto& ch = m.nodes[static_cast<std::size_t>(n)].children;
+      stack.insert(stack.end(), ch.rbegin(), ch.rend());
+    }
+  }
+  for (std::size_t i = 0; i < m.nodes.size(); ++i)
+    if (meshOf(static_cast<int>(i)) >= 0) return {static_cast<int>(i), meshOf(static_cast<int>(i))};
+  if (!m.meshes.empty()) return {-1, 0};
+  throw Error(g.source() + ": the file has no mesh");
+}
+
+RigNode readNode(const Gltf& g, std::size_t i) {
+  const tg::Node& n = g.model().nodes[i];
+  const std::string e = idx("nodes", i);
+  RigNode out;
+  out.name = n.name;
+  auto sized = [&](const std::vector<double>& v, std::size_t size, const char* what) {
+    if (!v.empty() && v.size() != size)
+      g.fail(e, std::string(what) + " has " + std::to_string(v.size()) + " numbers, expected " + std::to_string(size));
+    return !v.empty();
+  };
+  if (sized(n.matrix, 16, "matrix")) {
+    Eigen::Matrix4d mat;
+    for (int k = 0; k < 16; ++k) mat(k % 4, k / 4) = n.matrix[static_cast<std::size_t>(k)];
+    out.matrix = mat;
+  }
+  if (sized(n.translation, 3, "translation")) out.translation = {n.translation[0], n.translation[1], n.translation[2]};
+  if (sized(n.rotation, 4, "rotation"))
+    out.rotation = Eigen::Quaterniond(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2]);
+  if (sized(n.scale, 3, "scale")) out.scale = {n.scale[0], n.scale[1], n.scale[2]};
+  return out;
+}
+
+RawRig buildRig(const Gltf& g, const GltfSelect& want) {
+  const tg::Model& m = g.model();
+  RawRig raw;
+  raw.source = g.source();
+  if (m.nodes.size() > kMaxRigNodes)
+    g.fail("nodes", std::to_string(m.nodes.size()) + " nodes, more than the limit of " + std::to_string(kMaxRigNodes));
+  raw.nodes.reserve(m.nodes.size());
+  for (std::size_t i = 0; i < m.nodes.size(); ++i) raw.nodes.push_back(readNode(g, i));
+  for (std::size_t i = 0; i < m.nodes.size(); ++i) {
+    const auto& children = m.nodes[i].children;
+    for (std::size_t c = 0; c < children.size(); ++c) {
+      const std::string e = idx("nodes", i) + ": " + idx("children", c);
+      g.checkIndex(e, "node", children[c], m.nodes.size());
+      RigNode& child = raw.nodes[static_cast<std::size_t>(children[c])];
+      if (children[c] == static_cast<int>(i)) g.fail(e, "the node is its own child (the node hierarchy has a cycle)");
+      if (child.parent >= 0)
+        g.fail(idx("nodes", static_cast<std::size_t>(children[c])),
+               "is a child of both nodes[" + std::to_string(child.parent) + "] and nodes[" + std::to_string(i) + "]");
+      child.parent = static_cast<int>(i);
+    }
+  }
+  const Selection sel = select(g, want);
+  g.checkIndex(sel.node >= 0 ? idx("nodes", static_cast<std::size_t>(sel.node)) : std::string("file"), "mesh", sel.mesh,
+               m.meshes.size());
+  raw.mesh_node = sel.node;
+  const tg::Mesh& mesh = m.meshes[static_cast<std::size_t>(sel.mesh)];
+  const std::string em = idx("meshes", static_cast<std::size_t>(sel.mesh));
+  const int skin_index = sel.node >= 0 ? m.nodes[static_cast<std::size_t>(sel.node)].skin : -1;
+
+  // Primitives: the triangle ones, concatenated.
+  std::vector<std::size_t> prims;
+  for (std::size_t p = 0; p < mesh.primitives.size(); ++p)
+    if (mesh.primitives[p].mode == TINYGLTF_MODE_TRIANGLES || mesh.primitives[p].mode == -1) prims.push_back(p);
+  if (prims.empty()) g.fail(em, "has no triangle primitives");
+  auto attribute = [](const tg::Primitive& p, const char* name) {
+    const auto it = p.attributes.find(name);
+    return it == p.attributes.end() ? -1 : it->second;
+  };
+  bool with_normals = true, with_uvs = true;
+  const std::size_t targets = mesh.primitives[prims[0]].targets.size();
+  for (std::size_t p : prims) {
+    const tg::Primitive& prim = mesh.primitives[p];
+    const std::string ep = em + ": " + idx("primitives", p);
+    if (attribute(prim, "POSITION") < 0) g.fail(ep, "has no POSITION");
+    with_normals = with_normals && attribute(prim, "NORMAL") >= 0;
+    with_uvs = with_uvs && attribute(prim, "TEXCOORD_0") >= 0;
+    if (prim.targets.size() != targets)
+      g.fail(ep, "has " + std::to_string(prim.targets.size()) + " morph targets, primitives[" +
+                     std::to_string(prims[0]) + "] has " + std::to_string(targets));
+    if (skin_index >= 0 && (attribute(prim, "JOINTS_0") < 0 || attribute(prim, "WEIGHTS_0") < 0))
+      g.fail(ep, "is skinned but lacks JOINTS_0 or WEIGHTS_0");
+  }
+  if (targets > kMaxMorphTargets)
+    g.fail(em, std::to_string(targets) + " morph targets, more than the limit of " + std::to_string(kMaxMorphTargets));
+  raw.target_positions.assign(targets, {});
+  raw.target_normals.assign(targets, {});
+  std::vector<bool> target_has_normals(targets, false);
+  for (std::size_t p : prims)
+    for (std::size_t t = 0; t < targets; ++t)
+      if (mesh.primitives[p].targets[t].count("NORMAL")) target_has_normals[t] = true;
+
+  std::size_t base = 0;
+  for (std::size_t p : prims) {
+    const tg::Primitive& prim = mesh.primitives[p];
+    const std::string ep = em + ": " + idx("primitives", p);
+    const int pos = attribute(prim, "POSITION");
+    const std::vector<double> positions = g.read(pos, kFloatVec3, ep + ": POSITION");
+    const std::size_t nv = g.count(pos);
+    if (base + nv > kMaxGltfElements)
+      g.fail(em, "more than " + std::to_string(kMaxGltfElements) + " vertices in all primitives");
+    auto sameCount = [&](int accessor, const char* name) {
+      if (g.count(accessor) != nv)
+        g.fail(ep, std::string(name) + " has " + std::to_string(g.count(accessor)) + " elements, POSITION has " +
+                       std::to_string(nv));
+    };
+    raw.mesh.positions.insert(raw.mesh.positions.end(), positions.begin(), positions.end());
+    if (with_normals) {
+      const int a = attribute(prim, "NORMAL");
+      const auto normals = g.read(a, kFloatVec3, ep + ": NORMAL");
+      sameCount(a, "NORMAL");
+      raw.normals.insert(raw.normals.end(), normals.begin(), normals.end());
+    }
+    if (with_uvs) {
+      const int a = attribute(prim, "TEXCOORD_0");
+      const auto uvs = g.read(a, kTexcoord, ep + ": TEXCOORD_0");
+      sameCount(a, "TEXCOORD_0");
+      raw.mesh.uvs.insert(raw.mesh.uvs.end(), uvs.begin(), uvs.end());
+    }
+    if (skin_index >= 0) {
+      const int ja = attribute(prim, "JOINTS_0");
+      const int wa = attribute(prim, "WEIGHTS_0");
+      const auto joints = g.read(ja, kJoints, ep + ": JOINTS_0");
+      const auto weights = g.read(wa, kWeights, ep + ": WEIGHTS_0");
+      sameCount(ja, "JOINTS_0");
+      sameCount(wa, "WEIGHTS_0");
+      for (double j : joints) raw.joints.push_back(static_cast<std::uint16_t>(j));
+      raw.weights.insert(raw.weights.end(), weights.begin(), weights.end());
+    }
+    for (std::size_t t = 0; t < targets; ++t) {
+      const auto& target = prim.targets[t];
+      const std::string et = ep + ": " + idx("targets", t);
+      const auto pit = target.find("POSITION");
+      if (pit != target.end()) {
+        const auto d = g.read(pit->second, kFloatVec3, et + ": POSITION");
+        sameCount(pit->second, "a target's POSITION");
+        raw.target_positions[t].insert(raw.target_positions[t].end(), d.begin(), d.end());
+      } else {
+        raw.target_positions[t].resize(raw.target_positions[t].size() + 3 * nv, 0.0f);
+      }
+      if (with_normals && target_has_normals[t]) {
+        const auto nit = target.find("NORMAL");
+        if (nit != target.end()) {
+          const auto d = g.read(nit->second, kFloatVec3, et + ": NORMAL");
+          sameCount(nit->second, "a target's NORMAL");
+          raw.target_normals[t].insert(raw.target_normals[t].end(), d.begin(), d.end());
+        } else {
+          raw.target_normals[t].resize(raw.target_normals[t].size() + 3 * nv, 0.0f);
+        }
+      }
+    }
+    // Triangles: the indices, or 0..n-1 without them.
+    if (prim.indices >= 0) {
+      const auto indices = g.read(prim.indices, kIndices, ep + ": indices");
+      if (indices.size() % 3 != 0)
+        g.fail(ep, "indices: " + std::to_string(indices.size()) + " indices, not a multiple of 3");
+      for (std::size_t k = 0; k < indices.size(); ++k) {
+        if (indices[k] >= static_cast<double>(nv))
+          g.fail(ep, "indices[" + std::to_string(k) + "] = " + std::to_string(static_cast<std::uint64_t>(indices[k])) +
+                         " out of range (the primitive has " + std::to_string(nv) + " vertices)");
+        raw.mesh.triangles.push_back(static_cast<std::int32_t>(base + static_cast<std::size_t>(indices[k])));
+      }
+    } else {
+      if (nv % 3 != 0) g.fail(ep, std::to_string(nv) + " vertices without indices, not a multiple of 3");
+      for (std::size_t k = 0; k < nv; ++k) raw.mesh.triangles.push_back(static_cast<std::int32_t>(base + k));
+    }
+    base += nv;
+  }
+  if (with_uvs) raw.mesh.uv_triangles = raw.mesh.triangles;
+
+  // Morph target names and default weights (the node's weights override the mesh's).
+  raw.target_names = targetNames(mesh, targets);
+  const std::vector<double>* weights = &mesh.weights;
+  if (sel.node >= 0 && !m.nodes[static_cast<std::size_t>(sel.node)].weights.empty())
+    weights = &m.nodes[static_cast<std::size_t>(sel.node)].weights;
+  if (weights->empty()) {
+    raw.default_weights.assign(targets, 0.0);
+  } else {
+    if (weights->size() != targets)
+      g.fail(weights == &mesh.weights ? em : idx("nodes", static_cast<std::size_t>(sel.node)),
+             "weights has " + std::to_string(weights->size()) + " numbers for " + std::to_string(targets) +
+                 " morph targets");
+    raw.default_weights = *weights;
+  }
+
+  // Skin.
+  if (skin_index >= 0) {
+    const std::string en = idx("nodes", static_cast<std::size_t>(sel.node));
+    g.checkIndex(en, "skin", skin_index, m.skins.size());
+    const tg::Skin& skin = m.skins[static_cast<std::size_t>(skin_index)];
+    const std::string es = idx("skins", static_cast<std::size_t>(skin_index));
+    RigSkin rs;
+    if (skin.joints.size() > kMaxRigJoints)
+      g.fail(es,
+             std::to_string(skin.joints.size()) + " joints, more than the limit of " + std::to_string(kMaxRigJoints));
+    for (std::size_t j = 0; j < skin.joints.size(); ++j) {
+      g.checkIndex(es + ": " + idx("joints", j), "node", skin.joints[j], m.nodes.size());
+      rs.joints.push_back(skin.joints[j]);
+    }
+    if (skin.inverseBindMatrices >= 0) {
+      const auto mats = g.read(skin.inverseBindMatrices, kMat4, es + ": inverseBindMatrices");
+      if (g.count(skin.inverseBindMatrices) < skin.joints.size())
+        g.fail(es, "inverseBindMatrices has " + std::to_string(g.count(skin.inverseBindMatrices)) + " matrices for " +
+                       std::to_string(skin.joints.size()) + " joints");
+      for (std::size_t j = 0; j < skin.joints.size(); ++j) {
+        Eigen::Matrix4d mat;
+        for (int k = 0; k < 16; ++k) mat(k % 4, k / 4) = mats[16 * j + static_cast<std::size_t>(k)];
+        rs.inverse_bind.push_back(mat);
+      }
+    } else {
+      rs.inverse_bind.assign(skin.joints.size(), Eigen::Matrix4d::Identity());
+    }
+    raw.skin = std::move(rs);
+  }
+
+  // Animations: every one; weights channels of other nodes do not move this mesh and are left out.
+  if (m.animations.size() > kMaxRigAnimations)
+    g.fail("animations", std::to_string(m.animations.size()) + " animations, more than the limit of " +
+                             std::to_string(kMaxRigAnimations));
+  for (std::size_t a = 0; a < m.animations.size(); ++a) {
+    const tg::Animation& anim = m.animations[a];
+    const std::string ea = idx("animations", a);
+    RigAnimation ra;
+    ra.name = anim.name;
+    std::vector<const Want*> output_want(anim.samplers.size(), nullptr);
+    for (std::size_t c = 0; c < anim.channels.size(); ++c) {
+      const tg::AnimationChannel& ch = anim.channels[c];
+      const std::string ec = ea + ": " + idx("channels", c);
+      g.checkIndex(ec, "sampler", ch.sampler, anim.samplers.size());
+      if (ch.target_node < 0) continue;  // no target node: defined by an extension vdg does not read
+      g.checkIndex(ec, "target node", ch.target_node, m.nodes.size());
+      RigChannel rc;
+      rc.node = ch.target_node;
+      rc.sampler = ch.sampler;
+      static const Want kVec3 = kFloatVec3;
+      const Want* w = nullptr;
+      if (ch.target_path == "translation") {
+        rc.path = RigPath::kTranslation, w = &kVec3;
+      } else if (ch.target_path == "rotation") {
+        rc.path = RigPath::kRotation, w = &kRotation;
+      } else if (ch.target_path == "scale") {
+        rc.path = RigPath::kScale, w = &kVec3;
+      } else if (ch.target_path == "weights") {
+        rc.path = RigPath::kWeights, w = &kMorphWeights;
+        if (ch.target_node != sel.node) continue;
+      } else {
+        g.fail(ec, "target path '" + ch.target_path + "' is not translation, rotation, scale or weights");
+      }
+      output_want[static_cast<std::size_t>(ch.sampler)] = w;
+      ra.channels.push_back(rc);
+    }
+    for (std::size_t s = 0; s < anim.samplers.size(); ++s) {
+      const tg::AnimationSampler& sampler = anim.samplers[s];
+      const std::string es = ea + ": " + idx("samplers", s);
+      RigSampler rs;
+      if (sampler.interpolation == "LINEAR" || sampler.interpolation.empty())
+        rs.interpolation = RigInterpolation::kLinear;
+      else if (sampler.interpolation == "STEP")
+        rs.interpolation = RigInterpolation::kStep;
+      else if (sampler.interpolation == "CUBICSPLINE")
+        rs.interpolation = RigInterpolation::kCubicSpline;
+      else
+        g.fail(es, "interpolation '" + sampler.interpolation + "' is not LINEAR, STEP or CUBICSPLINE");
+      const auto input = g.read(sampler.input, kTimes, es + ": input");
+      rs.input.assign(input.begin(), input.end());
+      static const Want kAnyOutput{{TINYGLTF_TYPE_SCALAR, TINYGLTF_TYPE_VEC3, TINYGLTF_TYPE_VEC4},
+                                   kFloatOrNormalized,
+                                   "FLOAT or normalized integers"};
+      const Want& w = output_want[s] ? *output_want[s] : kAnyOutput;
+      const auto output = g.read(sampler.output, w, es + ": output");
+      rs.output.assign(output.begin(), output.end());
+      ra.samplers.push_back(std::move(rs));
+    }
+    raw.animations.push_back(std::move(ra));
+  }
+  raw.validate();
+  return raw;
+}
+
+std::string describe(const Gltf& g) {
+  const tg::Model& m = g.model();
+  std::ostringstream out;
+  auto quoted = [](const std::string& s) { return "'" + s + "'"; };
+  out << "file        " << g.source() << " (glTF " << (m.asset.version.empty() ? "?" : m.asset.version) << ", "
+      << (g.binary() ? "binary .glb" : "JSON .gltf") << ")\n";
+  if (!m.asset.generator.empty()) out << "generator   " << m.asset.generator << "\n";
+  out << "scenes      " << m.scenes.size();
+  if (m.defaultScene >= 0) out << " (default " << m.defaultScene << ")";
+  out << "\nnodes       " << m.nodes.size() << "\n";
+  out << "meshes      " << m.meshes.size() << "\n";
+  for (std::size_t k = 0; k < m.meshes.size(); ++k) {
+    const tg::Mesh& mesh = m.meshes[k];
+    std::size_t vertices = 0, triangles = 0, prims = 0, targets = 0;
+    for (const tg::Primitive& p : mesh.primitives) {
+      if (p.mode != TINYGLTF_MODE_TRIANGLES && p.mode != -1) continue;
+      ++prims;
+      const auto it = p.attributes.find("POSITION");
+      if (it == p.attributes.end()) continue;
+      g.checkIndex(idx("meshes", k), "accessor", it->second, m.accessors.size());
+      const std::size_t nv = g.count(it->second);
+      vertices += nv;
+      if (p.indices >= 0) {
+        g.checkIndex(idx("meshes", k), "accessor", p.indices, m.accessors.size());
+        triangles += g.count(p.indices) / 3;
+      } else {
+        triangles += nv / 3;
+      }
+      targets = std::max(targets, p.targets.size());
+    }
+    out << "  [" << k << "] " << quoted(mesh.name) << ": " << prims << " triangle primitive" << (prims == 1 ? "" : "s")
+        << ", " << vertices << " vertices, " << triangles << " triangles, " << targets << " morph target"
+        << (targets == 1 ? "" : "s") << "\n";
+    if (targets > 0) {
+      const auto names = targetNames(mesh, targets);
+      out << "      targets:";
+      for (std::size_t t = 0; t < targets; ++t)
+        out << " " << (names.empty() ? std::string("(unnamed)") : quoted(names[t]));
+      out << "\n";
+    }
+  }
+  out << "skins       " << m.skins.size() << "\n";
+  for (std::size_t k = 0; k < m.skins.size(); ++k)
+    out << "  [" << k << "] " << quoted(m.skins[k].name) << ": " << m.skins[k].joints.size() << " joints"
+        << (m.skins[k].inverseBindMatrices >= 0 ? "" : ", no inverse bind matrices") << "\n";
+  out << "animations  " << m.animations.size() << "\n";
+  for (std::size_t a = 0; a < m.animations.size(); ++a) {
+    const tg::Animation& anim = m.animations[a];
+    const std::string ea = idx("animations", a);
+    std::vector<std::pair<double, double>> ranges;
+    double duration = 0;
+    for (std::size_t s = 0; s < anim.samplers.size(); ++s) {
+      const auto times = g.read(anim.samplers[s].input, kTimes, ea + ": " + idx("samplers", s) + ": input");
+      ranges.emplace_back(times.front(), times.back());
+      duration = std::max(duration, times.back());
+    }
+    char buf[64];
+    std::snprintf(buf, sizeof(buf), "%.4g s", duration);
+    out << "  [" << a << "] " << quoted(anim.name) << ": " << anim.channels.size() << " channel"
+        << (anim.channels.size() == 1 ? "" : "s") << ", " << buf << "\n";
+    for (std::size_t c = 0; c < anim.channels.size(); ++c) {
+      const tg::AnimationChannel& ch = anim.channels[c];
+      g.checkIndex(ea + ": " + idx("channels", c), "sampler", ch.sampler, anim.samplers.size());
+      const tg::AnimationSampler& s = anim.samplers[static_cast<std::size_t>(ch.sampler)];
+      std::string target = "(no node)";
+      if (ch.target_node >= 0 && static_cast<std::size_t>(ch.target_node) < m.nodes.size())
+        target = "node " + std::to_string(ch.target_node) + " " +
+                 quoted(m.nodes[static_cast<std::size_t>(ch.target_node)].name);
+      const auto& r = ranges[static_cast<std::size_t>(ch.sampler)];
+      std::snprintf(buf, sizeof(buf), "%.4g - %.4g s", r.first, r.second);
+      out << "      " << target << " " << ch.target_path << " "
+          << (s.interpolation.empty() ? "LINEAR" : s.interpolation) << ", " << g.count(s.input) << " keyframes, " << buf
+          << "\n";
+    }
+  }
+  return out.str();
+}
+
+std::string folderOf(const std::string& path) {
+  const std::string parent = std::filesystem::path(path).parent_path().string();
+  return parent.empty() ? std::string(".") : parent;
+}
+
+}  // namespace
+
+RawRig parseGltfRig(std::string_view bytes, const std::string& source, const std::string& folder,
+                    const GltfSelect& select) {
+  const Gltf g(bytes, source, folder);
+  return buildRig(g, select);
+}
+
+std::string describeGltfData(std::string_view bytes, const std::string& source, const std::string& folder) {
+  const Gltf g(bytes, source, folder);
+  // A file whose default mesh does not load is reported, not described.
+  if (!g.model().meshes.empty()) (void)buildRig(g, {});
+  return describe(g);
+}
+
+RawRig readGltfRig(const std::string& path, const GltfSelect& select) {
+  return parseGltfRig(readFileLimited(path, "glTF", kMaxMeshFileBytes), path, folderOf(path), select);
+}
+
+TriMesh readGltfMesh(const std::string& path, const GltfSelect& select) {
+  const Rig rig = Rig::build(readGltfRig(path, select));
+  TriMesh mesh = rig.mesh();
+  if (!rig.evaluate(-1, 0.0, mesh.positions)) throw Error(path + ": the rest pose could not be evaluated");
+  validateMesh(mesh, path);
+  return mesh;
+}
+
+std::string describeGltf(const std::string& path) {
+  return describeGltfData(readFileLimited(path, "glTF", kMaxMeshFileBytes), path, folderOf(path));
+}
+
+}  // namespace vdg
