@@ -1,13 +1,17 @@
 // The model manifest *.vdg.json (format documented in docs/model-format.md).
 #include "vdg/io/manifest.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <span>
 
 #include "camera_fields.h"
 #include "json_reader.h"
 #include "vdg/geom/error.h"
 #include "vdg/io/atomic_file.h"
+#include "vdg/io/gltf.h"
 #include "vdg/io/json_text.h"
 #include "vdg/io/obj.h"
 #include "vdg/io/read_file.h"
@@ -114,15 +118,46 @@ void loadObjSequence(RawViewDependentModel& model, const fs::path& folder, const
   }
 }
 
-// ---- glTF animated bases: HOOK for the lead to glue in after merging -------------------------
-// Fill model.base (rest topology with frame 0's positions), model.base_frames (frame i = time
-// i / fps; N = round(duration * fps) + 1, or round(duration * fps) with loop) and, for a skinned
-// mesh, model.base_skin (Rig::evaluate's out_skin), from readGltfRig(folder / spec.gltf, {spec.mesh})
-// and Rig::evaluate(spec.animation, i / spec.fps, ...). Until then glTF bases are refused.
+// A glTF animated base (paper section 4.1 with a skinned or morphed base): the selected mesh's
+// animation sampled at frame i = time i / fps, i = 0 .. N-1 with N = round(duration * fps) + 1, or
+// round(duration * fps) with "loop" (the cycle's last sample would repeat its first). For skinned
+// offsets the per-vertex skin linear parts are kept too (Rig::evaluate's out_skin).
 void loadGltfBaseAnimation(RawViewDependentModel& model, const fs::path& folder, const std::string& path) {
-  (void)model;
-  (void)folder;
-  throw Error(path + ": base_animation.gltf: glTF animated bases are not supported by this build of vdg yet");
+  const BaseAnimationSpec& spec = *model.base_animation;
+  const fs::path file = fs::path(spec.gltf).is_absolute() ? fs::path(spec.gltf) : folder / spec.gltf;
+  const std::string where = path + ": base_animation.gltf";
+  Rig rig = [&] {
+    try {
+      return Rig::build(readGltfRig(file.string(), GltfSelect{spec.mesh}));
+    } catch (const Error& e) {
+      throw Error(where + ": " + e.what());
+    }
+  }();
+  if (spec.animation >= static_cast<int>(rig.animationCount()))
+    throw Error(path + ": base_animation.animation: " + std::to_string(spec.animation) + " is out of range (" +
+                spec.gltf + " has " + std::to_string(rig.animationCount()) + " animation" +
+                (rig.animationCount() == 1 ? "" : "s") + ")");
+  const double samples = std::round(rig.duration(spec.animation) * spec.fps);
+  const double frames = spec.loop ? std::max(samples, 1.0) : samples + 1.0;
+  if (!(frames <= static_cast<double>(kMaxBaseFrames)))
+    throw Error(path + ": base_animation: " + std::to_string(rig.duration(spec.animation)) + " s at " +
+                std::to_string(spec.fps) + " fps is more than " + std::to_string(kMaxBaseFrames) + " frames");
+  const auto count = static_cast<std::size_t>(frames);
+  const bool keep_skin = model.offsets == OffsetSpace::kSkinned;
+  const std::size_t bytes_per_frame = rig.vertexCount() * (keep_skin ? 12 : 3) * sizeof(float);
+  if (bytes_per_frame > 0 && count > kMaxBaseAnimationBytes / bytes_per_frame)
+    throw Error(path + ": base_animation: " + std::to_string(count) + " frames of " +
+                std::to_string(rig.vertexCount()) + " vertices exceed the limit of " +
+                std::to_string(kMaxBaseAnimationBytes >> 20) + " MiB of sampled frames");
+  model.base = rig.mesh();
+  model.base_frames.assign(count, std::vector<float>(rig.vertexCount() * 3));
+  if (keep_skin) model.base_skin.assign(count, std::vector<float>(rig.vertexCount() * 9));
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::span<float> skin = keep_skin ? std::span<float>(model.base_skin[i]) : std::span<float>();
+    if (!rig.evaluate(spec.animation, static_cast<double>(i) / spec.fps, model.base_frames[i], {}, skin))
+      throw Error(where + ": frame " + std::to_string(i) + " could not be evaluated (internal error)");
+  }
+  model.base.positions = model.base_frames.front();
 }
 
 }  // namespace
