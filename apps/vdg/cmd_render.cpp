@@ -8,7 +8,9 @@
 // An animated model (manifest "base_animation", M frames) advances one animation frame per output
 // frame: output frame f shows animation frame f mod M when the animation loops, min(f, M - 1)
 // (the last pose held) when it does not. The frame depends only on f, so ranges stay
-// byte-identical.
+// byte-identical. --hold-frame F shows animation frame F in every output frame instead (the
+// paper's Figure 10: one moment of the animation seen from a moving camera); --base-only draws
+// the base without key deformations (Figure 11, against the view-dependent Figure 12).
 #include <sys/stat.h>
 #include <unistd.h>
 #include <cerrno>
@@ -40,7 +42,8 @@ struct RenderOptions {
   OrbitOptions camera;  // --orbit, --azimuth, --elevation, --distance, --fov, --frames
   int samples = 8;
   double sharpness = 0.0, line_width = 0.0;
-  bool observer = false, sphere = false, flat = false, quiet = false;
+  bool observer = false, sphere = false, flat = false, quiet = false, base_only = false;
+  int hold_frame = -1;  // -1: advance one animation frame per output frame
 };
 
 // Option ranges (checked at parse time by the validators in cli.h; see docs/render.md; the
@@ -100,6 +103,7 @@ void run(const RenderOptions& opt) {
   fo.sphere = opt.sphere;
   fo.sharpness = opt.sharpness;
   fo.flat = opt.flat;
+  fo.base_only = opt.base_only;
   fo.silhouette_width = static_cast<float>(opt.line_width);
   if (!opt.color.empty()) fo.color = parseColor(opt.color, "--color");
   if (!opt.background.empty()) fo.background = parseColor(opt.background, "--background");
@@ -131,6 +135,12 @@ void run(const RenderOptions& opt) {
     else
       model = std::make_unique<ViewDependentModel>(ViewDependentModel::build(raw));
   }
+  if (opt.hold_frame >= 0 && !animated)
+    throw UsageError("--hold-frame: " + opt.model + " is not an animated model (no 'base_animation')");
+  if (animated && opt.hold_frame >= animated->frameCount())
+    throw UsageError("--hold-frame: expected a frame in [0, " + std::to_string(animated->frameCount() - 1) + "] (" +
+                     opt.model + " has " + std::to_string(animated->frameCount()) + " frames), got " +
+                     std::to_string(opt.hold_frame));
   const TriMesh& base = model ? model->base() : animated ? animated->base() : mesh;
   const Bounds bounds = computeBounds(base.positions);
   const auto bc = bounds.center();
@@ -160,9 +170,9 @@ void run(const RenderOptions& opt) {
   render::Image image;
   char name[32];
   for (int f = range.first; f <= range.last; ++f) {
-    if (animated) {  // one animation frame per output frame (see the top of this file)
+    if (animated) {  // one animation frame per output frame, or the held one (see the top of this file)
       const int count = animated->frameCount();
-      renderer->setFrame(animated->loop() ? f % count : std::min(f, count - 1));
+      renderer->setFrame(opt.hold_frame >= 0 ? opt.hold_frame : animated->loop() ? f % count : std::min(f, count - 1));
     }
     renderer->render(opt.camera.camera(f, center, distance), image);
     std::snprintf(name, sizeof name, "frame_%04d.png", f);
@@ -232,6 +242,11 @@ void addRenderCommand(CLI::App& app) {
   sub->add_option("--color", opt->color, "Base colour R,G,B in [0,1] (default 1,1,1)");
   sub->add_option("--background", opt->background, "Background colour R,G,B in [0,1] (default 0.97,0.97,0.95)");
   sub->add_flag("--flat", opt->flat, "Flat (per-face) shading, for hard-edged models");
+  sub->add_option("--hold-frame", opt->hold_frame,
+                  "Animated models: show this animation frame in every output frame (default: advance one a frame)")
+      ->check(wholeNumber(0, static_cast<long>(kMaxBaseFrames) - 1));
+  sub->add_flag("--base-only", opt->base_only,
+                "Draw the base model without its key deformations (to compare with the view-dependent model)");
   sub->add_option("--line-width", opt->line_width, "Silhouette stroke width in pixels (default: max(3, height/100))")
       ->check(positiveNumber(kMaxLineWidth));
   sub->add_option("--samples", opt->samples, "Multisample anti-aliasing samples (default 8, capped by the driver)")

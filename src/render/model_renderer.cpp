@@ -267,9 +267,9 @@ ViewWeights ModelRenderer::render(const Camera& camera, Image& out) {
     // (for a parallel camera, the reversed viewing axis).
     view = camera.isOrtho() ? Eigen::Vector3d((camera.eye - camera.target).normalized())
                             : m.model->viewFromEye(camera.eye);
-    if (view.allFinite() && view.norm() > 0.0) {
+    if (!o.base_only && view.allFinite() && view.norm() > 0.0) {
       check(m.model->weights(view, o.sharpness, w), "weights");
-    } else {  // the eye at the model's centre: no view direction, so the base model
+    } else {  // the base only, or the eye at the model's centre (no view direction): the base model
       w = ViewWeights{};
       w.base = 1.0f;
     }
@@ -281,10 +281,10 @@ ViewWeights ModelRenderer::render(const Camera& camera, Image& out) {
     view = camera.isOrtho()
                ? Eigen::Vector3d((camera.eye - camera.target).normalized())
                : normalizedOrNone(Eigen::Vector3d(camera.eye - m.center)).value_or(Eigen::Vector3d::Zero());
-    if (view.allFinite() && view.norm() > 0.0) {
+    if (!o.base_only && view.allFinite() && view.norm() > 0.0) {
       check(m.animated->weights(view, o.sharpness, w), "weights");
       check(m.animated->evaluate(m.frame, view, o.sharpness, m.positions, m.normals), "evaluate");
-    } else {  // the eye at the model's centre: the base at this frame
+    } else {  // the base only, or the eye at the model's centre: the base at this frame
       w = ViewWeights{};
       w.base = 1.0f;
       const auto frame = m.animated->baseFrame(m.frame);

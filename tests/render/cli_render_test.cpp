@@ -93,6 +93,25 @@ TEST(CliRender, AnimatedModelsAdvanceOneFramePerOutputFrameAndRangesAreByteIdent
   EXPECT_NE(readBytes(all / "frame_0001.png"), readBytes(all / "frame_0002.png"));
 }
 
+// The paper's Figures 10-12 on the walker: --hold-frame keeps one animation frame under a moving
+// camera (frames differ only by the camera), --base-only draws the walk without its keys. Seen
+// from the side at key frame 10 the view-dependent walker (its side key) differs from the base.
+TEST(CliRender, HoldFrameAndBaseOnlyOnTheWalker) {
+  const std::string model = kSource + "/examples/walk/walker.vdg.json";
+  const fs::path held = freshDir("vdg_render_held"), base = freshDir("vdg_render_base"), vd = freshDir("vdg_render_vd");
+  // --orbit 4 --frames 1: azimuth 90, the side view; output frame 1 shows animation frame 1.
+  const std::string side = " --orbit 4 --frames 1 --size 96x96 --quiet";
+  Result r = vdg("render " + model + " -o " + held.string() + side + " --hold-frame 10");
+  ASSERT_EQ(r.status, 0) << r.output;
+  r = vdg("render " + model + " -o " + base.string() + side + " --hold-frame 10 --base-only");
+  ASSERT_EQ(r.status, 0) << r.output;
+  r = vdg("render " + model + " -o " + vd.string() + side);  // animation frame 1, not 10
+  ASSERT_EQ(r.status, 0) << r.output;
+  const std::string held_png = readBytes(held / "frame_0001.png");
+  EXPECT_NE(held_png, readBytes(base / "frame_0001.png"));  // the side key shows
+  EXPECT_NE(held_png, readBytes(vd / "frame_0001.png"));    // another moment of the walk
+}
+
 // A full disk (here a file size limit, which fails writes the same way) is an error naming the
 // frame, exit status 1, and a frame already there stays byte-identical.
 TEST(CliRender, FullDiskFailsAndKeepsExistingFrames) {
@@ -116,6 +135,13 @@ void expectOneLineError(const Result& r, int status, const std::string& needle) 
   EXPECT_EQ(r.status, status) << r.output;
   EXPECT_NE(r.output.find(needle), std::string::npos) << r.output;
   EXPECT_LE(std::count(r.output.begin(), r.output.end(), '\n'), 2) << r.output;
+}
+
+TEST(CliRender, HoldFrameNeedsAnAnimatedModelAndAFrameInRange) {
+  const std::string walker = kSource + "/examples/walk/walker.vdg.json";
+  expectOneLineError(vdg("render " + kSpot + " -o " + freshDir("x").string() + " --hold-frame 0"), 2, "--hold-frame: ");
+  expectOneLineError(vdg("render " + walker + " -o " + freshDir("x").string() + " --hold-frame 40"), 2,
+                     "expected a frame in [0, 39]");
 }
 
 TEST(CliRender, UnknownModelFile) {

@@ -36,6 +36,9 @@ struct FrameOptions {
   ShadingParams shading;
   bool flat = false;              // per-face shading (hard-edged models such as the building)
   float silhouette_width = 0.0f;  // stroke width in pixels; 0: max(3, height / 100)
+  // Draw the base model only (no key deformations, every view weighs the base fully): the
+  // paper's comparison of a conventional model with the view-dependent one (Figures 11 and 12).
+  bool base_only = false;
   // The observer panel's camera; default: 35 degrees to the right of and 25 above the model's
   // front (+Z), at the distance that fits the base model.
   std::optional<Camera> observer_camera;
