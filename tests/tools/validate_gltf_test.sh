@@ -12,6 +12,10 @@ validate=$root/scripts/validate-gltf
 data=$root/tests/tools/data
 
 if ! command -v node >/dev/null || [ ! -d "$root/tools/gltf-validator/node_modules/gltf-validator" ]; then
+  if [ "${VDG_REQUIRE_GLTF_VALIDATOR:-0}" = 1 ]; then
+    echo "FAILED: VDG_REQUIRE_GLTF_VALIDATOR=1 but the glTF validator is not installed (run scripts/install-deps)"
+    exit 1
+  fi
   echo "SKIPPED: the glTF validator is not installed (run scripts/install-deps)"
   exit 77
 fi
