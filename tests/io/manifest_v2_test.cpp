@@ -201,7 +201,7 @@ TEST_F(ManifestV2, EveryBadValueIsNamed) {
        "m.vdg.json: 'base_animation': unknown key 'speed' (expected one of 'obj_sequence', 'frames', 'gltf', "
        "'animation', 'fps', 'mesh', 'loop')"},
       {R"({"version": 2, "base_animation": {"gltf": "w.glb"}, "keys": []})",
-       "m.vdg.json: base_animation.gltf: glTF animated bases are not supported by this build of vdg yet"},
+       "m.vdg.json: base_animation.gltf: w.glb: no such file (glTF)"},
       {R"({"version": 2, )" + seq + R"(, "keys": [{"mesh": "k.obj", "view": [0, 0, 1], "frame": 6}]})",
        "m.vdg.json: key 'k' (keys[0]): frame 6 is outside the base animation's frames 0..5"},
       {R"({"version": 2, )" + seq + R"(, "keys": [{"mesh": "k.obj", "view": [0, 0, 1], "frame": 1.5}]})",
