@@ -24,6 +24,7 @@
 #include "orbit_options.h"
 #include "vdg/geom/error.h"
 #include "vdg/io/atomic_file.h"
+#include "vdg/io/gltf_export.h"
 #include "vdg/io/manifest.h"
 #include "vdg/io/obj.h"
 #include "vdg/io/read_file.h"
@@ -117,15 +118,16 @@ void run(const RenderOptions& opt) {
   std::unique_ptr<ViewDependentModel> model;
   std::unique_ptr<AnimatedViewDependentModel> animated;
   std::unique_ptr<render::ModelRenderer> renderer;
-  const bool plain =
-      hasExtension(opt.model, ".obj") || hasExtension(opt.model, ".gltf") || hasExtension(opt.model, ".glb");
-  checkInputFile(opt.model, plain ? "mesh" : "model");
+  // A glTF file is a model when vdg exported it (mesh.extras.vdg), else a plain mesh.
+  const bool gltf = hasExtension(opt.model, ".gltf") || hasExtension(opt.model, ".glb");
+  checkInputFile(opt.model, gltf || !hasExtension(opt.model, ".obj") ? "model" : "mesh");
+  const bool plain = hasExtension(opt.model, ".obj") || (gltf && !gltfHasModel(opt.model));
   TriMesh mesh;
   if (plain) {
     mesh = readMesh(opt.model);
     fo.sphere = false;
   } else {
-    const RawViewDependentModel raw = loadManifest(opt.model);
+    const RawViewDependentModel raw = loadModel(opt.model);
     if (raw.animated())
       animated = std::make_unique<AnimatedViewDependentModel>(AnimatedViewDependentModel::build(raw));
     else
