@@ -9,6 +9,7 @@
 #include <numbers>
 
 #include "cli.h"
+#include "vdg/geom/error.h"
 #include "vdg/io/gltf.h"
 #include "vdg/io/gltf_export.h"
 #include "vdg/io/manifest.h"
@@ -81,10 +82,15 @@ void addInfoCommand(CLI::App& app) {
   sub->add_flag("--json", opt->json, "Print one JSON object instead of text");
   sub->callback([opt] {
     // A glTF file vdg exported (mesh.extras.vdg) is described as a model too.
-    const bool gltf_model = isGltf(opt->model) && gltfHasModel(opt->model);
     if (isGltf(opt->model)) {
       if (opt->json) throw UsageError("--json: only for models, not for glTF files");
       std::fputs(describeGltf(opt->model).c_str(), stdout);
+      bool gltf_model = false;
+      try {
+        gltf_model = gltfHasModel(opt->model);
+      } catch (const Error&) {
+        // describeGltf read it; a file it describes but that is no model stays a description.
+      }
       if (!gltf_model) return;
       std::printf("\nview-dependent model (mesh.extras.vdg):\n");
     }
