@@ -5,6 +5,7 @@
 // exactly the view-dependent weights of frame f's camera, and an animated camera node is that
 // camera, so a glTF viewer playing the animation through that camera shows what `vdg render`
 // draws at each frame (docs/gltf-export.md, "Baked camera paths").
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 #include <vector>
@@ -15,11 +16,13 @@
 #include "vdg/io/gltf_export.h"
 #include "vdg/io/manifest.h"
 #include "vdg/render/renderer.h"
+#include "vdg/viewdep/animated_model.h"
 
 namespace vdg::cli {
 
 void writeGltfForCli(const std::string& output, const GltfExportInput& input, bool quiet);  // cmd_export.cpp
 void checkGltfOutput(const std::string& output);                                            // cmd_export.cpp
+GltfExportInput exportInputForCli(const RawViewDependentModel& raw);                        // cmd_export.cpp
 
 namespace {
 
@@ -36,17 +39,31 @@ void run(const BakeOptions& opt) {
   checkGltfOutput(opt.output);
   const ImageSize size = parseImageSize(opt.size, 'x', render::kMaxImageSize, "--size");
   const FrameRange range = opt.camera.range();
-  const ViewDependentModel model = ViewDependentModel::build(loadManifest(opt.model));
+  const RawViewDependentModel raw = loadModel(opt.model);
   const double aspect = static_cast<double>(size.width) / size.height;
-  const double distance =
-      opt.camera.cameraDistance(OrbitOptions::radiusAbout(model.base().positions, model.center()), aspect);
-  std::vector<Camera> cameras;
-  for (int f = range.first; f <= range.last; ++f) cameras.push_back(opt.camera.camera(f, model.center(), distance));
   // The whole orbit closes on itself: one more sample, frame 0 again, lets a looping viewer play it
   // without a seam.
   const bool whole_orbit = opt.camera.frames.empty() && opt.camera.orbit > 1;
-  GltfExportInput input = gltfExportInput(model);
-  input.bake = bakeCameraPath(model, cameras, opt.fps, aspect, opt.sharpness, whole_orbit);
+  GltfExportInput input = exportInputForCli(raw);
+  std::vector<Camera> cameras;
+  if (!raw.animated()) {
+    const ViewDependentModel model = ViewDependentModel::build(raw);
+    const double distance =
+        opt.camera.cameraDistance(OrbitOptions::radiusAbout(model.base().positions, model.center()), aspect);
+    for (int f = range.first; f <= range.last; ++f) cameras.push_back(opt.camera.camera(f, model.center(), distance));
+    input.bake = bakeCameraPath(model, cameras, opt.fps, aspect, opt.sharpness, whole_orbit);
+  } else {
+    // As vdg render: the camera distance holds every frame of the base; output frame f shows
+    // animation frame f mod N (loop) or min(f, N - 1).
+    const AnimatedViewDependentModel model = AnimatedViewDependentModel::build(raw);
+    double radius = 0.0;
+    for (int f = 0; f < model.frameCount(); ++f)
+      radius = std::max(radius, OrbitOptions::radiusAbout(model.baseFrame(f), model.center()));
+    const double distance = opt.camera.cameraDistance(radius, aspect);
+    for (int f = range.first; f <= range.last; ++f) cameras.push_back(opt.camera.camera(f, model.center(), distance));
+    input.bake =
+        bakeAnimatedCameraPath(model, input, cameras, range.first, opt.fps, aspect, opt.sharpness, whole_orbit);
+  }
   input.bake->step = opt.step;
   input.bake->description = "vdg bake: orbit " + std::to_string(opt.camera.orbit) + " frames " +
                             std::to_string(range.first) + "-" + std::to_string(range.last) + " at " +
@@ -61,7 +78,7 @@ void addBakeCommand(CLI::App& app) {
   CLI::App* sub = app.add_subcommand(
       "bake",
       "Export the model as glTF 2.0 with an animation: the morph weights and the camera of vdg render's camera path");
-  sub->add_option("MODEL", opt->model, "Model manifest (*.vdg.json)")->required();
+  sub->add_option("MODEL", opt->model, "Model manifest (*.vdg.json), or a glTF model vdg exported")->required();
   sub->add_option("-o,--output", opt->output, "Output OUT.glb, or OUT.gltf with its buffer in OUT.bin beside it")
       ->required();
   opt->camera.add(*sub);

@@ -7,6 +7,7 @@
 
 #include "cli.h"
 #include "vdg/geom/error.h"
+#include "vdg/io/gltf_export.h"
 #include "vdg/io/manifest.h"
 #include "vdg/io/obj.h"
 #include "vdg/viewdep/animated_model.h"
@@ -32,7 +33,7 @@ void addEvalCommand(CLI::App& app) {
   auto opt = std::make_shared<Options>();
   CLI::App* sub =
       app.add_subcommand("eval", "Write the blended mesh for one view (same vertices and faces as the base)");
-  sub->add_option("MODEL", opt->model, "Model manifest (*.vdg.json)")->required();
+  sub->add_option("MODEL", opt->model, "Model manifest (*.vdg.json), or a glTF model vdg exported")->required();
   opt->view.add(*sub);
   sub->add_option("--frame", opt->frame, "Frame of an animated model (0 .. its frame count - 1)")
       ->check(wholeNumber(0, static_cast<long>(kMaxBaseFrames) - 1));
@@ -41,7 +42,7 @@ void addEvalCommand(CLI::App& app) {
   sub->callback([opt] {
     if (!hasExtension(opt->output, ".obj"))
       throw UsageError("-o: expected an .obj file name, got " + shown(opt->output));
-    const RawViewDependentModel raw = loadManifest(opt->model);
+    const RawViewDependentModel raw = loadModel(opt->model);
     TriMesh out;
     std::string header = "vdg eval " + opt->model;
     ViewWeights w;

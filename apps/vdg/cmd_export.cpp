@@ -2,9 +2,12 @@
 //
 // Writes a view-dependent model as glTF 2.0 (docs/gltf-export.md): the base mesh with one morph
 // target per key, and the view-dependent description in mesh.extras.vdg, so that vdg reads the
-// file back as the same model and other tools see the keys as named morph targets.
+// file back as the same model and other tools see the keys as named morph targets. An animated
+// model gets one target per (key view, key frame) and its base animation: the skin for
+// "skinned" offsets, the sampled base frames as morph targets otherwise (docs/gltf-export.md).
 #include <cstdio>
 #include <memory>
+#include <optional>
 
 #include "cli.h"
 #include "vdg/geom/error.h"
@@ -23,6 +26,14 @@ void writeGltfForCli(const std::string& output, const GltfExportInput& input, bo
                 input.targets.size() == 1 ? "" : "s", report.sparse_targets, report.bytes);
 }
 
+GltfExportInput exportInputForCli(const RawViewDependentModel& raw) {
+  if (!raw.animated()) return gltfExportInput(ViewDependentModel::build(raw));
+  const AnimatedViewDependentModel model = AnimatedViewDependentModel::build(raw);
+  std::optional<RawRig> rig;
+  if (!raw.base_animation->gltf.empty()) rig = readBaseRig(raw);
+  return gltfExportInput(model, raw, rig ? &*rig : nullptr);
+}
+
 void checkGltfOutput(const std::string& output) {
   if (!hasExtension(output, ".glb") && !hasExtension(output, ".gltf"))
     throw UsageError("-o: expected a .glb or .gltf file name, got " + shown(output));
@@ -36,14 +47,13 @@ void addExportCommand(CLI::App& app) {
   auto opt = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand(
       "export", "Write the model as glTF 2.0: the base mesh with one morph target per key (docs/gltf-export.md)");
-  sub->add_option("MODEL", opt->model, "Model manifest (*.vdg.json)")->required();
+  sub->add_option("MODEL", opt->model, "Model manifest (*.vdg.json), or a glTF model vdg exported")->required();
   sub->add_option("-o,--output", opt->output, "Output OUT.glb, or OUT.gltf with its buffer in OUT.bin beside it")
       ->required();
   sub->add_flag("-q,--quiet", opt->quiet, "Print nothing on success");
   sub->callback([opt] {
     checkGltfOutput(opt->output);
-    const ViewDependentModel model = ViewDependentModel::build(loadManifest(opt->model));
-    writeGltfForCli(opt->output, gltfExportInput(model), opt->quiet);
+    writeGltfForCli(opt->output, exportInputForCli(loadModel(opt->model)), opt->quiet);
   });
 }
 

@@ -9,8 +9,11 @@
 #include <numbers>
 
 #include "cli.h"
+#include "vdg/geom/error.h"
 #include "vdg/io/gltf.h"
+#include "vdg/io/gltf_export.h"
 #include "vdg/io/manifest.h"
+#include "vdg/viewdep/animated_model.h"
 #include "vdg/viewdep/model.h"
 
 namespace vdg::cli {
@@ -78,12 +81,37 @@ void addInfoCommand(CLI::App& app) {
   sub->add_option("MODEL", opt->model, "Model manifest (*.vdg.json), or a glTF 2.0 file (*.gltf, *.glb)")->required();
   sub->add_flag("--json", opt->json, "Print one JSON object instead of text");
   sub->callback([opt] {
+    // A glTF file vdg exported (mesh.extras.vdg) is described as a model too.
     if (isGltf(opt->model)) {
-      if (opt->json) throw UsageError("--json: only for model manifests, not for glTF files");
+      if (opt->json) throw UsageError("--json: only for models, not for glTF files");
       std::fputs(describeGltf(opt->model).c_str(), stdout);
+      bool gltf_model = false;
+      try {
+        gltf_model = gltfHasModel(opt->model);
+      } catch (const Error&) {
+        // describeGltf read it; a file it describes but that is no model stays a description.
+      }
+      if (!gltf_model) return;
+      std::printf("\nview-dependent model (mesh.extras.vdg):\n");
+    }
+    const RawViewDependentModel raw = loadModel(opt->model);
+    if (raw.animated()) {
+      const AnimatedViewDependentModel model = AnimatedViewDependentModel::build(raw);
+      std::printf("model      %s\n", opt->model.c_str());
+      std::printf("base       animated: %d frames%s, %zu vertices, %zu triangles, offsets %s\n", model.frameCount(),
+                  model.loop() ? " (loop)" : "", model.vertexCount(), model.base().triangleCount(),
+                  offsetSpaceName(model.offsetSpace()));
+      std::printf("sharpness  %g\n", model.sharpness());
+      std::printf("key views  %zu\n", model.viewCount());
+      for (std::size_t v = 0; v < model.viewCount(); ++v) {
+        const auto& d = model.viewDirection(v);
+        std::printf("  view (%7.4f, %7.4f, %7.4f)  key frames:", d.x(), d.y(), d.z());
+        for (std::size_t j = 0; j < model.keyFrames(v).size(); ++j)
+          std::printf(" %d (%s)", model.keyFrames(v)[j], model.keyName(v, j).c_str());
+        std::printf("\n");
+      }
       return;
     }
-    const RawViewDependentModel raw = loadManifest(opt->model);
     const ViewDependentModel model = ViewDependentModel::build(raw);
     const ViewSphere& sphere = model.sphere();
     const std::size_t dummies = sphere.points().size() - sphere.keyCount();

@@ -1,6 +1,6 @@
 // vdg render MODEL -o DIR|OUT.mp4|OUT.gif [--orbit N] [--frames A-B] [--observer] [--sphere] ...
 //
-// Renders a view-dependent model (or a plain mesh) headless with the NPR renderer, one PNG per
+// Renders a view-dependent model (a manifest or a glTF file vdg exported) or a plain mesh headless with the NPR renderer, one PNG per
 // frame (DIR/frame_0000.png ...), the camera going once around the model in N frames. A frame's
 // image depends only on its number and the options, so --frames ranges can be split across
 // machines and give byte-identical frames.
@@ -26,6 +26,7 @@
 #include "orbit_options.h"
 #include "vdg/geom/error.h"
 #include "vdg/io/atomic_file.h"
+#include "vdg/io/gltf_export.h"
 #include "vdg/io/manifest.h"
 #include "vdg/io/obj.h"
 #include "vdg/io/read_file.h"
@@ -121,15 +122,16 @@ void run(const RenderOptions& opt) {
   std::unique_ptr<ViewDependentModel> model;
   std::unique_ptr<AnimatedViewDependentModel> animated;
   std::unique_ptr<render::ModelRenderer> renderer;
-  const bool plain =
-      hasExtension(opt.model, ".obj") || hasExtension(opt.model, ".gltf") || hasExtension(opt.model, ".glb");
-  checkInputFile(opt.model, plain ? "mesh" : "model");
+  // A glTF file is a model when vdg exported it (mesh.extras.vdg), else a plain mesh.
+  const bool gltf = hasExtension(opt.model, ".gltf") || hasExtension(opt.model, ".glb");
+  checkInputFile(opt.model, gltf || hasExtension(opt.model, ".obj") ? "mesh" : "model");
+  const bool plain = hasExtension(opt.model, ".obj") || (gltf && !gltfHasModel(opt.model));
   TriMesh mesh;
   if (plain) {
     mesh = readMesh(opt.model);
     fo.sphere = false;
   } else {
-    const RawViewDependentModel raw = loadManifest(opt.model);
+    const RawViewDependentModel raw = loadModel(opt.model);
     if (raw.animated())
       animated = std::make_unique<AnimatedViewDependentModel>(AnimatedViewDependentModel::build(raw));
     else
@@ -226,7 +228,7 @@ void addRenderCommand(CLI::App& app) {
   CLI::App* sub = app.add_subcommand(
       "render",
       "Render a view-dependent model (or a plain mesh) headless: NPR shading and silhouettes, one PNG a frame");
-  sub->add_option("MODEL", opt->model, "Model manifest (*.vdg.json), or a plain mesh (.obj)")->required();
+  sub->add_option("MODEL", opt->model, "Model manifest (*.vdg.json), a glTF model vdg exported, or a plain mesh (.obj, .gltf, .glb)")->required();
   sub->add_option("-o,--output", opt->output, "Output folder for frame_NNNN.png, or OUT.mp4 / OUT.gif (needs ffmpeg)")
       ->required();
   opt->camera.add(*sub);

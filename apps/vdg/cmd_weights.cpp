@@ -7,6 +7,7 @@
 
 #include "cli.h"
 #include "vdg/geom/error.h"
+#include "vdg/io/gltf_export.h"
 #include "vdg/io/manifest.h"
 #include "view_options.h"
 
@@ -28,11 +29,11 @@ void addWeightsCommand(CLI::App& app) {
   };
   auto opt = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand("weights", "Blending weights of the keys (and the base) at one view");
-  sub->add_option("MODEL", opt->model, "Model manifest (*.vdg.json)")->required();
+  sub->add_option("MODEL", opt->model, "Model manifest (*.vdg.json), or a glTF model vdg exported")->required();
   opt->view.add(*sub);
   sub->add_flag("--json", opt->json, "Print one JSON object {\"keys\": {name: w, ...}, \"base\": w}");
   sub->callback([opt] {
-    const ViewDependentModel model = ViewDependentModel::build(loadManifest(opt->model));
+    const ViewDependentModel model = ViewDependentModel::build(loadModel(opt->model));
     const Eigen::Vector3d view = opt->view.resolve(model);
     ViewWeights w;
     if (!model.weights(view, opt->view.sharpness, w))  // resolve() gives a unit view; sharpness > 0

@@ -399,15 +399,8 @@ void Rig::sampleChannel(const RigSampler& s, RigPath path, double time, double* 
   }
 }
 
-bool Rig::evaluate(int animation, double time, std::span<float> out_positions, std::span<float> out_normals,
-                   std::span<float> out_skin) const {
-  const std::size_t nv = mesh_.vertexCount();
-  if (animation < -1 || animation >= static_cast<long>(animations_.size()) || !std::isfinite(time)) return false;
-  if (out_positions.size() != 3 * nv) return false;
-  if (!out_normals.empty() && out_normals.size() != 3 * nv) return false;
-  if (!out_skin.empty() && out_skin.size() != 9 * nv) return false;
-
-  // Pose: rest transforms and weights, then the animation's channels.
+// Rest transforms and weights, then the animation's channels, into pose_ and morph_weights_.
+void Rig::pose(int animation, double time) const {
   std::copy(nodes_.begin(), nodes_.end(), pose_.begin());
   std::copy(default_weights_.begin(), default_weights_.end(), morph_weights_.begin());
   if (animation >= 0) {
@@ -433,6 +426,32 @@ bool Rig::evaluate(int animation, double time, std::span<float> out_positions, s
       }
     }
   }
+}
+
+bool Rig::nodePose(int animation, double time, std::span<double> out) const {
+  if (animation < -1 || animation >= static_cast<long>(animations_.size()) || !std::isfinite(time)) return false;
+  if (out.size() != 10 * nodes_.size()) return false;
+  pose(animation, time);
+  for (std::size_t i = 0; i < pose_.size(); ++i) {
+    const Node& node = pose_[i];
+    const Eigen::Quaterniond q = node.rotation.normalized();
+    const double values[10] = {
+        node.translation.x(), node.translation.y(), node.translation.z(), q.x(), q.y(), q.z(), q.w(),
+        node.scale.x(),       node.scale.y(),       node.scale.z()};
+    std::copy(values, values + 10, out.begin() + static_cast<std::ptrdiff_t>(i * 10));
+  }
+  return true;
+}
+
+bool Rig::evaluate(int animation, double time, std::span<float> out_positions, std::span<float> out_normals,
+                   std::span<float> out_skin) const {
+  const std::size_t nv = mesh_.vertexCount();
+  if (animation < -1 || animation >= static_cast<long>(animations_.size()) || !std::isfinite(time)) return false;
+  if (out_positions.size() != 3 * nv) return false;
+  if (!out_normals.empty() && out_normals.size() != 3 * nv) return false;
+  if (!out_skin.empty() && out_skin.size() != 9 * nv) return false;
+
+  pose(animation, time);
   for (int i : order_) {
     const Node& node = pose_[static_cast<std::size_t>(i)];
     const Eigen::Matrix4d local =

@@ -23,6 +23,9 @@
 #include "vdg/geom/normalize.h"
 #include "vdg/io/atomic_file.h"
 #include "vdg/io/file_transaction.h"
+#include "vdg/io/gltf.h"
+#include "vdg/io/manifest.h"
+#include "vdg/io/read_file.h"
 #include "vdg/version.h"
 
 namespace vdg {
@@ -160,6 +163,18 @@ bool allFinite(std::span<const float> values) {
   return std::all_of(values.begin(), values.end(), [](float x) { return std::isfinite(x); });
 }
 
+std::string baseFrameTargetName(int frame) { return "base frame " + std::to_string(frame); }
+
+bool framesBase(const GltfExportInput& in) {
+  return in.base_animation && in.base_animation->mode == GltfBaseMode::kFrames;
+}
+bool skinBase(const GltfExportInput& in) { return in.base_animation && in.base_animation->mode == GltfBaseMode::kSkin; }
+
+// Morph targets written: the keys, then the base frames 1..N-1 of a kFrames base.
+std::size_t totalTargets(const GltfExportInput& in) {
+  return in.targets.size() + (framesBase(in) ? in.base_animation->frame_deltas.size() : 0);
+}
+
 void validateInput(const GltfExportInput& in, const std::string& where) {
   const auto fail = [&](const std::string& what) { throw Error(where + ": " + what); };
   const std::size_t v_count = in.base.vertexCount();
@@ -193,9 +208,40 @@ void validateInput(const GltfExportInput& in, const std::string& where) {
   }
   if (!std::isfinite(in.sharpness) || in.sharpness <= 0.0) fail("the sharpness must be finite and > 0");
   if (!in.center.allFinite()) fail("the centre is not finite");
-  if (in.base_animation &&
-      (in.base_animation->frame_count < 1 || !std::isfinite(in.base_animation->fps) || in.base_animation->fps <= 0.0))
-    fail("base animation: expected frame_count >= 1 and fps > 0");
+  if (in.base_animation) {
+    const GltfBaseAnimation& ba = *in.base_animation;
+    if (ba.frame_count < 1 || !std::isfinite(ba.fps) || ba.fps <= 0.0)
+      fail("base animation: expected frame_count >= 1 and fps > 0");
+    if (ba.mode == GltfBaseMode::kFrames) {
+      if (ba.frame_deltas.size() != static_cast<std::size_t>(ba.frame_count) - 1)
+        fail("base animation: expected " + std::to_string(ba.frame_count - 1) + " base frame targets, got " +
+             std::to_string(ba.frame_deltas.size()));
+      if (!ba.frame_normal_deltas.empty() &&
+          (in.normals.empty() || ba.frame_normal_deltas.size() != ba.frame_deltas.size()))
+        fail("base animation: base frame normal deltas need base normals and one entry per base frame");
+      for (std::size_t i = 0; i < ba.frame_deltas.size(); ++i) {
+        const std::string label = "base animation: frame " + std::to_string(i + 1);
+        if (ba.frame_deltas[i].size() != in.base.positions.size() || !allFinite(ba.frame_deltas[i]))
+          fail(label + ": expected " + std::to_string(v_count) + " x 3 finite deltas");
+        if (!ba.frame_normal_deltas.empty() &&
+            (ba.frame_normal_deltas[i].size() != in.normals.size() || !allFinite(ba.frame_normal_deltas[i])))
+          fail(label + ": expected " + std::to_string(v_count) + " x 3 finite normal deltas");
+        if (!names.insert(baseFrameTargetName(static_cast<int>(i + 1))).second)
+          fail(label + ": a key is named '" + baseFrameTargetName(static_cast<int>(i + 1)) + "'");
+      }
+    } else {
+      if (!ba.rig || !ba.rig->skin) fail("base animation: a skinned base needs its rig with a skin");
+      const RawRig& rig = *ba.rig;
+      rig.validate();
+      if (rig.mesh.vertexCount() != v_count)
+        fail("base animation: the rig has " + std::to_string(rig.mesh.vertexCount()) + " vertices, the base " +
+             std::to_string(v_count));
+      if (ba.rig_animation < 0 || static_cast<std::size_t>(ba.rig_animation) >= rig.animations.size())
+        fail("base animation: the rig has no animation " + std::to_string(ba.rig_animation));
+      if (!rig.target_positions.empty())
+        fail("base animation: the rig's mesh has morph targets of its own, which are not exported");
+    }
+  }
   if (in.bake) {
     const GltfBakedAnimation& bake = *in.bake;
     const std::size_t n = bake.times.size();
@@ -204,10 +250,19 @@ void validateInput(const GltfExportInput& in, const std::string& where) {
     for (std::size_t i = 1; i < n; ++i)
       if (!(bake.times[i] > bake.times[i - 1]))
         fail("bake: times are not strictly increasing at sample " + std::to_string(i));
-    if (in.targets.empty()) fail("bake: the model has no morph targets to animate");
-    if (bake.weights.size() != n * in.targets.size())
-      fail("bake: expected " + std::to_string(n) + " x " + std::to_string(in.targets.size()) + " weights, got " +
+    if (totalTargets(in) == 0) fail("bake: the model has no morph targets to animate");
+    const std::size_t target_count = totalTargets(in);
+    if (bake.weights.size() != n * target_count)
+      fail("bake: expected " + std::to_string(n) + " x " + std::to_string(target_count) + " weights, got " +
            std::to_string(bake.weights.size()));
+    const std::size_t rig_nodes =
+        in.base_animation && in.base_animation->rig ? in.base_animation->rig->nodes.size() : 0;
+    for (const GltfNodeTrack& track : bake.node_tracks) {
+      const std::size_t width = track.path == RigPath::kRotation ? 4 : 3;
+      if (track.node < 0 || static_cast<std::size_t>(track.node) >= rig_nodes || track.path == RigPath::kWeights ||
+          track.values.size() != n * width || !allFinite(track.values))
+        fail("bake: a node track does not match the rig or the times");
+    }
     if (!allFinite(bake.weights)) fail("bake: a weight is not finite");
     if (!bake.translations.empty()) {
       if (bake.translations.size() != n * 3 || bake.rotations.size() != n * 4)
@@ -222,6 +277,22 @@ void validateInput(const GltfExportInput& in, const std::string& where) {
 
 OJson vec3Json(const Eigen::Vector3d& v) { return OJson::array({v.x(), v.y(), v.z()}); }
 
+// Index of the glTF animation that plays the base (written after a bake's animation), or -1 when
+// the base needs none (a kFrames base of one frame, a kSkin animation without TRS channels).
+int baseAnimationIndex(const GltfExportInput& in) {
+  if (!in.base_animation) return -1;
+  const GltfBaseAnimation& ba = *in.base_animation;
+  bool any = false;
+  if (ba.mode == GltfBaseMode::kFrames) {
+    any = ba.frame_count > 1;
+  } else if (ba.rig && ba.rig_animation >= 0 &&
+             static_cast<std::size_t>(ba.rig_animation) < ba.rig->animations.size()) {
+    for (const RigChannel& ch : ba.rig->animations[static_cast<std::size_t>(ba.rig_animation)].channels)
+      any = any || ch.path != RigPath::kWeights;
+  }
+  return any ? (in.bake ? 1 : 0) : -1;
+}
+
 // The view-dependent description (mesh.extras.vdg; docs/schema/vdg-gltf-extras.schema.json).
 OJson vdgExtras(const GltfExportInput& in) {
   OJson vdg = {{"version", kGltfExtrasVersion},
@@ -234,7 +305,8 @@ OJson vdgExtras(const GltfExportInput& in) {
     OJson anim = {{"frame_count", in.base_animation->frame_count},
                   {"fps", in.base_animation->fps},
                   {"loop", in.base_animation->loop}};
-    if (in.base_animation->animation >= 0) anim["animation"] = in.base_animation->animation;
+    if (const int index = baseAnimationIndex(in); index >= 0) anim["animation"] = index;
+    anim["base"] = gltfBaseModeName(in.base_animation->mode);
     vdg["animation"] = anim;
   }
   OJson keys = OJson::array();
@@ -303,23 +375,49 @@ Built build(const GltfExportInput& in, const std::string& where, GltfExportRepor
         {{"bufferView", view}, {"componentType", kUnsignedInt}, {"count", idx.size()}, {"type", "SCALAR"}});
   }
 
-  OJson targets = OJson::array(), names = OJson::array();
-  for (const GltfTarget& t : in.targets) {
-    bool sparse = false;
-    OJson target = {{"POSITION", addDeltaAccessor(b, t.deltas, true, sparse)}};
-    rep.sparse_targets += sparse ? 1 : 0;
-    if (!t.normal_deltas.empty()) {
-      bool normal_sparse = false;
-      target["NORMAL"] = addDeltaAccessor(b, t.normal_deltas, false, normal_sparse);
+  // Skin attributes (kSkin base): JOINTS_0 as unsigned shorts, WEIGHTS_0 normalised to sum 1 (the
+  // validator requires it; vdg::Rig normalises the same way, so the pose is unchanged).
+  if (skinBase(in)) {
+    const RawRig& rig = *in.base_animation->rig;
+    const int joints_view = b.addView(rig.joints.data(), rig.joints.size() * sizeof(std::uint16_t), kArrayBuffer);
+    attributes["JOINTS_0"] = b.addAccessor(
+        {{"bufferView", joints_view}, {"componentType", kUnsignedShort}, {"count", v_count}, {"type", "VEC4"}});
+    std::vector<float> weights(rig.weights.size());
+    for (std::size_t v = 0; v < v_count; ++v) {
+      double sum = 0;
+      for (int k = 0; k < 4; ++k) sum += rig.weights[v * 4 + k];
+      for (int k = 0; k < 4; ++k) weights[v * 4 + k] = static_cast<float>(rig.weights[v * 4 + k] / sum);
     }
-    targets.push_back(std::move(target));
-    names.push_back(t.name);
+    attributes["WEIGHTS_0"] = b.addFloats(weights, 4, kArrayBuffer, false);
   }
 
+  OJson targets = OJson::array(), names = OJson::array();
+  const auto addTarget = [&](const std::string& name, std::span<const float> deltas,
+                             std::span<const float> normal_deltas) {
+    bool sparse = false;
+    OJson target = {{"POSITION", addDeltaAccessor(b, deltas, true, sparse)}};
+    rep.sparse_targets += sparse ? 1 : 0;
+    if (!normal_deltas.empty()) {
+      bool normal_sparse = false;
+      target["NORMAL"] = addDeltaAccessor(b, normal_deltas, false, normal_sparse);
+    }
+    targets.push_back(std::move(target));
+    names.push_back(name);
+  };
+  for (const GltfTarget& t : in.targets) addTarget(t.name, t.deltas, t.normal_deltas);
+  if (framesBase(in)) {
+    const GltfBaseAnimation& ba = *in.base_animation;
+    for (std::size_t i = 0; i < ba.frame_deltas.size(); ++i)
+      addTarget(baseFrameTargetName(static_cast<int>(i + 1)), ba.frame_deltas[i],
+                ba.frame_normal_deltas.empty() ? std::span<const float>()
+                                               : std::span<const float>(ba.frame_normal_deltas[i]));
+  }
+  const std::size_t target_count = totalTargets(in);
+
   OJson primitive = {{"attributes", attributes}, {"indices", indices}, {"mode", kTriangles}};
-  if (!in.targets.empty()) primitive["targets"] = targets;
+  if (target_count > 0) primitive["targets"] = targets;
   OJson mesh = {{"name", in.mesh_name}, {"primitives", OJson::array({primitive})}};
-  if (!in.targets.empty()) mesh["weights"] = std::vector<double>(in.targets.size(), 0.0);
+  if (target_count > 0) mesh["weights"] = std::vector<double>(target_count, 0.0);
   mesh["extras"] = {{"targetNames", names}, {"vdg", vdgExtras(in)}};
 
   OJson doc;
@@ -327,6 +425,46 @@ Built build(const GltfExportInput& in, const std::string& where, GltfExportRepor
   doc["scene"] = 0;
   OJson nodes = OJson::array({OJson{{"name", in.mesh_name}, {"mesh", 0}}});
   OJson scene_nodes = OJson::array({0});
+  OJson animations = OJson::array();
+
+  // The rig of a kSkin base: its nodes after the mesh node (rig node i is glTF node i + 1).
+  if (skinBase(in)) {
+    const RawRig& rig = *in.base_animation->rig;
+    nodes[0]["skin"] = 0;
+    std::vector<std::vector<int>> children(rig.nodes.size());
+    for (std::size_t i = 0; i < rig.nodes.size(); ++i) {
+      if (rig.nodes[i].parent >= 0)
+        children[static_cast<std::size_t>(rig.nodes[i].parent)].push_back(static_cast<int>(i) + 1);
+      else
+        scene_nodes.push_back(static_cast<int>(i) + 1);
+    }
+    for (std::size_t i = 0; i < rig.nodes.size(); ++i) {
+      const RigNode& n = rig.nodes[i];
+      OJson node = OJson::object();
+      if (!n.name.empty()) node["name"] = n.name;
+      if (!children[i].empty()) node["children"] = children[i];
+      if (n.matrix) {
+        node["matrix"] = OJson::array();
+        for (int c = 0; c < 16; ++c) node["matrix"].push_back((*n.matrix)(c % 4, c / 4));
+      } else {
+        if (!n.translation.isZero()) node["translation"] = vec3Json(n.translation);
+        const Eigen::Quaterniond q = n.rotation.normalized();
+        if (!q.coeffs().isApprox(Eigen::Quaterniond::Identity().coeffs()))
+          node["rotation"] = {q.x(), q.y(), q.z(), q.w()};
+        if (n.scale != Eigen::Vector3d::Ones()) node["scale"] = vec3Json(n.scale);
+      }
+      nodes.push_back(std::move(node));
+    }
+    std::vector<float> ibm;
+    for (const Eigen::Matrix4d& m : rig.skin->inverse_bind)
+      for (int c = 0; c < 16; ++c) ibm.push_back(static_cast<float>(m(c % 4, c / 4)));
+    const int ibm_view = b.addView(ibm.data(), ibm.size() * sizeof(float), 0);
+    const int ibm_acc = b.addAccessor(
+        {{"bufferView", ibm_view}, {"componentType", kFloat}, {"count", rig.skin->joints.size()}, {"type", "MAT4"}});
+    OJson joints = OJson::array();
+    for (int j : rig.skin->joints) joints.push_back(j + 1);
+    doc["skins"] = OJson::array({OJson{{"inverseBindMatrices", ibm_acc}, {"joints", joints}}});
+  }
 
   if (in.bake) {
     const GltfBakedAnimation& bake = *in.bake;
@@ -354,10 +492,57 @@ Built build(const GltfExportInput& in, const std::string& where, GltfExportRepor
       channels.push_back({{"sampler", 1}, {"target", {{"node", camera_node}, {"path", "translation"}}}});
       channels.push_back({{"sampler", 2}, {"target", {{"node", camera_node}, {"path", "rotation"}}}});
     }
+    for (const GltfNodeTrack& track : bake.node_tracks) {
+      const int output = b.addFloats(track.values, track.path == RigPath::kRotation ? 4 : 3, 0, false);
+      channels.push_back(
+          {{"sampler", samplers.size()}, {"target", {{"node", track.node + 1}, {"path", rigPathName(track.path)}}}});
+      samplers.push_back({{"input", times}, {"interpolation", interpolation}, {"output", output}});
+    }
     OJson animation = {{"name", bake.name}, {"channels", channels}, {"samplers", samplers}};
     if (!bake.description.empty()) animation["extras"] = {{"vdg", {{"bake", bake.description}}}};
-    doc["animations"] = OJson::array({animation});
+    animations.push_back(std::move(animation));
   }
+
+  // The base animation (after the bake's, which a viewer plays first).
+  if (in.base_animation) {
+    const GltfBaseAnimation& ba = *in.base_animation;
+    OJson samplers = OJson::array(), channels = OJson::array();
+    if (ba.mode == GltfBaseMode::kSkin) {
+      const RigAnimation& anim = ba.rig->animations[static_cast<std::size_t>(ba.rig_animation)];
+      std::vector<int> copied(anim.samplers.size(), -1);
+      for (const RigChannel& ch : anim.channels) {
+        if (ch.path == RigPath::kWeights) continue;
+        const auto si = static_cast<std::size_t>(ch.sampler);
+        if (copied[si] < 0) {
+          const RigSampler& rs = anim.samplers[si];
+          const std::size_t width = ch.path == RigPath::kRotation ? 4 : 3;
+          const int input = b.addFloats(rs.input, 1, 0, true);
+          const int output = b.addFloats(rs.output, static_cast<int>(width), 0, false);
+          copied[si] = static_cast<int>(samplers.size());
+          samplers.push_back(
+              {{"input", input}, {"interpolation", rigInterpolationName(rs.interpolation)}, {"output", output}});
+        }
+        channels.push_back(
+            {{"sampler", copied[si]}, {"target", {{"node", ch.node + 1}, {"path", rigPathName(ch.path)}}}});
+      }
+    } else if (ba.frame_count > 1) {
+      // Frame i at time i / fps: weight 1 on base frame i's target (frame 0 is POSITION); a loop
+      // ends with frame 0 again at N / fps so that a looping viewer has no seam.
+      const std::size_t n = static_cast<std::size_t>(ba.frame_count) + (ba.loop ? 1 : 0);
+      std::vector<float> times(n), weights(n * target_count, 0.0f);
+      for (std::size_t i = 0; i < n; ++i) {
+        times[i] = static_cast<float>(static_cast<double>(i) / ba.fps);
+        const std::size_t frame = i % static_cast<std::size_t>(ba.frame_count);
+        if (frame > 0) weights[i * target_count + in.targets.size() + frame - 1] = 1.0f;
+      }
+      const int input = b.addFloats(times, 1, 0, true);
+      const int output = b.addFloats(weights, 1, 0, false);
+      samplers.push_back({{"input", input}, {"interpolation", "LINEAR"}, {"output", output}});
+      channels.push_back({{"sampler", 0}, {"target", {{"node", 0}, {"path", "weights"}}}});
+    }
+    if (!channels.empty()) animations.push_back({{"name", "base"}, {"channels", channels}, {"samplers", samplers}});
+  }
+  if (!animations.empty()) doc["animations"] = std::move(animations);
   doc["scenes"] = OJson::array({OJson{{"nodes", scene_nodes}}});
   doc["nodes"] = std::move(nodes);
   doc["meshes"] = OJson::array({mesh});
@@ -410,25 +595,132 @@ GltfExportInput gltfExportInput(const ViewDependentModel& model) {
   return in;
 }
 
-GltfBakedAnimation bakeCameraPath(const ViewDependentModel& model, std::span<const Camera> cameras, double fps,
-                                  double aspect, double sharpness, bool close_loop) {
+const char* gltfBaseModeName(GltfBaseMode mode) { return mode == GltfBaseMode::kSkin ? "skin" : "frames"; }
+
+namespace {
+
+// Area-weighted vertex normals of `positions`; a vertex on no triangle gets (0, 1, 0).
+std::vector<float> exportNormals(std::span<const float> positions, const TriMesh& mesh) {
+  std::vector<float> out(positions.size(), 0.0f);
+  if (!computeVertexNormals(positions, mesh.triangles, out)) throw Error("model: cannot compute the normals");
+  for (std::size_t v = 0; v < out.size() / 3; ++v)
+    if (out[v * 3] == 0.0f && out[v * 3 + 1] == 0.0f && out[v * 3 + 2] == 0.0f) out[v * 3 + 1] = 1.0f;
+  return out;
+}
+
+std::vector<float> difference(std::span<const float> a, std::span<const float> b) {
+  std::vector<float> out(a.size());
+  for (std::size_t i = 0; i < a.size(); ++i) out[i] = a[i] - b[i];
+  return out;
+}
+
+}  // namespace
+
+RawRig readBaseRig(const RawViewDependentModel& raw) {
+  if (!raw.base_animation || raw.base_animation->gltf.empty())
+    throw Error(raw.source + ": the base is not a glTF animation");
+  const std::filesystem::path file = std::filesystem::path(raw.base_animation->gltf).is_absolute()
+                                         ? std::filesystem::path(raw.base_animation->gltf)
+                                         : std::filesystem::path(raw.source).parent_path() / raw.base_animation->gltf;
+  try {
+    return readGltfRig(file.string(), GltfSelect{raw.base_animation->mesh});
+  } catch (const Error& e) {
+    throw Error(raw.source + ": base_animation.gltf: " + e.what());
+  }
+}
+
+GltfExportInput gltfExportInput(const AnimatedViewDependentModel& model, const RawViewDependentModel& raw,
+                                const RawRig* rig) {
+  const std::string& where = raw.source;
+  const int n = model.frameCount();
+  GltfExportInput in;
+  in.sharpness = model.sharpness();
+  in.sphere = model.sphere().settings();
+  in.center = model.center();
+  in.base = model.base();
+  GltfBaseAnimation ba;
+  ba.frame_count = n;
+  ba.fps = raw.base_animation ? raw.base_animation->fps : 24.0;
+  ba.loop = model.loop();
+  if (model.offsetSpace() == OffsetSpace::kSkinned) {
+    // Skinned offsets: the skin itself, morph targets in the bind pose (exact, see kSkin).
+    in.offsets = GltfOffsetMode::kSkinned;
+    if (!rig || !rig->skin)
+      throw Error(where +
+                  ": 'offsets': \"skinned\" is exported only for a skinned glTF base (glTF morphs before it "
+                  "skins); this base is not skinned");
+    // Morph targets of the base's own (a vdg export read back has the keys as targets) are left
+    // out when the base never uses them: zero default weights and no weights channel.
+    const RigAnimation& anim = rig->animations.at(static_cast<std::size_t>(raw.base_animation->animation));
+    const bool morphs =
+        std::any_of(rig->default_weights.begin(), rig->default_weights.end(), [](double w) { return w != 0.0; }) ||
+        std::any_of(anim.channels.begin(), anim.channels.end(),
+                    [](const RigChannel& c) { return c.path == RigPath::kWeights; });
+    if (morphs)
+      throw Error(where +
+                  ": base_animation.gltf: the base mesh uses morph targets of its own; a model with "
+                  "\"skinned\" offsets on it cannot be exported yet");
+    if (rig->mesh.vertexCount() != model.vertexCount() || rig->mesh.triangles != model.base().triangles)
+      throw Error(where + ": base_animation.gltf: the file's mesh no longer matches the model's base");
+    ba.mode = GltfBaseMode::kSkin;
+    ba.rig = *rig;
+    ba.rig->target_positions.clear();
+    ba.rig->target_normals.clear();
+    ba.rig->target_names.clear();
+    ba.rig->default_weights.clear();
+    for (RigAnimation& a : ba.rig->animations)
+      std::erase_if(a.channels, [](const RigChannel& c) { return c.path == RigPath::kWeights; });
+    ba.rig_animation = raw.base_animation->animation;
+    in.base.positions = rig->mesh.positions;  // the bind pose: the skin poses it
+    in.normals = exportNormals(in.base.positions, in.base);
+  } else {
+    // World offsets: the base's frames as morph targets (exact at every frame, any base).
+    ba.mode = GltfBaseMode::kFrames;
+    in.base.positions.assign(model.baseFrame(0).begin(), model.baseFrame(0).end());
+    in.normals = exportNormals(in.base.positions, in.base);
+    for (int f = 1; f < n; ++f) {
+      ba.frame_deltas.push_back(difference(model.baseFrame(f), in.base.positions));
+      ba.frame_normal_deltas.push_back(difference(exportNormals(model.baseFrame(f), in.base), in.normals));
+    }
+  }
+  // One target per raw key: (view i, key frame j) is raw key keyIndex(i, j).
+  in.targets.resize(raw.keys.size());
+  std::vector<char> filled(raw.keys.size(), 0);
+  for (std::size_t i = 0; i < model.viewCount(); ++i)
+    for (std::size_t j = 0; j < model.keyFrames(i).size(); ++j) {
+      const std::size_t k = model.keyIndex(i, j);
+      GltfTarget& t = in.targets.at(k);
+      t.name = model.keyName(i, j);
+      t.view = model.viewDirection(i);
+      t.frame = model.keyFrames(i)[j];
+      t.camera = raw.keys[k].camera;
+      const auto offsets = model.offsets(i, j);
+      t.deltas.assign(offsets.begin(), offsets.end());
+      filled[k] = 1;
+    }
+  if (std::find(filled.begin(), filled.end(), 0) != filled.end())
+    throw Error(where + ": the animated model's keys do not match its raw description (internal error)");
+  in.base_animation = std::move(ba);
+  return in;
+}
+
+namespace {
+
+// The camera half of a bake, shared by static and animated models: times, the camera node's
+// translations and rotations, clip planes. `fill(s, camera, weights_row)` writes sample s's
+// weights (target_count floats, zeroed) for `camera`; it throws for a camera it cannot weigh.
+template <class Fill>
+GltfBakedAnimation bakeCameras(std::span<const Camera> cameras, double fps, double aspect, bool close_loop,
+                               const Eigen::Vector3d& center, double radius, std::size_t target_count, Fill fill) {
   if (cameras.empty()) throw Error("bake: no cameras");
   if (!std::isfinite(fps) || fps <= 0.0) throw Error("bake: the frame rate must be finite and > 0");
   if (!std::isfinite(aspect) || aspect <= 0.0) throw Error("bake: the aspect ratio must be finite and > 0");
   GltfBakedAnimation bake;
-  const std::size_t keys = model.keyCount();
   const std::size_t samples = cameras.size() + (close_loop ? 1 : 0);
   bake.times.resize(samples);
-  bake.weights.assign(samples * keys, 0.0f);
+  bake.weights.assign(samples * target_count, 0.0f);
   bake.translations.resize(samples * 3);
   bake.rotations.resize(samples * 4);
-  double radius = 0.0;
-  const TriMesh& base = model.base();
-  for (std::size_t v = 0; v < base.vertexCount(); ++v)
-    radius = std::max(
-        radius,
-        (Eigen::Vector3d(base.positions[v * 3], base.positions[v * 3 + 1], base.positions[v * 3 + 2]) - model.center())
-            .norm());
   double near_distance = std::numeric_limits<double>::infinity(), far_distance = 0.0;
   Eigen::Quaterniond previous = Eigen::Quaterniond::Identity();
   for (std::size_t s = 0; s < samples; ++s) {
@@ -437,12 +729,7 @@ GltfBakedAnimation bakeCameraPath(const ViewDependentModel& model, std::span<con
     const std::string label = "bake: camera " + std::to_string(i);
     if (camera.isOrtho()) throw Error(label + ": glTF bakes perspective cameras only");
     if (camera.fov_deg != cameras[0].fov_deg) throw Error(label + ": every camera must have the same field of view");
-    const Eigen::Vector3d view = model.viewFromEye(camera.eye);
-    ViewWeights w;
-    if (view.isZero() || !model.weights(view, sharpness, w))
-      throw Error(label + ": no view direction (the eye is at the model centre, or the sharpness is not > 0)");
-    for (int slot = 0; slot < 3; ++slot)
-      if (w.key[slot] >= 0) bake.weights[s * keys + static_cast<std::size_t>(w.key[slot])] += w.weight[slot];
+    fill(s, camera, bake.weights.data() + s * target_count);
     const CameraFrame frame = cameraFrame(camera);  // throws for a degenerate camera
     Eigen::Matrix3d rotation;
     rotation << frame.right, frame.up, frame.back;
@@ -456,7 +743,7 @@ GltfBakedAnimation bakeCameraPath(const ViewDependentModel& model, std::span<con
     bake.rotations[s * 4 + 2] = static_cast<float>(q.z());
     bake.rotations[s * 4 + 3] = static_cast<float>(q.w());
     bake.times[s] = static_cast<float>(static_cast<double>(s) / fps);
-    const double d = (camera.eye - model.center()).norm();
+    const double d = (camera.eye - center).norm();
     near_distance = std::min(near_distance, d);
     far_distance = std::max(far_distance, d);
   }
@@ -468,6 +755,101 @@ GltfBakedAnimation bakeCameraPath(const ViewDependentModel& model, std::span<con
   if (!(bake.zfar > bake.znear)) bake.zfar = 2.0 * bake.znear;
   bake.yfov_rad = cameras[0].fov_deg * std::numbers::pi / 180.0;
   bake.aspect = aspect;
+  return bake;
+}
+
+double radiusAbout(std::span<const float> positions, const Eigen::Vector3d& center) {
+  double radius = 0.0;
+  for (std::size_t v = 0; v + 2 < positions.size(); v += 3)
+    radius = std::max(radius, (Eigen::Vector3d(positions[v], positions[v + 1], positions[v + 2]) - center).norm());
+  return radius;
+}
+
+[[noreturn]] void noView(std::size_t camera) {
+  throw Error("bake: camera " + std::to_string(camera) +
+              ": no view direction (the eye is at the model centre, or the sharpness is not > 0)");
+}
+
+}  // namespace
+
+GltfBakedAnimation bakeCameraPath(const ViewDependentModel& model, std::span<const Camera> cameras, double fps,
+                                  double aspect, double sharpness, bool close_loop) {
+  const std::size_t keys = model.keyCount();
+  return bakeCameras(cameras, fps, aspect, close_loop, model.center(),
+                     radiusAbout(model.base().positions, model.center()), keys,
+                     [&](std::size_t s, const Camera& camera, float* weights) {
+                       const Eigen::Vector3d view = model.viewFromEye(camera.eye);
+                       ViewWeights w;
+                       if (view.isZero() || !model.weights(view, sharpness, w)) noView(s % cameras.size());
+                       for (int slot = 0; slot < 3; ++slot)
+                         if (w.key[slot] >= 0) weights[static_cast<std::size_t>(w.key[slot])] += w.weight[slot];
+                     });
+}
+
+GltfBakedAnimation bakeAnimatedCameraPath(const AnimatedViewDependentModel& model, const GltfExportInput& input,
+                                          std::span<const Camera> cameras, int first_frame, double fps, double aspect,
+                                          double sharpness, bool close_loop) {
+  if (!input.base_animation || input.base_animation->frame_count != model.frameCount() || input.targets.size() != [&] {
+        std::size_t n = 0;
+        for (std::size_t i = 0; i < model.viewCount(); ++i) n += model.keyFrames(i).size();
+        return n;
+      }())
+    throw Error("bake: the export input does not describe this animated model");
+  const GltfBaseAnimation& ba = *input.base_animation;
+  const int n = model.frameCount();
+  const auto animationFrame = [&](std::size_t s) {
+    const long f = static_cast<long>(first_frame) + static_cast<long>(s);
+    return model.loop() ? static_cast<int>(f % n) : static_cast<int>(std::min<long>(f, n - 1));
+  };
+  double radius = 0.0;
+  for (int f = 0; f < n; ++f) radius = std::max(radius, radiusAbout(model.baseFrame(f), model.center()));
+  const std::size_t target_count = totalTargets(input);
+  std::vector<double> coefficients;
+  GltfBakedAnimation bake =
+      bakeCameras(cameras, fps, aspect, close_loop, model.center(), radius, target_count,
+                  [&](std::size_t s, const Camera& camera, float* weights) {
+                    const std::optional<Eigen::Vector3d> view = normalizedOrNone(camera.eye - model.center());
+                    ViewWeights w;
+                    if (!view || !model.weights(*view, sharpness, w)) noView(s % cameras.size());
+                    const int frame = animationFrame(s);
+                    for (int slot = 0; slot < 3; ++slot) {
+                      if (w.key[slot] < 0) continue;
+                      const auto v = static_cast<std::size_t>(w.key[slot]);
+                      coefficients.assign(model.keyFrames(v).size(), 0.0);
+                      if (!model.timeCoefficients(v, frame, coefficients))
+                        throw Error("bake: time coefficients (internal error)");
+                      for (std::size_t j = 0; j < coefficients.size(); ++j)
+                        weights[model.keyIndex(v, j)] += static_cast<float>(w.weight[slot] * coefficients[j]);
+                    }
+                    if (ba.mode == GltfBaseMode::kFrames && frame > 0)
+                      weights[input.targets.size() + static_cast<std::size_t>(frame) - 1] = 1.0f;
+                  });
+  if (ba.mode == GltfBaseMode::kSkin) {
+    // The skeleton at each sample's animation frame, re-sampled through vdg::Rig (LINEAR or STEP
+    // between samples like the weights; rotations kept in one hemisphere).
+    const Rig rig = Rig::build(*ba.rig);
+    const RigAnimation& anim = ba.rig->animations[static_cast<std::size_t>(ba.rig_animation)];
+    std::vector<double> pose(rig.nodeCount() * 10);
+    for (const RigChannel& ch : anim.channels)
+      if (ch.path != RigPath::kWeights) bake.node_tracks.push_back({ch.node, ch.path, {}});
+    for (std::size_t s = 0; s < bake.times.size(); ++s) {
+      if (!rig.nodePose(ba.rig_animation, animationFrame(s) / ba.fps, pose))
+        throw Error("bake: the base's skeleton could not be posed (internal error)");
+      for (GltfNodeTrack& track : bake.node_tracks) {
+        const double* p = pose.data() + static_cast<std::size_t>(track.node) * 10;
+        const int offset = track.path == RigPath::kTranslation ? 0 : track.path == RigPath::kRotation ? 3 : 7;
+        const int width = track.path == RigPath::kRotation ? 4 : 3;
+        double sign = 1.0;
+        if (track.path == RigPath::kRotation && s > 0) {
+          const float* prev = track.values.data() + (s - 1) * 4;
+          double dot = 0;
+          for (int c = 0; c < 4; ++c) dot += prev[c] * p[3 + c];
+          if (dot < 0) sign = -1.0;
+        }
+        for (int c = 0; c < width; ++c) track.values.push_back(static_cast<float>(sign * p[offset + c]));
+      }
+    }
+  }
   return bake;
 }
 
@@ -532,10 +914,22 @@ GltfExportReport writeGltfExport(const std::string& path, const GltfExportInput&
   return report;
 }
 
-RawViewDependentModel rawModelFromGltfExtras(std::string_view mesh_extras_json, const TriMesh& base,
-                                             std::span<const std::vector<float>> target_deltas,
-                                             const std::string& where) {
-  const io::Json extras = io::parseJson(mesh_extras_json, where + ": mesh extras");
+namespace {
+
+// mesh.extras.vdg parsed: the raw model without meshes (keys have names, views, frames, cameras)
+// and the animation block.
+struct Described {
+  RawViewDependentModel raw;
+  std::optional<GltfBaseAnimation> animation;  // frame_count, fps, loop, mode
+  int animation_index = -1;
+};
+
+constexpr std::pair<const char*, GltfBaseMode> kBaseModes[] = {{"skin", GltfBaseMode::kSkin},
+                                                               {"frames", GltfBaseMode::kFrames}};
+constexpr std::pair<const char*, OffsetSpace> kOffsetNames[] = {{"world", OffsetSpace::kWorld},
+                                                                {"skinned", OffsetSpace::kSkinned}};
+
+Described describedModel(const io::Json& extras, std::size_t target_count, const std::string& where) {
   const io::Ctx top{where + ": mesh extras", ""};
   if (!extras.is_object()) top.fail("expected an object, got " + io::describe(extras));
   if (!extras.contains("vdg")) top.fail("no 'vdg' description: this glTF file was not exported by vdg");
@@ -546,26 +940,48 @@ RawViewDependentModel rawModelFromGltfExtras(std::string_view mesh_extras_json, 
   io::allowKeys(vdg, ctx,
                 {"version", "sharpness", "uncovered", "base_falloff_deg", "center", "offsets", "keys", "animation"});
   io::formatVersion(vdg, ctx, "view-dependent glTF extras", 1, kGltfExtrasVersion);
-  if (vdg.contains("animation"))
-    ctx.key("animation").fail("an animated view-dependent model; this vdg reads static ones only");
-  RawViewDependentModel raw;
+  Described d;
+  RawViewDependentModel& raw = d.raw;
   raw.source = where;
-  raw.base = base;
   raw.sharpness = io::number(io::required(vdg, "sharpness", ctx), ctx.key("sharpness"));
   raw.sphere.uncovered = io::enumValue(io::required(vdg, "uncovered", ctx), ctx.key("uncovered"), kUncoveredNames);
   raw.sphere.base_falloff_deg = io::number(io::required(vdg, "base_falloff_deg", ctx), ctx.key("base_falloff_deg"));
   raw.center = io::vector3(io::required(vdg, "center", ctx), ctx.key("center"));
-  const std::string offsets = io::string(io::required(vdg, "offsets", ctx), ctx.key("offsets"));
-  if (offsets != "world")
+  raw.offsets = io::enumValue(io::required(vdg, "offsets", ctx), ctx.key("offsets"), kOffsetNames);
+  if (vdg.contains("animation")) {
+    const io::Json& anim = vdg.at("animation");
+    const io::Ctx ac = ctx.key("animation");
+    io::allowKeys(anim, ac, {"frame_count", "fps", "loop", "animation", "base"});
+    GltfBaseAnimation ba;
+    ba.frame_count = static_cast<int>(io::integer(io::required(anim, "frame_count", ac), ac.key("frame_count"), 1,
+                                                  static_cast<std::int64_t>(kMaxBaseFrames)));
+    ba.fps = io::number(io::required(anim, "fps", ac), ac.key("fps"));
+    if (!(ba.fps > 0.0)) ac.key("fps").fail("expected a number > 0, got " + io::describe(anim.at("fps")));
+    ba.loop = io::boolean(io::required(anim, "loop", ac), ac.key("loop"));
+    ba.mode = io::enumValue(io::required(anim, "base", ac), ac.key("base"), kBaseModes);
+    if (anim.contains("animation"))
+      d.animation_index = static_cast<int>(io::integer(anim.at("animation"), ac.key("animation"), 0, 1'000'000));
+    else if (ba.frame_count > 1)
+      ac.fail("missing key 'animation' (the glTF animation that plays the base's " + std::to_string(ba.frame_count) +
+              " frames)");
+    if (raw.offsets == OffsetSpace::kSkinned && ba.mode != GltfBaseMode::kSkin)
+      ctx.key("offsets").fail("\"skinned\" offsets need a skinned base (animation.base \"skin\")");
+    d.animation = std::move(ba);
+  } else if (raw.offsets != OffsetSpace::kWorld) {
     ctx.key("offsets").fail("expected \"world\" for a static model, got " + io::describe(vdg.at("offsets")));
+  }
   const io::Json& keys = io::required(vdg, "keys", ctx);
   if (!keys.is_array()) ctx.key("keys").fail("expected an array, got " + io::describe(keys));
-  if (keys.size() != target_deltas.size())
-    ctx.key("keys").fail("describes " + std::to_string(keys.size()) + " keys, but the mesh has " +
-                         std::to_string(target_deltas.size()) + " morph targets");
-  if (names.size() != keys.size())
+  const std::size_t frame_targets = d.animation && d.animation->mode == GltfBaseMode::kFrames
+                                        ? static_cast<std::size_t>(d.animation->frame_count) - 1
+                                        : 0;
+  if (keys.size() + frame_targets != target_count)
+    ctx.key("keys").fail("describes " + std::to_string(keys.size()) + " keys" +
+                         (frame_targets ? " and " + std::to_string(frame_targets) + " base frames" : std::string()) +
+                         ", but the mesh has " + std::to_string(target_count) + " morph targets");
+  if (names.size() != target_count)
     top.key("targetNames")
-        .fail("has " + std::to_string(names.size()) + " names for " + std::to_string(keys.size()) + " morph targets");
+        .fail("has " + std::to_string(names.size()) + " names for " + std::to_string(target_count) + " morph targets");
   for (std::size_t k = 0; k < keys.size(); ++k) {
     const io::Ctx kc = ctx.key("keys").index(k);
     const io::Json& key = keys[k];
@@ -576,19 +992,151 @@ RawViewDependentModel rawModelFromGltfExtras(std::string_view mesh_extras_json, 
     if (target_name != rk.name)
       kc.key("name").fail("differs from targetNames[" + std::to_string(k) + "] " + io::describe(names[k]));
     rk.view = io::vector3(io::required(key, "view", kc), kc.key("view"));
-    if (key.contains("frame") && io::integer(key.at("frame"), kc.key("frame"), 0, std::numeric_limits<int>::max()) != 0)
-      kc.key("frame").fail("a key at frame > 0 belongs to an animated model; this vdg reads static ones only");
+    if (key.contains("frame")) {
+      rk.frame = static_cast<int>(io::integer(key.at("frame"), kc.key("frame"), 0, std::numeric_limits<int>::max()));
+      if (!d.animation && rk.frame != 0)
+        kc.key("frame").fail("a key at frame > 0 belongs to an animated model, but 'vdg' has no 'animation'");
+      if (d.animation && rk.frame >= d.animation->frame_count)
+        kc.key("frame").fail("expected a frame in 0.." + std::to_string(d.animation->frame_count - 1) + ", got " +
+                             std::to_string(rk.frame));
+    }
     if (key.contains("camera")) rk.camera = io::cameraFrom(key.at("camera"), kc.key("camera"));
-    if (target_deltas[k].size() != base.positions.size())
-      kc.fail("morph target " + std::to_string(k) + " has " + std::to_string(target_deltas[k].size()) +
-              " delta values, expected " + std::to_string(base.positions.size()));
+    raw.keys.push_back(std::move(rk));
+  }
+  return d;
+}
+
+// The JSON text of a .glb (its first chunk) or a .gltf (the whole file).
+std::string_view gltfJsonText(std::string_view bytes) {
+  if (bytes.size() >= 20 && bytes.substr(0, 4) == "glTF") {
+    std::uint32_t length = 0;
+    std::memcpy(&length, bytes.data() + 12, 4);
+    return bytes.substr(20, std::min<std::size_t>(length, bytes.size() - 20));
+  }
+  return bytes;
+}
+
+// The extras of the rig's mesh in the file's JSON (null when it has none).
+io::Json meshExtras(std::string_view bytes, const RawRig& rig, const std::string& where) {
+  const io::Json doc = io::parseJson(gltfJsonText(bytes), where);
+  std::size_t mesh = 0;
+  if (rig.mesh_node >= 0)
+    mesh = doc.at("nodes").at(static_cast<std::size_t>(rig.mesh_node)).at("mesh").get<std::size_t>();
+  const io::Json& m = doc.at("meshes").at(mesh);
+  return m.contains("extras") ? m.at("extras") : io::Json();
+}
+
+// vdg holds uvs bottom-left, glTF top-left.
+TriMesh baseFromRig(const RawRig& rig) {
+  TriMesh base = rig.mesh;
+  for (std::size_t i = 1; i < base.uvs.size(); i += 2) base.uvs[i] = 1.0f - base.uvs[i];
+  return base;
+}
+
+RawViewDependentModel fromDescription(Described d, const TriMesh& base, std::span<const std::vector<float>> deltas,
+                                      const std::string& where) {
+  RawViewDependentModel raw = std::move(d.raw);
+  raw.base = base;
+  for (std::size_t k = 0; k < raw.keys.size(); ++k) {
+    RawKey& rk = raw.keys[k];
+    if (deltas[k].size() != base.positions.size())
+      throw Error(where + ": mesh extras: 'vdg'.'keys'[" + std::to_string(k) + "]: morph target " + std::to_string(k) +
+                  " has " + std::to_string(deltas[k].size()) + " delta values, expected " +
+                  std::to_string(base.positions.size()));
     rk.mesh.triangles = base.triangles;
     rk.mesh.positions = base.positions;
-    for (std::size_t i = 0; i < rk.mesh.positions.size(); ++i) rk.mesh.positions[i] += target_deltas[k][i];
-    raw.keys.push_back(std::move(rk));
+    for (std::size_t i = 0; i < rk.mesh.positions.size(); ++i) rk.mesh.positions[i] += deltas[k][i];
   }
   raw.validate();
   return raw;
+}
+
+}  // namespace
+
+RawViewDependentModel rawModelFromGltfExtras(std::string_view mesh_extras_json, const TriMesh& base,
+                                             std::span<const std::vector<float>> target_deltas,
+                                             const std::string& where) {
+  const io::Json extras = io::parseJson(mesh_extras_json, where + ": mesh extras");
+  Described d = describedModel(extras, target_deltas.size(), where);
+  if (d.animation)
+    throw Error(where +
+                ": mesh extras: 'vdg'.'animation': an animated view-dependent model needs its file's skin and "
+                "animation; read it with loadGltfModel");
+  return fromDescription(std::move(d), base, target_deltas, where);
+}
+
+RawViewDependentModel loadGltfModel(const std::string& path) {
+  const std::string bytes = readFileLimited(path, "glTF file", kMaxMeshFileBytes);
+  const std::string folder = std::filesystem::path(path).parent_path().string();
+  const RawRig rig = parseGltfRig(bytes, path, folder.empty() ? "." : folder);
+  const io::Json extras = meshExtras(bytes, rig, path);
+  if (extras.is_null() || (extras.is_object() && !extras.contains("vdg")))
+    throw Error(path +
+                ": the mesh has no extras.vdg: this glTF file is a plain mesh, not a view-dependent model "
+                "exported by vdg");
+  Described d = describedModel(extras, rig.target_positions.size(), path);
+  const TriMesh base = baseFromRig(rig);
+  if (!d.animation) return fromDescription(std::move(d), base, rig.target_positions, path);
+
+  // Animated: the base sampled by vdg's own glTF reader at every frame.
+  const GltfBaseAnimation ba = *d.animation;
+  RawViewDependentModel raw = std::move(d.raw);
+  raw.base = base;
+  BaseAnimationSpec spec;
+  spec.gltf = std::filesystem::path(path).filename().string();
+  spec.animation = std::max(d.animation_index, 0);
+  spec.fps = ba.fps;
+  spec.loop = ba.loop;
+  raw.base_animation = spec;
+  const bool skinned = raw.offsets == OffsetSpace::kSkinned;
+  if (skinned && !rig.skin) throw Error(path + ": mesh extras: 'vdg'.'offsets': \"skinned\", but the mesh has no skin");
+  const Rig posed = Rig::build(rig);
+  if (d.animation_index >= static_cast<int>(posed.animationCount()))
+    throw Error(path + ": mesh extras: 'vdg'.'animation'.'animation': " + std::to_string(d.animation_index) +
+                " is out of range (the file has " + std::to_string(posed.animationCount()) + " animations)");
+  const std::size_t n = static_cast<std::size_t>(ba.frame_count), floats = rig.mesh.positions.size();
+  raw.base_frames.assign(n, std::vector<float>(floats));
+  if (skinned) raw.base_skin.assign(n, std::vector<float>(floats * 3));
+  for (std::size_t i = 0; i < n; ++i)
+    if (!posed.evaluate(d.animation_index, static_cast<double>(i) / ba.fps, raw.base_frames[i], {},
+                        skinned ? std::span<float>(raw.base_skin[i]) : std::span<float>()))
+      throw Error(path + ": frame " + std::to_string(i) + " could not be evaluated (internal error)");
+  raw.base.positions = raw.base_frames.front();
+  for (std::size_t k = 0; k < raw.keys.size(); ++k) {
+    RawKey& rk = raw.keys[k];
+    const std::vector<float>& delta = rig.target_positions[k];
+    const std::vector<float>& frame = raw.base_frames[static_cast<std::size_t>(rk.frame)];
+    rk.mesh.triangles = base.triangles;
+    rk.mesh.positions = frame;
+    for (std::size_t v = 0; v < floats / 3; ++v) {
+      Eigen::Vector3d o(delta[v * 3], delta[v * 3 + 1], delta[v * 3 + 2]);
+      if (skinned)
+        o = Eigen::Map<const Eigen::Matrix3f>(raw.base_skin[static_cast<std::size_t>(rk.frame)].data() + v * 9)
+                .cast<double>() *
+            o;
+      for (int c = 0; c < 3; ++c) rk.mesh.positions[v * 3 + c] = static_cast<float>(frame[v * 3 + c] + o[c]);
+    }
+  }
+  raw.validate();
+  return raw;
+}
+
+bool isGltfPath(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext == ".gltf" || ext == ".glb";
+}
+
+bool gltfHasModel(const std::string& path) {
+  const std::string bytes = readFileLimited(path, "glTF file", kMaxMeshFileBytes);
+  const std::string folder = std::filesystem::path(path).parent_path().string();
+  const RawRig rig = parseGltfRig(bytes, path, folder.empty() ? "." : folder);
+  const io::Json extras = meshExtras(bytes, rig, path);
+  return extras.is_object() && extras.contains("vdg");
+}
+
+RawViewDependentModel loadModel(const std::string& path) {
+  return isGltfPath(path) ? loadGltfModel(path) : loadManifest(path);
 }
 
 }  // namespace vdg

@@ -119,6 +119,26 @@ TEST(Rig, RotationSlerpsTheShortestArcAndSkinsWithInverseBind) {
   }
 }
 
+// nodePose: each node's local T, R (x y z w), S as the channels set them (used to re-sample an
+// animation for glTF bakes).
+TEST(Rig, NodePoseGivesEachNodesLocalTransformAtATime) {
+  const Rig rig = Rig::build(triangleRig(RigInterpolation::kLinear));
+  ASSERT_EQ(rig.nodeCount(), 2u);
+  std::vector<double> pose(20, -7.0);
+  ASSERT_TRUE(rig.nodePose(0, 0.5, pose));
+  // Node 0: translation channel lerped to x = 4 * 0.25; node 1 keeps its rest translation.
+  EXPECT_EQ(std::vector<double>(pose.begin(), pose.begin() + 10), (std::vector<double>{1, 0, 0, 0, 0, 0, 1, 1, 1, 1}));
+  EXPECT_EQ(std::vector<double>(pose.begin() + 10, pose.end()), (std::vector<double>{0, 0, 5, 0, 0, 0, 1, 1, 1, 1}));
+  ASSERT_TRUE(rig.nodePose(-1, 0.5, pose));
+  EXPECT_EQ(pose[0], 0.0);
+  std::vector<double> untouched(20, -7.0), short_pose(19, -7.0);
+  EXPECT_FALSE(rig.nodePose(1, 0.5, untouched));
+  EXPECT_FALSE(rig.nodePose(0, std::numeric_limits<double>::quiet_NaN(), untouched));
+  EXPECT_FALSE(rig.nodePose(0, 0.5, short_pose));
+  EXPECT_EQ(untouched, std::vector<double>(20, -7.0));
+  EXPECT_EQ(allocationsDuring([&] { (void)rig.nodePose(0, 1.5, pose); }), 0);
+}
+
 TEST(Rig, ContractRefusesAndWritesNothingAndNeverAllocates) {
   const Rig rig = Rig::build(triangleRig(RigInterpolation::kCubicSpline));
   std::vector<float> p(9, -7), n(9, -7), s(27, -7), bad(8, -7);

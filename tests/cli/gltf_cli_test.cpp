@@ -13,6 +13,8 @@
 
 #include "io/gltf_test_decoder.h"
 #include "support/test_meshes.h"
+#include "vdg/anim/rig.h"
+#include "vdg/io/gltf.h"
 
 namespace {
 
@@ -41,6 +43,8 @@ Result runShell(const std::string& cmd_line) {
 Result run(const std::string& args) { return runShell("'" VDG_BINARY "' " + args); }
 
 const std::string kSpot = "examples/spot/spot.vdg.json";
+const std::string kWalk = "examples/walk/walker.vdg.json";
+const std::string kWalkWorld = "examples/walk/walker-world.vdg.json";
 
 std::vector<double> objPositions(const std::string& text) {
   std::vector<double> out;
@@ -123,6 +127,66 @@ TEST(GltfCli, BakeFramesRangeStartsAtTimeZeroWithoutAClosingSample) {
   EXPECT_EQ(readAccessor(g, anim.at("samplers").at(0).at("input")), (std::vector<double>{0.0, 1 / 24.0f, 2 / 24.0f}));
 }
 
+// An animated bake played by vdg's own glTF reader (vdg::Rig: the morph weights, then the
+// skeleton's channels) at each output frame's time, against `vdg eval --frame F --eye` with F the
+// animation frame vdg render shows at that output frame.
+TEST(GltfCli, AnimatedBakePlayedByTheGltfReaderEqualsVdgEval) {
+  for (const std::string& model : {kWalk, kWalkWorld}) {
+    vdg::testing::TempDir dir;
+    constexpr int kOrbit = 45;  // more output frames than the walk's 40: frame 41 shows walk frame 1
+    constexpr double kFps = 12.0;
+    const Result r = run("bake " + model + " -o " + dir.file("bake.glb") + " --orbit " + std::to_string(kOrbit) +
+                         " --elevation 15 --fps 12 -q");
+    ASSERT_EQ(r.code, 0) << r.err;
+    const auto g = decodeGlb(readText(dir.file("bake.glb")));
+    const auto& anim = g.doc.at("animations").at(0);
+    const auto eyes = readAccessor(g, anim.at("samplers").at(1).at("output"));
+    const vdg::Rig rig = vdg::Rig::build(vdg::readGltfRig(dir.file("bake.glb")));
+    std::vector<float> baked(rig.vertexCount() * 3);
+    for (int f : {0, 10, 27, 41}) {
+      ASSERT_TRUE(rig.evaluate(0, f / kFps, baked));
+      char eye[128];
+      std::snprintf(eye, sizeof eye, "%.9g,%.9g,%.9g", eyes[f * 3], eyes[f * 3 + 1], eyes[f * 3 + 2]);
+      const std::string obj = dir.file("eval" + std::to_string(f) + ".obj");
+      const Result e =
+          run("eval " + model + " --frame " + std::to_string(f % 40) + " --eye " + eye + " -o " + obj + " -q");
+      ASSERT_EQ(e.code, 0) << e.err;
+      const auto expected = objPositions(readText(obj));
+      ASSERT_EQ(expected.size(), baked.size());
+      for (std::size_t i = 0; i < baked.size(); ++i)
+        ASSERT_NEAR(baked[i], expected[i], kBakeVsEvalTol) << model << " frame " << f << " value " << i;
+    }
+  }
+}
+
+// vdg's own export is a model for every command that takes one; a plain glTF mesh is not.
+TEST(GltfCli, ExportedGlbIsAModelForEvalInfoAndExport) {
+  vdg::testing::TempDir dir;
+  ASSERT_EQ(run("export " + kWalk + " -q -o " + dir.file("w.glb")).code, 0);
+  // Exported again from the glTF itself.
+  ASSERT_EQ(run("export " + dir.file("w.glb") + " -q -o " + dir.file("w2.gltf")).code, 0);
+  for (const std::string& source : {dir.file("w.glb"), dir.file("w2.gltf")})
+    for (int frame : {4, 30}) {
+      const std::string args = " --frame " + std::to_string(frame) + " --view 0.4,0.2,1 -q -o ";
+      ASSERT_EQ(run("eval " + kWalk + args + dir.file("a.obj")).code, 0);
+      const Result e = run("eval " + source + args + dir.file("b.obj"));
+      ASSERT_EQ(e.code, 0) << e.err;
+      const auto a = objPositions(readText(dir.file("a.obj"))), b = objPositions(readText(dir.file("b.obj")));
+      ASSERT_EQ(a.size(), b.size());
+      for (std::size_t i = 0; i < a.size(); ++i) ASSERT_NEAR(a[i], b[i], kBakeVsEvalTol) << source << " " << i;
+    }
+  const Result info = run("info " + dir.file("w.glb"));
+  ASSERT_EQ(info.code, 0) << info.err;
+  EXPECT_NE(info.out.find("view-dependent model (mesh.extras.vdg)"), std::string::npos) << info.out;
+  EXPECT_NE(info.out.find("40 frames (loop)"), std::string::npos) << info.out;
+  const Result plain = run("eval examples/walk/walker.glb --frame 0 --view 0,0,1 -o " + dir.file("c.obj"));
+  EXPECT_EQ(plain.code, 1);
+  EXPECT_NE(plain.err.find("plain mesh, not a view-dependent model"), std::string::npos) << plain.err;
+  const Result plain_info = run("info examples/walk/walker.glb");
+  EXPECT_EQ(plain_info.code, 0);
+  EXPECT_EQ(plain_info.out.find("view-dependent model"), std::string::npos) << plain_info.out;
+}
+
 TEST(GltfCli, BadUsageAndBadInput) {
   vdg::testing::TempDir dir;
   EXPECT_EQ(run("export " + kSpot + " -o " + dir.file("x.obj")).code, 2);
@@ -188,12 +252,16 @@ TEST(GltfCli, EveryKindOfExportPassesTheKhronosValidator) {
   vdg::testing::TempDir dir;
   const std::string grid = writeGridModel(dir);
   const std::vector<std::pair<std::string, std::string>> exports = {
-      {"export " + kSpot, "spot.glb"},                                    // sparse targets, 16-bit indices
-      {"export " + kSpot, "spot.gltf"},                                   // external buffer
-      {"export examples/building/building.vdg.json", "building.glb"},     // a dense target
-      {"export " + grid, "grid.glb"},                                     // uvs, 32-bit indices
-      {"bake " + kSpot + " --orbit 12", "bake.glb"},                      // LINEAR weights + camera
-      {"bake " + grid + " --orbit 5 --frames 1-3 --step", "bake.gltf"}};  // STEP, external buffer
+      {"export " + kSpot, "spot.glb"},                                   // sparse targets, 16-bit indices
+      {"export " + kSpot, "spot.gltf"},                                  // external buffer
+      {"export examples/building/building.vdg.json", "building.glb"},    // a dense target
+      {"export " + grid, "grid.glb"},                                    // uvs, 32-bit indices
+      {"bake " + kSpot + " --orbit 12", "bake.glb"},                     // LINEAR weights + camera
+      {"bake " + grid + " --orbit 5 --frames 1-3 --step", "bake.gltf"},  // STEP, external buffer
+      {"export " + kWalk, "walk-skin.glb"},                              // skin, joints, copied samplers
+      {"export " + kWalkWorld, "walk-frames.gltf"},                      // base frames as targets
+      {"bake " + kWalk + " --orbit 8", "walk-skin-bake.glb"},            // weights + skeleton + camera
+      {"bake " + kWalkWorld + " --orbit 6 --frames 2-5 --step", "walk-frames-bake.glb"}};
   std::string files;
   for (const auto& [args, name] : exports) {
     const Result r = run(args + " -q -o " + dir.file(name));
@@ -222,6 +290,8 @@ TEST(GltfCli, ExtrasFollowTheirJsonSchema) {
          "camera": {"eye": [0, 5, 0.1], "target": [0, 0, 0], "fov_deg": 30}}]})");
   ASSERT_EQ(run("export " + dir.file("m/m.vdg.json") + " -q -o " + dir.file("m.gltf")).code, 0);
   ASSERT_EQ(run("bake " + kSpot + " -q --orbit 3 -o " + dir.file("b.gltf")).code, 0);
+  ASSERT_EQ(run("export " + kWalk + " -q -o " + dir.file("w.gltf")).code, 0);
+  ASSERT_EQ(run("bake " + kWalkWorld + " -q --orbit 3 -o " + dir.file("ww.gltf")).code, 0);
   const std::string check =
       "python3 -c 'import json, sys, jsonschema\n"
       "schema = json.load(open(sys.argv[1]))\n"
@@ -235,7 +305,7 @@ TEST(GltfCli, ExtrasFollowTheirJsonSchema) {
       "    sys.exit(3)\n"
       "except jsonschema.ValidationError:\n"
       "    pass' docs/schema/vdg-gltf-extras.schema.json '" +
-      dir.file("m.gltf") + "' '" + dir.file("b.gltf") + "'";
+      dir.file("m.gltf") + "' '" + dir.file("b.gltf") + "' '" + dir.file("w.gltf") + "' '" + dir.file("ww.gltf") + "'";
   const Result r = runShell(check);
   EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_NE(readText(dir.file("m.gltf")).find("\"camera\""), std::string::npos);

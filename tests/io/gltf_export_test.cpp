@@ -400,7 +400,8 @@ TEST(GltfExport, BadInputsAreRefused) {
   EXPECT_EQ(refused([](auto& in) { in.sharpness = 0; }), "out.glb: the sharpness must be finite and > 0");
   EXPECT_EQ(refused([](auto& in) { in.center.x() = INFINITY; }), "out.glb: the centre is not finite");
   EXPECT_EQ(refused([](auto& in) {
-              in.base_animation = GltfBaseAnimation{0, 24, false, -1};
+              in.base_animation = GltfBaseAnimation{};
+              in.base_animation->frame_count = 0;
             }),
             "out.glb: base animation: expected frame_count >= 1 and fps > 0");
   const auto cams = orbit(model, 3);
@@ -446,12 +447,17 @@ TEST(GltfExport, BadExtrasAreRefusedByTheReader) {
   EXPECT_EQ(
       refused([](auto& e) { e["vdg"]["colour"] = 2; }).rfind("m.glb: mesh extras: 'vdg': unknown key 'colour'", 0), 0u);
   EXPECT_EQ(refused([](auto& e) {
+              e["vdg"]["animation"] = {{"frame_count", 1}, {"fps", 24}, {"loop", false}, {"base", "frames"}};
+            }),
+            "m.glb: mesh extras: 'vdg'.'animation': an animated view-dependent model needs its file's skin and "
+            "animation; read it with loadGltfModel");
+  EXPECT_EQ(refused([](auto& e) {
               e["vdg"]["animation"] = {{"frame_count", 40}};
             }),
-            "m.glb: mesh extras: 'vdg'.'animation': an animated view-dependent model; this vdg reads static ones only");
+            "m.glb: mesh extras: 'vdg'.'animation': missing key 'fps'");
   EXPECT_EQ(refused([](auto& e) { e["vdg"]["keys"][1]["frame"] = 10; }),
-            "m.glb: mesh extras: 'vdg'.'keys'[1].'frame': a key at frame > 0 belongs to an animated model; this vdg "
-            "reads static ones only");
+            "m.glb: mesh extras: 'vdg'.'keys'[1].'frame': a key at frame > 0 belongs to an animated model, but 'vdg' "
+            "has no 'animation'");
   EXPECT_EQ(refused([](auto& e) { e["vdg"]["offsets"] = "skinned"; }),
             "m.glb: mesh extras: 'vdg'.'offsets': expected \"world\" for a static model, got the string \"skinned\"");
   EXPECT_EQ(refused([](auto& e) { e["vdg"]["keys"].erase(2); }),

@@ -151,7 +151,16 @@ class Rig {
   [[nodiscard]] bool evaluate(int animation, double time, std::span<float> out_positions,
                               std::span<float> out_normals = {}, std::span<float> out_skin = {}) const;
 
+  // The local transform of every node at `time` of `animation` (-1 = rest pose), as the channels
+  // set it (for re-sampling an animation, e.g. glTF export): out is nodeCount() x 10 = translation
+  // (3), rotation (x y z w, normalised), scale (3). A node given by a matrix writes its (unused)
+  // identity TRS. Same contract as evaluate() (false and nothing written on a bad animation, a
+  // non-finite time or out.size() != 10 * nodeCount(); no allocation; not thread-safe).
+  std::size_t nodeCount() const { return nodes_.size(); }
+  [[nodiscard]] bool nodePose(int animation, double time, std::span<double> out) const;
+
  private:
+  void pose(int animation, double time) const;
   struct Node {
     int parent = -1;
     bool has_matrix = false;

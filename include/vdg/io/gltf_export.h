@@ -27,8 +27,10 @@
 
 #include <Eigen/Core>
 
+#include "vdg/anim/rig.h"
 #include "vdg/geom/camera.h"
 #include "vdg/geom/tri_mesh.h"
+#include "vdg/viewdep/animated_model.h"
 #include "vdg/viewdep/model.h"
 #include "vdg/viewdep/view_sphere.h"
 
@@ -51,12 +53,41 @@ struct GltfTarget {
 enum class GltfOffsetMode { kWorld, kSkinned };
 const char* gltfOffsetModeName(GltfOffsetMode mode);  // "world", "skinned"
 
+// How an animated base is written (mesh.extras.vdg.animation.base; docs/gltf-export.md):
+//  - kSkin: the base's skin (nodes, joints, inverse bind matrices, JOINTS_0 / WEIGHTS_0) and its
+//    animation; POSITION is the bind pose and the key targets are the offsets in each vertex's
+//    skinning frame. glTF morphs before it skins, which is exactly vdg's "skinned" offsets, so the
+//    export is exact. Only for "offsets": "skinned" on a skinned glTF base.
+//  - kFrames: the base sampled at every frame: POSITION is frame 0 and frames 1..N-1 are extra
+//    morph targets ("base frame i", after the key targets) played by a weights animation (frame i
+//    at time i / fps: weight 1 on its target). Exact at every frame for "world" offsets on any base
+//    (an OBJ sequence, or a glTF base whose offsets are not skinned).
+enum class GltfBaseMode { kSkin, kFrames };
+const char* gltfBaseModeName(GltfBaseMode mode);  // "skin", "frames"
+
 // An animated base (written into mesh.extras.vdg."animation"; none for a static model).
 struct GltfBaseAnimation {
   int frame_count = 1;  // frames 0 .. frame_count-1
   double fps = 24.0;    // > 0
   bool loop = false;
-  int animation = -1;  // index of the glTF animation that plays the base, or -1 when none is written
+  GltfBaseMode mode = GltfBaseMode::kFrames;
+  // kFrames: frame_count - 1 entries, frames 1..N-1 as #V x 3 deltas from POSITION (frame 0), and
+  // their normal deltas (empty, or one #V x 3 entry per frame).
+  std::vector<std::vector<float>> frame_deltas;
+  std::vector<std::vector<float>> frame_normal_deltas;
+  // kSkin: the rig whose skin and animation are written. Its nodes follow the mesh node (node i of
+  // the rig is glTF node i + 1); the mesh node is a root without transform (the skin ignores it).
+  // Only the translation, rotation and scale channels of `rig.animations[rig_animation]` are
+  // written (samplers copied as they are).
+  std::optional<RawRig> rig;
+  int rig_animation = 0;
+};
+
+// A resampled node channel of a bake (kSkin bases): one value per bake time, node indexing the rig.
+struct GltfNodeTrack {
+  int node = 0;
+  RigPath path = RigPath::kTranslation;  // translation, rotation or scale
+  std::vector<float> values;             // times.size() x 3 (x 4 for rotations, unit, one hemisphere)
 };
 
 // A camera path baked into one glTF animation: the morph weights of each sample time (exactly the
@@ -73,15 +104,17 @@ struct GltfBakedAnimation {
   double yfov_rad = 0.5;              // in (0, pi)
   double aspect = 1.0;                // width / height, > 0
   double znear = 0.01, zfar = 100.0;  // 0 < znear < zfar
+  // The base's skeleton, resampled at the bake times (kSkin bases; empty otherwise).
+  std::vector<GltfNodeTrack> node_tracks;
   // Free description kept in the animation's extras.vdg (camera options, fps); may be empty.
   std::string description;
 };
 
 // Everything a glTF export writes.
 struct GltfExportInput {
-  TriMesh base;                // positions, triangles, uvs (per corner, see tri_mesh.h)
-  std::vector<float> normals;  // empty (no NORMAL) or #V x 3 unit normals
-  std::vector<GltfTarget> targets;
+  TriMesh base;                     // positions, triangles, uvs (per corner, see tri_mesh.h)
+  std::vector<float> normals;       // empty (no NORMAL) or #V x 3 unit normals
+  std::vector<GltfTarget> targets;  // the keys (then, for a kFrames base, the base frames follow)
   // The view-dependent description (mesh.extras.vdg).
   double sharpness = 1.0;
   ViewSphereSettings sphere;
@@ -107,6 +140,34 @@ GltfExportInput gltfExportInput(const ViewDependentModel& model);
 // degenerate camera frame, an eye at the model centre, fps not finite or <= 0.
 GltfBakedAnimation bakeCameraPath(const ViewDependentModel& model, std::span<const Camera> cameras, double fps,
                                   double aspect, double sharpness, bool close_loop);
+
+// The same for an animated model (Rademacher 99, section 4): one target per raw key (so per key
+// view and key frame, in raw key order) holding that key's offsets in offset space, normals for
+// the export's POSITION, the model's settings and the animated base (above). `raw` is the model's
+// raw description (key names, cameras, base_animation) and `rig` the glTF base read again
+// (readBaseRig) or null for an OBJ-sequence base. The base is written kSkin when the offsets are
+// skinned, else kFrames. Throws vdg::Error naming the model for what cannot be exported exactly:
+// skinned offsets on a base that is not a skinned glTF mesh, or whose mesh has morph targets of its
+// own.
+GltfExportInput gltfExportInput(const AnimatedViewDependentModel& model, const RawViewDependentModel& raw,
+                                const RawRig* rig);
+
+// The rig of a glTF animated base (raw.base_animation->gltf, relative to raw.source's folder; its
+// mesh or node selection), read again for export. Throws vdg::Error naming the model for a base
+// that is not a glTF one.
+RawRig readBaseRig(const RawViewDependentModel& raw);
+
+// Bakes a camera path over an animated model: as bakeCameraPath, and output sample s (s = 0 ..
+// cameras.size() - 1, plus the closing sample) shows animation frame F = (first_frame + s) mod N
+// when the model loops, min(first_frame + s, N - 1) when not (what `vdg render` shows at output
+// frame first_frame + s). The weight of the target of (view i, key frame j) is w_i(view of the
+// camera) * c_ij(F) (timeCoefficients), so the morph formula gives exactly base(F) + sum_i w_i
+// o_i(F); a kFrames base also gets weight 1 on base frame F's target, a kSkin base the skeleton's
+// channels sampled at F / fps into node_tracks. `input` is the export input of the model (its
+// target layout and base). Throws as bakeCameraPath.
+GltfBakedAnimation bakeAnimatedCameraPath(const AnimatedViewDependentModel& model, const GltfExportInput& input,
+                                          std::span<const Camera> cameras, int first_frame, double fps, double aspect,
+                                          double sharpness, bool close_loop);
 
 // What an export left out, for the command line to tell the user.
 struct GltfExportReport {
@@ -141,10 +202,28 @@ GltfExportReport writeGltfExport(const std::string& path, const GltfExportInput&
 // view, camera and name from the extras) that ViewDependentModel::build accepts. Throws vdg::Error
 // "WHERE: mesh extras: 'vdg'.'keys'[2].'view': ..." for a missing or malformed description, a version this vdg
 // does not read, a key count that differs from the target count, names that differ from
-// targetNames, an animated description (key frames other than 0 or an "animation"), which this
-// vdg does not read yet, and everything RawViewDependentModel::validate checks.
+// targetNames, an animated description (key frames other than 0 or an "animation"; it needs the
+// file's skin and animation: loadGltfModel), and everything RawViewDependentModel::validate checks.
 RawViewDependentModel rawModelFromGltfExtras(std::string_view mesh_extras_json, const TriMesh& base,
                                              std::span<const std::vector<float>> target_deltas,
                                              const std::string& where);
+
+// A view-dependent model from a glTF file vdg exported (`vdg export`, `vdg bake`): the file's mesh
+// (the first node with a mesh of the default scene) and its mesh.extras.vdg. Static: as
+// rawModelFromGltfExtras. Animated: base_animation names this file (gltf = its file name, resolved
+// from the returned source's folder), its base animation, fps and loop; the base is sampled with
+// vdg's glTF reader (vdg::Rig) at time i / fps for every frame i (positions, and skin linear parts
+// for skinned offsets); each key's mesh is base(frame) + offset (world) or base(frame) +
+// L_v(frame) offset (skinned). Throws vdg::Error "FILE: ..." for a file that does not load, has no
+// mesh.extras.vdg ("... was not exported by vdg"), or a description that does not match the file.
+RawViewDependentModel loadGltfModel(const std::string& path);
+
+// True when `path` names a .gltf or .glb file (any letter case).
+bool isGltfPath(const std::string& path);
+// True when `path` is a glTF file whose default mesh carries mesh.extras.vdg (a view-dependent
+// model); false for a plain glTF mesh. Throws vdg::Error for a file that does not load.
+bool gltfHasModel(const std::string& path);
+// A model from a manifest (*.vdg.json) or from a glTF file vdg exported (loadGltfModel).
+RawViewDependentModel loadModel(const std::string& path);
 
 }  // namespace vdg
