@@ -1,4 +1,4 @@
-// Manifest version 2: animated bases (an OBJ sequence; glTF glued in later), "offsets", each
+// Manifest version 2: animated bases (an OBJ sequence; glTF in gltf_base_test.cpp), "offsets", each
 // key's "frame"; the round trip through formatManifest; every bad value named.
 #include <gtest/gtest.h>
 
@@ -201,7 +201,7 @@ TEST_F(ManifestV2, EveryBadValueIsNamed) {
        "m.vdg.json: 'base_animation': unknown key 'speed' (expected one of 'obj_sequence', 'frames', 'gltf', "
        "'animation', 'fps', 'mesh', 'loop')"},
       {R"({"version": 2, "base_animation": {"gltf": "w.glb"}, "keys": []})",
-       "m.vdg.json: base_animation.gltf: glTF animated bases are not supported by this build of vdg yet"},
+       "m.vdg.json: base_animation.gltf: w.glb: no such file (glTF)"},
       {R"({"version": 2, )" + seq + R"(, "keys": [{"mesh": "k.obj", "view": [0, 0, 1], "frame": 6}]})",
        "m.vdg.json: key 'k' (keys[0]): frame 6 is outside the base animation's frames 0..5"},
       {R"({"version": 2, )" + seq + R"(, "keys": [{"mesh": "k.obj", "view": [0, 0, 1], "frame": 1.5}]})",
