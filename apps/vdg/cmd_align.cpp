@@ -57,6 +57,10 @@ void runAlign(const AlignCliOptions& opt) {
     raw.base = readMesh(opt.model);
   else
     raw = loadManifest(opt.model);
+  if (raw.animated())
+    throw Error(opt.model +
+                ": vdg align works on static models, and this one has an animated base ('base_animation'); align "
+                "against the base posed at the key's frame as a mesh (vdg align FRAME.obj ... -o CAMERA.json)");
   const TriMesh& base = raw.base;
   RawKey* key = nullptr;
   if (!opt.key.empty()) {

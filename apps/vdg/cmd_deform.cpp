@@ -102,6 +102,10 @@ void runDeform(const DeformOptions& opt) {
   FileTransaction transaction(journal);
 
   RawViewDependentModel raw = loadManifest(opt.model);
+  if (raw.animated())
+    throw Error(opt.model +
+                ": vdg deform works on static models, and this one has an animated base ('base_animation'); make an "
+                "animated model's key as a mesh posed at its frame and list it in the manifest with its \"frame\"");
   std::size_t key_index = raw.keys.size();
   for (std::size_t k = 0; k < raw.keys.size(); ++k)
     if (raw.keys[k].name == opt.key) key_index = k;

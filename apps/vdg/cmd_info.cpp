@@ -1,12 +1,17 @@
 // vdg info MODEL [--json] | vdg info FILE.gltf|FILE.glb
+//
+// An animated model (manifest "base_animation") is described by its base animation (source,
+// frames, fps, loop, offsets) and its key views, each with its keys and their key frames.
 #include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <numbers>
+#include <span>
 
 #include "cli.h"
 #include "vdg/geom/error.h"
@@ -19,33 +24,34 @@
 namespace vdg::cli {
 namespace {
 
-// Things an artist should know about a model that still loads. Each kind of per-key or per-pair
-// warning is listed at most kMaxListed times, then summed up in one line: a model with thousands
-// of keys must not print (or hold) a warning for every pair.
-std::vector<std::string> modelWarnings(const ViewDependentModel& model) {
+// Things an artist should know about a model that still loads, from its viewing sphere (the first
+// `count` points are the key views, named by `name(i)`) and each key's count of moved vertices.
+// Each kind of per-key or per-pair warning is listed at most kMaxListed times, then summed up in
+// one line: a model with thousands of keys must not print (or hold) a warning for every pair.
+// Close pairs read "PAIR_PREFIX'name(j)' and 'name(k)' are only ...".
+template <typename ViewName>
+std::vector<std::string> sphereWarnings(const ViewSphere& sphere, std::size_t count, const std::string& pair_prefix,
+                                        ViewName name, const std::vector<std::string>& unmoved_keys) {
   std::vector<std::string> warnings;
   constexpr double kCloseKeysDeg = 5.0;  // keys closer than this make abrupt transitions
   constexpr double kLowCoverage = 0.25;  // below this, most views show the plain base model
   constexpr std::size_t kMaxListed = 20;
   // Counting stops here: past a million close pairs the exact number says nothing more.
   constexpr std::size_t kMaxCounted = 1000000;
-  std::size_t unmoved = 0;
-  for (std::size_t k = 0; k < model.keyCount(); ++k) {
-    if (model.keyMovedCount(k) != 0) continue;
-    if (++unmoved <= kMaxListed)
-      warnings.push_back("key '" + model.keyName(k) + "' moves no vertex (it is identical to the base)");
-  }
-  if (unmoved > kMaxListed)
-    warnings.push_back("... and " + std::to_string(unmoved - kMaxListed) + " more keys that move no vertex");
+  for (std::size_t k = 0; k < std::min(unmoved_keys.size(), kMaxListed); ++k)
+    warnings.push_back("key '" + unmoved_keys[k] + "' moves no vertex (it is identical to the base)");
+  if (unmoved_keys.size() > kMaxListed)
+    warnings.push_back("... and " + std::to_string(unmoved_keys.size() - kMaxListed) +
+                       " more keys that move no vertex");
   // Close pairs through a grid on the sphere (O(n log n) plus the pairs counted), not all n^2 pairs.
-  const auto views = model.sphere().points().first(model.keyCount());
+  const auto views = sphere.points().first(count);
   std::size_t close = 0;
   forEachCloseViewPair(views, kCloseKeysDeg * std::numbers::pi / 180.0,
                        [&](std::size_t k, std::size_t j, double angle) {
                          if (++close <= kMaxListed) {
                            const double deg = angle * 180.0 / std::numbers::pi;
-                           warnings.push_back("keys '" + model.keyName(j) + "' and '" + model.keyName(k) +
-                                              "' are only " + std::to_string(deg).substr(0, 4) +
+                           warnings.push_back(pair_prefix + "'" + name(j) + "' and '" + name(k) + "' are only " +
+                                              std::to_string(deg).substr(0, 4) +
                                               " degrees apart: the blend between them will be abrupt");
                          }
                          return close < kMaxCounted;
@@ -53,11 +59,146 @@ std::vector<std::string> modelWarnings(const ViewDependentModel& model) {
   if (close > kMaxListed)
     warnings.push_back("... and " + std::string(close >= kMaxCounted ? "at least " : "") +
                        std::to_string(close - kMaxListed) + " more close pairs of keys");
-  if (model.sphere().coveredFraction() < kLowCoverage)
+  if (sphere.coveredFraction() < kLowCoverage)
     warnings.push_back("real keys cover only " +
-                       std::to_string(static_cast<int>(std::lround(100 * model.sphere().coveredFraction()))) +
+                       std::to_string(static_cast<int>(std::lround(100 * sphere.coveredFraction()))) +
                        "% of the viewing sphere; elsewhere the model blends towards the base");
   return warnings;
+}
+
+std::vector<std::string> modelWarnings(const ViewDependentModel& model) {
+  std::vector<std::string> unmoved;
+  for (std::size_t k = 0; k < model.keyCount(); ++k)
+    if (model.keyMovedCount(k) == 0) unmoved.push_back(model.keyName(k));
+  return sphereWarnings(
+      model.sphere(), model.keyCount(), "keys ", [&](std::size_t k) { return model.keyName(k); }, unmoved);
+}
+
+// Vertices whose offset (from the base at the key's frame) exceeds kMovedRel times the base's
+// size (its bounding-box diagonal at frame 0). Unlike a static key, an animated key is compared
+// with a base that vdg poses itself (skinning a glTF, say), and a key posed by another tool
+// matches that pose only to float rounding: those differences are not moves.
+constexpr double kMovedRel = 1e-5;
+std::size_t movedCount(std::span<const float> offsets, double base_size) {
+  const double threshold = kMovedRel * base_size;
+  std::size_t moved = 0;
+  for (std::size_t v = 0; 3 * v + 2 < offsets.size(); ++v)
+    if (std::abs(offsets[3 * v]) > threshold || std::abs(offsets[3 * v + 1]) > threshold ||
+        std::abs(offsets[3 * v + 2]) > threshold)
+      ++moved;
+  return moved;
+}
+
+double boundingDiagonal(std::span<const float> positions) {
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (std::size_t v = 0; 3 * v + 2 < positions.size(); ++v) {
+    const Eigen::Vector3d p(positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]);
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  return positions.empty() ? 0.0 : (hi - lo).norm();
+}
+
+// "front_f10, front_f30": the keys of one view of an animated model.
+std::string viewKeys(const AnimatedViewDependentModel& model, std::size_t view) {
+  std::string names;
+  for (std::size_t j = 0; j < model.keyFrames(view).size(); ++j) names += (j ? ", " : "") + model.keyName(view, j);
+  return names;
+}
+
+// Where an animated base comes from, in words: "glTF walker.glb, animation 0" or "OBJ sequence
+// walk/f_%03d.obj, files 2..7".
+std::string baseSource(const BaseAnimationSpec& spec) {
+  if (!spec.gltf.empty())
+    return "glTF " + spec.gltf + ", animation " + std::to_string(spec.animation) +
+           (spec.mesh.empty() ? std::string() : ", mesh or node '" + spec.mesh + "'");
+  return "OBJ sequence " + spec.obj_sequence + ", files " + std::to_string(spec.first) + ".." +
+         std::to_string(spec.last);
+}
+
+// vdg info on an animated model (Rademacher 99, section 4): the base animation, and the key views
+// with their key frames (each view is one point of the viewing sphere).
+void describeAnimated(const std::string& path, const RawViewDependentModel& raw, bool json) {
+  const AnimatedViewDependentModel model = AnimatedViewDependentModel::build(raw);
+  const BaseAnimationSpec& spec = *raw.base_animation;
+  const bool gltf = !spec.gltf.empty();
+  const ViewSphere& sphere = model.sphere();
+  const std::size_t dummies = sphere.points().size() - sphere.keyCount();
+  const double size = boundingDiagonal(model.base().positions);
+  std::vector<std::string> unmoved;
+  for (std::size_t i = 0; i < model.viewCount(); ++i)
+    for (std::size_t j = 0; j < model.keyFrames(i).size(); ++j)
+      if (movedCount(model.offsets(i, j), size) == 0) unmoved.push_back(model.keyName(i, j));
+  const auto warnings = sphereWarnings(
+      sphere, model.viewCount(), "the views of keys ", [&](std::size_t i) { return viewKeys(model, i); }, unmoved);
+  if (json) {
+    nlohmann::ordered_json out;
+    out["model"] = path;
+    nlohmann::ordered_json animation;
+    if (gltf) {
+      animation["gltf"] = spec.gltf;
+      animation["animation"] = spec.animation;
+      if (!spec.mesh.empty()) animation["mesh"] = spec.mesh;
+      animation["fps"] = spec.fps;
+    } else {
+      animation["obj_sequence"] = spec.obj_sequence;
+      animation["files"] = {spec.first, spec.last};
+    }
+    animation["frames"] = model.frameCount();
+    animation["loop"] = model.loop();
+    animation["skinned"] = model.skinned();
+    out["base_animation"] = animation;
+    out["offsets"] = offsetSpaceName(model.offsetSpace());
+    out["vertices"] = model.vertexCount();
+    out["triangles"] = model.base().triangleCount();
+    out["center"] = {model.center().x(), model.center().y(), model.center().z()};
+    out["sharpness"] = model.sharpness();
+    out["uncovered"] = uncoveredName(sphere.settings().uncovered);
+    out["views"] = nlohmann::ordered_json::array();
+    for (std::size_t i = 0; i < model.viewCount(); ++i) {
+      const auto& v = model.viewDirection(i);
+      nlohmann::ordered_json keys = nlohmann::ordered_json::array();
+      for (std::size_t j = 0; j < model.keyFrames(i).size(); ++j)
+        keys.push_back({{"name", model.keyName(i, j)},
+                        {"mesh", raw.keys[model.keyIndex(i, j)].mesh_path},
+                        {"frame", model.keyFrames(i)[j]},
+                        {"moved_vertices", movedCount(model.offsets(i, j), size)}});
+      out["views"].push_back({{"view", {v.x(), v.y(), v.z()}}, {"keys", keys}});
+    }
+    out["dummy_base_keys"] = dummies;
+    out["hull_triangles"] = sphere.triangles().size();
+    out["covered_fraction"] = sphere.coveredFraction();
+    out["warnings"] = warnings;
+    std::cout << out.dump(2) << "\n";
+    return;
+  }
+  std::printf("model      %s\n", path.c_str());
+  std::printf("base       %s: %zu vertices, %zu triangles%s\n", baseSource(spec).c_str(), model.vertexCount(),
+              model.base().triangleCount(), model.skinned() ? ", skinned" : "");
+  std::string frames = std::to_string(model.frameCount()) + " frames";
+  if (gltf) {
+    char fps[64];
+    std::snprintf(fps, sizeof(fps), " at %g fps", spec.fps);
+    frames += fps;
+  }
+  std::printf("animation  %s, %s\n", frames.c_str(),
+              model.loop() ? "loop (periodic time splines)" : "no loop (offsets held outside the key frames)");
+  std::printf("offsets    %s\n", offsetSpaceName(model.offsetSpace()));
+  std::printf("centre     (%.4g, %.4g, %.4g)\n", model.center().x(), model.center().y(), model.center().z());
+  std::printf("sharpness  %g\n", model.sharpness());
+  std::printf("uncovered  %s\n", uncoveredName(sphere.settings().uncovered));
+  std::printf("views      %zu (%zu keys)\n", model.viewCount(), raw.keys.size());
+  for (std::size_t i = 0; i < model.viewCount(); ++i) {
+    const auto& v = model.viewDirection(i);
+    std::printf("  view (%7.4f, %7.4f, %7.4f)\n", v.x(), v.y(), v.z());
+    for (std::size_t j = 0; j < model.keyFrames(i).size(); ++j)
+      std::printf("    %-16s frame %-5d moves %zu vertices  (%s)\n", model.keyName(i, j).c_str(), model.keyFrames(i)[j],
+                  movedCount(model.offsets(i, j), size), raw.keys[model.keyIndex(i, j)].mesh_path.c_str());
+  }
+  std::printf("hull       %zu triangles, %zu dummy base keys\n", sphere.triangles().size(), dummies);
+  std::printf("coverage   %.1f%% of the viewing sphere lies in triangles of real keys\n",
+              100.0 * sphere.coveredFraction());
+  for (const auto& w : warnings) std::printf("warning: %s\n", w.c_str());
 }
 
 bool isGltf(const std::string& path) {
@@ -96,20 +237,7 @@ void addInfoCommand(CLI::App& app) {
     }
     const RawViewDependentModel raw = loadModel(opt->model);
     if (raw.animated()) {
-      const AnimatedViewDependentModel model = AnimatedViewDependentModel::build(raw);
-      std::printf("model      %s\n", opt->model.c_str());
-      std::printf("base       animated: %d frames%s, %zu vertices, %zu triangles, offsets %s\n", model.frameCount(),
-                  model.loop() ? " (loop)" : "", model.vertexCount(), model.base().triangleCount(),
-                  offsetSpaceName(model.offsetSpace()));
-      std::printf("sharpness  %g\n", model.sharpness());
-      std::printf("key views  %zu\n", model.viewCount());
-      for (std::size_t v = 0; v < model.viewCount(); ++v) {
-        const auto& d = model.viewDirection(v);
-        std::printf("  view (%7.4f, %7.4f, %7.4f)  key frames:", d.x(), d.y(), d.z());
-        for (std::size_t j = 0; j < model.keyFrames(v).size(); ++j)
-          std::printf(" %d (%s)", model.keyFrames(v)[j], model.keyName(v, j).c_str());
-        std::printf("\n");
-      }
+      describeAnimated(opt->model, raw, opt->json);
       return;
     }
     const ViewDependentModel model = ViewDependentModel::build(raw);

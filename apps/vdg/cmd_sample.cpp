@@ -15,6 +15,8 @@
 #include "vdg/geom/error.h"
 #include "vdg/io/anim_json.h"
 #include "vdg/io/atomic_file.h"
+#include "vdg/io/manifest.h"
+#include "vdg/io/read_file.h"
 
 namespace vdg::cli {
 namespace {
@@ -44,6 +46,28 @@ std::vector<double> parseList(const std::string& text) {
     pos = comma + 1;
   }
   return out;
+}
+
+// anim::loadAnimSpec, except that a model manifest (static or animated) given by mistake is named
+// as one rather than refused for its "version" or its fields.
+anim::AnimSpec loadSpec(const std::string& path) {
+  const std::string text = readFileLimited(path, "animation spec", kMaxJsonFileBytes);
+  try {
+    return anim::parseAnimSpec(text, path);
+  } catch (const Error&) {
+    bool is_model = false;
+    try {
+      (void)parseManifest(text, path);
+      is_model = true;
+    } catch (const Error&) {
+    }
+    if (is_model)
+      throw Error(path +
+                  ": a model manifest, not an animation spec; vdg sample samples eases, curves, tracks and camera "
+                  "paths (docs/anim.md); a model is evaluated by vdg eval (--frame F for an animated one) or vdg "
+                  "render");
+    throw;
+  }
 }
 
 // The evaluation calls below get spans of the right size and finite parameters (parseList and
@@ -264,7 +288,7 @@ void addSampleCommand(CLI::App& app) {
     if (opt->at.empty() == (opt->samples == 0)) throw UsageError("give exactly one of --at T1,T2,... or --samples N");
     if (opt->csv && !opt->svg.empty()) throw UsageError("--csv and -o exclude each other");
     const std::vector<double> at = opt->at.empty() ? std::vector<double>{} : parseList(opt->at);
-    const anim::AnimSpec spec = anim::loadAnimSpec(opt->spec);
+    const anim::AnimSpec spec = loadSpec(opt->spec);
     const Sampled s = sample(spec, at, opt->samples);
     if (!opt->svg.empty()) {
       writeSvg(opt->svg, s, opt->spec);

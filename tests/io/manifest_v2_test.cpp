@@ -1,4 +1,4 @@
-// Manifest version 2: animated bases (an OBJ sequence; glTF glued in later), "offsets", each
+// Manifest version 2: animated bases (an OBJ sequence; glTF in gltf_base_test.cpp), "offsets", each
 // key's "frame"; the round trip through formatManifest; every bad value named.
 #include <gtest/gtest.h>
 

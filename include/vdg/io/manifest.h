@@ -22,7 +22,9 @@ RawViewDependentModel parseManifest(const std::string& text, const std::string& 
 // camera keys' views and validates. An animated base is read too: every file of an OBJ sequence
 // (frame i is file first + i; each frame must have frame 0's vertex count and triangles; at most
 // kMaxBaseFrames frames and 2 GiB of positions in all) into raw.base (frame 0) and raw.base_frames.
-// A glTF base is refused for now ("FILE: base_animation.gltf: ..."). Throws vdg::Error naming the file and key for
+// A glTF base is sampled at every frame (vdg::Rig; with each vertex's skin linear part into
+// raw.base_skin for skinned offsets); its errors name the manifest and the field
+// ("FILE: base_animation.gltf: ...", "FILE: base_animation.animation: ..."). Throws vdg::Error naming the file and key for
 // missing files, unknown fields, a wrong or missing version, bad values, and everything validate() checks.
 RawViewDependentModel loadManifest(const std::string& path);
 // The manifest text saveManifest writes (for callers that write it themselves).
