@@ -118,6 +118,9 @@ std::string baseSource(const BaseAnimationSpec& spec) {
 
 // vdg info on an animated model (Rademacher 99, section 4): the base animation, and the key views
 // with their key frames (each view is one point of the viewing sphere).
+// "  (FILE)" after a key read from a mesh file; nothing for a key stored in a glTF model.
+std::string meshNote(const std::string& mesh_path) { return mesh_path.empty() ? "" : "  (" + mesh_path + ")"; }
+
 void describeAnimated(const std::string& path, const RawViewDependentModel& raw, bool json) {
   const AnimatedViewDependentModel model = AnimatedViewDependentModel::build(raw);
   const BaseAnimationSpec& spec = *raw.base_animation;
@@ -192,8 +195,8 @@ void describeAnimated(const std::string& path, const RawViewDependentModel& raw,
     const auto& v = model.viewDirection(i);
     std::printf("  view (%7.4f, %7.4f, %7.4f)\n", v.x(), v.y(), v.z());
     for (std::size_t j = 0; j < model.keyFrames(i).size(); ++j)
-      std::printf("    %-16s frame %-5d moves %zu vertices  (%s)\n", model.keyName(i, j).c_str(), model.keyFrames(i)[j],
-                  movedCount(model.offsets(i, j), size), raw.keys[model.keyIndex(i, j)].mesh_path.c_str());
+      std::printf("    %-16s frame %-5d moves %zu vertices%s\n", model.keyName(i, j).c_str(), model.keyFrames(i)[j],
+                  movedCount(model.offsets(i, j), size), meshNote(raw.keys[model.keyIndex(i, j)].mesh_path).c_str());
   }
   std::printf("hull       %zu triangles, %zu dummy base keys\n", sphere.triangles().size(), dummies);
   std::printf("coverage   %.1f%% of the viewing sphere lies in triangles of real keys\n",
@@ -277,8 +280,8 @@ void addInfoCommand(CLI::App& app) {
     std::printf("keys       %zu\n", model.keyCount());
     for (std::size_t k = 0; k < model.keyCount(); ++k) {
       const auto& v = model.keyView(k);
-      std::printf("  %-16s view (%7.4f, %7.4f, %7.4f)  moves %zu vertices  (%s)\n", model.keyName(k).c_str(), v.x(),
-                  v.y(), v.z(), model.keyMovedCount(k), raw.keys[k].mesh_path.c_str());
+      std::printf("  %-16s view (%7.4f, %7.4f, %7.4f)  moves %zu vertices%s\n", model.keyName(k).c_str(), v.x(), v.y(),
+                  v.z(), model.keyMovedCount(k), meshNote(raw.keys[k].mesh_path).c_str());
     }
     std::printf("hull       %zu triangles, %zu dummy base keys\n", sphere.triangles().size(), dummies);
     std::printf("coverage   %.1f%% of the viewing sphere lies in triangles of real keys\n",

@@ -178,7 +178,7 @@ TEST(GltfCli, ExportedGlbIsAModelForEvalInfoAndExport) {
   const Result info = run("info " + dir.file("w.glb"));
   ASSERT_EQ(info.code, 0) << info.err;
   EXPECT_NE(info.out.find("view-dependent model (mesh.extras.vdg)"), std::string::npos) << info.out;
-  EXPECT_NE(info.out.find("40 frames (loop)"), std::string::npos) << info.out;
+  EXPECT_NE(info.out.find("40 frames at 24 fps, loop"), std::string::npos) << info.out;
   const Result plain = run("eval examples/walk/walker.glb --frame 0 --view 0,0,1 -o " + dir.file("c.obj"));
   EXPECT_EQ(plain.code, 1);
   EXPECT_NE(plain.err.find("plain mesh, not a view-dependent model"), std::string::npos) << plain.err;
