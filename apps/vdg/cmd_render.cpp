@@ -1,7 +1,7 @@
 // vdg render MODEL -o DIR|OUT.mp4|OUT.gif [--orbit N] [--frames A-B] [--observer] [--sphere] ...
 //
-// Renders a view-dependent model (a manifest or a glTF file vdg exported) or a plain mesh headless with the NPR renderer, one PNG per
-// frame (DIR/frame_0000.png ...), the camera going once around the model in N frames. A frame's
+// Renders a view-dependent model (a manifest or a glTF file vdg exported) or a plain mesh headless with the NPR
+// renderer, one PNG per frame (DIR/frame_0000.png ...), the camera going once around the model in N frames. A frame's
 // image depends only on its number and the options, so --frames ranges can be split across
 // machines and give byte-identical frames.
 //
@@ -228,7 +228,9 @@ void addRenderCommand(CLI::App& app) {
   CLI::App* sub = app.add_subcommand(
       "render",
       "Render a view-dependent model (or a plain mesh) headless: NPR shading and silhouettes, one PNG a frame");
-  sub->add_option("MODEL", opt->model, "Model manifest (*.vdg.json), a glTF model vdg exported, or a plain mesh (.obj, .gltf, .glb)")->required();
+  sub->add_option("MODEL", opt->model,
+                  "Model manifest (*.vdg.json), a glTF model vdg exported, or a plain mesh (.obj, .gltf, .glb)")
+      ->required();
   sub->add_option("-o,--output", opt->output, "Output folder for frame_NNNN.png, or OUT.mp4 / OUT.gif (needs ffmpeg)")
       ->required();
   opt->camera.add(*sub);

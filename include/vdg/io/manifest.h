@@ -24,8 +24,8 @@ RawViewDependentModel parseManifest(const std::string& text, const std::string& 
 // kMaxBaseFrames frames and 2 GiB of positions in all) into raw.base (frame 0) and raw.base_frames.
 // A glTF base is sampled at every frame (vdg::Rig; with each vertex's skin linear part into
 // raw.base_skin for skinned offsets); its errors name the manifest and the field
-// ("FILE: base_animation.gltf: ...", "FILE: base_animation.animation: ..."). Throws vdg::Error naming the file and key for
-// missing files, unknown fields, a wrong or missing version, bad values, and everything validate() checks.
+// ("FILE: base_animation.gltf: ...", "FILE: base_animation.animation: ..."). Throws vdg::Error naming the file and key
+// for missing files, unknown fields, a wrong or missing version, bad values, and everything validate() checks.
 RawViewDependentModel loadManifest(const std::string& path);
 // The manifest text saveManifest writes (for callers that write it themselves).
 std::string formatManifest(const RawViewDependentModel& model);
