@@ -118,6 +118,16 @@ std::string baseSource(const BaseAnimationSpec& spec) {
 
 // vdg info on an animated model (Rademacher 99, section 4): the base animation, and the key views
 // with their key frames (each view is one point of the viewing sphere).
+// The JSON fields static and animated models share (vdg info --json).
+template <class Model>
+void addShapeFields(const Model& model, nlohmann::ordered_json& out) {
+  out["vertices"] = model.vertexCount();
+  out["triangles"] = model.base().triangleCount();
+  out["center"] = {model.center().x(), model.center().y(), model.center().z()};
+  out["sharpness"] = model.sharpness();
+  out["uncovered"] = uncoveredName(model.sphere().settings().uncovered);
+}
+
 // "  (FILE)" after a key read from a mesh file; nothing for a key stored in a glTF model.
 std::string meshNote(const std::string& mesh_path) { return mesh_path.empty() ? "" : "  (" + mesh_path + ")"; }
 
@@ -152,11 +162,7 @@ void describeAnimated(const std::string& path, const RawViewDependentModel& raw,
     animation["skinned"] = model.skinned();
     out["base_animation"] = animation;
     out["offsets"] = offsetSpaceName(model.offsetSpace());
-    out["vertices"] = model.vertexCount();
-    out["triangles"] = model.base().triangleCount();
-    out["center"] = {model.center().x(), model.center().y(), model.center().z()};
-    out["sharpness"] = model.sharpness();
-    out["uncovered"] = uncoveredName(sphere.settings().uncovered);
+    addShapeFields(model, out);
     out["views"] = nlohmann::ordered_json::array();
     for (std::size_t i = 0; i < model.viewCount(); ++i) {
       const auto& v = model.viewDirection(i);
@@ -251,11 +257,7 @@ void addInfoCommand(CLI::App& app) {
       nlohmann::ordered_json out;
       out["model"] = opt->model;
       out["base"] = raw.base_path;
-      out["vertices"] = model.vertexCount();
-      out["triangles"] = model.base().triangleCount();
-      out["center"] = {model.center().x(), model.center().y(), model.center().z()};
-      out["sharpness"] = model.sharpness();
-      out["uncovered"] = uncoveredName(sphere.settings().uncovered);
+      addShapeFields(model, out);
       out["keys"] = nlohmann::ordered_json::array();
       for (std::size_t k = 0; k < model.keyCount(); ++k) {
         const auto& v = model.keyView(k);
