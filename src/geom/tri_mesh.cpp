@@ -101,6 +101,40 @@ void validateMesh(const TriMesh& mesh, const std::string& what) {
       throw Error(what + ": triangle " + std::to_string(i / 3) + " refers to texture coordinate " + std::to_string(t) +
                   ", but the mesh has " + std::to_string(mesh.uvs.size() / 2));
   }
+  if (mesh.normals.size() % 3 != 0) throw Error(what + ": normal array is not a multiple of 3");
+  if (!mesh.normal_triangles.empty() && mesh.normal_triangles.size() != mesh.triangles.size())
+    throw Error(what + ": normal triangles (" + std::to_string(mesh.normal_triangles.size() / 3) +
+                ") do not match the triangles (" + std::to_string(mesh.triangleCount()) + ")");
+  if (mesh.normal_triangles.empty() != mesh.normals.empty())
+    throw Error(what + ": normals and normal triangles must be given together");
+  for (std::size_t i = 0; i < mesh.normal_triangles.size(); ++i) {
+    const auto t = mesh.normal_triangles[i];
+    if (t < 0 || static_cast<std::size_t>(t) >= mesh.normals.size() / 3)
+      throw Error(what + ": triangle " + std::to_string(i / 3) + " refers to normal " + std::to_string(t) +
+                  ", but the mesh has " + std::to_string(mesh.normals.size() / 3));
+  }
+  for (std::size_t i = 0; i < mesh.normals.size(); ++i) {
+    if (!std::isfinite(mesh.normals[i]))
+      throw Error(what + ": normal " + std::to_string(i / 3) + " has a non-finite component (NaN or Inf)");
+  }
+  if (!mesh.face_materials.empty() && mesh.face_materials.size() != mesh.triangleCount())
+    throw Error(what + ": " + std::to_string(mesh.face_materials.size()) + " face materials for " +
+                std::to_string(mesh.triangleCount()) + " triangles");
+  for (std::size_t f = 0; f < mesh.face_materials.size(); ++f) {
+    const auto m = mesh.face_materials[f];
+    if (m < -1 || (m >= 0 && static_cast<std::size_t>(m) >= mesh.materials.size()))
+      throw Error(what + ": triangle " + std::to_string(f) + " refers to material " + std::to_string(m) +
+                  ", but the mesh has " + std::to_string(mesh.materials.size()));
+  }
+  for (const Material& m : mesh.materials) {
+    for (const float c : m.base_color)
+      if (!(c >= 0.0f && c <= 1.0f))
+        throw Error(what + ": material '" + m.name + "': base colour component outside [0, 1]");
+    if (m.texture && (m.texture->width < 1 || m.texture->height < 1 ||
+                      m.texture->rgba.size() != static_cast<std::size_t>(m.texture->width) *
+                                                    static_cast<std::size_t>(m.texture->height) * 4))
+      throw Error(what + ": material '" + m.name + "': texture pixels do not match its size");
+  }
   for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
     if (!std::isfinite(mesh.positions[i]))
       throw Error(what + ": vertex " + std::to_string(i / 3) + " has a non-finite coordinate (NaN or Inf)");

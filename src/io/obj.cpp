@@ -37,8 +37,8 @@ std::string oneLine(std::string text) {
 //
 // tinyobjloader only ever sees what was checked: check() returns the text with every line vdg
 // does not read (skin weights `vw`, tags `t`, lines `l`, points `p`, materials, smoothing groups,
-// unknown statements) blanked, comments cut off and carriage returns made spaces, one output line
-// per input line (so tinyobjloader's line numbers stay right). Those statements are ignored by vdg
+// unknown statements) blanked, comments cut off, carriage returns made spaces and every number
+// rewritten, one output line per input line (so tinyobjloader's line numbers stay right). Those statements are ignored by vdg
 // anyway, and tinyobjloader parses some of them unsafely (a `vw` joint id of 1e21 is converted to
 // int, undefined behaviour; a `t` line can ask for 3 x 8192 values).
 class ObjChecker {
@@ -54,11 +54,7 @@ class ObjChecker {
       std::size_t end = text.find('\n', start);
       if (end == std::string_view::npos) end = text.size();
       ++line_no;
-      std::string_view line = text.substr(start, end - start);
-      if (checkLine(line, line_no)) {
-        line = line.substr(0, line.find('#'));
-        for (char c : line) checked += c == '\r' ? ' ' : c;
-      }
+      checkLine(text.substr(start, end - start), line_no, checked);
       checked += '\n';
       start = end + 1;
     }
@@ -99,8 +95,10 @@ class ObjChecker {
     return out;
   }
 
-  // A coordinate: a finite number that fits a float.
-  void number(std::string_view token, std::size_t line, const std::string& what) const {
+  // A coordinate: a finite number that fits a float. It is passed on to tinyobjloader rewritten in
+  // the shortest form that reads back as the same double, because tinyobjloader's own number parser
+  // overflows an int on long exponents ("0e2147483648") and a double on long mantissas.
+  void number(std::string_view token, std::size_t line, const std::string& what, std::string& out) const {
     std::string_view t = token;
     if (!t.empty() && t.front() == '+') t.remove_prefix(1);
     double value = 0;
@@ -110,6 +108,10 @@ class ObjChecker {
     if (!std::isfinite(value)) fail(line, what + ": coordinate '" + shown(token) + "' is not a finite number");
     if (std::abs(value) > std::numeric_limits<float>::max())
       fail(line, what + ": coordinate '" + shown(token) + "' is too large for a float");
+    char buffer[32];
+    const auto written = std::to_chars(buffer, buffer + sizeof(buffer), value);
+    out += ' ';
+    out.append(buffer, written.ptr);
   }
 
   // One index of a face corner: a non-zero whole number; negative ones count back from the last
@@ -135,30 +137,39 @@ class ObjChecker {
     return value;
   }
 
-  // Checks one line; true when it is a statement tinyobjloader should see (v, vt, vn, f, o, g).
-  bool checkLine(std::string_view line, std::size_t line_no) {
+  // Checks one line and appends what tinyobjloader should see of it to `out`: v, vt and vn with
+  // their numbers rewritten, f, o and g (names of shapes in messages) as they are, anything else
+  // as nothing.
+  void checkLine(std::string_view line, std::size_t line_no, std::string& out) {
     const auto hash = line.find('#');
     if (hash != std::string_view::npos) line = line.substr(0, hash);
     const auto t = tokens(line);
-    if (t.empty()) return false;
+    if (t.empty()) return;
     const std::string_view tag = t[0];
-    if (tag == "o" || tag == "g") return true;  // object and group names (shapes in messages)
+    if (tag == "o" || tag == "g" || tag == "f") {
+      for (char c : line) out += c == '\r' ? ' ' : c;
+      if (tag != "f") return;
+    } else if (tag == "v" || tag == "vt" || tag == "vn") {
+      out += tag;
+    } else {
+      return;
+    }
     if (tag == "v") {
       const std::string what = "vertex " + std::to_string(counts_[0] + 1);
       if (t.size() < 4) fail(line_no, what + ": expected 3 coordinates x y z, got " + std::to_string(t.size() - 1));
       if (t.size() > 8)
         fail(line_no, what + ": expected x y z [w] or x y z r g b, got " + std::to_string(t.size() - 1) + " numbers");
-      for (std::size_t i = 1; i < t.size(); ++i) number(t[i], line_no, what);
+      for (std::size_t i = 1; i < t.size(); ++i) number(t[i], line_no, what, out);
       if (++counts_[0] > kMaxIndex) fail(line_no, "more than " + std::to_string(kMaxIndex) + " vertices");
     } else if (tag == "vt") {
       const std::string what = "texture coordinate " + std::to_string(counts_[1] + 1);
       if (t.size() < 2 || t.size() > 4) fail(line_no, what + ": expected 1 to 3 numbers");
-      for (std::size_t i = 1; i < t.size(); ++i) number(t[i], line_no, what);
+      for (std::size_t i = 1; i < t.size(); ++i) number(t[i], line_no, what, out);
       if (++counts_[1] > kMaxIndex) fail(line_no, "more than " + std::to_string(kMaxIndex) + " texture coordinates");
     } else if (tag == "vn") {
       const std::string what = "normal " + std::to_string(counts_[2] + 1);
       if (t.size() != 4) fail(line_no, what + ": expected 3 numbers");
-      for (std::size_t i = 1; i < t.size(); ++i) number(t[i], line_no, what);
+      for (std::size_t i = 1; i < t.size(); ++i) number(t[i], line_no, what, out);
       if (++counts_[2] > kMaxIndex) fail(line_no, "more than " + std::to_string(kMaxIndex) + " normals");
     } else if (tag == "f") {
       if (t.size() < 4) fail(line_no, "face: expected at least 3 corners, got " + std::to_string(t.size() - 1));
@@ -184,10 +195,7 @@ class ObjChecker {
           if (ni > max_vn_) max_vn_ = ni, max_vn_line_ = line_no;
         }
       }
-    } else {
-      return false;
     }
-    return true;
   }
 
   static constexpr std::int64_t kMaxIndex = std::numeric_limits<std::int32_t>::max();

@@ -91,6 +91,21 @@ TEST(ObjIo, RelativeIndicesAndCommentsStillRead) {
   EXPECT_EQ(m.triangles, (std::vector<std::int32_t>{0, 1, 2}));
 }
 
+// tinyobjloader's own number parser overflows on these (an int exponent, a double mantissa); vdg
+// reads them as any strict parser would.
+TEST(ObjIo, LongExponentsAndMantissasReadAsTheirValues) {
+  testing::TempDir dir;
+  const std::string zeros(400, '0');
+  testing::writeText(dir.file("n.obj"), "v 0e2147483648 1" + zeros + "e-400 -0.000" + zeros + "25e404\n"
+                                        "v 1 0E+0000000000000000000002 0\nv 0 1 0\nf 1 2 3\n");
+  const TriMesh m = readObj(dir.file("n.obj"));
+  ASSERT_EQ(m.vertexCount(), 3u);
+  EXPECT_EQ(m.positions[0], 0.0f);
+  EXPECT_EQ(m.positions[1], 1.0f);
+  EXPECT_FLOAT_EQ(m.positions[2], -2.5f);
+  EXPECT_EQ(m.positions[3], 1.0f);
+}
+
 TEST(ObjIo, StatementsVdgDoesNotUseAreIgnored) {
   // Skin weights, tags, lines and points are not read: a huge joint id (once undefined behaviour
   // inside tinyobjloader, found by fuzz_obj) or a tag asking for thousands of values changes nothing.

@@ -7,7 +7,16 @@
 //   uvs        empty or #T x 2 floats: texture coordinates, as many as the file has (seams keep
 //              their own coordinates, so the vertex list is never split or reordered)
 //   uv_triangles  empty or #F x 3 indices into uvs, one per triangle corner
-// Normals are derived data: computeVertexNormals() fills a caller-owned #V x 3 buffer.
+//   normals    empty or #N x 3 floats: the file's own normals (OBJ `vn`, glTF NORMAL), as many as
+//              the file has, unit length
+//   normal_triangles  empty or #F x 3 indices into normals, one per triangle corner
+//   face_materials    empty or #F indices into materials (-1: no material)
+//   materials  the surfaces' materials (vdg/geom/material.h)
+// The file's normals are *classification*, not shading: they say which corners meet at a hard
+// edge (corners at one position whose file normals differ) and which are smooth (vertices split
+// only for texture coordinates). Shading normals are always derived from the current positions:
+// computeVertexNormals() fills a caller-owned #V x 3 buffer, and SurfaceTopology
+// (vdg/geom/surface.h) keeps the hard edges and welds the seams.
 #pragma once
 
 #include <array>
@@ -16,6 +25,8 @@
 #include <string>
 #include <vector>
 
+#include "vdg/geom/material.h"
+
 namespace vdg {
 
 struct TriMesh {
@@ -23,6 +34,10 @@ struct TriMesh {
   std::vector<std::int32_t> triangles;     // #F x 3
   std::vector<float> uvs;                  // empty or #T x 2
   std::vector<std::int32_t> uv_triangles;  // empty or #F x 3 (indices into uvs)
+  std::vector<float> normals;                   // empty or #N x 3 (the file's, unit length)
+  std::vector<std::int32_t> normal_triangles;   // empty or #F x 3 (indices into normals)
+  std::vector<std::int32_t> face_materials;     // empty or #F (indices into materials, -1: none)
+  std::vector<Material> materials;
 
   std::size_t vertexCount() const { return positions.size() / 3; }
   std::size_t triangleCount() const { return triangles.size() / 3; }
@@ -52,8 +67,9 @@ Bounds computeBounds(std::span<const float> positions);
 [[nodiscard]] bool computeVertexNormals(std::span<const float> positions, std::span<const std::int32_t> triangles,
                                         std::span<float> normals);
 
-// Checks the mesh's own consistency (array sizes, indices in range, finite coordinates) and
-// throws vdg::Error naming `what` (usually the file) and the first offending vertex or triangle.
+// Checks the mesh's own consistency (array sizes, indices in range, finite coordinates, finite
+// normals and colours in [0, 1], texture sizes) and throws vdg::Error naming `what` (usually the
+// file) and the first offending vertex, triangle, normal or material.
 void validateMesh(const TriMesh& mesh, const std::string& what);
 
 }  // namespace vdg

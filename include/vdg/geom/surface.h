@@ -1,0 +1,114 @@
+// SurfaceTopology — a mesh's connectivity as a surface rather than as an index buffer.
+//
+// Meshes from modelling tools split vertices along seams: a vertex is duplicated wherever its
+// texture coordinates or normals differ between faces (a glTF vertex carries one of each; OBJ
+// patches such as the Utah teapot's are stitched only by position). In the index buffer every seam
+// is then an open border, so anything that walks the surface (silhouette edges, geodesic and
+// edge-count distances, smooth normals) would stop at it. SurfaceTopology welds vertices by
+// position and keeps, beside the welded connectivity, what a renderer needs to keep hard edges:
+//
+//  - welding: vertices closer than `weld_tolerance` x (bounding-box diagonal) are one surface
+//    point, represented by the lowest vertex index among them (weld()[v]); the welded triangles
+//    index those representatives;
+//  - edges of the welded surface with their one or two faces; an edge with one face is a true
+//    open border (a hole), not a seam;
+//  - smoothing groups: the triangle corners at one surface point whose file normals
+//    (TriMesh::normals) agree within `hard_angle_deg` share one shading normal; corners whose
+//    file normals differ meet at a hard edge. A mesh without file normals is smooth everywhere
+//    (vertices split only for texture coordinates are not edges);
+//  - render vertices: the distinct (smoothing group, texture coordinate) pairs, which is what a
+//    GPU vertex must be, with triangles over them.
+//
+// Raw data (TriMesh) -> build() -> immutable SurfaceTopology -> allocation-free per-frame normals.
+// Only the triangles, the file normals and the texture indices define it; positions are read at
+// build time for welding alone, so a topology built on a base mesh serves every blend of it.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "vdg/geom/tri_mesh.h"
+
+namespace vdg {
+
+struct SurfaceOptions {
+  // Vertices at most this fraction of the bounding-box diagonal apart are one surface point.
+  // Exporters write seam duplicates with identical coordinates; the tolerance only absorbs
+  // round-off of text formats. 0 welds exactly coincident vertices only.
+  double weld_tolerance = 1e-6;
+  // Corners at one surface point whose file normals differ by more than this angle (degrees)
+  // meet at a hard edge.
+  double hard_angle_deg = 1.0;
+};
+
+class SurfaceTopology {
+ public:
+  // Throws vdg::Error (as validateMesh, naming "surface") for an inconsistent mesh, and for
+  // options that are not finite or are negative.
+  static SurfaceTopology build(const TriMesh& mesh, const SurfaceOptions& options = {});
+  // The topology of a bare index buffer: nothing welded, one smooth group per vertex, no texture
+  // coordinates (render vertices are the vertices). Throws vdg::Error for an index outside
+  // [0, vertex_count) or a size that is not a multiple of 3.
+  static SurfaceTopology unwelded(std::span<const std::int32_t> triangles, std::size_t vertex_count);
+
+  std::size_t vertexCount() const { return weld_.size(); }
+  std::size_t triangleCount() const { return triangles_.size() / 3; }
+  std::span<const std::int32_t> triangles() const { return triangles_; }  // the mesh's, #F x 3
+
+  // Welding.
+  std::span<const std::int32_t> weld() const { return weld_; }                       // #V
+  std::span<const std::int32_t> weldedTriangles() const { return welded_triangles_; }  // #F x 3
+  std::size_t weldedVertexCount() const { return welded_count_; }  // distinct surface points
+  bool isWelded() const { return welded_count_ != weld_.size(); }   // some vertices were merged
+
+  // Edges of the welded surface: edge e joins welded vertices edgeVertices()[2e] < [2e + 1] and
+  // borders faces edgeFaces()[2e] and [2e + 1] (-1 when the edge has a single face: an open
+  // border). On a non-manifold edge (three or more faces) the first two faces are kept. Edges
+  // whose two ends weld together (collapsed triangles) are left out.
+  std::size_t edgeCount() const { return edge_vertices_.size() / 2; }
+  std::span<const std::int32_t> edgeVertices() const { return edge_vertices_; }
+  std::span<const std::int32_t> edgeFaces() const { return edge_faces_; }
+  std::size_t borderEdgeCount() const { return border_edges_; }
+
+  // Smoothing groups (corner level): cornerGroups()[3f + c] is the group of corner c of triangle f.
+  std::size_t groupCount() const { return group_count_; }
+  std::span<const std::int32_t> cornerGroups() const { return corner_groups_; }  // #F x 3
+  // Vertex level, for APIs with one normal per vertex: vertexHome()[v] is the vertex whose normal
+  // v shares: the lowest index welded to v whose first corner's file normal agrees with v's.
+  // Where an OBJ vertex has different file normals on different corners (a hard edge without a
+  // split vertex), one normal per vertex cannot keep the edge and the vertex is smooth; the
+  // corner-level groups keep it.
+  std::span<const std::int32_t> vertexHome() const { return vertex_home_; }  // #V
+
+  // Render vertices: the distinct (group, texture coordinate) pairs of the corners.
+  std::size_t renderVertexCount() const { return render_source_.size(); }
+  std::span<const std::int32_t> renderSource() const { return render_source_; }  // #R: a vertex at it
+  std::span<const std::int32_t> renderGroup() const { return render_group_; }    // #R
+  std::span<const std::int32_t> renderUv() const { return render_uv_; }          // #R: uv index or -1
+  std::span<const std::int32_t> renderTriangles() const { return render_triangles_; }  // #F x 3
+
+ private:
+  std::vector<std::int32_t> triangles_, weld_, welded_triangles_, edge_vertices_, edge_faces_, corner_groups_,
+      vertex_home_, render_source_, render_group_, render_uv_, render_triangles_;
+  std::size_t welded_count_ = 0, border_edges_ = 0, group_count_ = 0;
+};
+
+// Per-frame normals on a topology; positions are #V x 3 (any pose of the mesh the topology was
+// built on). Each triangle adds its area-weighted normal (the unnormalised cross product) to the
+// smoothing group of each of its corners; sums are normalised (a group touched only by degenerate
+// triangles gets (0, 0, 0)).
+//
+// Per-frame contract: sizes are checked on entry (positions.size() == 3 #V and the output's size
+// below); on a violation the function returns false and has written nothing; no throw, no
+// allocation.
+//   computeGroupNormals:  group_normals #groups x 3 (the renderer gathers them per render vertex).
+//   computeVertexNormals: normals #V x 3, each vertex the normal of vertexHome(): seams welded,
+//                         hard edges between split vertices kept.
+[[nodiscard]] bool computeGroupNormals(const SurfaceTopology& topology, std::span<const float> positions,
+                                       std::span<float> group_normals);
+[[nodiscard]] bool computeVertexNormals(const SurfaceTopology& topology, std::span<const float> positions,
+                                        std::span<float> normals);
+
+}  // namespace vdg
