@@ -11,6 +11,10 @@
 // byte-identical. --hold-frame F shows animation frame F in every output frame instead (the
 // paper's Figure 10: one moment of the animation seen from a moving camera); --base-only draws
 // the base without key deformations (Figure 11, against the view-dependent Figure 12).
+//
+// Surfaces: seams of the mesh are welded (never inked), true holes are inked unless --no-borders,
+// --creases DEG inks sharp edges, and the mesh's materials and textures colour it unless
+// --no-materials (docs/render.md: the paper's equation per material and per texel).
 #include <sys/stat.h>
 #include <unistd.h>
 #include <cerrno>
@@ -42,8 +46,9 @@ struct RenderOptions {
   std::string model, output, size = "512x512", color, background;
   OrbitOptions camera;  // --orbit, --azimuth, --elevation, --distance, --fov, --frames
   int samples = 8;
-  double sharpness = 0.0, line_width = 0.0;
+  double sharpness = 0.0, line_width = 0.0, creases = 0.0;
   bool observer = false, sphere = false, flat = false, quiet = false, base_only = false;
+  bool no_borders = false, no_materials = false, strict = false;
   int hold_frame = -1;  // -1: advance one animation frame per output frame
 };
 
@@ -51,6 +56,7 @@ struct RenderOptions {
 // camera's are in orbit_options.h).
 constexpr int kMaxSamples = 64;           // the driver caps it further
 constexpr double kMaxLineWidth = 1000.0;  // pixels
+constexpr double kMaxCreaseDeg = 180.0;   // no two faces' normals are further apart
 constexpr int kDriverQuerySide = 4096;    // larger canvases are checked against the driver's limit
 
 // The canvas is twice as wide with the observer panel; both sides must fit the OpenGL driver.
@@ -106,6 +112,9 @@ void run(const RenderOptions& opt) {
   fo.flat = opt.flat;
   fo.base_only = opt.base_only;
   fo.silhouette_width = static_cast<float>(opt.line_width);
+  fo.crease_angle_deg = static_cast<float>(opt.creases);
+  fo.borders = !opt.no_borders;
+  fo.materials = !opt.no_materials;
   if (!opt.color.empty()) fo.color = parseColor(opt.color, "--color");
   if (!opt.background.empty()) fo.background = parseColor(opt.background, "--background");
 
@@ -243,7 +252,8 @@ void addRenderCommand(CLI::App& app) {
   sub->add_flag("--sphere", opt->sphere, "Add an inset of the viewing sphere (keys, hull, active triangle, view)");
   sub->add_option("--sharpness", opt->sharpness, "Blend sharpness alpha (default: the model's own)")
       ->check(positiveNumber());
-  sub->add_option("--color", opt->color, "Base colour R,G,B in [0,1] (default 1,1,1)");
+  sub->add_option("--color", opt->color,
+                  "Base colour R,G,B in [0,1] of surfaces without a material (all with --no-materials; default 1,1,1)");
   sub->add_option("--background", opt->background, "Background colour R,G,B in [0,1] (default 0.97,0.97,0.95)");
   sub->add_flag("--flat", opt->flat, "Flat (per-face) shading, for hard-edged models");
   sub->add_option("--hold-frame", opt->hold_frame,
@@ -253,6 +263,15 @@ void addRenderCommand(CLI::App& app) {
                 "Draw the base model without its key deformations (to compare with the view-dependent model)");
   sub->add_option("--line-width", opt->line_width, "Silhouette stroke width in pixels (default: max(3, height/100))")
       ->check(positiveNumber(kMaxLineWidth));
+  sub->add_option("--creases", opt->creases,
+                  "Ink creases: edges whose faces' normals differ by more than DEG degrees, in (0, 180] "
+                  "(half the stroke width; default: none)")
+      ->check(positiveNumber(kMaxCreaseDeg));
+  sub->add_flag("--no-borders", opt->no_borders,
+                "Do not ink the open borders (holes) of the surface; texture and normal seams are never inked");
+  sub->add_flag("--no-materials", opt->no_materials,
+                "Ignore the mesh's materials and textures: --color everywhere (default: each material's colour, "
+                "times its texture)");
   sub->add_option("--samples", opt->samples, "Multisample anti-aliasing samples (default 8, capped by the driver)")
       ->check(wholeNumber(1, kMaxSamples));
   sub->add_flag("-q,--quiet", opt->quiet, "No progress bar and no summary line");

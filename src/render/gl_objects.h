@@ -38,6 +38,7 @@ inline void deleteFramebuffer(GLuint id) { glDeleteFramebuffers(1, &id); }
 inline void deleteRenderbuffer(GLuint id) { glDeleteRenderbuffers(1, &id); }
 inline void deleteProgram(GLuint id) { glDeleteProgram(id); }
 inline void deleteShader(GLuint id) { glDeleteShader(id); }
+inline void deleteTexture(GLuint id) { glDeleteTextures(1, &id); }
 
 using GlBuffer = GlName<deleteBuffer>;
 using GlVertexArray = GlName<deleteVertexArray>;
@@ -45,6 +46,7 @@ using GlFramebuffer = GlName<deleteFramebuffer>;
 using GlRenderbuffer = GlName<deleteRenderbuffer>;
 using GlProgram = GlName<deleteProgram>;
 using GlShader = GlName<deleteShader>;
+using GlTexture = GlName<deleteTexture>;
 
 inline GlBuffer makeBuffer() {
   GLuint id = 0;
@@ -60,6 +62,11 @@ inline GlFramebuffer makeFramebuffer() {
   GLuint id = 0;
   glGenFramebuffers(1, &id);
   return GlFramebuffer(id);
+}
+inline GlTexture makeTexture() {
+  GLuint id = 0;
+  glGenTextures(1, &id);
+  return GlTexture(id);
 }
 inline GlRenderbuffer makeRenderbuffer() {
   GLuint id = 0;

@@ -11,6 +11,7 @@
 
 #include "vdg/geom/error.h"
 #include "vdg/geom/normalize.h"
+#include "vdg/geom/surface.h"
 
 namespace vdg::render {
 namespace {
@@ -74,7 +75,7 @@ struct ModelRenderer::Impl {
   FrameOptions options;
   Renderer renderer;
   int mesh_id = -1;
-  std::vector<float> positions, normals;
+  std::vector<float> positions;  // this frame's; the renderer computes the normals per smoothing group
   Eigen::Vector3d center = Eigen::Vector3d::Zero();
   double radius = 1.0;
   Camera observer;
@@ -91,8 +92,7 @@ struct ModelRenderer::Impl {
   void setup() {
     const TriMesh& mesh = base();
     positions = mesh.positions;
-    normals.assign(positions.size(), 0.0f);
-    mesh_id = renderer.addMesh(mesh.triangles, mesh.vertexCount());
+    mesh_id = renderer.addSurface(mesh, SurfaceTopology::build(mesh));
     const Bounds b = computeBounds(mesh.positions);
     const auto c = b.center();
     center = model ? model->center() : animated ? animated->center() : Eigen::Vector3d(c[0], c[1], c[2]);
@@ -106,8 +106,7 @@ struct ModelRenderer::Impl {
     observer = options.observer_camera ? *options.observer_camera
                                        : orbitCamera(center, fitDistance(radius, kFovDeg, aspect), 35.0, 25.0, kFovDeg);
     if (!viewDependent()) {
-      check(computeVertexNormals(positions, mesh.triangles, normals), "computeVertexNormals");
-      check(renderer.updateMesh(mesh_id, positions, normals), "updateMesh");
+      check(renderer.updateMesh(mesh_id, positions, {}), "updateMesh");
       return;
     }
     buildSphereDiagram();
@@ -274,8 +273,7 @@ ViewWeights ModelRenderer::render(const Camera& camera, Image& out) {
       w.base = 1.0f;
     }
     check(m.model->blend(w, m.positions), "blend");
-    check(computeVertexNormals(m.positions, m.model->base().triangles, m.normals), "computeVertexNormals");
-    check(m.renderer.updateMesh(m.mesh_id, m.positions, m.normals), "updateMesh");
+    check(m.renderer.updateMesh(m.mesh_id, m.positions, {}), "updateMesh");
   } else if (m.animated) {
     // Section 4.1: the same per frame, on the animated base at frame m.frame.
     view = camera.isOrtho()
@@ -283,15 +281,14 @@ ViewWeights ModelRenderer::render(const Camera& camera, Image& out) {
                : normalizedOrNone(Eigen::Vector3d(camera.eye - m.center)).value_or(Eigen::Vector3d::Zero());
     if (!o.base_only && view.allFinite() && view.norm() > 0.0) {
       check(m.animated->weights(view, o.sharpness, w), "weights");
-      check(m.animated->evaluate(m.frame, view, o.sharpness, m.positions, m.normals), "evaluate");
+      check(m.animated->evaluate(m.frame, view, o.sharpness, m.positions), "evaluate");
     } else {  // the base only, or the eye at the model's centre: the base at this frame
       w = ViewWeights{};
       w.base = 1.0f;
       const auto frame = m.animated->baseFrame(m.frame);
       std::copy(frame.begin(), frame.end(), m.positions.begin());
-      check(computeVertexNormals(m.positions, m.animated->base().triangles, m.normals), "computeVertexNormals");
     }
-    check(m.renderer.updateMesh(m.mesh_id, m.positions, m.normals), "updateMesh");
+    check(m.renderer.updateMesh(m.mesh_id, m.positions, {}), "updateMesh");
   }
 
   m.renderer.clear(o.background);
@@ -300,6 +297,9 @@ ViewWeights ModelRenderer::render(const Camera& camera, Image& out) {
   style.shading = o.shading;
   style.flat = o.flat;
   style.silhouette_width = o.silhouette_width;
+  style.borders = o.borders;
+  style.crease_angle_deg = o.crease_angle_deg;
+  style.materials = o.materials;
   // Clip planes around the model's bounding sphere (twice its radius: keys may move vertices out).
   auto clip = [&](View& v) {
     const double d = (v.camera.eye - m.center).norm();
@@ -319,6 +319,7 @@ ViewWeights ModelRenderer::render(const Camera& camera, Image& out) {
     clip(obs);
     MeshStyle observer_style = style;
     observer_style.color = o.observer_color;
+    observer_style.materials = false;
     observer_style.shading.vary_by_hue = false;
     observer_style.shading.k = effectiveConstants(o.shading, o.observer_color);
     observer_style.shading.k.k2 *= 0.25f;

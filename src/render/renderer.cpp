@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <map>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -61,7 +62,7 @@ GlProgram link(const char* what, const char* vertex, const char* geometry, const
 
 struct MeshProgram {
   GlProgram program;
-  GLint view, proj, base, warm, cool, light_warm, light_cool, ka, k, flat;
+  GLint view, proj, base, warm, cool, light_warm, light_cool, ka, k, flat, textured, hue_rule, texture;
   explicit MeshProgram(GlProgram p) : program(std::move(p)) {
     const GLuint id = program.get();
     view = glGetUniformLocation(id, "u_view");
@@ -74,6 +75,9 @@ struct MeshProgram {
     ka = glGetUniformLocation(id, "u_ka");
     k = glGetUniformLocation(id, "u_k");
     flat = glGetUniformLocation(id, "u_flat");
+    textured = glGetUniformLocation(id, "u_textured");
+    hue_rule = glGetUniformLocation(id, "u_hue_rule");
+    texture = glGetUniformLocation(id, "u_texture");
   }
 };
 
@@ -94,16 +98,36 @@ struct StrokeProgram {
   }
 };
 
+// A material as the GPU draws it: its base colour and its texture (an index into
+// GpuMesh::textures, -1: none).
+struct GpuMaterial {
+  Rgb base{1.0f, 1.0f, 1.0f};
+  int texture = -1;
+};
+
+// Consecutive triangles of the sorted index buffer with one material (-1: none).
+struct DrawRange {
+  int material = -1;
+  std::size_t first = 0, count = 0;  // in indices (3 per triangle)
+};
+
+// Shading draws render vertices (one per smoothing group and texture coordinate); strokes draw
+// the mesh's own vertices, which the welded edges index.
 struct GpuMesh {
-  std::vector<std::int32_t> triangles;
-  std::size_t vertex_count = 0;
-  EdgeTopology topology;
-  std::vector<float> positions;  // this frame's, for the facing test
+  SurfaceTopology topology;
+  bool surface = false;  // from addSurface: empty normals = group normals (else flat)
+  std::vector<GpuMaterial> materials;
+  std::vector<GlTexture> textures;
+  std::vector<DrawRange> ranges;
+  std::size_t index_count = 0;
+  std::vector<float> positions;                         // #V x 3, this frame's (facing, creases)
+  std::vector<float> render_positions, render_normals;  // #R x 3, gathered per frame
+  std::vector<float> group_normals;                     // #G x 3
   std::vector<std::uint8_t> front;
-  std::vector<std::uint32_t> silhouette;
+  std::vector<std::uint32_t> silhouette, creases;
   bool has_normals = false;
-  GlVertexArray vao;
-  GlBuffer position_buffer, normal_buffer, triangle_buffer, silhouette_buffer;
+  GlVertexArray vao, stroke_vao;
+  GlBuffer position_buffer, normal_buffer, uv_buffer, triangle_buffer, vertex_buffer, stroke_buffer;
 };
 
 Eigen::Vector3f toVec(const std::array<float, 3>& a) { return {a[0], a[1], a[2]}; }
@@ -141,12 +165,18 @@ struct Renderer::Impl {
     glUniformMatrix4fv(proj_loc, 1, GL_FALSE, proj.data());
   }
 
-  void setShading(const MeshStyle& style) {
+  // Uniforms of the lighting equation for a surface of colour `base`. A textured surface gets the
+  // caller's constants and the shader applies the hue rule per texel (to base x texel).
+  void setShading(const MeshStyle& style, const Rgb& base, bool textured = false) {
     const MeshProgram& p = *mesh_program;
-    const ShadingConstants k = effectiveConstants(style.shading, style.color);
+    const bool hue_per_texel = textured && style.shading.vary_by_hue;
+    const ShadingConstants k = textured ? style.shading.k : effectiveConstants(style.shading, base);
     const Eigen::Vector3f l1 = toVec(style.shading.light_warm).normalized();
     const Eigen::Vector3f l2 = toVec(style.shading.light_cool).normalized();
-    glUniform3fv(p.base, 1, style.color.data());
+    glUniform3fv(p.base, 1, base.data());
+    glUniform1i(p.textured, textured ? 1 : 0);
+    glUniform1i(p.hue_rule, hue_per_texel ? 1 : 0);
+    glUniform1i(p.texture, 0);
     glUniform3fv(p.warm, 1, style.shading.warm.data());
     glUniform3fv(p.cool, 1, style.shading.cool.data());
     glUniform3fv(p.light_warm, 1, l1.data());
@@ -320,6 +350,90 @@ int Renderer::height() const { return impl_->height; }
 int Renderer::samples() const { return impl_->samples; }
 std::string Renderer::glInfo() const { return impl_->info; }
 
+namespace {
+
+// Creates the GL objects of `mesh` (its topology, ranges and materials set): the shading VAO over
+// render vertices with the material-sorted index buffer, and the stroke VAO over the vertices.
+void uploadMesh(GpuMesh& mesh, std::span<const float> render_uvs, std::span<const std::uint32_t> sorted) {
+  const SurfaceTopology& t = mesh.topology;
+  const std::size_t render_count = t.renderVertexCount();
+  mesh.positions.assign(t.vertexCount() * 3, 0.0f);
+  mesh.render_positions.assign(render_count * 3, 0.0f);
+  mesh.render_normals.assign(render_count * 3, 0.0f);
+  mesh.group_normals.assign(t.groupCount() * 3, 0.0f);
+  mesh.front.assign(t.triangleCount(), 0);
+  mesh.silhouette.reserve(t.edgeCount() * 2);
+  mesh.creases.reserve(t.edgeCount() * 2);
+  mesh.index_count = sorted.size();
+  mesh.vao = makeVertexArray();
+  mesh.stroke_vao = makeVertexArray();
+  mesh.position_buffer = makeBuffer();
+  mesh.normal_buffer = makeBuffer();
+  mesh.uv_buffer = makeBuffer();
+  mesh.triangle_buffer = makeBuffer();
+  mesh.vertex_buffer = makeBuffer();
+  mesh.stroke_buffer = makeBuffer();
+
+  glBindVertexArray(mesh.vao.get());
+  const auto render_bytes = static_cast<GLsizeiptr>(render_count * 3 * sizeof(float));
+  glBindBuffer(GL_ARRAY_BUFFER, mesh.position_buffer.get());
+  glBufferData(GL_ARRAY_BUFFER, render_bytes, nullptr, GL_DYNAMIC_DRAW);
+  glEnableVertexAttribArray(0);
+  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
+  glBindBuffer(GL_ARRAY_BUFFER, mesh.normal_buffer.get());
+  glBufferData(GL_ARRAY_BUFFER, render_bytes, nullptr, GL_DYNAMIC_DRAW);
+  glEnableVertexAttribArray(1);
+  glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
+  glBindBuffer(GL_ARRAY_BUFFER, mesh.uv_buffer.get());
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(render_uvs.size_bytes()), render_uvs.data(), GL_STATIC_DRAW);
+  glEnableVertexAttribArray(2);
+  glVertexAttribPointer(2, 2, GL_FLOAT, GL_FALSE, 0, nullptr);
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, mesh.triangle_buffer.get());
+  glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(sorted.size_bytes()), sorted.data(), GL_STATIC_DRAW);
+
+  glBindVertexArray(mesh.stroke_vao.get());
+  glBindBuffer(GL_ARRAY_BUFFER, mesh.vertex_buffer.get());
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(t.vertexCount() * 3 * sizeof(float)), nullptr, GL_DYNAMIC_DRAW);
+  glEnableVertexAttribArray(0);
+  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
+  // Silhouettes and creases never share an edge: 2 indices an edge hold both lists.
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, mesh.stroke_buffer.get());
+  glBufferData(GL_ELEMENT_ARRAY_BUFFER,
+               static_cast<GLsizeiptr>(std::max<std::size_t>(1, t.edgeCount() * 2) * sizeof(std::uint32_t)), nullptr,
+               GL_DYNAMIC_DRAW);
+  glBindVertexArray(0);
+}
+
+// The render vertices' texture coordinates (#R x 2; (0, 0) where a corner has none).
+std::vector<float> renderUvs(const SurfaceTopology& t, std::span<const float> uvs) {
+  std::vector<float> out(t.renderVertexCount() * 2, 0.0f);
+  const auto uv = t.renderUv();
+  for (std::size_t r = 0; r < uv.size(); ++r) {
+    if (uv[r] < 0) continue;
+    out[r * 2] = uvs[static_cast<std::size_t>(uv[r]) * 2];
+    out[r * 2 + 1] = uvs[static_cast<std::size_t>(uv[r]) * 2 + 1];
+  }
+  return out;
+}
+
+GlTexture uploadTexture(const TextureImage& image) {
+  GlTexture texture = makeTexture();
+  glBindTexture(GL_TEXTURE_2D, texture.get());
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  // Rows go up as stored (top row first, at t = 0); the shader samples at (u, 1 - v), so v = 0
+  // (the uv origin, bottom-left) reads the last row.
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, image.width, image.height, 0, GL_RGBA, GL_UNSIGNED_BYTE, image.rgba.data());
+  glGenerateMipmap(GL_TEXTURE_2D);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+  glBindTexture(GL_TEXTURE_2D, 0);
+  return texture;
+}
+
+}  // namespace
+
 int Renderer::addMesh(std::span<const std::int32_t> triangles, std::size_t vertex_count) {
   Impl& m = *impl_;
   if (triangles.size() % 3 != 0)
@@ -331,37 +445,74 @@ int Renderer::addMesh(std::span<const std::int32_t> triangles, std::size_t verte
   }
   m.context.makeCurrent();
   auto mesh = std::make_unique<GpuMesh>();
-  mesh->triangles.assign(triangles.begin(), triangles.end());
-  mesh->vertex_count = vertex_count;
-  mesh->topology = buildEdgeTopology(triangles, vertex_count);
-  mesh->positions.assign(vertex_count * 3, 0.0f);
-  mesh->front.assign(triangles.size() / 3, 0);
-  mesh->silhouette.reserve(mesh->topology.edgeCount() * 2);
-  mesh->vao = makeVertexArray();
-  mesh->position_buffer = makeBuffer();
-  mesh->normal_buffer = makeBuffer();
-  mesh->triangle_buffer = makeBuffer();
-  mesh->silhouette_buffer = makeBuffer();
-  glBindVertexArray(mesh->vao.get());
-  const auto bytes = static_cast<GLsizeiptr>(vertex_count * 3 * sizeof(float));
-  glBindBuffer(GL_ARRAY_BUFFER, mesh->position_buffer.get());
-  glBufferData(GL_ARRAY_BUFFER, bytes, nullptr, GL_DYNAMIC_DRAW);
-  glEnableVertexAttribArray(0);
-  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
-  glBindBuffer(GL_ARRAY_BUFFER, mesh->normal_buffer.get());
-  glBufferData(GL_ARRAY_BUFFER, bytes, nullptr, GL_DYNAMIC_DRAW);
-  glEnableVertexAttribArray(1);
-  glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
-  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, mesh->triangle_buffer.get());
-  glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(triangles.size_bytes()), triangles.data(),
-               GL_STATIC_DRAW);
-  glBindVertexArray(0);
-  glBindBuffer(GL_COPY_WRITE_BUFFER, mesh->silhouette_buffer.get());
-  glBufferData(
-      GL_COPY_WRITE_BUFFER,
-      static_cast<GLsizeiptr>(std::max<std::size_t>(1, mesh->topology.edgeCount() * 2) * sizeof(std::uint32_t)),
-      nullptr, GL_DYNAMIC_DRAW);
+  mesh->topology = SurfaceTopology::unwelded(triangles, vertex_count);
+  const auto render = mesh->topology.renderTriangles();
+  const std::vector<std::uint32_t> indices(render.begin(), render.end());
+  mesh->ranges.push_back({-1, 0, indices.size()});
+  uploadMesh(*mesh, renderUvs(mesh->topology, {}), indices);
   m.meshes.push_back(std::move(mesh));
+  return static_cast<int>(m.meshes.size()) - 1;
+}
+
+int Renderer::addSurface(const TriMesh& mesh, const SurfaceTopology& topology) {
+  Impl& m = *impl_;
+  const std::string what = "render: addSurface";
+  validateMesh(mesh, what);
+  const auto tt = topology.triangles();
+  if (topology.vertexCount() != mesh.vertexCount() || topology.triangleCount() != mesh.triangleCount() ||
+      !std::equal(tt.begin(), tt.end(), mesh.triangles.begin(), mesh.triangles.end()))
+    throw Error(what + ": the topology was built on another mesh (" + std::to_string(topology.vertexCount()) +
+                " vertices, " + std::to_string(topology.triangleCount()) + " triangles; the mesh has " +
+                std::to_string(mesh.vertexCount()) + " vertices, " + std::to_string(mesh.triangleCount()) +
+                " triangles" + (topology.triangleCount() == mesh.triangleCount() ? ", other triangles)" : ")"));
+  m.context.makeCurrent();
+  GLint max_texture = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_texture);
+  auto gpu = std::make_unique<GpuMesh>();
+  gpu->topology = topology;
+  gpu->surface = true;
+
+  // Materials; a texture shared by several materials is uploaded once. Without texture
+  // coordinates no texture can be sampled: the base colour alone.
+  std::map<const TextureImage*, int> uploaded;
+  for (const Material& material : mesh.materials) {
+    GpuMaterial g;
+    g.base = material.base_color;
+    if (material.texture && !mesh.uvs.empty()) {
+      const TextureImage& image = *material.texture;
+      if (image.width > max_texture || image.height > max_texture)
+        throw Error(what + ": material '" + material.name + "': texture " + std::to_string(image.width) + "x" +
+                    std::to_string(image.height) + " exceeds the OpenGL driver's limit of " +
+                    std::to_string(max_texture) + " pixels a side");
+      const auto [it, inserted] = uploaded.try_emplace(&image, static_cast<int>(gpu->textures.size()));
+      if (inserted) gpu->textures.push_back(uploadTexture(image));
+      g.texture = it->second;
+    }
+    gpu->materials.push_back(g);
+  }
+
+  // Triangles sorted by material (stable: file order within a material), one draw range each.
+  const std::size_t faces = mesh.triangleCount();
+  std::vector<std::int32_t> order(faces);
+  for (std::size_t f = 0; f < faces; ++f) order[f] = static_cast<std::int32_t>(f);
+  const auto material_of = [&](std::int32_t f) {
+    return mesh.face_materials.empty() ? -1 : mesh.face_materials[static_cast<std::size_t>(f)];
+  };
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::int32_t a, std::int32_t b) { return material_of(a) < material_of(b); });
+  const auto render = topology.renderTriangles();
+  std::vector<std::uint32_t> indices;
+  indices.reserve(faces * 3);
+  for (const std::int32_t f : order) {
+    const int material = material_of(f);
+    if (gpu->ranges.empty() || gpu->ranges.back().material != material)
+      gpu->ranges.push_back({material, indices.size(), 0});
+    for (int c = 0; c < 3; ++c)
+      indices.push_back(static_cast<std::uint32_t>(render[static_cast<std::size_t>(f) * 3 + c]));
+    gpu->ranges.back().count += 3;
+  }
+  uploadMesh(*gpu, renderUvs(topology, mesh.uvs), indices);
+  m.meshes.push_back(std::move(gpu));
   return static_cast<int>(m.meshes.size()) - 1;
 }
 
@@ -371,14 +522,31 @@ bool Renderer::updateMesh(int mesh_id, std::span<const float> positions, std::sp
   GpuMesh& mesh = *m.meshes[static_cast<std::size_t>(mesh_id)];
   const std::size_t n = mesh.positions.size();
   if (positions.size() != n || (!normals.empty() && normals.size() != n)) return false;
-  m.context.makeCurrent();
+  // Every check is above: from here on the call succeeds.
+  const SurfaceTopology& t = mesh.topology;
+  const auto source = t.renderSource();
   std::copy_n(positions.begin(), n, mesh.positions.begin());
-  glBindBuffer(GL_ARRAY_BUFFER, mesh.position_buffer.get());
+  for (std::size_t r = 0; r < source.size(); ++r)
+    std::copy_n(&positions[static_cast<std::size_t>(source[r]) * 3], 3, &mesh.render_positions[r * 3]);
+  mesh.has_normals = !normals.empty() || mesh.surface;
+  if (!normals.empty()) {
+    for (std::size_t r = 0; r < source.size(); ++r)
+      std::copy_n(&normals[static_cast<std::size_t>(source[r]) * 3], 3, &mesh.render_normals[r * 3]);
+  } else if (mesh.surface) {
+    (void)computeGroupNormals(t, positions, mesh.group_normals);  // sizes are right by construction
+    const auto group = t.renderGroup();
+    for (std::size_t r = 0; r < group.size(); ++r)
+      std::copy_n(&mesh.group_normals[static_cast<std::size_t>(group[r]) * 3], 3, &mesh.render_normals[r * 3]);
+  }
+  m.context.makeCurrent();
+  const auto render_bytes = static_cast<GLsizeiptr>(mesh.render_positions.size() * sizeof(float));
+  glBindBuffer(GL_ARRAY_BUFFER, mesh.vertex_buffer.get());
   glBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(n * sizeof(float)), positions.data());
-  mesh.has_normals = !normals.empty();
+  glBindBuffer(GL_ARRAY_BUFFER, mesh.position_buffer.get());
+  glBufferSubData(GL_ARRAY_BUFFER, 0, render_bytes, mesh.render_positions.data());
   if (mesh.has_normals) {
     glBindBuffer(GL_ARRAY_BUFFER, mesh.normal_buffer.get());
-    glBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(n * sizeof(float)), normals.data());
+    glBufferSubData(GL_ARRAY_BUFFER, 0, render_bytes, mesh.render_normals.data());
   }
   return true;
 }
@@ -404,7 +572,7 @@ bool Renderer::drawMesh(int mesh_id, const View& view, const MeshStyle& style) {
   glBindFramebuffer(GL_FRAMEBUFFER, m.ms_fbo.get());
   m.setView(view);
 
-  // Pass 1: shaded front faces (back faces culled).
+  // Pass 1: shaded front faces (back faces culled), one draw per material range.
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glDepthMask(GL_TRUE);
@@ -415,38 +583,78 @@ bool Renderer::drawMesh(int mesh_id, const View& view, const MeshStyle& style) {
   m.setMatrices(m.mesh_program->view, m.mesh_program->proj, view);
   MeshStyle shaded = style;
   shaded.flat = style.flat || !mesh.has_normals;
-  m.setShading(shaded);
   glBindVertexArray(mesh.vao.get());
-  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, mesh.triangle_buffer.get());
-  glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(mesh.triangles.size()), GL_UNSIGNED_INT, nullptr);
+  glActiveTexture(GL_TEXTURE0);
+  const auto draw = [](std::size_t first, std::size_t count) {
+    glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(count), GL_UNSIGNED_INT,
+                   reinterpret_cast<const void*>(first * sizeof(std::uint32_t)));
+  };
+  if (!style.materials) {
+    m.setShading(shaded, style.color);
+    draw(0, mesh.index_count);
+  } else {
+    for (const DrawRange& range : mesh.ranges) {
+      const GpuMaterial* material =
+          range.material >= 0 ? &mesh.materials[static_cast<std::size_t>(range.material)] : nullptr;
+      const bool textured = material && material->texture >= 0;
+      m.setShading(shaded, material ? material->base : style.color, textured);
+      glBindTexture(GL_TEXTURE_2D, textured ? mesh.textures[static_cast<std::size_t>(material->texture)].get() : 0);
+      draw(range.first, range.count);
+    }
+    glBindTexture(GL_TEXTURE_2D, 0);
+  }
   glDisable(GL_CULL_FACE);
-  if (style.silhouette_width <= 0.0f) return true;
+  const float crease_width = style.crease_width > 0.0f ? style.crease_width : 0.5f * style.silhouette_width;
+  const bool want_creases = style.crease_angle_deg > 0.0f && crease_width > 0.0f;
+  if (style.silhouette_width <= 0.0f && !want_creases) {
+    glBindVertexArray(0);
+    return true;
+  }
 
-  // Pass 2: silhouette edges (one face towards the eye, the other away), found on the CPU.
+  // Pass 2: silhouette edges (one face towards the eye, the other away), open borders and
+  // creases, found on the CPU on the welded surface.
   Eigen::Vector3f eye = view.camera.eye.cast<float>();
   if (view.camera.isOrtho()) {
     const Eigen::Vector3d back = (view.camera.eye - view.camera.target).normalized();
     eye = (view.camera.target + back * (1e6 * std::max(1.0, view.camera.ortho_height))).cast<float>();
   }
-  faceFacing(mesh.positions, mesh.triangles, eye, mesh.front);
-  silhouetteEdges(mesh.topology, mesh.front, mesh.silhouette);
-  if (mesh.silhouette.empty()) return true;
-  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, mesh.silhouette_buffer.get());
-  glBufferSubData(GL_ELEMENT_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(mesh.silhouette.size() * sizeof(std::uint32_t)),
-                  mesh.silhouette.data());
+  faceFacing(mesh.positions, mesh.topology.triangles(), eye, mesh.front);
+  if (style.silhouette_width > 0.0f)
+    silhouetteEdges(mesh.topology, mesh.front, style.borders, mesh.silhouette);
+  else
+    mesh.silhouette.clear();
+  if (want_creases)
+    creaseEdges(mesh.topology, mesh.positions, mesh.front, style.crease_angle_deg, mesh.creases);
+  else
+    mesh.creases.clear();
+  if (mesh.silhouette.empty() && mesh.creases.empty()) {
+    glBindVertexArray(0);
+    return true;
+  }
+  glBindVertexArray(mesh.stroke_vao.get());
+  const std::size_t silhouette_bytes = mesh.silhouette.size() * sizeof(std::uint32_t);
+  glBufferSubData(GL_ELEMENT_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(silhouette_bytes), mesh.silhouette.data());
+  glBufferSubData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLintptr>(silhouette_bytes),
+                  static_cast<GLsizeiptr>(mesh.creases.size() * sizeof(std::uint32_t)), mesh.creases.data());
   glDepthFunc(GL_LEQUAL);
   glDepthMask(GL_FALSE);
-  const float width = style.silhouette_width;
-  const float pull = style.silhouette_pull * width;
-  glUseProgram(m.line_program->program.get());
-  m.setStroke(*m.line_program, view, width, style.silhouette_color, pull);
-  glDrawElements(GL_LINES, static_cast<GLsizei>(mesh.silhouette.size()), GL_UNSIGNED_INT, nullptr);
-  // Pass 3: round dots at the edge ends fill the cracks between thick edges (the paper's points).
-  glEnable(GL_SAMPLE_ALPHA_TO_COVERAGE);
-  glUseProgram(m.dot_program->program.get());
-  m.setStroke(*m.dot_program, view, width, style.silhouette_color, pull);
-  glDrawElements(GL_POINTS, static_cast<GLsizei>(mesh.silhouette.size()), GL_UNSIGNED_INT, nullptr);
-  glDisable(GL_SAMPLE_ALPHA_TO_COVERAGE);
+  // Each list as thick lines, then round dots at the edge ends to fill the cracks between thick
+  // edges (the paper's points). Creases first: silhouettes lie on top where they meet.
+  const auto strokes = [&](std::size_t first, std::size_t count, float width) {
+    if (count == 0) return;
+    const void* offset = reinterpret_cast<const void*>(first * sizeof(std::uint32_t));
+    const float pull = style.silhouette_pull * width;
+    glUseProgram(m.line_program->program.get());
+    m.setStroke(*m.line_program, view, width, style.silhouette_color, pull);
+    glDrawElements(GL_LINES, static_cast<GLsizei>(count), GL_UNSIGNED_INT, offset);
+    glEnable(GL_SAMPLE_ALPHA_TO_COVERAGE);
+    glUseProgram(m.dot_program->program.get());
+    m.setStroke(*m.dot_program, view, width, style.silhouette_color, pull);
+    glDrawElements(GL_POINTS, static_cast<GLsizei>(count), GL_UNSIGNED_INT, offset);
+    glDisable(GL_SAMPLE_ALPHA_TO_COVERAGE);
+  };
+  strokes(mesh.silhouette.size(), mesh.creases.size(), crease_width);
+  strokes(0, mesh.silhouette.size(), style.silhouette_width);
   glDepthMask(GL_TRUE);
   glBindVertexArray(0);
   return true;
@@ -468,7 +676,7 @@ bool Renderer::drawTriangles(std::span<const float> positions, const View& view,
   m.setMatrices(m.mesh_program->view, m.mesh_program->proj, view);
   MeshStyle flat = style;
   flat.flat = true;
-  m.setShading(flat);
+  m.setShading(flat, style.color);
   glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(positions.size() / 3));
   glBindVertexArray(0);
   return true;

@@ -5,23 +5,30 @@ namespace vdg::render::shaders {
 const char* const kMeshVertex = R"(#version 330 core
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
+layout(location = 2) in vec2 a_uv;
 uniform mat4 u_view;
 uniform mat4 u_proj;
 out vec3 v_pos;
 out vec3 v_normal;
+out vec2 v_uv;
 void main() {
   vec4 p = u_view * vec4(a_position, 1.0);
   v_pos = p.xyz;
   v_normal = mat3(u_view) * a_normal;
+  v_uv = a_uv;
   gl_Position = u_proj * p;
 }
 )";
 
 // C = ka*Cbase + max(0, l1.n)(Cwarm - Cbase*k1)*k2 + max(0, l2.n)(Ccool - Cbase*k3)*k4
-// (Rademacher 99, section 3.2.4; the same expression as shade() in shading.cpp).
+// (Rademacher 99, section 3.2.4; the same expression as shade() in shading.cpp). A textured
+// surface has Cbase = u_base x texel, and with u_hue_rule the constants are u_k adjusted by the
+// hue of that Cbase, per fragment: hsv() and hueAdjusted() are toHsv() and
+// hueAdjustedConstants() of shading.cpp, line for line (the render tests compare them).
 const char* const kMeshFragment = R"(#version 330 core
 in vec3 v_pos;
 in vec3 v_normal;
+in vec2 v_uv;
 uniform vec3 u_base;
 uniform vec3 u_warm;
 uniform vec3 u_cool;
@@ -30,7 +37,47 @@ uniform vec3 u_light_cool;
 uniform float u_ka;
 uniform vec4 u_k;
 uniform int u_flat;
+uniform int u_textured;
+uniform int u_hue_rule;
+uniform sampler2D u_texture;
 out vec4 o_color;
+
+vec3 hsv(vec3 c) {
+  float mx = max(c.r, max(c.g, c.b));
+  float mn = min(c.r, min(c.g, c.b));
+  float delta = mx - mn;
+  vec3 o = vec3(0.0, mx > 0.0 ? delta / mx : 0.0, mx);
+  if (delta <= 0.0) return o;
+  float h;
+  if (mx == c.r) {
+    h = 60.0 * mod((c.g - c.b) / delta, 6.0);
+  } else if (mx == c.g) {
+    h = 60.0 * ((c.b - c.r) / delta + 2.0);
+  } else {
+    h = 60.0 * ((c.r - c.g) / delta + 4.0);
+  }
+  if (h < 0.0) h += 360.0;
+  o.x = h;
+  return o;
+}
+
+// k = (k1, k2, k3, k4).
+vec4 hueAdjusted(vec4 k, vec3 base) {
+  vec3 c = hsv(base);
+  vec4 o = k;
+  if (c.y < 0.2) {
+    if (c.z > 0.6) o.y = 0.0;
+    return o;
+  }
+  if (c.x >= 250.0 && c.x < 330.0) {
+    o.w = 2.0 * k.w;
+  } else if (c.x < 20.0 || c.x >= 330.0) {
+    o.w = 1.5 * k.w;
+    o.y = 0.5 * k.y;
+  }
+  return o;
+}
+
 void main() {
   vec3 n;
   if (u_flat != 0) {
@@ -40,9 +87,15 @@ void main() {
     n = len > 1e-20 ? v_normal / len : vec3(0.0, 0.0, 1.0);
     if (!gl_FrontFacing) n = -n;
   }
+  vec3 base = u_base;
+  vec4 k = u_k;
+  if (u_textured != 0) {
+    base *= texture(u_texture, vec2(v_uv.x, 1.0 - v_uv.y)).rgb;
+    if (u_hue_rule != 0) k = hueAdjusted(k, base);
+  }
   float d1 = max(dot(u_light_warm, n), 0.0);
   float d2 = max(dot(u_light_cool, n), 0.0);
-  vec3 c = u_ka * u_base + d1 * (u_warm - u_base * u_k.x) * u_k.y + d2 * (u_cool - u_base * u_k.z) * u_k.w;
+  vec3 c = u_ka * base + d1 * (u_warm - base * k.x) * k.y + d2 * (u_cool - base * k.z) * k.w;
   o_color = vec4(clamp(c, 0.0, 1.0), 1.0);
 }
 )";

@@ -1,68 +1,72 @@
 // Silhouette edge detection, Rademacher 99 section 3.2.4 (after Raskar and Cohen 99): only the
-// faces adjacent to an edge whose two faces differ in facing are drawn in the silhouette pass.
+// edges whose two faces differ in facing are drawn in the silhouette pass. The edges are those of
+// the welded surface (SurfaceTopology), so texture and normal seams are not mistaken for borders.
 #include "vdg/render/silhouette.h"
 
 #include <algorithm>
-#include <utility>
+#include <cmath>
+#include <numbers>
 
 #include <Eigen/Geometry>
 
 namespace vdg::render {
+namespace {
 
-EdgeTopology buildEdgeTopology(std::span<const std::int32_t> triangles, std::size_t vertex_count) {
-  (void)vertex_count;
-  struct HalfEdge {
-    std::uint64_t key;  // (min vertex << 32) | max vertex
-    std::int32_t face;
-  };
-  std::vector<HalfEdge> half;
-  const std::size_t faces = triangles.size() / 3;
-  half.reserve(faces * 3);
-  for (std::size_t f = 0; f < faces; ++f) {
-    for (int c = 0; c < 3; ++c) {
-      auto a = static_cast<std::uint32_t>(triangles[f * 3 + c]);
-      auto b = static_cast<std::uint32_t>(triangles[f * 3 + (c + 1) % 3]);
-      if (a > b) std::swap(a, b);
-      half.push_back({(std::uint64_t{a} << 32) | b, static_cast<std::int32_t>(f)});
-    }
-  }
-  std::sort(half.begin(), half.end(),
-            [](const HalfEdge& x, const HalfEdge& y) { return x.key != y.key ? x.key < y.key : x.face < y.face; });
-  EdgeTopology t;
-  for (std::size_t i = 0; i < half.size();) {
-    std::size_t j = i + 1;
-    while (j < half.size() && half[j].key == half[i].key) ++j;
-    t.vertices.push_back(static_cast<std::int32_t>(half[i].key >> 32));
-    t.vertices.push_back(static_cast<std::int32_t>(half[i].key & 0xffffffffu));
-    t.faces.push_back(half[i].face);
-    t.faces.push_back(j - i >= 2 ? half[i + 1].face : -1);
-    i = j;
-  }
-  return t;
+Eigen::Vector3f vertexAt(std::span<const float> positions, std::int32_t v) {
+  const float* p = &positions[static_cast<std::size_t>(v) * 3];
+  return {p[0], p[1], p[2]};
 }
+
+// (v1 - v0) x (v2 - v0) of triangle f: the unnormalised normal (length twice the area).
+Eigen::Vector3f faceCross(std::span<const float> positions, std::span<const std::int32_t> triangles, std::size_t f) {
+  const Eigen::Vector3f a = vertexAt(positions, triangles[f * 3]);
+  return (vertexAt(positions, triangles[f * 3 + 1]) - a).cross(vertexAt(positions, triangles[f * 3 + 2]) - a);
+}
+
+}  // namespace
 
 void faceFacing(std::span<const float> positions, std::span<const std::int32_t> triangles, const Eigen::Vector3f& eye,
                 std::span<std::uint8_t> front) {
   const std::size_t faces = triangles.size() / 3;
   for (std::size_t f = 0; f < faces; ++f) {
-    const float* a = &positions[static_cast<std::size_t>(triangles[f * 3]) * 3];
-    const float* b = &positions[static_cast<std::size_t>(triangles[f * 3 + 1]) * 3];
-    const float* c = &positions[static_cast<std::size_t>(triangles[f * 3 + 2]) * 3];
-    const Eigen::Vector3f va(a[0], a[1], a[2]);
-    const Eigen::Vector3f n = (Eigen::Vector3f(b[0], b[1], b[2]) - va).cross(Eigen::Vector3f(c[0], c[1], c[2]) - va);
-    front[f] = n.dot(eye - va) > 0.0f ? 1 : 0;
+    const Eigen::Vector3f n = faceCross(positions, triangles, f);
+    front[f] = n.dot(eye - vertexAt(positions, triangles[f * 3])) > 0.0f ? 1 : 0;
   }
 }
 
-void silhouetteEdges(const EdgeTopology& topology, std::span<const std::uint8_t> front,
+void silhouetteEdges(const SurfaceTopology& topology, std::span<const std::uint8_t> front, bool borders,
                      std::vector<std::uint32_t>& out) {
   out.clear();
+  const auto vertices = topology.edgeVertices();
+  const auto faces = topology.edgeFaces();
   const std::size_t edges = topology.edgeCount();
   for (std::size_t e = 0; e < edges; ++e) {
-    const std::int32_t f0 = topology.faces[e * 2], f1 = topology.faces[e * 2 + 1];
-    if (f1 >= 0 && front[f0] == front[f1]) continue;
-    out.push_back(static_cast<std::uint32_t>(topology.vertices[e * 2]));
-    out.push_back(static_cast<std::uint32_t>(topology.vertices[e * 2 + 1]));
+    const std::int32_t f0 = faces[e * 2], f1 = faces[e * 2 + 1];
+    if (f1 < 0 ? !borders : front[static_cast<std::size_t>(f0)] == front[static_cast<std::size_t>(f1)]) continue;
+    out.push_back(static_cast<std::uint32_t>(vertices[e * 2]));
+    out.push_back(static_cast<std::uint32_t>(vertices[e * 2 + 1]));
+  }
+}
+
+void creaseEdges(const SurfaceTopology& topology, std::span<const float> positions, std::span<const std::uint8_t> front,
+                 double crease_angle_deg, std::vector<std::uint32_t>& out) {
+  out.clear();
+  if (!std::isfinite(crease_angle_deg) || crease_angle_deg <= 0.0) return;
+  // The angle between the normals exceeds the threshold when n0 . n1 < cos(threshold) |n0| |n1|.
+  const auto cos_limit = static_cast<float>(std::cos(std::min(crease_angle_deg, 180.0) * std::numbers::pi / 180.0));
+  const auto triangles = topology.triangles();
+  const auto vertices = topology.edgeVertices();
+  const auto faces = topology.edgeFaces();
+  const std::size_t edges = topology.edgeCount();
+  for (std::size_t e = 0; e < edges; ++e) {
+    const std::int32_t f0 = faces[e * 2], f1 = faces[e * 2 + 1];
+    if (f1 < 0 || !front[static_cast<std::size_t>(f0)] || !front[static_cast<std::size_t>(f1)]) continue;
+    const Eigen::Vector3f n0 = faceCross(positions, triangles, static_cast<std::size_t>(f0));
+    const Eigen::Vector3f n1 = faceCross(positions, triangles, static_cast<std::size_t>(f1));
+    const float scale = n0.norm() * n1.norm();
+    if (!(scale > 0.0f) || n0.dot(n1) >= cos_limit * scale) continue;
+    out.push_back(static_cast<std::uint32_t>(vertices[e * 2]));
+    out.push_back(static_cast<std::uint32_t>(vertices[e * 2 + 1]));
   }
 }
 

@@ -112,6 +112,25 @@ TEST(CliRender, HoldFrameAndBaseOnlyOnTheWalker) {
   EXPECT_NE(held_png, readBytes(vd / "frame_0001.png"));    // another moment of the walk
 }
 
+// The surface options: on the teapot (patch seams welded; lid and body rims are true borders),
+// --no-borders and --creases each change the frame, --no-materials leaves a mesh without
+// materials as it was.
+TEST(CliRender, SurfaceOptionsOnTheTeapot) {
+  const std::string teapot = kSource + "/examples/meshes/teapot.obj";
+  const std::string common = " --size 96x96 --elevation 30 --quiet";
+  std::vector<std::string> frames;
+  for (const std::string option : {"", " --no-borders", " --creases 20", " --no-materials"}) {
+    const fs::path dir = freshDir("vdg_render_teapot" + std::to_string(frames.size()));
+    const Result r = vdg("render " + teapot + " -o " + dir.string() + common + option);
+    ASSERT_EQ(r.status, 0) << option << ": " << r.output;
+    frames.push_back(readBytes(dir / "frame_0000.png"));
+    ASSERT_FALSE(frames.back().empty()) << option;
+  }
+  EXPECT_NE(frames[0], frames[1]) << "--no-borders";
+  EXPECT_NE(frames[0], frames[2]) << "--creases";
+  EXPECT_EQ(frames[0], frames[3]) << "--no-materials on a mesh without materials";
+}
+
 // A full disk (here a file size limit, which fails writes the same way) is an error naming the
 // frame, exit status 1, and a frame already there stays byte-identical.
 TEST(CliRender, FullDiskFailsAndKeepsExistingFrames) {

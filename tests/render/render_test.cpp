@@ -248,20 +248,20 @@ TEST(Shading, WhiteSurfaceHasNoWarmTint) {
 
 TEST(Silhouette, ClosedMeshEdgesHaveTwoFaces) {
   const TriMesh s = uvSphere(6, 8);
-  const EdgeTopology t = buildEdgeTopology(s.triangles, s.vertexCount());
+  const SurfaceTopology t = SurfaceTopology::build(s);
   // Euler: V - E + F = 2.
   EXPECT_EQ(
       static_cast<long>(s.vertexCount()) - static_cast<long>(t.edgeCount()) + static_cast<long>(s.triangleCount()), 2);
-  for (std::size_t e = 0; e < t.edgeCount(); ++e) EXPECT_GE(t.faces[e * 2 + 1], 0);
+  for (std::size_t e = 0; e < t.edgeCount(); ++e) EXPECT_GE(t.edgeFaces()[e * 2 + 1], 0);
 }
 
 TEST(Silhouette, EdgesBetweenFrontAndBackFacesOnly) {
   const TriMesh s = uvSphere(12, 16);
-  const EdgeTopology t = buildEdgeTopology(s.triangles, s.vertexCount());
+  const SurfaceTopology t = SurfaceTopology::build(s);
   std::vector<std::uint8_t> front(s.triangleCount());
   std::vector<std::uint32_t> edges;
   faceFacing(s.positions, s.triangles, Eigen::Vector3f(0, 0, 10), front);
-  silhouetteEdges(t, front, edges);
+  silhouetteEdges(t, front, true, edges);
   ASSERT_FALSE(edges.empty());
   // Seen from +Z the silhouette of a sphere is near the z = 0 circle, and every silhouette vertex
   // is used by exactly two silhouette edges (a closed loop).
@@ -273,18 +273,20 @@ TEST(Silhouette, EdgesBetweenFrontAndBackFacesOnly) {
   for (const auto& [v, n] : uses) EXPECT_EQ(n % 2, 0) << "vertex " << v;
 }
 
-TEST(Silhouette, OpenBoundaryIsAlwaysDrawn) {
+TEST(Silhouette, OpenBordersAreDrawnWhenAskedFor) {
   const std::vector<float> quad{0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
   const std::vector<std::int32_t> tris{0, 1, 2, 0, 2, 3};
-  const EdgeTopology t = buildEdgeTopology(tris, 4);
+  const SurfaceTopology t = SurfaceTopology::unwelded(tris, 4);
   EXPECT_EQ(t.edgeCount(), 5u);
   std::vector<std::uint8_t> front(2);
   std::vector<std::uint32_t> edges;
   faceFacing(quad, tris, Eigen::Vector3f(0.5f, 0.5f, 3), front);
   EXPECT_EQ(front[0], 1);
   EXPECT_EQ(front[1], 1);
-  silhouetteEdges(t, front, edges);
+  silhouetteEdges(t, front, true, edges);
   EXPECT_EQ(edges.size(), 8u);  // the four boundary edges, not the diagonal
+  silhouetteEdges(t, front, false, edges);
+  EXPECT_TRUE(edges.empty());
 }
 
 // ---------------------------------------------------------------------------------------------

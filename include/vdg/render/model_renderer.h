@@ -7,6 +7,11 @@
 //    grey dots), the hull triangulation in wireframe, the active triangle filled green with its
 //    keys in red, and the current view as a blue marker with its ray from the centre.
 //
+// The mesh is drawn as a surface (SurfaceTopology of the base, Renderer::addSurface): seams of
+// the file are welded for silhouettes and normals, and its hard edges (vertices split with
+// different file normals) stay hard in every blend, since the renderer recomputes the normals
+// from the blended positions per smoothing group.
+//
 // The image is width x height (main view), or 2*width x height with the observer panel.
 // Rendering is deterministic: a frame depends only on the camera and the options.
 #pragma once
@@ -36,6 +41,11 @@ struct FrameOptions {
   ShadingParams shading;
   bool flat = false;              // per-face shading (hard-edged models such as the building)
   float silhouette_width = 0.0f;  // stroke width in pixels; 0: max(3, height / 100)
+  bool borders = true;            // ink the true open borders (holes) of the surface
+  float crease_angle_deg = 0.0f;  // ink edges sharper than this (degrees, half the stroke width); <= 0: none
+  // The base mesh's materials and textures (per-material Cbase, hue rule per material and per
+  // texel); false: `color` everywhere. The observer panel never uses them.
+  bool materials = true;
   // Draw the base model only (no key deformations, every view weighs the base fully): the
   // paper's comparison of a conventional model with the view-dependent one (Figures 11 and 12).
   bool base_only = false;

@@ -13,6 +13,15 @@
 // input and return false on a violation (see updateMesh); they never throw std::out_of_range. Output is deterministic:
 // the same calls give byte-identical images, whatever was drawn before. Not thread-safe; one thread.
 //
+// Surfaces and materials: addSurface registers a mesh with its SurfaceTopology (vdg/geom/surface.h).
+// The GPU draws its render vertices (one per smoothing group and texture coordinate), so seams
+// of the file do not show and its hard edges stay hard; silhouettes are found on the welded
+// edges, so texture and normal seams are never inked as borders. Faces are drawn in one range
+// per material: Cbase = the material's base_color, times the texel (mipmapped, repeating; uv
+// origin at the bottom-left) when it has a texture and the mesh has texture coordinates. The hue
+// rule of shading.h is applied per material, and per texel for a textured material (the shader
+// runs the same rule on base_color x texel). Faces without a material use MeshStyle::color.
+//
 // Silhouettes: the paper draws the faces that span a silhouette edge a second time as thick back-
 // face wireframe, depth-tested against the front faces, and a third time as points to fill the
 // cracks between thick edges. Core profiles have no wide lines and no polygon point mode, so the
@@ -29,6 +38,8 @@
 #include <string>
 
 #include "vdg/geom/camera.h"
+#include "vdg/geom/surface.h"
+#include "vdg/geom/tri_mesh.h"
 #include "vdg/render/image.h"
 #include "vdg/render/shading.h"
 
@@ -63,12 +74,21 @@ struct View {
 };
 
 struct MeshStyle {
-  Rgb color{1.0f, 1.0f, 1.0f};  // Cbase
+  Rgb color{1.0f, 1.0f, 1.0f};  // Cbase of faces without a material (of every face when !materials)
   ShadingParams shading;
   bool flat = false;              // per-face normals instead of the mesh's vertex normals
-  float silhouette_width = 3.0f;  // pixels; <= 0 draws no silhouettes
+  float silhouette_width = 3.0f;  // pixels; <= 0 draws no silhouettes (and no borders)
   Rgb silhouette_color{0.06f, 0.06f, 0.08f};
   float silhouette_pull = 1.0f;  // depth offset towards the eye, in line widths
+  // True open borders (edges of the welded surface with one face: holes, not seams) are drawn
+  // with the silhouettes, as the paper's wireframe pass would.
+  bool borders = true;
+  // Creases: edges between two front faces whose normals differ by more than this angle
+  // (degrees), drawn in silhouette_color; <= 0 (or not finite): none.
+  float crease_angle_deg = 0.0f;
+  float crease_width = 0.0f;  // pixels; <= 0: half the silhouette width
+  // The mesh's materials and textures (addSurface); false: `color` everywhere, untextured.
+  bool materials = true;
 };
 
 class Renderer {
@@ -91,7 +111,18 @@ class Renderer {
   // Returns its handle (0, 1, 2, ... in order of registration). Set-up, not per-frame: throws
   // vdg::Error "render: addMesh: ..." naming the triangle for a size that is not a multiple of 3
   // or an index outside [0, vertex_count).
+  // Its topology is SurfaceTopology::unwelded (every vertex its own surface point: each open
+  // edge of the index buffer is a border), it has no materials, and updateMesh's empty normals
+  // mean flat shading.
   int addMesh(std::span<const std::int32_t> triangles, std::size_t vertex_count);
+
+  // Registers a mesh as a surface: `topology` built on it (SurfaceTopology::build(mesh)), its
+  // texture coordinates and its materials, whose textures are uploaded here (mipmapped,
+  // repeating). Only the triangles, uvs and materials are read (positions come with updateMesh).
+  // Returns its handle, numbered with addMesh's. Set-up, not per-frame: throws vdg::Error
+  // "render: addSurface: ..." for a mesh validateMesh refuses, a topology built on another mesh
+  // (vertex or triangle counts, or triangles, differ) and a texture larger than the driver allows.
+  int addSurface(const TriMesh& mesh, const SurfaceTopology& topology);
 
   // Per-frame calls follow the contract of every vdg evaluation function (after ozz-animation's
   // jobs): sizes, handles and values are checked on entry; a violation returns false and has
@@ -102,15 +133,18 @@ class Renderer {
   // its camera has finite eye, target and up, eye != target, up not parallel to the view axis and
   // (perspective) fov_deg in (0, 180).
 
-  // Uploads this frame's positions (#V x 3) and normals (#V x 3, or empty: flat shading only).
-  // Violations: `mesh` not a handle from addMesh; positions.size() != 3 * vertex_count; normals
-  // neither empty nor positions.size().
+  // Uploads this frame's positions (#V x 3) and normals (#V x 3, or empty). Empty normals mean,
+  // for a surface (addSurface), normals computed from the positions per smoothing group
+  // (computeGroupNormals: seams smooth, the file's hard edges kept), and for a mesh from addMesh
+  // flat shading. Given normals are used per vertex (every render vertex takes its vertex's).
+  // Violations: `mesh` not a handle from addMesh or addSurface; positions.size() != 3 *
+  // vertex_count; normals neither empty nor positions.size().
   [[nodiscard]] bool updateMesh(int mesh, std::span<const float> positions, std::span<const float> normals);
 
   // Fills the whole canvas (viewport == nullptr) or one viewport with `color`, and clears depth.
   void clear(const Rgb& color, const Viewport* viewport = nullptr);
-  // Shaded mesh (back faces culled) and its silhouettes as seen from view.camera. Violations: a
-  // bad handle, an invalid View.
+  // Shaded mesh (back faces culled), its creases and its silhouettes (and open borders) as seen
+  // from view.camera. Violations: a bad handle, an invalid View.
   [[nodiscard]] bool drawMesh(int mesh, const View& view, const MeshStyle& style);
   // Overlays, for diagrams such as the viewing sphere:
   //  triangles #3N x 3 positions, shaded flat with `style` (no silhouettes, both sides drawn);

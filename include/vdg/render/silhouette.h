@@ -1,9 +1,16 @@
-// Silhouette edges of a triangle mesh seen from an eye point (Rademacher 99, section 3.2.4, after
-// Raskar and Cohen 99): an edge is on the silhouette when one of its two faces is front-facing and
-// the other back-facing. Edges with a single face (open boundaries) are always drawn.
+// Silhouette and crease edges of a triangle mesh seen from an eye point (Rademacher 99, section
+// 3.2.4, after Raskar and Cohen 99): an edge is on the silhouette when one of its two faces is
+// front-facing and the other back-facing.
 //
-// The edge topology depends only on the triangles and is built once per mesh; the per-frame query
-// reads positions and writes into caller-owned buffers (no allocation once they have grown).
+// The edges are those of the mesh's *surface* (SurfaceTopology, vdg/geom/surface.h): vertices
+// duplicated along texture or normal seams are welded, so a seam is an ordinary edge with two
+// faces and is drawn only where it really is on the silhouette. An edge with a single face is a
+// true open border (a hole); drawing it is the caller's choice (the paper's wireframe pass would).
+//
+// The topology is built once per mesh; the per-frame queries read positions and write into
+// caller-owned buffers. They never throw, and they allocate nothing once `out` has the capacity
+// of 2 x edgeCount() indices (reserve it at set-up). Sizes are the caller's: `front` holds #F
+// entries, `positions` #V x 3 floats of the mesh the topology was built on.
 #pragma once
 
 #include <cstdint>
@@ -12,17 +19,9 @@
 
 #include <Eigen/Core>
 
-namespace vdg::render {
+#include "vdg/geom/surface.h"
 
-// Unique undirected edges of a triangle list: edge e joins vertices[2e], vertices[2e+1] and
-// borders faces[2e] and faces[2e+1] (-1 when the edge has one face). On a non-manifold edge
-// (three or more faces) the first two faces are kept.
-struct EdgeTopology {
-  std::vector<std::int32_t> vertices;  // #E x 2
-  std::vector<std::int32_t> faces;     // #E x 2
-  std::size_t edgeCount() const { return vertices.size() / 2; }
-};
-EdgeTopology buildEdgeTopology(std::span<const std::int32_t> triangles, std::size_t vertex_count);
+namespace vdg::render {
 
 // Facing of each triangle for an eye point (model space; for a parallel camera pass a point far
 // along the view axis): front when (eye - v0) . ((v1 - v0) x (v2 - v0)) > 0.
@@ -30,8 +29,19 @@ EdgeTopology buildEdgeTopology(std::span<const std::int32_t> triangles, std::siz
 void faceFacing(std::span<const float> positions, std::span<const std::int32_t> triangles, const Eigen::Vector3f& eye,
                 std::span<std::uint8_t> front);
 
-// Appends the two vertex indices of every silhouette edge to `out` (cleared first).
-void silhouetteEdges(const EdgeTopology& topology, std::span<const std::uint8_t> front,
+// Writes the two vertex indices (welded representatives, SurfaceTopology::edgeVertices) of every
+// silhouette edge to `out` (cleared first): edges whose two faces differ in facing, and, when
+// `borders` is true, every open-border edge (one face), whatever its facing.
+void silhouetteEdges(const SurfaceTopology& topology, std::span<const std::uint8_t> front, bool borders,
                      std::vector<std::uint32_t>& out);
+
+// Writes the two vertex indices of every crease edge to `out` (cleared first): edges with two
+// faces, both front-facing, whose face normals (from `positions`) make an angle above
+// `crease_angle_deg` degrees, i.e. a dihedral angle below 180 - crease_angle_deg. A
+// crease_angle_deg <= 0 or not finite finds none (out empty); an edge next to a degenerate face
+// (no normal) is never a crease. Silhouette and border edges are never creases, so the crease and
+// silhouette lists together hold at most 2 x edgeCount() indices.
+void creaseEdges(const SurfaceTopology& topology, std::span<const float> positions, std::span<const std::uint8_t> front,
+                 double crease_angle_deg, std::vector<std::uint32_t>& out);
 
 }  // namespace vdg::render
