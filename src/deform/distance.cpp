@@ -11,6 +11,7 @@
 #include <queue>
 
 #include "vdg/geom/error.h"
+#include "vdg/geom/surface.h"
 
 namespace vdg {
 
@@ -237,17 +238,39 @@ void GeodesicSolver::distances(std::int32_t seed, std::span<double> out) const {
 std::vector<double> distancesFrom(DistanceMetric metric, std::span<const float> positions,
                                   std::span<const std::int32_t> triangles, std::int32_t seed) {
   std::vector<double> out(positions.size() / 3);
-  switch (metric) {
-    case DistanceMetric::kEuclidean:
-      euclideanDistances(positions, seed, out);
-      break;
-    case DistanceMetric::kEdges:
-      edgeDistances(triangles, out.size(), seed, out);
-      break;
-    case DistanceMetric::kGeodesic:
-      GeodesicSolver(positions, triangles).distances(seed, out);
-      break;
+  if (metric == DistanceMetric::kEuclidean) {
+    euclideanDistances(positions, seed, out);
+    return out;
   }
+  // Surface metrics walk the welded surface (vdg/geom/surface.h), so a seam of duplicated vertices
+  // is crossed instead of stopping the walk: solve on the distinct surface points, then give every
+  // duplicate its point's distance.
+  TriMesh mesh;
+  mesh.positions.assign(positions.begin(), positions.end());
+  mesh.triangles.assign(triangles.begin(), triangles.end());
+  const SurfaceTopology surface = SurfaceTopology::build(mesh);
+  const auto weld = surface.weld();
+  std::vector<std::int32_t> compact(weld.size(), -1);
+  std::vector<float> points;
+  points.reserve(surface.weldedVertexCount() * 3);
+  for (std::size_t v = 0; v < weld.size(); ++v) {
+    if (weld[v] != static_cast<std::int32_t>(v)) continue;
+    compact[v] = static_cast<std::int32_t>(points.size() / 3);
+    points.insert(points.end(), positions.begin() + static_cast<std::ptrdiff_t>(v * 3),
+                  positions.begin() + static_cast<std::ptrdiff_t>(v * 3 + 3));
+  }
+  std::vector<std::int32_t> welded(surface.weldedTriangles().size());
+  for (std::size_t c = 0; c < welded.size(); ++c)
+    welded[c] = compact[static_cast<std::size_t>(surface.weldedTriangles()[c])];
+  std::vector<double> on_points(points.size() / 3);
+  const std::int32_t from = compact[static_cast<std::size_t>(weld[static_cast<std::size_t>(seed)])];
+  if (metric == DistanceMetric::kEdges) {
+    edgeDistances(welded, on_points.size(), from, on_points);
+  } else {
+    GeodesicSolver(points, welded).distances(from, on_points);
+  }
+  for (std::size_t v = 0; v < weld.size(); ++v)
+    out[v] = on_points[static_cast<std::size_t>(compact[static_cast<std::size_t>(weld[v])])];
   return out;
 }
 

@@ -131,8 +131,8 @@ void validateMesh(const TriMesh& mesh, const std::string& what) {
       if (!(c >= 0.0f && c <= 1.0f))
         throw Error(what + ": material '" + m.name + "': base colour component outside [0, 1]");
     if (m.texture && (m.texture->width < 1 || m.texture->height < 1 ||
-                      m.texture->rgba.size() != static_cast<std::size_t>(m.texture->width) *
-                                                    static_cast<std::size_t>(m.texture->height) * 4))
+                      m.texture->rgba.size() !=
+                          static_cast<std::size_t>(m.texture->width) * static_cast<std::size_t>(m.texture->height) * 4))
       throw Error(what + ": material '" + m.name + "': texture pixels do not match its size");
   }
   for (std::size_t i = 0; i < mesh.positions.size(); ++i) {

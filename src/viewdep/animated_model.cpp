@@ -70,6 +70,7 @@ AnimatedViewDependentModel AnimatedViewDependentModel::build(const RawViewDepend
   if (raw.keys.empty()) throw Error(where(raw) + ": the model has no keys (add at least one key deformation)");
   AnimatedViewDependentModel model;
   model.base_ = raw.base;
+  model.surface_ = SurfaceTopology::build(model.base_);
   model.base_frames_ = raw.base_frames;
   model.base_skin_ = raw.base_skin;
   model.center_ = raw.resolvedCenter();
@@ -299,7 +300,7 @@ bool AnimatedViewDependentModel::evaluatePosed(double frame, std::span<const flo
   ViewWeights w;
   if (!weights(view, sharpness, w, &local_hint)) return false;
   blendPosed(frame, base_positions, base_skin, w, out_positions);
-  if (!out_normals.empty() && !computeVertexNormals(out_positions, base_.triangles, out_normals)) return false;
+  if (!out_normals.empty() && !computeVertexNormals(surface_, out_positions, out_normals)) return false;
   if (hint) *hint = local_hint;
   return true;
 }

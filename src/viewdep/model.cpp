@@ -288,6 +288,7 @@ ViewDependentModel ViewDependentModel::build(const RawViewDependentModel& raw) {
   if (raw.keys.empty()) throw Error(where(raw) + ": the model has no keys (add at least one key deformation)");
   ViewDependentModel model;
   model.base_ = raw.base;
+  model.surface_ = SurfaceTopology::build(model.base_);
   model.center_ = raw.resolvedCenter();
   model.sharpness_ = raw.sharpness;
   std::vector<Eigen::Vector3d> views;
@@ -449,7 +450,7 @@ bool ViewDependentModel::evaluate(const Eigen::Vector3d& view, double sharpness,
   ViewWeights w;
   if (!weights(view, sharpness, w, &local_hint)) return false;
   if (!blend(w, out_positions)) return false;  // cannot fail: w comes from this model's sphere
-  if (!out_normals.empty() && !computeVertexNormals(out_positions, base_.triangles, out_normals)) return false;
+  if (!out_normals.empty() && !computeVertexNormals(surface_, out_positions, out_normals)) return false;
   if (hint) *hint = local_hint;
   return true;
 }

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "support/test_meshes.h"
 #include "test_meshes.h"
 #include "vdg/deform/distance.h"
 #include "vdg/deform/falloff.h"
@@ -109,6 +110,40 @@ TEST(Distance, GeodesicOnSphereIsGreatCircle) {
       EXPECT_NEAR(g[v], exact, 0.05 * exact) << "vertex " << v;
     }
   }
+}
+
+TEST(Distance, SurfaceMetricsCrossTextureSeams) {
+  // A sphere with a seam of duplicated vertices along one meridian (as exporters split texture
+  // seams): the surface metrics give the same distances as on the unsplit sphere, and both copies
+  // of a seam vertex the same value.
+  const TriMesh plain = testing::uvSphere(12, 24);
+  const TriMesh seam = testing::seamSphere(12, 24);
+  ASSERT_GT(seam.vertexCount(), plain.vertexCount());
+  // Seed on the equator next to the seam, so that the walk must cross it.
+  const std::int32_t seed = 1 + 5 * 24 + 1;
+  for (const DistanceMetric metric : {DistanceMetric::kEdges, DistanceMetric::kGeodesic}) {
+    const std::vector<double> expected = distancesFrom(metric, plain.positions, plain.triangles, seed);
+    const std::vector<double> got = distancesFrom(metric, seam.positions, seam.triangles, seed);
+    for (std::size_t v = 0; v < plain.vertexCount(); ++v)
+      ASSERT_NEAR(got[v], expected[v], 1e-9 + 1e-6 * expected[v]) << distanceMetricName(metric) << " vertex " << v;
+    for (std::size_t v = plain.vertexCount(); v < seam.vertexCount(); ++v) {
+      // The copy of a seam vertex sits at the position of an original one.
+      std::size_t original = 0;
+      while (original < plain.vertexCount() && !(plain.positions[original * 3] == seam.positions[v * 3] &&
+                                                 plain.positions[original * 3 + 1] == seam.positions[v * 3 + 1] &&
+                                                 plain.positions[original * 3 + 2] == seam.positions[v * 3 + 2]))
+        ++original;
+      ASSERT_LT(original, plain.vertexCount());
+      EXPECT_EQ(got[v], got[original]) << distanceMetricName(metric) << " copy " << v;
+    }
+  }
+  // The index buffer alone stops at the seam: the copies are farther by edges than the originals.
+  std::vector<double> raw(seam.vertexCount());
+  edgeDistances(seam.triangles, seam.vertexCount(), seed, raw);
+  const std::vector<double> welded = distancesFrom(DistanceMetric::kEdges, seam.positions, seam.triangles, seed);
+  double worst = 0.0;
+  for (std::size_t v = plain.vertexCount(); v < seam.vertexCount(); ++v) worst = std::max(worst, raw[v] - welded[v]);
+  EXPECT_GT(worst, 0.0);
 }
 
 TEST(Distance, ParseNames) {

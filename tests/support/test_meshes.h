@@ -6,6 +6,7 @@
 #include <fstream>
 #include <random>
 #include <string>
+#include <vector>
 
 #include "vdg/geom/tri_mesh.h"
 
@@ -35,6 +36,67 @@ inline TriMesh uvSphere(int rings = 8, int segments = 12) {
     }
   for (int s = 0; s < segments; ++s)
     m.triangles.insert(m.triangles.end(), {ring(rings - 1, s), south, ring(rings - 1, s + 1)});
+  return m;
+}
+
+// A unit cube ([-1, 1]^3) as exporters write it: 24 vertices (each face its own four), with the
+// face normals as file normals (TriMesh::normals, one per vertex), so its edges are hard.
+inline TriMesh splitCube() {
+  TriMesh m;
+  const float n[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  for (int f = 0; f < 6; ++f) {
+    const int axis = f / 2;
+    const float sign = n[f][axis];
+    const int u = (axis + 1) % 3, w = (axis + 2) % 3;
+    const float corners[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+    for (const auto& c : corners) {
+      float p[3];
+      p[axis] = sign;
+      p[u] = c[0];
+      p[w] = c[1] * sign;  // keeps the winding counter-clockwise seen from outside
+      m.positions.insert(m.positions.end(), {p[0], p[1], p[2]});
+      m.normals.insert(m.normals.end(), {n[f][0], n[f][1], n[f][2]});
+    }
+    const int b = f * 4;
+    m.triangles.insert(m.triangles.end(), {b, b + 1, b + 2, b, b + 2, b + 3});
+  }
+  m.normal_triangles = m.triangles;
+  return m;
+}
+
+// uvSphere() with the meridian at s = 0 duplicated, as a texture seam: the copies have their own
+// texture coordinates (u = 1 instead of 0) and the same positions; no file normals.
+inline TriMesh seamSphere(int rings = 8, int segments = 12) {
+  TriMesh m = uvSphere(rings, segments);
+  const auto nv = static_cast<std::int32_t>(m.vertexCount());
+  // uvs: one per vertex (the copies' included), so a vertex's uv index is its own index.
+  for (std::int32_t v = 0; v < nv; ++v) {
+    const float x = m.positions[v * 3], y = m.positions[v * 3 + 1], z = m.positions[v * 3 + 2];
+    float u = static_cast<float>(std::atan2(-z, x) / (2.0 * M_PI));
+    if (u < 0.0f) u += 1.0f;
+    if (u > 0.999f) u = 0.0f;
+    m.uvs.insert(m.uvs.end(), {u, 0.5f + y * 0.5f});
+  }
+  std::vector<std::int32_t> copy(static_cast<std::size_t>(nv), -1);
+  m.uv_triangles = m.triangles;
+  for (std::size_t f = 0; f < m.triangleCount(); ++f) {
+    // A triangle touching the seam from the last segment (it has a corner with u > 0.5) uses the copies.
+    bool wraps = false;
+    for (int c = 0; c < 3; ++c) wraps = wraps || m.uvs[static_cast<std::size_t>(m.triangles[f * 3 + c]) * 2] > 0.5f;
+    if (!wraps) continue;
+    for (int c = 0; c < 3; ++c) {
+      const auto v = m.triangles[f * 3 + c];
+      const float x = m.positions[v * 3], z = m.positions[v * 3 + 2];
+      if (std::abs(z) > 1e-6f || x <= 0.0f) continue;  // only the meridian at s = 0
+      if (copy[v] < 0) {
+        copy[v] = static_cast<std::int32_t>(m.vertexCount());
+        m.positions.insert(m.positions.end(), {m.positions[v * 3], m.positions[v * 3 + 1], m.positions[v * 3 + 2]});
+        m.uvs.insert(m.uvs.end(), {1.0f, m.uvs[static_cast<std::size_t>(v) * 2 + 1]});
+      }
+      m.triangles[f * 3 + c] = copy[v];
+      m.uv_triangles[f * 3 + c] = copy[v];
+    }
+  }
   return m;
 }
 

@@ -60,7 +60,10 @@ class GeodesicSolver {
   std::unique_ptr<Impl> impl_;
 };
 
-// One-off: whichever metric, into a new #V vector.
+// One-off: whichever metric, into a new #V vector. kEdges and kGeodesic walk the surface welded by
+// position (SurfaceTopology, vdg/geom/surface.h): vertices duplicated along a texture or normal
+// seam are one point, so a seam does not stop the walk and the duplicates get equal distances
+// (and so move together under a falloff). The functions above take the index buffer as it is.
 std::vector<double> distancesFrom(DistanceMetric metric, std::span<const float> positions,
                                   std::span<const std::int32_t> triangles, std::int32_t seed);
 

@@ -26,9 +26,9 @@ struct TextureImage {
 };
 
 struct Material {
-  std::string name;                         // as the file names it (messages, `vdg info`)
+  std::string name;                          // as the file names it (messages, `vdg info`)
   std::array<float, 3> base_color{1, 1, 1};  // display RGB in [0, 1]; multiplies the texture
-  std::string texture_path;                 // the texture as the file names it; empty: none
+  std::string texture_path;                  // the texture as the file names it; empty: none
   // Decoded texture, shared between copies of the mesh; null when there is none or it could not
   // be loaded (the reader then warned, and the surface shows base_color alone).
   std::shared_ptr<const TextureImage> texture;

@@ -58,10 +58,10 @@ class SurfaceTopology {
   std::span<const std::int32_t> triangles() const { return triangles_; }  // the mesh's, #F x 3
 
   // Welding.
-  std::span<const std::int32_t> weld() const { return weld_; }                       // #V
+  std::span<const std::int32_t> weld() const { return weld_; }                         // #V
   std::span<const std::int32_t> weldedTriangles() const { return welded_triangles_; }  // #F x 3
-  std::size_t weldedVertexCount() const { return welded_count_; }  // distinct surface points
-  bool isWelded() const { return welded_count_ != weld_.size(); }   // some vertices were merged
+  std::size_t weldedVertexCount() const { return welded_count_; }                      // distinct surface points
+  bool isWelded() const { return welded_count_ != weld_.size(); }                      // some vertices were merged
 
   // Edges of the welded surface: edge e joins welded vertices edgeVertices()[2e] < [2e + 1] and
   // borders faces edgeFaces()[2e] and [2e + 1] (-1 when the edge has a single face: an open
@@ -84,9 +84,9 @@ class SurfaceTopology {
 
   // Render vertices: the distinct (group, texture coordinate) pairs of the corners.
   std::size_t renderVertexCount() const { return render_source_.size(); }
-  std::span<const std::int32_t> renderSource() const { return render_source_; }  // #R: a vertex at it
-  std::span<const std::int32_t> renderGroup() const { return render_group_; }    // #R
-  std::span<const std::int32_t> renderUv() const { return render_uv_; }          // #R: uv index or -1
+  std::span<const std::int32_t> renderSource() const { return render_source_; }        // #R: a vertex at it
+  std::span<const std::int32_t> renderGroup() const { return render_group_; }          // #R
+  std::span<const std::int32_t> renderUv() const { return render_uv_; }                // #R: uv index or -1
   std::span<const std::int32_t> renderTriangles() const { return render_triangles_; }  // #F x 3
 
  private:

@@ -30,13 +30,13 @@
 namespace vdg {
 
 struct TriMesh {
-  std::vector<float> positions;            // #V x 3
-  std::vector<std::int32_t> triangles;     // #F x 3
-  std::vector<float> uvs;                  // empty or #T x 2
-  std::vector<std::int32_t> uv_triangles;  // empty or #F x 3 (indices into uvs)
-  std::vector<float> normals;                   // empty or #N x 3 (the file's, unit length)
-  std::vector<std::int32_t> normal_triangles;   // empty or #F x 3 (indices into normals)
-  std::vector<std::int32_t> face_materials;     // empty or #F (indices into materials, -1: none)
+  std::vector<float> positions;                // #V x 3
+  std::vector<std::int32_t> triangles;         // #F x 3
+  std::vector<float> uvs;                      // empty or #T x 2
+  std::vector<std::int32_t> uv_triangles;      // empty or #F x 3 (indices into uvs)
+  std::vector<float> normals;                  // empty or #N x 3 (the file's, unit length)
+  std::vector<std::int32_t> normal_triangles;  // empty or #F x 3 (indices into normals)
+  std::vector<std::int32_t> face_materials;    // empty or #F (indices into materials, -1: none)
   std::vector<Material> materials;
 
   std::size_t vertexCount() const { return positions.size() / 3; }

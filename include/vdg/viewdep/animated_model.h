@@ -52,6 +52,9 @@ class AnimatedViewDependentModel {
   static AnimatedViewDependentModel build(const RawViewDependentModel& raw);
 
   const TriMesh& base() const { return base_; }  // topology and frame 0's positions
+  // The base's surface at frame 0 (vdg/geom/surface.h), welded once: the normals of evaluate()
+  // and a renderer's shading use it at every frame.
+  const SurfaceTopology& surface() const { return surface_; }
   std::size_t vertexCount() const { return base_.vertexCount(); }
   int frameCount() const { return static_cast<int>(base_frames_.size()); }
   bool loop() const { return loop_; }
@@ -128,6 +131,7 @@ class AnimatedViewDependentModel {
   void coefficients(const View& view, double frame, double* out) const;
 
   TriMesh base_;
+  SurfaceTopology surface_;
   std::vector<std::vector<float>> base_frames_;
   std::vector<std::vector<float>> base_skin_;
   std::vector<View> views_;

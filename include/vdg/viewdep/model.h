@@ -20,6 +20,7 @@
 #include <Eigen/Core>
 
 #include "vdg/geom/camera.h"
+#include "vdg/geom/surface.h"
 #include "vdg/geom/tri_mesh.h"
 #include "vdg/viewdep/view_sphere.h"
 
@@ -132,6 +133,9 @@ class ViewDependentModel {
   static ViewDependentModel build(const RawViewDependentModel& raw);
 
   const TriMesh& base() const { return base_; }
+  // The base's surface (vdg/geom/surface.h): seams welded, the file's hard edges kept; evaluate()'s
+  // normals and a renderer's shading use it.
+  const SurfaceTopology& surface() const { return surface_; }
   std::size_t vertexCount() const { return base_.vertexCount(); }
   std::size_t keyCount() const { return keys_.size(); }
   // Accessors by key index (tools and editors, not per-frame): `key` must be < keyCount(); an
@@ -153,8 +157,8 @@ class ViewDependentModel {
   // weights(), blend(), keyPositions() and evaluate() check their sizes, indices and values on
   // entry; on a violation they return false and have written nothing (no output span, no `out`,
   // no `*hint`); they never throw and never allocate. Spans must have exactly the size stated.
-  // The model's triangles are trusted from build() (validated there); normals still go through
-  // computeVertexNormals, whose per-call index pass is cheap next to the blend.
+  // The model's triangles are trusted from build() (validated there); normals are those of
+  // computeVertexNormals(surface(), ...): seams welded, the base file's hard edges kept.
 
   // Weights of a view direction into `out`. sharpness <= 0 means "the model's own"; `hint` as in
   // ViewSphere::weights (-1 or a triangle index of sphere()). Violations: a zero or non-finite
@@ -183,6 +187,7 @@ class ViewDependentModel {
     bool dense = false;
   };
   TriMesh base_;
+  SurfaceTopology surface_;
   std::vector<Key> keys_;
   ViewSphere sphere_;
   Eigen::Vector3d center_ = Eigen::Vector3d::Zero();

@@ -1,0 +1,322 @@
+// SurfaceTopology: welding by position, welded edges, smoothing groups from the file's normals,
+// render vertices. See surface.h.
+#include "vdg/geom/surface.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <numeric>
+#include <string>
+#include <unordered_map>
+#include <utility>
+
+#include "vdg/geom/error.h"
+
+namespace vdg {
+namespace {
+
+// Lowest-index representative of every vertex within `tol` of it (Euclidean). Vertices are
+// visited in index order; each looks for an earlier representative in the 27 grid cells around it
+// (cell side >= tol), so the result does not depend on hashing order.
+std::vector<std::int32_t> weldVertices(std::span<const float> positions, double tol) {
+  const std::size_t n = positions.size() / 3;
+  std::vector<std::int32_t> weld(n);
+  const double cell = tol > 0.0 ? tol : 1.0;
+  auto cellOf = [&](std::size_t v, int axis) {
+    return static_cast<std::int64_t>(std::floor(static_cast<double>(positions[v * 3 + axis]) / cell));
+  };
+  auto key = [](std::int64_t x, std::int64_t y, std::int64_t z) {
+    // A mix of the three cell indices; collisions only cost extra distance checks.
+    std::uint64_t h = static_cast<std::uint64_t>(x) * 0x9E3779B97F4A7C15ull;
+    h ^= static_cast<std::uint64_t>(y) * 0xC2B2AE3D27D4EB4Full + (h << 6) + (h >> 2);
+    h ^= static_cast<std::uint64_t>(z) * 0x165667B19E3779F9ull + (h << 6) + (h >> 2);
+    return h;
+  };
+  std::unordered_multimap<std::uint64_t, std::int32_t> grid;
+  grid.reserve(n);
+  const double tol2 = tol * tol;
+  for (std::size_t v = 0; v < n; ++v) {
+    const std::int64_t cx = cellOf(v, 0), cy = cellOf(v, 1), cz = cellOf(v, 2);
+    std::int32_t found = -1;
+    const int reach = tol > 0.0 ? 1 : 0;
+    for (int dx = -reach; dx <= reach; ++dx)
+      for (int dy = -reach; dy <= reach; ++dy)
+        for (int dz = -reach; dz <= reach; ++dz) {
+          const auto range = grid.equal_range(key(cx + dx, cy + dy, cz + dz));
+          for (auto it = range.first; it != range.second; ++it) {
+            const auto r = static_cast<std::size_t>(it->second);
+            double d2 = 0.0;
+            for (int a = 0; a < 3; ++a) {
+              const double d = static_cast<double>(positions[v * 3 + a]) - positions[r * 3 + a];
+              d2 += d * d;
+            }
+            if (d2 <= tol2 && (found < 0 || it->second < found)) found = it->second;
+          }
+        }
+    if (found >= 0) {
+      weld[v] = found;
+    } else {
+      weld[v] = static_cast<std::int32_t>(v);
+      grid.emplace(key(cx, cy, cz), static_cast<std::int32_t>(v));
+    }
+  }
+  return weld;
+}
+
+// Union-find over small index ranges.
+std::int32_t findRoot(std::vector<std::int32_t>& parent, std::int32_t i) {
+  while (parent[static_cast<std::size_t>(i)] != i) {
+    parent[static_cast<std::size_t>(i)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(i)])];
+    i = parent[static_cast<std::size_t>(i)];
+  }
+  return i;
+}
+
+}  // namespace
+
+SurfaceTopology SurfaceTopology::build(const TriMesh& mesh, const SurfaceOptions& options) {
+  validateMesh(mesh, "surface");
+  if (!std::isfinite(options.weld_tolerance) || options.weld_tolerance < 0.0)
+    throw Error("surface: weld tolerance must be a finite number >= 0");
+  if (!std::isfinite(options.hard_angle_deg) || options.hard_angle_deg < 0.0 || options.hard_angle_deg > 180.0)
+    throw Error("surface: hard-edge angle must be in [0, 180] degrees");
+  SurfaceTopology t;
+  const std::size_t nv = mesh.vertexCount();
+  const std::size_t corners = mesh.triangles.size();
+  t.triangles_ = mesh.triangles;
+  t.weld_ = weldVertices(mesh.positions,
+                         options.weld_tolerance * static_cast<double>(computeBounds(mesh.positions).diagonal()));
+  t.welded_count_ = 0;
+  for (std::size_t v = 0; v < nv; ++v)
+    if (t.weld_[v] == static_cast<std::int32_t>(v)) ++t.welded_count_;
+  t.welded_triangles_.resize(corners);
+  for (std::size_t c = 0; c < corners; ++c)
+    t.welded_triangles_[c] = t.weld_[static_cast<std::size_t>(mesh.triangles[c])];
+
+  // Smoothing groups: the corners at one welded vertex, joined when their file normals agree.
+  const bool with_normals = !mesh.normal_triangles.empty();
+  const double cos_hard = std::cos(options.hard_angle_deg * std::numbers::pi / 180.0);
+  auto normalOf = [&](std::size_t corner) {
+    const auto n = static_cast<std::size_t>(mesh.normal_triangles[corner]) * 3;
+    return std::array<double, 3>{mesh.normals[n], mesh.normals[n + 1], mesh.normals[n + 2]};
+  };
+  auto agree = [&](std::size_t a, std::size_t b) {
+    if (!with_normals || mesh.normal_triangles[a] == mesh.normal_triangles[b]) return true;
+    const auto na = normalOf(a), nb = normalOf(b);
+    const double la = std::sqrt(na[0] * na[0] + na[1] * na[1] + na[2] * na[2]);
+    const double lb = std::sqrt(nb[0] * nb[0] + nb[1] * nb[1] + nb[2] * nb[2]);
+    if (la == 0.0 || lb == 0.0) return la == lb;  // a zero normal agrees only with another one
+    return (na[0] * nb[0] + na[1] * nb[1] + na[2] * nb[2]) / (la * lb) >= cos_hard;
+  };
+  std::vector<std::int32_t> order(corners);
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](std::int32_t a, std::int32_t b) {
+    return t.welded_triangles_[static_cast<std::size_t>(a)] < t.welded_triangles_[static_cast<std::size_t>(b)];
+  });
+  t.corner_groups_.assign(corners, -1);
+  std::vector<std::int32_t> parent;
+  for (std::size_t i = 0; i < corners;) {
+    std::size_t j = i;
+    while (j < corners && t.welded_triangles_[static_cast<std::size_t>(order[j])] ==
+                              t.welded_triangles_[static_cast<std::size_t>(order[i])])
+      ++j;
+    // Corners order[i..j) meet at one surface point.
+    const std::size_t k = j - i;
+    parent.resize(k);
+    std::iota(parent.begin(), parent.end(), 0);
+    if (with_normals) {
+      for (std::size_t a = 0; a < k; ++a)
+        for (std::size_t b = a + 1; b < k; ++b)
+          if (agree(static_cast<std::size_t>(order[i + a]), static_cast<std::size_t>(order[i + b]))) {
+            const std::int32_t ra = findRoot(parent, static_cast<std::int32_t>(a));
+            const std::int32_t rb = findRoot(parent, static_cast<std::int32_t>(b));
+            if (ra != rb) parent[static_cast<std::size_t>(std::max(ra, rb))] = std::min(ra, rb);
+          }
+    } else {
+      std::fill(parent.begin(), parent.end(), 0);
+    }
+    // Groups numbered in order of their first corner (order[] keeps corner order within a point).
+    for (std::size_t a = 0; a < k; ++a) {
+      const auto root = static_cast<std::size_t>(findRoot(parent, static_cast<std::int32_t>(a)));
+      const auto corner = static_cast<std::size_t>(order[i + a]);
+      if (root == a) {
+        t.corner_groups_[corner] = static_cast<std::int32_t>(t.group_count_++);
+      } else {
+        t.corner_groups_[corner] = t.corner_groups_[static_cast<std::size_t>(order[i + root])];
+      }
+    }
+    i = j;
+  }
+
+  // Vertex level: welded vertices whose first corners' normals agree share the lowest one's normal.
+  std::vector<std::int32_t> first_corner(nv, -1);
+  for (std::size_t c = corners; c-- > 0;)
+    first_corner[static_cast<std::size_t>(mesh.triangles[c])] = static_cast<std::int32_t>(c);
+  t.vertex_home_.resize(nv);
+  {
+    std::unordered_map<std::int32_t, std::vector<std::int32_t>> homes;  // welded vertex -> homes so far
+    for (std::size_t v = 0; v < nv; ++v) {
+      t.vertex_home_[v] = static_cast<std::int32_t>(v);
+      if (first_corner[v] < 0 || t.weld_[v] == static_cast<std::int32_t>(v)) {
+        homes[t.weld_[v]].push_back(static_cast<std::int32_t>(v));
+        continue;
+      }
+      auto& candidates = homes[t.weld_[v]];
+      for (const std::int32_t h : candidates) {
+        if (first_corner[static_cast<std::size_t>(h)] >= 0 &&
+            agree(static_cast<std::size_t>(first_corner[static_cast<std::size_t>(h)]),
+                  static_cast<std::size_t>(first_corner[v]))) {
+          t.vertex_home_[v] = h;
+          break;
+        }
+      }
+      if (t.vertex_home_[v] == static_cast<std::int32_t>(v)) candidates.push_back(static_cast<std::int32_t>(v));
+    }
+  }
+
+  // Edges of the welded surface.
+  struct HalfEdge {
+    std::uint64_t key;
+    std::int32_t face;
+  };
+  std::vector<HalfEdge> half;
+  half.reserve(corners);
+  for (std::size_t f = 0; f < corners / 3; ++f)
+    for (int c = 0; c < 3; ++c) {
+      auto a = static_cast<std::uint32_t>(t.welded_triangles_[f * 3 + static_cast<std::size_t>(c)]);
+      auto b = static_cast<std::uint32_t>(t.welded_triangles_[f * 3 + static_cast<std::size_t>((c + 1) % 3)]);
+      if (a == b) continue;
+      if (a > b) std::swap(a, b);
+      half.push_back({(std::uint64_t{a} << 32) | b, static_cast<std::int32_t>(f)});
+    }
+  std::sort(half.begin(), half.end(),
+            [](const HalfEdge& x, const HalfEdge& y) { return x.key != y.key ? x.key < y.key : x.face < y.face; });
+  for (std::size_t i = 0; i < half.size();) {
+    std::size_t j = i + 1;
+    while (j < half.size() && half[j].key == half[i].key) ++j;
+    t.edge_vertices_.push_back(static_cast<std::int32_t>(half[i].key >> 32));
+    t.edge_vertices_.push_back(static_cast<std::int32_t>(half[i].key & 0xffffffffu));
+    t.edge_faces_.push_back(half[i].face);
+    t.edge_faces_.push_back(j - i >= 2 ? half[i + 1].face : -1);
+    if (j - i == 1) ++t.border_edges_;
+    i = j;
+  }
+
+  // Render vertices: distinct (group, uv) pairs, numbered in order of first use.
+  const bool with_uvs = !mesh.uv_triangles.empty();
+  std::unordered_map<std::uint64_t, std::int32_t> render_index;
+  render_index.reserve(corners);
+  t.render_triangles_.resize(corners);
+  for (std::size_t c = 0; c < corners; ++c) {
+    const std::int32_t g = t.corner_groups_[c];
+    const std::int32_t uv = with_uvs ? mesh.uv_triangles[c] : -1;
+    const std::uint64_t k = (std::uint64_t{static_cast<std::uint32_t>(g)} << 32) | static_cast<std::uint32_t>(uv);
+    const auto [it, inserted] = render_index.emplace(k, static_cast<std::int32_t>(t.render_source_.size()));
+    if (inserted) {
+      t.render_source_.push_back(mesh.triangles[c]);
+      t.render_group_.push_back(g);
+      t.render_uv_.push_back(uv);
+    }
+    t.render_triangles_[c] = it->second;
+  }
+  return t;
+}
+
+SurfaceTopology SurfaceTopology::unwelded(std::span<const std::int32_t> triangles, std::size_t vertex_count) {
+  if (triangles.size() % 3 != 0)
+    throw Error("surface: " + std::to_string(triangles.size()) + " triangle indices is not a multiple of 3");
+  for (std::size_t i = 0; i < triangles.size(); ++i)
+    if (triangles[i] < 0 || static_cast<std::size_t>(triangles[i]) >= vertex_count)
+      throw Error("surface: triangle " + std::to_string(i / 3) + " refers to vertex " + std::to_string(triangles[i]) +
+                  ", but the mesh has " + std::to_string(vertex_count) + " vertices");
+  // A mesh whose vertices are all distinct points and carry no normals or uvs: build() then welds
+  // nothing, groups by vertex and makes every vertex a render vertex.
+  TriMesh mesh;
+  mesh.triangles.assign(triangles.begin(), triangles.end());
+  mesh.positions.resize(vertex_count * 3);
+  for (std::size_t v = 0; v < vertex_count; ++v) mesh.positions[v * 3] = static_cast<float>(v);
+  if (mesh.triangles.empty() || vertex_count == 0) {
+    SurfaceTopology t;
+    t.weld_.resize(vertex_count);
+    std::iota(t.weld_.begin(), t.weld_.end(), 0);
+    t.vertex_home_ = t.weld_;
+    t.welded_count_ = vertex_count;
+    return t;
+  }
+  SurfaceOptions exact;
+  exact.weld_tolerance = 0.0;
+  SurfaceTopology t = build(mesh, exact);
+  // Render vertices follow the vertex numbering, so callers can upload #V arrays unchanged.
+  t.render_source_.resize(vertex_count);
+  std::iota(t.render_source_.begin(), t.render_source_.end(), 0);
+  t.render_group_.assign(vertex_count, -1);
+  t.render_uv_.assign(vertex_count, -1);
+  for (std::size_t c = 0; c < t.triangles_.size(); ++c)
+    t.render_group_[static_cast<std::size_t>(t.triangles_[c])] = t.corner_groups_[c];
+  t.render_triangles_ = t.triangles_;
+  return t;
+}
+
+namespace {
+
+// Adds each triangle's area-weighted normal to slot(corner) of `out`, then normalises.
+template <class Slot>
+void accumulateNormals(std::span<const std::int32_t> triangles, std::span<const float> positions, std::span<float> out,
+                       Slot slot) {
+  std::fill(out.begin(), out.end(), 0.0f);
+  for (std::size_t t = 0; t < triangles.size(); t += 3) {
+    const float* a = &positions[static_cast<std::size_t>(triangles[t]) * 3];
+    const float* b = &positions[static_cast<std::size_t>(triangles[t + 1]) * 3];
+    const float* c = &positions[static_cast<std::size_t>(triangles[t + 2]) * 3];
+    const float e1x = b[0] - a[0], e1y = b[1] - a[1], e1z = b[2] - a[2];
+    const float e2x = c[0] - a[0], e2y = c[1] - a[1], e2z = c[2] - a[2];
+    const float nx = e1y * e2z - e1z * e2y, ny = e1z * e2x - e1x * e2z, nz = e1x * e2y - e1y * e2x;
+    for (std::size_t k = 0; k < 3; ++k) {
+      const std::size_t s = slot(t + k) * 3;
+      out[s] += nx;
+      out[s + 1] += ny;
+      out[s + 2] += nz;
+    }
+  }
+  for (std::size_t s = 0; s < out.size(); s += 3) {
+    const float len = std::sqrt(out[s] * out[s] + out[s + 1] * out[s + 1] + out[s + 2] * out[s + 2]);
+    if (len > 0.0f) {
+      const float inv = 1.0f / len;
+      out[s] *= inv;
+      out[s + 1] *= inv;
+      out[s + 2] *= inv;
+    }
+  }
+}
+
+}  // namespace
+
+bool computeGroupNormals(const SurfaceTopology& topology, std::span<const float> positions,
+                         std::span<float> group_normals) {
+  if (positions.size() != topology.vertexCount() * 3 || group_normals.size() != topology.groupCount() * 3) return false;
+  const auto groups = topology.cornerGroups();
+  accumulateNormals(topology.triangles(), positions, group_normals,
+                    [&](std::size_t corner) { return static_cast<std::size_t>(groups[corner]); });
+  return true;
+}
+
+bool computeVertexNormals(const SurfaceTopology& topology, std::span<const float> positions, std::span<float> normals) {
+  if (positions.size() != topology.vertexCount() * 3 || normals.size() != positions.size()) return false;
+  const auto tris = topology.triangles();
+  const auto home = topology.vertexHome();
+  accumulateNormals(tris, positions, normals, [&](std::size_t corner) {
+    return static_cast<std::size_t>(home[static_cast<std::size_t>(tris[corner])]);
+  });
+  // Every vertex takes its home's normal (homes have the lowest index of their class, so they are
+  // final when reached in order).
+  for (std::size_t v = 0; v < home.size(); ++v) {
+    const auto h = static_cast<std::size_t>(home[v]);
+    if (h == v) continue;
+    normals[v * 3] = normals[h * 3];
+    normals[v * 3 + 1] = normals[h * 3 + 1];
+    normals[v * 3 + 2] = normals[h * 3 + 2];
+  }
+  return true;
+}
+
+}  // namespace vdg
