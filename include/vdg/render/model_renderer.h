@@ -34,7 +34,7 @@ struct FrameOptions {
   bool observer = false;                   // add the observer panel (doubles the width)
   bool sphere = false;                     // add the viewing-sphere inset (bottom-right of the main view)
   double sharpness = 0.0;                  // alpha of section 3.2.2; <= 0: the model's own
-  Rgb color{1.0f, 1.0f, 1.0f};             // Cbase of the model (white, as in the paper)
+  Rgb color{1.0f, 1.0f, 1.0f};             // Cbase of faces without a material (white, as in the paper)
   Rgb observer_color{0.55f, 0.68f, 1.0f};  // Cbase in the observer panel (bluish, Figure 6),
                                            // lit with the warm light at a quarter (k2 * 0.25)
   Rgb background{0.97f, 0.97f, 0.95f};     // light, as in the paper's figures
