@@ -6,6 +6,7 @@
 // base colour, texture and whether it loaded) and whether the file gave normals; problems with
 // material libraries and textures are printed as "warning: ..." lines on stderr.
 #include <cctype>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -121,6 +122,15 @@ std::string baseSource(const BaseAnimationSpec& spec) {
          std::to_string(spec.last);
 }
 
+// A float as the double with its shortest decimal form (0.2f as 0.2, not 0.20000000298023224).
+double shortest(float value) {
+  char buffer[32];
+  const auto end = std::to_chars(buffer, buffer + sizeof(buffer), value).ptr;
+  double out = value;
+  std::from_chars(buffer, end, out);
+  return out;
+}
+
 // Triangles per material of `mesh` (index k), and those without one at the end.
 std::vector<std::size_t> materialTriangles(const TriMesh& mesh) {
   std::vector<std::size_t> count(mesh.materials.size() + 1, 0);
@@ -140,7 +150,7 @@ void addSurfaceFields(const TriMesh& mesh, nlohmann::ordered_json& out) {
     const Material& m = mesh.materials[k];
     nlohmann::ordered_json j;
     j["name"] = m.name;
-    j["base_color"] = {m.base_color[0], m.base_color[1], m.base_color[2]};
+    j["base_color"] = {shortest(m.base_color[0]), shortest(m.base_color[1]), shortest(m.base_color[2])};
     j["texture"] = m.texture_path.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(m.texture_path);
     j["texture_loaded"] = m.texture != nullptr;
     if (m.texture) j["texture_size"] = {m.texture->width, m.texture->height};
@@ -156,12 +166,13 @@ void printSurface(const TriMesh& mesh) {
                                                       : "from the file (they say which edges are hard)");
   const auto triangles = materialTriangles(mesh);
   std::printf("materials  %zu", mesh.materials.size());
-  if (!mesh.materials.empty() && triangles.back() > 0) std::printf(" (%zu triangles without one)", triangles.back());
+  if (!mesh.materials.empty() && triangles.back() > 0)
+    std::printf(" (%zu triangle%s without one)", triangles.back(), triangles.back() == 1 ? "" : "s");
   std::printf("\n");
   for (std::size_t k = 0; k < mesh.materials.size(); ++k) {
     const Material& m = mesh.materials[k];
-    std::printf("  %-16s colour (%.3f, %.3f, %.3f), %zu triangles", ("'" + m.name + "'").c_str(), m.base_color[0],
-                m.base_color[1], m.base_color[2], triangles[k]);
+    std::printf("  %-16s colour (%.3f, %.3f, %.3f), %zu triangle%s", ("'" + m.name + "'").c_str(), m.base_color[0],
+                m.base_color[1], m.base_color[2], triangles[k], triangles[k] == 1 ? "" : "s");
     if (!m.texture_path.empty()) {
       if (m.texture)
         std::printf(", texture %s (%dx%d)", m.texture_path.c_str(), m.texture->width, m.texture->height);
