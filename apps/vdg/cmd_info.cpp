@@ -1,8 +1,12 @@
-// vdg info MODEL [--json] | vdg info FILE.gltf|FILE.glb
+// vdg info MODEL [--json] | vdg info MESH.obj [--json] | vdg info FILE.gltf|FILE.glb
 //
 // An animated model (manifest "base_animation") is described by its base animation (source,
-// frames, fps, loop, offsets) and its key views, each with its keys and their key frames.
+// frames, fps, loop, offsets) and its key views, each with its keys and their key frames. A mesh
+// (and a model's base, and a glTF file's default mesh) is described with its materials (name,
+// base colour, texture and whether it loaded) and whether the file gave normals; problems with
+// material libraries and textures are printed as "warning: ..." lines on stderr.
 #include <cctype>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -11,6 +15,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <numbers>
+#include <optional>
 #include <span>
 
 #include "cli.h"
@@ -18,6 +23,7 @@
 #include "vdg/io/gltf.h"
 #include "vdg/io/gltf_export.h"
 #include "vdg/io/manifest.h"
+#include "vdg/io/obj.h"
 #include "vdg/viewdep/animated_model.h"
 #include "vdg/viewdep/model.h"
 
@@ -116,6 +122,97 @@ std::string baseSource(const BaseAnimationSpec& spec) {
          std::to_string(spec.last);
 }
 
+// A float as the double with its shortest decimal form (0.2f as 0.2, not 0.20000000298023224).
+double shortest(float value) {
+  char buffer[32];
+  const auto end = std::to_chars(buffer, buffer + sizeof(buffer), value).ptr;
+  double out = value;
+  std::from_chars(buffer, end, out);
+  return out;
+}
+
+// Triangles per material of `mesh` (index k), and those without one at the end.
+std::vector<std::size_t> materialTriangles(const TriMesh& mesh) {
+  std::vector<std::size_t> count(mesh.materials.size() + 1, 0);
+  for (std::size_t f = 0; f < mesh.triangleCount(); ++f) {
+    const int k = f < mesh.face_materials.size() ? mesh.face_materials[f] : -1;
+    ++count[k < 0 ? mesh.materials.size() : static_cast<std::size_t>(k)];
+  }
+  return count;
+}
+
+// The JSON fields of a mesh's surface (vdg info --json): file normals and materials.
+void addSurfaceFields(const TriMesh& mesh, nlohmann::ordered_json& out) {
+  out["file_normals"] = !mesh.normals.empty();
+  const auto triangles = materialTriangles(mesh);
+  nlohmann::ordered_json materials = nlohmann::ordered_json::array();
+  for (std::size_t k = 0; k < mesh.materials.size(); ++k) {
+    const Material& m = mesh.materials[k];
+    nlohmann::ordered_json j;
+    j["name"] = m.name;
+    j["base_color"] = {shortest(m.base_color[0]), shortest(m.base_color[1]), shortest(m.base_color[2])};
+    j["texture"] = m.texture_path.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(m.texture_path);
+    j["texture_loaded"] = m.texture != nullptr;
+    if (m.texture) j["texture_size"] = {m.texture->width, m.texture->height};
+    j["triangles"] = triangles[k];
+    materials.push_back(std::move(j));
+  }
+  out["materials"] = std::move(materials);
+}
+
+// The same as text lines.
+void printSurface(const TriMesh& mesh) {
+  std::printf("normals    %s\n", mesh.normals.empty() ? "none in the file (derived from the positions)"
+                                                      : "from the file (they say which edges are hard)");
+  const auto triangles = materialTriangles(mesh);
+  std::printf("materials  %zu", mesh.materials.size());
+  if (!mesh.materials.empty() && triangles.back() > 0)
+    std::printf(" (%zu triangle%s without one)", triangles.back(), triangles.back() == 1 ? "" : "s");
+  std::printf("\n");
+  for (std::size_t k = 0; k < mesh.materials.size(); ++k) {
+    const Material& m = mesh.materials[k];
+    std::printf("  %-16s colour (%.3f, %.3f, %.3f), %zu triangle%s", ("'" + m.name + "'").c_str(), m.base_color[0],
+                m.base_color[1], m.base_color[2], triangles[k], triangles[k] == 1 ? "" : "s");
+    if (!m.texture_path.empty()) {
+      if (m.texture)
+        std::printf(", texture %s (%dx%d)", m.texture_path.c_str(), m.texture->width, m.texture->height);
+      else
+        std::printf(", texture %s (not loaded)", m.texture_path.c_str());
+    }
+    std::printf("\n");
+  }
+}
+
+// Reads a mesh with its materials, printing the read's warnings on stderr.
+TriMesh readMeshWarning(const std::string& path, std::vector<std::string>& warnings) {
+  MeshReadOptions options;
+  options.warnings = &warnings;
+  TriMesh mesh = readMesh(path, options);
+  for (const auto& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  return mesh;
+}
+
+// vdg info MESH.obj: the mesh alone.
+void describeMesh(const std::string& path, bool json) {
+  std::vector<std::string> warnings;
+  const TriMesh mesh = readMeshWarning(path, warnings);
+  if (json) {
+    nlohmann::ordered_json out;
+    out["mesh"] = path;
+    out["vertices"] = mesh.vertexCount();
+    out["triangles"] = mesh.triangleCount();
+    out["uvs"] = !mesh.uvs.empty();
+    addSurfaceFields(mesh, out);
+    out["warnings"] = warnings;
+    std::cout << out.dump(2) << "\n";
+    return;
+  }
+  std::printf("mesh       %s: %zu vertices, %zu triangles\n", path.c_str(), mesh.vertexCount(), mesh.triangleCount());
+  std::printf("uvs        %s\n",
+              mesh.uvs.empty() ? "none" : (std::to_string(mesh.uvs.size() / 2) + " texture coordinates").c_str());
+  printSurface(mesh);
+}
+
 // vdg info on an animated model (Rademacher 99, section 4): the base animation, and the key views
 // with their key frames (each view is one point of the viewing sphere).
 // The JSON fields static and animated models share (vdg info --json).
@@ -126,6 +223,7 @@ void addShapeFields(const Model& model, nlohmann::ordered_json& out) {
   out["center"] = {model.center().x(), model.center().y(), model.center().z()};
   out["sharpness"] = model.sharpness();
   out["uncovered"] = uncoveredName(model.sphere().settings().uncovered);
+  addSurfaceFields(model.base(), out);
 }
 
 // "  (FILE)" after a key read from a mesh file; nothing for a key stored in a glTF model.
@@ -192,6 +290,7 @@ void describeAnimated(const std::string& path, const RawViewDependentModel& raw,
   }
   std::printf("animation  %s, %s\n", frames.c_str(),
               model.loop() ? "loop (periodic time splines)" : "no loop (offsets held outside the key frames)");
+  printSurface(model.base());
   std::printf("offsets    %s\n", offsetSpaceName(model.offsetSpace()));
   std::printf("centre     (%.4g, %.4g, %.4g)\n", model.center().x(), model.center().y(), model.center().z());
   std::printf("sharpness  %g\n", model.sharpness());
@@ -210,11 +309,13 @@ void describeAnimated(const std::string& path, const RawViewDependentModel& raw,
   for (const auto& w : warnings) std::printf("warning: %s\n", w.c_str());
 }
 
-bool isGltf(const std::string& path) {
+std::string lowerExtension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
   for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return ext == ".gltf" || ext == ".glb";
+  return ext;
 }
+
+bool isGltf(const std::string& path) { return lowerExtension(path) == ".gltf" || lowerExtension(path) == ".glb"; }
 
 }  // namespace
 
@@ -226,15 +327,33 @@ void addInfoCommand(CLI::App& app) {
   auto opt = std::make_shared<Options>();
   CLI::App* sub =
       app.add_subcommand("info",
-                         "Describe a view-dependent model (mesh, keys, viewing-sphere hull, warnings) or a glTF file "
-                         "(meshes, morph targets, skins, animations)");
-  sub->add_option("MODEL", opt->model, "Model manifest (*.vdg.json), or a glTF 2.0 file (*.gltf, *.glb)")->required();
+                         "Describe a view-dependent model (mesh, keys, viewing-sphere hull, warnings), a mesh (*.obj: "
+                         "materials, textures, normals) or a glTF file (meshes, morph targets, skins, animations, the "
+                         "default mesh's materials)");
+  sub->add_option("MODEL", opt->model,
+                  "Model manifest (*.vdg.json), a mesh (*.obj), or a glTF 2.0 file (*.gltf, *.glb)")
+      ->required();
   sub->add_flag("--json", opt->json, "Print one JSON object instead of text");
   sub->callback([opt] {
+    if (lowerExtension(opt->model) == ".obj") {
+      describeMesh(opt->model, opt->json);
+      return;
+    }
     // A glTF file vdg exported (mesh.extras.vdg) is described as a model too.
     if (isGltf(opt->model)) {
       if (opt->json) throw UsageError("--json: only for models, not for glTF files");
       std::fputs(describeGltf(opt->model).c_str(), stdout);
+      // The default mesh's surface (a file without a mesh has none to describe).
+      std::optional<TriMesh> mesh;
+      std::vector<std::string> warnings;
+      try {
+        mesh = readMeshWarning(opt->model, warnings);
+      } catch (const Error&) {
+      }
+      if (mesh) {
+        std::printf("default mesh: %zu vertices, %zu triangles\n", mesh->vertexCount(), mesh->triangleCount());
+        printSurface(*mesh);
+      }
       bool gltf_model = false;
       try {
         gltf_model = gltfHasModel(opt->model);
@@ -276,6 +395,7 @@ void addInfoCommand(CLI::App& app) {
     std::printf("model      %s\n", opt->model.c_str());
     std::printf("base       %s: %zu vertices, %zu triangles\n", raw.base_path.c_str(), model.vertexCount(),
                 model.base().triangleCount());
+    printSurface(model.base());
     std::printf("centre     (%.4g, %.4g, %.4g)\n", model.center().x(), model.center().y(), model.center().z());
     std::printf("sharpness  %g\n", model.sharpness());
     std::printf("uncovered  %s\n", uncoveredName(sphere.settings().uncovered));

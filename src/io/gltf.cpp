@@ -29,6 +29,7 @@
 #include <sstream>
 
 #include "json_reader.h"
+#include "material_files.h"
 #include "vdg/geom/error.h"
 #include "vdg/io/read_file.h"
 
@@ -65,22 +66,8 @@ bool uriOf(const std::string& path, std::string* uri) {
   return true;
 }
 
-// A URI vdg reads from the file's folder: relative, no "..", no backslash, no NUL.
-std::string uriProblem(const std::string& uri) {
-  if (uri.empty()) return "is an empty file name";
-  if (uri.front() == '/') return "is an absolute path";
-  if (uri.find('\\') != std::string::npos) return "has a backslash";
-  if (uri.find('\0') != std::string::npos) return "has a NUL character";
-  if (uri.find(':') != std::string::npos) return "has a URI scheme other than data:";
-  std::size_t start = 0;
-  while (start <= uri.size()) {
-    std::size_t end = uri.find('/', start);
-    if (end == std::string::npos) end = uri.size();
-    if (uri.compare(start, end - start, "..") == 0) return "has a '..' component";
-    start = end + 1;
-  }
-  return {};
-}
+// A URI vdg reads from the file's folder: relative, no "..", no backslash, no ':', no NUL.
+std::string uriProblem(const std::string& uri) { return io::relativePathProblem(uri); }
 
 bool fileExists(const std::string& path, void* user) {
   auto* access = static_cast<FileAccess*>(user);
@@ -123,8 +110,12 @@ bool writeWholeFile(std::string* err, const std::string&, const std::vector<unsi
   return false;
 }
 
-// Images are not used: accepted without decoding.
-bool ignoreImage(tg::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
+// Images are decoded by vdg (buildRig), not by tinygltf: the bytes of a data: URI image are kept
+// as they are; a bufferView image is read later from its checked bufferView (tinygltf hands over a
+// pointer it has not checked, so it is not read here).
+bool keepImageBytes(tg::Image* image, const int, std::string*, std::string*, int, int, const unsigned char* bytes,
+                    int size, void*) {
+  if (image->bufferView < 0 && bytes && size > 0) image->image.assign(bytes, bytes + size);
   return true;
 }
 
@@ -314,7 +305,8 @@ const Want kMorphWeights{{TINYGLTF_TYPE_SCALAR}, kFloatOrNormalized, "SCALAR of 
 
 class Gltf {
  public:
-  Gltf(std::string_view bytes, const std::string& source, const std::string& folder) : source_(source) {
+  Gltf(std::string_view bytes, const std::string& source, const std::string& folder)
+      : source_(source), folder_(folder) {
     const bool binary = bytes.size() >= 4 && bytes.substr(0, 4) == "glTF";
     binary_ = binary;
     const std::string_view json = binary ? checkGlb(bytes, source) : bytes;
@@ -332,7 +324,7 @@ class Gltf {
     fs.WriteWholeFile = writeWholeFile;
     fs.user_data = &access;
     loader.SetFsCallbacks(fs);
-    loader.SetImageLoader(ignoreImage, nullptr);
+    loader.SetImageLoader(keepImageBytes, nullptr);
     std::string err, warn;
     const bool ok =
         binary ? loader.LoadBinaryFromMemory(&model_, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),
@@ -346,6 +338,7 @@ class Gltf {
 
   const tg::Model& model() const { return model_; }
   const std::string& source() const { return source_; }
+  const std::string& folder() const { return folder_; }
   bool binary() const { return binary_; }
 
   [[noreturn]] void fail(const std::string& element, const std::string& what) const {
@@ -410,6 +403,12 @@ class Gltf {
   }
 
   std::size_t count(int accessor) const { return model_.accessors[static_cast<std::size_t>(accessor)].count; }
+
+  // The bytes of a bufferView checked by checkStructure() (index checked by the caller).
+  std::string_view viewBytes(int index) const {
+    const View v = view(index);
+    return {reinterpret_cast<const char*>(v.data), v.length};
+  }
 
  private:
   struct View {
@@ -494,6 +493,7 @@ class Gltf {
   }
 
   std::string source_;
+  std::string folder_;
   bool binary_ = false;
   tg::Model model_;
 };
@@ -578,7 +578,117 @@ RigNode readNode(const Gltf& g, std::size_t i) {
   return out;
 }
 
-RawRig buildRig(const Gltf& g, const GltfSelect& want) {
+// Linear to display sRGB (IEC 61966-2-1), for baseColorFactor (vdg/geom/material.h: materials
+// hold display values).
+float linearToSrgb(double c) {
+  c = c >= 0.0 ? std::min(c, 1.0) : 0.0;
+  return static_cast<float>(c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055);
+}
+
+// A URI with its %XX escapes decoded (RFC 3986, section 2.1); a malformed escape stays as it is.
+std::string percentDecoded(const std::string& uri) {
+  auto hex = [](char c) {
+    if (c >= '0' && c <= '9') return c - '0';
+    if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+    if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+    return -1;
+  };
+  std::string out;
+  for (std::size_t i = 0; i < uri.size(); ++i) {
+    if (uri[i] == '%' && i + 2 < uri.size() && hex(uri[i + 1]) >= 0 && hex(uri[i + 2]) >= 0) {
+      out += static_cast<char>(hex(uri[i + 1]) * 16 + hex(uri[i + 2]));
+      i += 2;
+    } else {
+      out += uri[i];
+    }
+  }
+  return out;
+}
+
+// The materials of one mesh read: each glTF material converted once, each image decoded once.
+class MaterialReader {
+ public:
+  MaterialReader(const Gltf& g, const MeshReadOptions& options) : g_(g), sink_(options) {}
+
+  // glTF material `index` as a vdg Material (vdg/io/gltf.h); a texture that cannot be used is
+  // one warning (or, strict, a vdg::Error) and the material keeps its colour alone.
+  Material read(std::size_t index, bool has_uvs) {
+    const tg::Model& m = g_.model();
+    const tg::Material& gm = m.materials[index];
+    const std::string e = idx("materials", index);
+    Material out;
+    out.name = gm.name.empty() ? e : gm.name;
+    const auto& factor = gm.pbrMetallicRoughness.baseColorFactor;
+    if (factor.size() >= 3)
+      for (std::size_t c = 0; c < 3; ++c) out.base_color[c] = linearToSrgb(factor[c]);
+    const tg::TextureInfo& info = gm.pbrMetallicRoughness.baseColorTexture;
+    if (info.index < 0) return out;
+    auto warn = [&](const std::string& why) {
+      sink_.warn(g_.source() + ": " + e + ": baseColorTexture: " + why + "; material '" + out.name +
+                 "' shows its colour alone");
+    };
+    if (static_cast<std::size_t>(info.index) >= m.textures.size()) {
+      warn("texture " + std::to_string(info.index) + " out of range (the file has " +
+           std::to_string(m.textures.size()) + ")");
+      return out;
+    }
+    const tg::Texture& texture = m.textures[static_cast<std::size_t>(info.index)];
+    const std::string et = idx("textures", static_cast<std::size_t>(info.index));
+    if (texture.source < 0 || static_cast<std::size_t>(texture.source) >= m.images.size()) {
+      warn(et + " has no PNG or JPEG image (source " + std::to_string(texture.source) + ")");
+      return out;
+    }
+    const std::size_t image_index = static_cast<std::size_t>(texture.source);
+    const tg::Image& image = m.images[image_index];
+    const std::string ei = idx("images", image_index);
+    out.texture_path = image.bufferView >= 0 ? ei + " (bufferView " + std::to_string(image.bufferView) + ")"
+                       : !image.uri.empty()  ? percentDecoded(image.uri)
+                                             : ei + " (data: URI)";
+    if (info.texCoord != 0) {
+      warn("uses TEXCOORD_" + std::to_string(info.texCoord) + "; vdg maps textures by TEXCOORD_0 only");
+      return out;
+    }
+    if (!has_uvs) {
+      warn("the mesh has no TEXCOORD_0 (in every triangle primitive) to map it by");
+      return out;
+    }
+    std::string why;
+    if (image.bufferView >= 0) {
+      if (static_cast<std::size_t>(image.bufferView) >= m.bufferViews.size())
+        why = ei + ": bufferView " + std::to_string(image.bufferView) + " out of range (the file has " +
+              std::to_string(m.bufferViews.size()) + ")";
+      else
+        out.texture = cache_.bytes(ei, g_.viewBytes(image.bufferView), g_.source() + ": " + ei, &why);
+    } else if (!image.uri.empty()) {
+      const std::string uri = out.texture_path;
+      const std::string problem = uriProblem(uri);
+      if (!problem.empty())
+        why = "'" + uri + "' " + problem + " (images must lie in the glTF file's folder or below)";
+      else if (g_.folder().empty())
+        why = "'" + uri + "' is an external file, and these bytes come without a folder";
+      else
+        out.texture = cache_.file(io::inFolder(g_.folder(), uri), &why);
+    } else if (!image.image.empty()) {
+      out.texture =
+          cache_.bytes(ei, std::string_view(reinterpret_cast<const char*>(image.image.data()), image.image.size()),
+                       g_.source() + ": " + ei, &why);
+    } else {
+      why = ei + " has neither a bufferView nor a uri";
+    }
+    if (!out.texture && warned_images_.insert(image_index).second) warn(why);
+    return out;
+  }
+
+  void warn(const std::string& line) const { sink_.warn(line); }
+
+ private:
+  const Gltf& g_;
+  io::WarningSink sink_;
+  io::TextureCache cache_;
+  std::set<std::size_t> warned_images_;
+};
+
+RawRig buildRig(const Gltf& g, const GltfSelect& want, const MeshReadOptions& options) {
   const tg::Model& m = g.model();
   RawRig raw;
   raw.source = g.source();
@@ -640,6 +750,8 @@ RawRig buildRig(const Gltf& g, const GltfSelect& want) {
       if (mesh.primitives[p].targets[t].count("NORMAL")) target_has_normals[t] = true;
 
   std::size_t base = 0;
+  std::vector<int> face_material;           // per triangle: the primitive's glTF material (-1: none)
+  std::vector<std::size_t> face_primitive;  // per triangle: its primitive
   for (std::size_t p : prims) {
     const tg::Primitive& prim = mesh.primitives[p];
     const std::string ep = em + ": " + idx("primitives", p);
@@ -662,8 +774,9 @@ RawRig buildRig(const Gltf& g, const GltfSelect& want) {
     }
     if (with_uvs) {
       const int a = attribute(prim, "TEXCOORD_0");
-      const auto uvs = g.read(a, kTexcoord, ep + ": TEXCOORD_0");
+      auto uvs = g.read(a, kTexcoord, ep + ": TEXCOORD_0");
       sameCount(a, "TEXCOORD_0");
+      for (std::size_t i = 1; i < uvs.size(); i += 2) uvs[i] = 1.0 - uvs[i];  // top-left origin to bottom-left
       raw.mesh.uvs.insert(raw.mesh.uvs.end(), uvs.begin(), uvs.end());
     }
     if (skin_index >= 0) {
@@ -699,6 +812,7 @@ RawRig buildRig(const Gltf& g, const GltfSelect& want) {
       }
     }
     // Triangles: the indices, or 0..n-1 without them.
+    const std::size_t triangles_before = raw.mesh.triangles.size() / 3;
     if (prim.indices >= 0) {
       const auto indices = g.read(prim.indices, kIndices, ep + ": indices");
       if (indices.size() % 3 != 0)
@@ -713,9 +827,41 @@ RawRig buildRig(const Gltf& g, const GltfSelect& want) {
       if (nv % 3 != 0) g.fail(ep, std::to_string(nv) + " vertices without indices, not a multiple of 3");
       for (std::size_t k = 0; k < nv; ++k) raw.mesh.triangles.push_back(static_cast<std::int32_t>(base + k));
     }
+    face_material.insert(face_material.end(), raw.mesh.triangles.size() / 3 - triangles_before, prim.material);
+    face_primitive.insert(face_primitive.end(), raw.mesh.triangles.size() / 3 - triangles_before, p);
     base += nv;
   }
   if (with_uvs) raw.mesh.uv_triangles = raw.mesh.triangles;
+  if (with_normals) {
+    raw.mesh.normals = raw.normals;
+    raw.mesh.normal_triangles = raw.mesh.triangles;
+  }
+  if (options.materials) {
+    // Materials in the order of first use; a primitive without one (or with a material index out
+    // of range, a warning) has none.
+    MaterialReader reader(g, options);
+    std::map<int, int> mesh_index;
+    std::set<std::size_t> warned_primitives;
+    raw.mesh.face_materials.assign(face_material.size(), -1);
+    for (std::size_t f = 0; f < face_material.size(); ++f) {
+      const int k = face_material[f];
+      if (k < 0) continue;
+      if (static_cast<std::size_t>(k) >= m.materials.size()) {
+        if (warned_primitives.insert(face_primitive[f]).second)
+          reader.warn(g.source() + ": " + em + ": " + idx("primitives", face_primitive[f]) + ": material " +
+                      std::to_string(k) + " out of range (the file has " + std::to_string(m.materials.size()) +
+                      "); the primitive has no material");
+        continue;
+      }
+      auto it = mesh_index.find(k);
+      if (it == mesh_index.end()) {
+        it = mesh_index.emplace(k, static_cast<int>(raw.mesh.materials.size())).first;
+        raw.mesh.materials.push_back(reader.read(static_cast<std::size_t>(k), with_uvs));
+      }
+      raw.mesh.face_materials[f] = it->second;
+    }
+    if (raw.mesh.materials.empty()) raw.mesh.face_materials.clear();
+  }
 
   // Morph target names and default weights (the node's weights override the mesh's).
   raw.target_names = targetNames(mesh, targets);
@@ -912,26 +1058,33 @@ std::string folderOf(const std::string& path) {
 }  // namespace
 
 RawRig parseGltfRig(std::string_view bytes, const std::string& source, const std::string& folder,
-                    const GltfSelect& select) {
+                    const GltfSelect& select, const MeshReadOptions& options) {
   const Gltf g(bytes, source, folder);
-  return buildRig(g, select);
+  return buildRig(g, select, options);
 }
 
 std::string describeGltfData(std::string_view bytes, const std::string& source, const std::string& folder) {
   const Gltf g(bytes, source, folder);
   // A file whose default mesh does not load is reported, not described.
-  if (!g.model().meshes.empty()) (void)buildRig(g, {});
+  if (!g.model().meshes.empty()) (void)buildRig(g, {}, MeshReadOptions{false, false, nullptr});
   return describe(g);
 }
 
-RawRig readGltfRig(const std::string& path, const GltfSelect& select) {
-  return parseGltfRig(readFileLimited(path, "glTF", kMaxMeshFileBytes), path, folderOf(path), select);
+RawRig readGltfRig(const std::string& path, const GltfSelect& select, const MeshReadOptions& options) {
+  return parseGltfRig(readFileLimited(path, "glTF", kMaxMeshFileBytes), path, folderOf(path), select, options);
 }
 
-TriMesh readGltfMesh(const std::string& path, const GltfSelect& select) {
-  const Rig rig = Rig::build(readGltfRig(path, select));
+TriMesh readGltfMesh(const std::string& path, const GltfSelect& select, const MeshReadOptions& options) {
+  const Rig rig = Rig::build(readGltfRig(path, select, options));
   TriMesh mesh = rig.mesh();
-  if (!rig.evaluate(-1, 0.0, mesh.positions)) throw Error(path + ": the rest pose could not be evaluated");
+  // The file's normals posed with the positions (per vertex: normal_triangles = triangles).
+  std::vector<float> normals(mesh.normals.empty() ? 0 : mesh.positions.size());
+  if (!rig.evaluate(-1, 0.0, mesh.positions, normals)) throw Error(path + ": the rest pose could not be evaluated");
+  if (!mesh.normals.empty()) {
+    for (float& c : normals)
+      if (!std::isfinite(c)) c = 0.0f;  // a transform that overflows a normal leaves no direction
+    mesh.normals = std::move(normals);
+  }
   validateMesh(mesh, path);
   return mesh;
 }

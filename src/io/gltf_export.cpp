@@ -1026,12 +1026,9 @@ io::Json meshExtras(std::string_view bytes, const RawRig& rig, const std::string
   return m.contains("extras") ? m.at("extras") : io::Json();
 }
 
-// vdg holds uvs bottom-left, glTF top-left.
-TriMesh baseFromRig(const RawRig& rig) {
-  TriMesh base = rig.mesh;
-  for (std::size_t i = 1; i < base.uvs.size(); i += 2) base.uvs[i] = 1.0f - base.uvs[i];
-  return base;
-}
+// The model's base: the rig's rest mesh (the glTF reader has already flipped its uvs to vdg's
+// bottom-left origin, so the export's flip is undone exactly once).
+TriMesh baseFromRig(const RawRig& rig) { return rig.mesh; }
 
 RawViewDependentModel fromDescription(Described d, const TriMesh& base, std::span<const std::vector<float>> deltas,
                                       const std::string& where) {
@@ -1130,7 +1127,8 @@ bool isGltfPath(const std::string& path) {
 bool gltfHasModel(const std::string& path) {
   const std::string bytes = readFileLimited(path, "glTF file", kMaxMeshFileBytes);
   const std::string folder = std::filesystem::path(path).parent_path().string();
-  const RawRig rig = parseGltfRig(bytes, path, folder.empty() ? "." : folder);
+  const RawRig rig =
+      parseGltfRig(bytes, path, folder.empty() ? "." : folder, {}, MeshReadOptions{false, false, nullptr});
   const io::Json extras = meshExtras(bytes, rig, path);
   return extras.is_object() && extras.contains("vdg");
 }

@@ -1,14 +1,15 @@
 #include "vdg/render/image.h"
 
-#include <stb/stb_image.h>
 #include <stb/stb_image_write.h>
 
 #include <algorithm>
 #include <cstdlib>
 #include <memory>
+#include <utility>
 
 #include "vdg/geom/error.h"
 #include "vdg/io/atomic_file.h"
+#include "vdg/io/image_file.h"
 #include "vdg/io/read_file.h"
 #include "vdg/render/renderer.h"
 
@@ -30,20 +31,29 @@ void writePng(const std::string& path, const Image& image) {
 }
 
 Image readPng(const std::string& path) {
-  checkInputFile(path, "PNG image");  // a FIFO or a device would block or never end
-  int w = 0, h = 0, channels = 0;
-  if (stbi_info(path.c_str(), &w, &h, &channels) && (w > kMaxImageSize || h > kMaxImageSize))
-    throw Error("PNG " + path + ": " + std::to_string(w) + "x" + std::to_string(h) + " pixels, more than " +
-                std::to_string(kMaxImageSize) + " a side");
-  std::unique_ptr<stbi_uc, void (*)(void*)> data(stbi_load(path.c_str(), &w, &h, &channels, 4), stbi_image_free);
-  if (!data) {
-    const char* reason = stbi_failure_reason();
-    throw Error("PNG " + path + ": cannot read (" + (reason ? reason : "unknown reason") + ")");
+  // One decoder in the link: vdg_io's (PNG and JPEG by their first bytes, bounded file and pixels).
+  ImageLimits limits;
+  limits.max_file_bytes = kMaxMeshFileBytes;
+  limits.max_side = kMaxImageSize;
+  limits.max_pixels = static_cast<std::size_t>(kMaxImageSize) * kMaxImageSize;
+  const std::string bytes = [&] {
+    try {
+      return readFileLimited(path, "PNG image", limits.max_file_bytes);  // a FIFO or a device would block
+    } catch (const Error& e) {
+      throw Error(std::string("PNG ") + e.what());
+    }
+  }();
+  if (imageFormatOf(bytes) != ImageFormat::kPng) throw Error("PNG " + path + ": not a PNG file");
+  TextureImage decoded;
+  try {
+    decoded = decodeImage(bytes, path, limits);
+  } catch (const Error& e) {
+    throw Error(std::string("PNG ") + e.what());
   }
   Image out;
-  out.width = w;
-  out.height = h;
-  out.rgba.assign(data.get(), data.get() + static_cast<std::size_t>(w) * h * 4);
+  out.width = decoded.width;
+  out.height = decoded.height;
+  out.rgba = std::move(decoded.rgba);
   return out;
 }
 

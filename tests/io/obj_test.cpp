@@ -96,8 +96,9 @@ TEST(ObjIo, RelativeIndicesAndCommentsStillRead) {
 TEST(ObjIo, LongExponentsAndMantissasReadAsTheirValues) {
   testing::TempDir dir;
   const std::string zeros(400, '0');
-  testing::writeText(dir.file("n.obj"), "v 0e2147483648 1" + zeros + "e-400 -0.000" + zeros + "25e404\n"
-                                        "v 1 0E+0000000000000000000002 0\nv 0 1 0\nf 1 2 3\n");
+  testing::writeText(dir.file("n.obj"), "v 0e2147483648 1" + zeros + "e-400 -0.000" + zeros +
+                                            "25e404\n"
+                                            "v 1 0E+0000000000000000000002 0\nv 0 1 0\nf 1 2 3\n");
   const TriMesh m = readObj(dir.file("n.obj"));
   ASSERT_EQ(m.vertexCount(), 3u);
   EXPECT_EQ(m.positions[0], 0.0f);
@@ -115,12 +116,7 @@ TEST(ObjIo, StatementsVdgDoesNotUseAreIgnored) {
   EXPECT_EQ(m.triangles, (std::vector<std::int32_t>{0, 1, 2}));
 }
 
-TEST(ObjIo, MaterialLibrariesAreNeverOpened) {
-  // vdg uses no materials: an mtllib naming /dev/zero or a FIFO must neither hang nor exhaust memory.
-  testing::TempDir dir;
-  testing::writeText(dir.file("m.obj"), "mtllib /dev/zero\nusemtl skin\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
-  EXPECT_EQ(readObj(dir.file("m.obj")).triangleCount(), 1u);
-}
+// Material libraries and textures (what is opened, refused and warned about): materials_test.cpp.
 
 TEST(ObjIo, NonRegularFilesAreRefused) {
   EXPECT_EQ(errorOf([] { readObj("/dev/zero"); }), "/dev/zero: is a character device, not a mesh file");

@@ -14,13 +14,27 @@
 // Files: a .gltf/.glb is read as a regular file of at most kMaxMeshFileBytes (vdg/io/read_file.h).
 // External buffers (`"uri": "walk.bin"`) are read from the glTF file's folder only: an absolute
 // URI, a `..` component or a backslash is refused, and all external buffers together are bounded
-// by kMaxMeshFileBytes; `data:` URIs (base64) are fine. Images are never read (vdg does not use
-// textures yet).
+// by kMaxMeshFileBytes; `data:` URIs (base64) are fine. Images follow the same policy (a refused
+// URI is a warning, see below).
 //
 // The mesh: all triangle primitives (mode 4) of the selected mesh, concatenated in order into one
 // TriMesh; primitives of other modes (points, lines, strips, fans) are ignored. NORMAL and
-// TEXCOORD_0 are kept when every primitive has them. Morph target names come from
-// mesh.extras.targetNames when it is an array of one string per target (otherwise none).
+// TEXCOORD_0 are kept when every primitive has them: NORMAL as TriMesh::normals with
+// normal_triangles = triangles (one normal per vertex), TEXCOORD_0 as uvs with v flipped (glTF's
+// origin is the top-left corner of the image, TriMesh's the bottom-left: v' = 1 - v). Morph target
+// names come from mesh.extras.targetNames when it is an array of one string per target.
+//
+// Materials (MeshReadOptions::materials, vdg/io/mesh_read_options.h): each primitive's material
+// gives its triangles' face_materials (-1: a primitive without one); TriMesh::materials holds the
+// used glTF materials in the order of first use, named as the file names them ("materials[3]" when
+// unnamed). base_color is pbrMetallicRoughness.baseColorFactor's RGB (linear in glTF, section
+// 3.9.2) encoded to display sRGB (IEC 61966-2-1: 12.92 c for c <= 0.0031308, else
+// 1.055 c^(1/2.4) - 0.055), the values vdg's renderer shades (vdg/geom/material.h); alpha is
+// ignored. baseColorTexture is decoded (PNG or JPEG by its bytes, vdg/io/image_file.h) from a
+// bufferView (GLB), a data: URI or a file beside the glTF file (same URI policy as buffers); a
+// texture that uses a texCoord other than 0, is missing, refused, too large or broken, or a mesh
+// without TEXCOORD_0, gives one warning naming the file and element, and the material shows its
+// colour alone (strict: the warning is a vdg::Error).
 #pragma once
 
 #include <cstddef>
@@ -29,6 +43,7 @@
 
 #include "vdg/anim/rig.h"
 #include "vdg/geom/tri_mesh.h"
+#include "vdg/io/mesh_read_options.h"
 
 namespace vdg {
 
@@ -46,12 +61,12 @@ struct GltfSelect {
 // its morph targets, the skin of its node, and every animation (weights channels of other nodes
 // are left out). Validated (RawRig::validate) before it is returned. Throws vdg::Error
 // "FILE: ELEMENT: what".
-RawRig readGltfRig(const std::string& path, const GltfSelect& select = {});
+RawRig readGltfRig(const std::string& path, const GltfSelect& select = {}, const MeshReadOptions& options = {});
 
 // The selected mesh as a static TriMesh: the rest pose (no animation) with the default morph
 // weights applied, skinned by the rest pose when skinned, otherwise placed by its node's world
-// transform. Throws as readGltfRig.
-TriMesh readGltfMesh(const std::string& path, const GltfSelect& select = {});
+// transform; file normals posed the same way. Throws as readGltfRig.
+TriMesh readGltfMesh(const std::string& path, const GltfSelect& select = {}, const MeshReadOptions& options = {});
 
 // Human-readable description for `vdg info`: meshes (vertices, triangles, morph targets with
 // names), skins, animations with their channels and durations. Throws as readGltfRig for a file
@@ -59,9 +74,9 @@ TriMesh readGltfMesh(const std::string& path, const GltfSelect& select = {});
 std::string describeGltf(const std::string& path);
 
 // The same from bytes in memory (tests, fuzzing): `source` names them in messages; `folder` is
-// where external buffers are read from (empty: external buffers are refused).
+// where external buffers and images are read from (empty: external files are refused).
 RawRig parseGltfRig(std::string_view bytes, const std::string& source, const std::string& folder = {},
-                    const GltfSelect& select = {});
+                    const GltfSelect& select = {}, const MeshReadOptions& options = {});
 std::string describeGltfData(std::string_view bytes, const std::string& source, const std::string& folder = {});
 
 }  // namespace vdg

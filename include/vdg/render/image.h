@@ -20,7 +20,7 @@ struct Image {
 // Writes `image` as a PNG, atomically (temporary file + rename). Throws vdg::Error naming the path.
 void writePng(const std::string& path, const Image& image);
 // Reads a PNG (any channel count, converted to RGBA8): a regular file of at most kMaxImageSize
-// pixels a side (renderer.h). Throws vdg::Error naming the path.
+// pixels a side (renderer.h), decoded by vdg/io/image_file.h. Throws vdg::Error "PNG PATH: ...".
 Image readPng(const std::string& path);
 
 // Comparison of two images of the same size: a pixel differs when any channel differs by more
