@@ -25,6 +25,8 @@
 #include <filesystem>
 #include <memory>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "cli.h"
 #include "orbit_options.h"
@@ -137,7 +139,15 @@ void run(const RenderOptions& opt) {
   const bool plain = hasExtension(opt.model, ".obj") || (gltf && !gltfHasModel(opt.model));
   TriMesh mesh;
   if (plain) {
-    mesh = readMesh(opt.model);
+    // Material and texture problems: one "warning: ..." line each, the surface falls back to its
+    // base colour (or --color); --strict makes them errors. --no-materials opens no other file.
+    std::vector<std::string> warnings;
+    MeshReadOptions read;
+    read.materials = !opt.no_materials;
+    read.strict = opt.strict;
+    read.warnings = &warnings;
+    mesh = readMesh(opt.model, read);
+    for (const std::string& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
     fo.sphere = false;
   } else {
     const RawViewDependentModel raw = loadModel(opt.model);
@@ -272,6 +282,9 @@ void addRenderCommand(CLI::App& app) {
   sub->add_flag("--no-materials", opt->no_materials,
                 "Ignore the mesh's materials and textures: --color everywhere (default: each material's colour, "
                 "times its texture)");
+  sub->add_flag("--strict", opt->strict,
+                "A mesh's missing or broken material library or texture is an error (default: a warning, and the "
+                "surface shows its base colour)");
   sub->add_option("--samples", opt->samples, "Multisample anti-aliasing samples (default 8, capped by the driver)")
       ->check(wholeNumber(1, kMaxSamples));
   sub->add_flag("-q,--quiet", opt->quiet, "No progress bar and no summary line");

@@ -156,6 +156,38 @@ void expectOneLineError(const Result& r, int status, const std::string& needle) 
   EXPECT_LE(std::count(r.output.begin(), r.output.end(), '\n'), 2) << r.output;
 }
 
+// Materials: the teapot with one material per part renders in their colours (--no-materials: in
+// --color); a texture that is missing is one warning naming it and the frame is still written,
+// or with --strict an error that writes nothing.
+TEST(CliRender, MaterialsWarningsAndStrict) {
+  const std::string common = " --size 64x64 --quiet";
+  const fs::path parts = freshDir("vdg_render_parts"), plain = freshDir("vdg_render_parts_plain");
+  Result r = vdg("render " + kSource + "/examples/meshes/teapot-parts.obj -o " + parts.string() + common);
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(r.output, "");
+  r = vdg("render " + kSource + "/examples/meshes/teapot-parts.obj -o " + plain.string() + common + " --no-materials");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(readBytes(parts / "frame_0000.png"), readBytes(plain / "frame_0000.png"));
+
+  const fs::path dir = freshDir("vdg_render_missing_texture");
+  fs::create_directories(dir);
+  std::ofstream(dir / "tri.obj") << "mtllib tri.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\n"
+                                    "usemtl red\nf 1/1 2/2 3/3\n";
+  std::ofstream(dir / "tri.mtl") << "newmtl red\nKd 0.8 0.1 0.1\nmap_Kd gone.png\n";
+  const fs::path out = dir / "frames";
+  r = vdg("render " + (dir / "tri.obj").string() + " -o " + out.string() + common);
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(r.output.rfind("warning: ", 0), 0u) << r.output;
+  EXPECT_NE(r.output.find("gone.png"), std::string::npos) << r.output;
+  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+  EXPECT_TRUE(fs::exists(out / "frame_0000.png"));
+
+  const fs::path strict_out = dir / "strict";
+  expectOneLineError(vdg("render " + (dir / "tri.obj").string() + " -o " + strict_out.string() + common + " --strict"),
+                     1, "gone.png");
+  EXPECT_FALSE(fs::exists(strict_out / "frame_0000.png"));
+}
+
 TEST(CliRender, HoldFrameNeedsAnAnimatedModelAndAFrameInRange) {
   const std::string walker = kSource + "/examples/walk/walker.vdg.json";
   expectOneLineError(vdg("render " + kSpot + " -o " + freshDir("x").string() + " --hold-frame 0"), 2, "--hold-frame: ");
