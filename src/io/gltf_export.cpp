@@ -1062,10 +1062,10 @@ RawViewDependentModel rawModelFromGltfExtras(std::string_view mesh_extras_json, 
   return fromDescription(std::move(d), base, target_deltas, where);
 }
 
-RawViewDependentModel loadGltfModel(const std::string& path) {
+RawViewDependentModel loadGltfModel(const std::string& path, const MeshReadOptions& options) {
   const std::string bytes = readFileLimited(path, "glTF file", kMaxMeshFileBytes);
   const std::string folder = std::filesystem::path(path).parent_path().string();
-  const RawRig rig = parseGltfRig(bytes, path, folder.empty() ? "." : folder);
+  const RawRig rig = parseGltfRig(bytes, path, folder.empty() ? "." : folder, {}, options);
   const io::Json extras = meshExtras(bytes, rig, path);
   if (extras.is_null() || (extras.is_object() && !extras.contains("vdg")))
     throw Error(path +
@@ -1133,8 +1133,8 @@ bool gltfHasModel(const std::string& path) {
   return extras.is_object() && extras.contains("vdg");
 }
 
-RawViewDependentModel loadModel(const std::string& path) {
-  return isGltfPath(path) ? loadGltfModel(path) : loadManifest(path);
+RawViewDependentModel loadModel(const std::string& path, const MeshReadOptions& options) {
+  return isGltfPath(path) ? loadGltfModel(path, options) : loadManifest(path, options);
 }
 
 }  // namespace vdg

@@ -26,10 +26,14 @@ using io::Json;
 constexpr std::pair<const char*, Uncovered> kUncoveredModes[] = {
     {"base", Uncovered::Base}, {"cosine", Uncovered::Cosine}, {"cosine2", Uncovered::Cosine2}};
 
-TriMesh readReferencedMesh(const fs::path& folder, const std::string& relative, const std::string& where) {
+// Key meshes and later frames of a sequence share the base's materials: only the base reads them.
+constexpr MeshReadOptions kGeometryOnly{false, false, nullptr};
+
+TriMesh readReferencedMesh(const fs::path& folder, const std::string& relative, const std::string& where,
+                           const MeshReadOptions& options = kGeometryOnly) {
   const fs::path path = fs::path(relative).is_absolute() ? fs::path(relative) : folder / relative;
   try {
-    return readMesh(path.string());
+    return readMesh(path.string(), options);
   } catch (const Error& e) {
     throw Error(where + ": " + e.what());
   }
@@ -88,13 +92,15 @@ BaseAnimationSpec parseBaseAnimation(const Json& j, const Ctx& ctx) {
 
 // Reads every frame of an OBJ-sequence base into model.base (frame 0: topology, uvs, positions)
 // and model.base_frames.
-void loadObjSequence(RawViewDependentModel& model, const fs::path& folder, const std::string& path) {
+void loadObjSequence(RawViewDependentModel& model, const fs::path& folder, const std::string& path,
+                     const MeshReadOptions& options) {
   const BaseAnimationSpec& spec = *model.base_animation;
   const std::size_t count = static_cast<std::size_t>(spec.last - spec.first) + 1;
   std::string first_name;
   for (std::size_t i = 0; i < count; ++i) {
     const std::string name = sequenceFileName(spec.obj_sequence, spec.first + static_cast<int>(i));
-    TriMesh frame = readReferencedMesh(folder, name, path + ": base_animation frame " + std::to_string(i));
+    TriMesh frame = readReferencedMesh(folder, name, path + ": base_animation frame " + std::to_string(i),
+                                       i == 0 ? options : kGeometryOnly);
     if (i == 0) {
       first_name = name;
       const std::size_t bytes = frame.positions.size() * sizeof(float);
@@ -122,13 +128,14 @@ void loadObjSequence(RawViewDependentModel& model, const fs::path& folder, const
 // animation sampled at frame i = time i / fps, i = 0 .. N-1 with N = round(duration * fps) + 1, or
 // round(duration * fps) with "loop" (the cycle's last sample would repeat its first). For skinned
 // offsets the per-vertex skin linear parts are kept too (Rig::evaluate's out_skin).
-void loadGltfBaseAnimation(RawViewDependentModel& model, const fs::path& folder, const std::string& path) {
+void loadGltfBaseAnimation(RawViewDependentModel& model, const fs::path& folder, const std::string& path,
+                           const MeshReadOptions& options) {
   const BaseAnimationSpec& spec = *model.base_animation;
   const fs::path file = fs::path(spec.gltf).is_absolute() ? fs::path(spec.gltf) : folder / spec.gltf;
   const std::string where = path + ": base_animation.gltf";
   Rig rig = [&] {
     try {
-      return Rig::build(readGltfRig(file.string(), GltfSelect{spec.mesh}));
+      return Rig::build(readGltfRig(file.string(), GltfSelect{spec.mesh}, options));
     } catch (const Error& e) {
       throw Error(where + ": " + e.what());
     }
@@ -266,15 +273,15 @@ RawViewDependentModel parseManifest(const std::string& text, const std::string& 
   return model;
 }
 
-RawViewDependentModel loadManifest(const std::string& path) {
+RawViewDependentModel loadManifest(const std::string& path, const MeshReadOptions& options) {
   RawViewDependentModel model = parseManifest(readFileLimited(path, "model", kMaxJsonFileBytes), path);
   const fs::path folder = fs::path(path).parent_path();
   if (!model.base_animation)
-    model.base = readReferencedMesh(folder, model.base_path, path + ": base");
+    model.base = readReferencedMesh(folder, model.base_path, path + ": base", options);
   else if (!model.base_animation->obj_sequence.empty())
-    loadObjSequence(model, folder, path);
+    loadObjSequence(model, folder, path, options);
   else
-    loadGltfBaseAnimation(model, folder, path);
+    loadGltfBaseAnimation(model, folder, path, options);
   for (std::size_t k = 0; k < model.keys.size(); ++k) {
     RawKey& key = model.keys[k];
     key.mesh =

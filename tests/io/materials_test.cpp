@@ -15,6 +15,7 @@
 #include "support/tiny_png.h"
 #include "vdg/geom/error.h"
 #include "vdg/io/gltf.h"
+#include "vdg/io/gltf_export.h"
 #include "vdg/io/image_file.h"
 #include "vdg/io/obj.h"
 
@@ -529,6 +530,34 @@ TEST(GltfMaterials, GlbBufferViewImagesAndPngSamples) {
   }
   EXPECT_EQ(s.mesh.materials[0].texture_path, "TinyGrid.png");
   EXPECT_EQ(s.mesh.materials[1].texture_path, "ColorSwatches.png");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Models: the base carries the materials; key meshes are read for their geometry only.
+
+TEST(ModelMaterials, OnlyTheBaseReadsMaterialsAndItsWarningsReachTheCaller) {
+  testing::TempDir dir;
+  const std::string faces = "f 1/1 2/2 3/3\n";
+  testing::writeText(dir.file("base.obj"), "mtllib base.mtl\n" + kTriangle + "usemtl red\n" + faces);
+  testing::writeText(dir.file("base.mtl"), "newmtl red\nKd 1 0 0\nmap_Kd missing.png\n");
+  // The key names a library that does not exist: it is never opened, so it warns nothing.
+  testing::writeText(dir.file("key.obj"),
+                     "mtllib nowhere.mtl\nv 0 0 0.5\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\n"
+                     "usemtl red\n" +
+                         faces);
+  testing::writeText(dir.file("m.vdg.json"), R"({"version": 2, "base": "base.obj", "keys": [
+      {"name": "k", "mesh": "key.obj", "view": [0, 0, 1]}]})");
+  std::vector<std::string> warnings;
+  MeshReadOptions options;
+  options.warnings = &warnings;
+  const RawViewDependentModel model = loadModel(dir.file("m.vdg.json"), options);
+  ASSERT_EQ(model.base.materials.size(), 1u);
+  EXPECT_NEAR(model.base.materials[0].base_color[0], 1.0f, kColorTol);
+  EXPECT_TRUE(model.keys[0].mesh.materials.empty());
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("missing.png"), std::string::npos) << warnings[0];
+  options.strict = true;
+  EXPECT_NE(errorOf([&] { (void)loadModel(dir.file("m.vdg.json"), options); }).find("missing.png"), std::string::npos);
 }
 
 }  // namespace

@@ -30,6 +30,7 @@
 #include "vdg/anim/rig.h"
 #include "vdg/geom/camera.h"
 #include "vdg/geom/tri_mesh.h"
+#include "vdg/io/mesh_read_options.h"
 #include "vdg/viewdep/animated_model.h"
 #include "vdg/viewdep/model.h"
 #include "vdg/viewdep/view_sphere.h"
@@ -216,7 +217,8 @@ RawViewDependentModel rawModelFromGltfExtras(std::string_view mesh_extras_json, 
 // for skinned offsets); each key's mesh is base(frame) + offset (world) or base(frame) +
 // L_v(frame) offset (skinned). Throws vdg::Error "FILE: ..." for a file that does not load, has no
 // mesh.extras.vdg ("... was not exported by vdg"), or a description that does not match the file.
-RawViewDependentModel loadGltfModel(const std::string& path);
+// `options`: materials and textures of the file's mesh (vdg/io/mesh_read_options.h).
+RawViewDependentModel loadGltfModel(const std::string& path, const MeshReadOptions& options = {});
 
 // True when `path` names a .gltf or .glb file (any letter case).
 bool isGltfPath(const std::string& path);
@@ -224,6 +226,7 @@ bool isGltfPath(const std::string& path);
 // model); false for a plain glTF mesh. Throws vdg::Error for a file that does not load.
 bool gltfHasModel(const std::string& path);
 // A model from a manifest (*.vdg.json) or from a glTF file vdg exported (loadGltfModel).
-RawViewDependentModel loadModel(const std::string& path);
+// `options` apply to the base mesh (see loadManifest and loadGltfModel).
+RawViewDependentModel loadModel(const std::string& path, const MeshReadOptions& options = {});
 
 }  // namespace vdg

@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "vdg/io/mesh_read_options.h"
 #include "vdg/viewdep/model.h"
 
 namespace vdg {
@@ -26,7 +27,10 @@ RawViewDependentModel parseManifest(const std::string& text, const std::string& 
 // raw.base_skin for skinned offsets); its errors name the manifest and the field
 // ("FILE: base_animation.gltf: ...", "FILE: base_animation.animation: ..."). Throws vdg::Error naming the file and key
 // for missing files, unknown fields, a wrong or missing version, bad values, and everything validate() checks.
-RawViewDependentModel loadManifest(const std::string& path);
+// The base mesh (or an animated base's first frame or glTF file) is read with `options` (materials,
+// textures and their warnings, vdg/io/mesh_read_options.h); key meshes and later frames are read
+// for their geometry only (materials belong to the base).
+RawViewDependentModel loadManifest(const std::string& path, const MeshReadOptions& options = {});
 // The manifest text saveManifest writes (for callers that write it themselves).
 std::string formatManifest(const RawViewDependentModel& model);
 // Writes the manifest (not the meshes) atomically, with mesh paths as stored in the raw model.
