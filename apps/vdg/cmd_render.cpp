@@ -137,25 +137,26 @@ void run(const RenderOptions& opt) {
   const bool gltf = hasExtension(opt.model, ".gltf") || hasExtension(opt.model, ".glb");
   checkInputFile(opt.model, gltf || hasExtension(opt.model, ".obj") ? "mesh" : "model");
   const bool plain = hasExtension(opt.model, ".obj") || (gltf && !gltfHasModel(opt.model));
+  // Material and texture problems (of the mesh, or of a model's base): one "warning: ..." line
+  // each, the surface falls back to its base colour (or --color); --strict makes them errors.
+  // --no-materials opens no material library or texture.
+  std::vector<std::string> warnings;
+  MeshReadOptions read;
+  read.materials = !opt.no_materials;
+  read.strict = opt.strict;
+  read.warnings = &warnings;
   TriMesh mesh;
   if (plain) {
-    // Material and texture problems: one "warning: ..." line each, the surface falls back to its
-    // base colour (or --color); --strict makes them errors. --no-materials opens no other file.
-    std::vector<std::string> warnings;
-    MeshReadOptions read;
-    read.materials = !opt.no_materials;
-    read.strict = opt.strict;
-    read.warnings = &warnings;
     mesh = readMesh(opt.model, read);
-    for (const std::string& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
     fo.sphere = false;
   } else {
-    const RawViewDependentModel raw = loadModel(opt.model);
+    const RawViewDependentModel raw = loadModel(opt.model, read);
     if (raw.animated())
       animated = std::make_unique<AnimatedViewDependentModel>(AnimatedViewDependentModel::build(raw));
     else
       model = std::make_unique<ViewDependentModel>(ViewDependentModel::build(raw));
   }
+  for (const std::string& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   if (opt.hold_frame >= 0 && !animated)
     throw UsageError("--hold-frame: " + opt.model + " is not an animated model (no 'base_animation')");
   if (animated && opt.hold_frame >= animated->frameCount())
@@ -283,8 +284,8 @@ void addRenderCommand(CLI::App& app) {
                 "Ignore the mesh's materials and textures: --color everywhere (default: each material's colour, "
                 "times its texture)");
   sub->add_flag("--strict", opt->strict,
-                "A mesh's missing or broken material library or texture is an error (default: a warning, and the "
-                "surface shows its base colour)");
+                "A missing or broken material library or texture of the mesh (or of a model's base) is an error "
+                "(default: a warning, and the surface shows its base colour)");
   sub->add_option("--samples", opt->samples, "Multisample anti-aliasing samples (default 8, capped by the driver)")
       ->check(wholeNumber(1, kMaxSamples));
   sub->add_flag("-q,--quiet", opt->quiet, "No progress bar and no summary line");
