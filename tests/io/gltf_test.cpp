@@ -14,6 +14,7 @@
 
 #include <Eigen/Geometry>
 
+#include "support/base64.h"
 #include "support/error_of.h"
 #include "support/test_meshes.h"
 #include "vdg/anim/rig.h"
@@ -63,27 +64,6 @@ std::vector<unsigned char> base64(const std::string& text) {
       bits -= 8;
       out.push_back(static_cast<unsigned char>(value >> bits & 0xff));
     }
-  }
-  return out;
-}
-
-std::string encode64(const std::string& bytes) {
-  static const char* kAlphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  std::size_t i = 0;
-  for (; i + 2 < bytes.size(); i += 3) {
-    const unsigned v = static_cast<unsigned char>(bytes[i]) << 16 | static_cast<unsigned char>(bytes[i + 1]) << 8 |
-                       static_cast<unsigned char>(bytes[i + 2]);
-    for (int k = 3; k >= 0; --k) out += kAlphabet[v >> (6 * k) & 63];
-  }
-  const std::size_t rest = bytes.size() - i;
-  if (rest) {
-    unsigned v = static_cast<unsigned char>(bytes[i]) << 16;
-    if (rest == 2) v |= static_cast<unsigned char>(bytes[i + 1]) << 8;
-    out += kAlphabet[v >> 18 & 63];
-    out += kAlphabet[v >> 12 & 63];
-    out += rest == 2 ? kAlphabet[v >> 6 & 63] : '=';
-    out += '=';
   }
   return out;
 }
@@ -408,7 +388,7 @@ Json triangle() {
     "nodes": [{"mesh": 0}],
     "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
     "buffers": [{"byteLength": 44, "uri": "data:application/octet-stream;base64,)" +
-                     encode64(bin) + R"("}],
+                     testing::encode64(bin) + R"("}],
     "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 6}],
     "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"},
                   {"bufferView": 1, "componentType": 5123, "count": 3, "type": "SCALAR"}]})");
@@ -483,7 +463,7 @@ TEST(GltfHostile, IndexOutOfRange) {
   bin.append(reinterpret_cast<const char*>(p), sizeof(p));
   const std::uint16_t idx[4] = {0, 1, 9, 0};
   bin.append(reinterpret_cast<const char*>(idx), sizeof(idx));
-  j["buffers"][0]["uri"] = "data:application/octet-stream;base64," + encode64(bin);
+  j["buffers"][0]["uri"] = "data:application/octet-stream;base64," + testing::encode64(bin);
   EXPECT_EQ(errorFor(j),
             "t.gltf: meshes[0]: primitives[0]: indices[2] = 9 out of range (the primitive has 3 vertices)");
 }
@@ -496,7 +476,8 @@ TEST(GltfHostile, SparseAccessorsAreAppliedAndChecked) {
   const float sval[3] = {0, 0, 1};
   extra.append(reinterpret_cast<const char*>(sidx), sizeof(sidx));
   extra.append(reinterpret_cast<const char*>(sval), sizeof(sval));
-  j["buffers"].push_back({{"byteLength", 16}, {"uri", "data:application/octet-stream;base64," + encode64(extra)}});
+  j["buffers"].push_back(
+      {{"byteLength", 16}, {"uri", "data:application/octet-stream;base64," + testing::encode64(extra)}});
   j["bufferViews"].push_back({{"buffer", 1}, {"byteOffset", 0}, {"byteLength", 2}});
   j["bufferViews"].push_back({{"buffer", 1}, {"byteOffset", 4}, {"byteLength", 12}});
   j["accessors"].push_back(Json::parse(R"({"componentType": 5126, "count": 3, "type": "VEC3", "sparse": {"count": 1,

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "support/base64.h"
 #include "support/error_of.h"
 #include "support/test_meshes.h"
 #include "support/tiny_png.h"
@@ -356,26 +357,6 @@ TEST(ObjMaterials, TooManyNamesIsAnErrorOfTheObj) {
 // ---------------------------------------------------------------------------------------------
 // glTF
 
-std::string encode64(const std::string& bytes) {
-  static const char* kAlphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  std::size_t i = 0;
-  for (; i + 2 < bytes.size(); i += 3) {
-    const unsigned v = static_cast<unsigned char>(bytes[i]) << 16 | static_cast<unsigned char>(bytes[i + 1]) << 8 |
-                       static_cast<unsigned char>(bytes[i + 2]);
-    for (int k = 3; k >= 0; --k) out += kAlphabet[v >> (6 * k) & 63];
-  }
-  if (const std::size_t rest = bytes.size() - i) {
-    unsigned v = static_cast<unsigned char>(bytes[i]) << 16;
-    if (rest == 2) v |= static_cast<unsigned char>(bytes[i + 1]) << 8;
-    out += kAlphabet[v >> 18 & 63];
-    out += kAlphabet[v >> 12 & 63];
-    out += rest == 2 ? kAlphabet[v >> 6 & 63] : '=';
-    out += '=';
-  }
-  return out;
-}
-
 std::string floats(std::initializer_list<float> values) {
   std::string out;
   for (float f : values) out.append(reinterpret_cast<const char*>(&f), 4);
@@ -392,7 +373,7 @@ std::string triangleGltf(const std::string& material, const std::string& images,
     "materials": [)" +
          material + R"(], "textures": [{"source": 0}], "images": [)" + images + R"(],
     "buffers": [{"byteLength": 96, "uri": "data:application/octet-stream;base64,)" +
-         encode64(buffer) + R"("}],
+         testing::encode64(buffer) + R"("}],
     "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 36},
                     {"buffer": 0, "byteOffset": 72, "byteLength": 24}],
     "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"},
@@ -436,7 +417,7 @@ TEST(GltfMaterials, DataUriImagesAreDecoded) {
   testing::TempDir dir;
   testing::writeText(dir.file("t.gltf"),
                      triangleGltf(R"({"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}})",
-                                  R"({"uri": "data:image/png;base64,)" + encode64(redBluePng()) + R"("})"));
+                                  R"({"uri": "data:image/png;base64,)" + testing::encode64(redBluePng()) + R"("})"));
   const Read r = readWithWarnings(dir.file("t.gltf"));
   EXPECT_TRUE(r.warnings.empty()) << r.warnings.front();
   ASSERT_EQ(r.mesh.materials.size(), 1u);
