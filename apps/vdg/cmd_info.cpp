@@ -226,6 +226,16 @@ void addShapeFields(const Model& model, nlohmann::ordered_json& out) {
   addSurfaceFields(model.base(), out);
 }
 
+// The viewing sphere's fields that close both models' JSON, then the document itself.
+void printWithSphereFields(const ViewSphere& sphere, const std::vector<std::string>& warnings,
+                           nlohmann::ordered_json& out) {
+  out["dummy_base_keys"] = sphere.points().size() - sphere.keyCount();
+  out["hull_triangles"] = sphere.triangles().size();
+  out["covered_fraction"] = sphere.coveredFraction();
+  out["warnings"] = warnings;
+  std::cout << out.dump(2) << "\n";
+}
+
 // "  (FILE)" after a key read from a mesh file; nothing for a key stored in a glTF model.
 std::string meshNote(const std::string& mesh_path) { return mesh_path.empty() ? "" : "  (" + mesh_path + ")"; }
 
@@ -272,11 +282,7 @@ void describeAnimated(const std::string& path, const RawViewDependentModel& raw,
                         {"moved_vertices", movedCount(model.offsets(i, j), size)}});
       out["views"].push_back({{"view", {v.x(), v.y(), v.z()}}, {"keys", keys}});
     }
-    out["dummy_base_keys"] = dummies;
-    out["hull_triangles"] = sphere.triangles().size();
-    out["covered_fraction"] = sphere.coveredFraction();
-    out["warnings"] = warnings;
-    std::cout << out.dump(2) << "\n";
+    printWithSphereFields(sphere, warnings, out);
     return;
   }
   std::printf("model      %s\n", path.c_str());
@@ -385,11 +391,7 @@ void addInfoCommand(CLI::App& app) {
                                {"view", {v.x(), v.y(), v.z()}},
                                {"moved_vertices", model.keyMovedCount(k)}});
       }
-      out["dummy_base_keys"] = dummies;
-      out["hull_triangles"] = sphere.triangles().size();
-      out["covered_fraction"] = sphere.coveredFraction();
-      out["warnings"] = warnings;
-      std::cout << out.dump(2) << "\n";
+      printWithSphereFields(sphere, warnings, out);
       return;
     }
     std::printf("model      %s\n", opt->model.c_str());
