@@ -60,6 +60,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "vdg/anim/camera_path.h"
