@@ -17,6 +17,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "extent.h"
 #include "key_views.h"
 #include "vdg/geom/error.h"
 #include "vdg/geom/normalize.h"
@@ -128,6 +129,25 @@ AnimatedViewDependentModel AnimatedViewDependentModel::build(const RawViewDepend
     }
     view.second = secondDerivativeTable(view.frames, model.loop_, period);
   }
+  // At frame f a blend is a convex combination of base(f) and each view's full pose at f (see
+  // extent() in the header): the pose of view i is the blend with weight 1 on i.
+  detail::ExtentBuilder extent(model.center_);
+  std::vector<float> pose(size);
+  for (int f = 0; f < period; ++f) {
+    const auto fi = static_cast<std::size_t>(f);
+    extent.add(model.base_frames_[fi]);
+    const std::span<const float> skin =
+        model.base_skin_.empty() ? std::span<const float>() : std::span<const float>(model.base_skin_[fi]);
+    for (std::size_t v = 0; v < model.views_.size(); ++v) {
+      ViewWeights w;
+      w.key[0] = static_cast<int>(v);
+      w.weight[0] = 1.0f;
+      model.blendPosed(f, model.base_frames_[fi], skin, w, pose);
+      extent.add(pose);
+    }
+  }
+  model.extent_ = extent.box();
+  model.extent_radius_ = extent.radius();
   return model;
 }
 

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <set>
 
+#include "extent.h"
 #include "key_views.h"
 #include "vdg/geom/error.h"
 #include "vdg/geom/normalize.h"
@@ -328,6 +329,12 @@ ViewDependentModel ViewDependentModel::build(const RawViewDependentModel& raw) {
     }
     model.keys_.push_back(std::move(key));
   }
+  // Every blend is a convex combination of the base and the keys (see extent() in the header).
+  detail::ExtentBuilder extent(model.center_);
+  extent.add(raw.base.positions);
+  for (const RawKey& raw_key : raw.keys) extent.add(raw_key.mesh.positions);
+  model.extent_ = extent.box();
+  model.extent_radius_ = extent.radius();
   return model;
 }
 

@@ -7,9 +7,11 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -426,6 +428,84 @@ TEST(AnimatedModel, SkinnedOffsetsAreUnskinnedAtTheirKeyFrame) {
   const auto world = AnimatedViewDependentModel::build(rotatingLimb(OffsetSpace::kWorld, 6));
   EXPECT_TRUE(tipOffset(world, 0).isApprox(limbRotation(6) * Vector3d(0, kPush, 0), kTol));
   EXPECT_TRUE(tipOffset(model, 0).isApprox(Vector3d(0, kPush, 0), kTol));
+}
+
+// ---- extent(): what the model can draw at any frame -----------------------------------------------
+
+// The union box of `positions` meshes and the farthest vertex from `center`.
+struct UnionExtent {
+  Bounds box;
+  double radius = 0.0;
+  bool empty = true;
+  void add(std::span<const float> positions, const Vector3d& center) {
+    const Bounds b = computeBounds(positions);
+    for (int c = 0; c < 3; ++c) {
+      box.min[c] = empty ? b.min[c] : std::min(box.min[c], b.min[c]);
+      box.max[c] = empty ? b.max[c] : std::max(box.max[c], b.max[c]);
+    }
+    empty = false;
+    for (std::size_t v = 0; v < positions.size() / 3; ++v)
+      radius =
+          std::max(radius, (Vector3d(positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]) - center).norm());
+  }
+};
+
+void expectInsideExtent(const AnimatedViewDependentModel& model, std::span<const float> positions,
+                        const std::string& what) {
+  const Bounds& box = model.extent();
+  for (std::size_t v = 0; v < positions.size() / 3; ++v) {
+    for (int c = 0; c < 3; ++c) {
+      ASSERT_GE(positions[3 * v + c], box.min[c] - kFloatSplineTol) << what << " vertex " << v;
+      ASSERT_LE(positions[3 * v + c], box.max[c] + kFloatSplineTol) << what << " vertex " << v;
+    }
+    const Vector3d p(positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]);
+    ASSERT_LE((p - model.center()).norm(), model.extentRadius() + kFloatSplineTol) << what << " vertex " << v;
+  }
+}
+
+// Both offset spaces: the extent holds the base at every frame and every key mesh, every frame seen
+// from views all around stays inside it, and it is no larger than the base frames and the views'
+// full poses (a key view's weight is 1) need.
+TEST(AnimatedModelExtent, HoldsEveryFrameEveryKeyAndEveryBlend) {
+  for (const RawViewDependentModel& raw :
+       {fourFrameModel(false), fourFrameModel(true), rotatingLimb(OffsetSpace::kSkinned, 4)}) {
+    SCOPED_TRACE(raw.source + (raw.base_animation->loop ? " loop" : ""));
+    const AnimatedViewDependentModel model = AnimatedViewDependentModel::build(raw);
+    UnionExtent needed;
+    for (int f = 0; f < model.frameCount(); ++f) {
+      expectInsideExtent(model, model.baseFrame(f), "base frame " + std::to_string(f));
+      needed.add(model.baseFrame(f), model.center());
+      for (std::size_t v = 0; v < model.viewCount(); ++v)
+        needed.add(evaluated(model, f, model.viewDirection(v)), model.center());
+    }
+    for (const RawKey& key : raw.keys) expectInsideExtent(model, key.mesh.positions, "key " + key.name);
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_NEAR(model.extent().min[c], needed.box.min[c], kFloatSplineTol) << c;
+      EXPECT_NEAR(model.extent().max[c], needed.box.max[c], kFloatSplineTol) << c;
+    }
+    EXPECT_NEAR(model.extentRadius(), needed.radius, kFloatSplineTol);
+    for (int f = 0; f < model.frameCount(); f += 3)
+      for (int i = 0; i < 24; ++i) {
+        const double az = 2.0 * std::numbers::pi * i / 24, el = 0.6 * std::sin(1.7 * i);
+        const Vector3d view(std::sin(az) * std::cos(el), std::sin(el), std::cos(az) * std::cos(el));
+        expectInsideExtent(model, evaluated(model, f, view), "frame " + std::to_string(f));
+      }
+  }
+}
+
+// A key offset held past its frame moves with the base: the extent follows the base's bobbing with
+// the offset on, beyond the base's own frames.
+TEST(AnimatedModelExtent, GrowsPastTheBaseFramesWhenAKeyMovesOutward) {
+  RawViewDependentModel raw = animatedSphere(false);
+  RawKey key = keyAt(raw, "up", kFront, 5, 0.0);
+  for (std::size_t v = 0; v < key.mesh.vertexCount(); ++v) key.mesh.positions[3 * v + 1] += 0.5f;
+  raw.keys.push_back(key);
+  const AnimatedViewDependentModel model = AnimatedViewDependentModel::build(raw);
+  UnionExtent bases;
+  for (int f = 0; f < model.frameCount(); ++f) bases.add(model.baseFrame(f), model.center());
+  // One key frame: the offset (+0.5 in y) is constant, so the top of the extent is the bases' + 0.5.
+  EXPECT_NEAR(model.extent().max[1], bases.box.max[1] + 0.5f, kFloatSplineTol);
+  EXPECT_NEAR(model.extent().min[1], bases.box.min[1], kFloatSplineTol);
 }
 
 TEST(AnimatedModel, EvaluatePosedMatchesEvaluateAtIntegerFrames) {

@@ -3,9 +3,12 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <numbers>
+#include <string>
+#include <vector>
 
 #include "support/test_meshes.h"
 #include "vdg/geom/error.h"
@@ -190,6 +193,81 @@ TEST(ViewDependentModel, EyePositionsAreMeasuredFromTheCentre) {
   raw.center = Vector3d(10, 0, 0);
   const ViewDependentModel model = ViewDependentModel::build(raw);
   EXPECT_NEAR((model.viewFromEye(Vector3d(10, 0, 5)) - Vector3d(0, 0, 1)).norm(), 0.0, 1e-12);
+}
+
+// ---- extent(): what the model can draw ---------------------------------------------------------
+
+// Views spread over the whole sphere (a Fibonacci lattice): every blend the model can make.
+std::vector<Vector3d> spreadViews(int count) {
+  std::vector<Vector3d> views;
+  const double golden = std::numbers::pi * (3.0 - std::sqrt(5.0));
+  for (int i = 0; i < count; ++i) {
+    const double y = 1.0 - 2.0 * (i + 0.5) / count, r = std::sqrt(1.0 - y * y);
+    views.emplace_back(r * std::cos(golden * i), y, r * std::sin(golden * i));
+  }
+  return views;
+}
+
+void expectInside(const Bounds& box, double radius, const Vector3d& center, const std::vector<float>& positions,
+                  const std::string& what) {
+  for (std::size_t v = 0; v < positions.size() / 3; ++v) {
+    for (int c = 0; c < 3; ++c) {
+      ASSERT_GE(positions[3 * v + c], box.min[c] - kPositionTol) << what << " vertex " << v;
+      ASSERT_LE(positions[3 * v + c], box.max[c] + kPositionTol) << what << " vertex " << v;
+    }
+    const Vector3d p(positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]);
+    ASSERT_LE((p - center).norm(), radius + kPositionTol) << what << " vertex " << v;
+  }
+}
+
+// The box is exactly the union of the base's and the keys' boxes, the radius the farthest of their
+// vertices from the centre, and every blend from any view stays inside both.
+TEST(ViewDependentModelExtent, HoldsTheBaseAndEveryKeyAndEveryBlend) {
+  const RawViewDependentModel raw = bulgeModel(kOctahedron);
+  const ViewDependentModel model = ViewDependentModel::build(raw);
+  Bounds expected = computeBounds(raw.base.positions);
+  double radius = 0.0;
+  auto grow = [&](const std::vector<float>& positions) {
+    const Bounds b = computeBounds(positions);
+    for (int c = 0; c < 3; ++c) {
+      expected.min[c] = std::min(expected.min[c], b.min[c]);
+      expected.max[c] = std::max(expected.max[c], b.max[c]);
+    }
+    for (std::size_t v = 0; v < positions.size() / 3; ++v)
+      radius = std::max(
+          radius, (Vector3d(positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]) - model.center()).norm());
+  };
+  grow(raw.base.positions);
+  for (const RawKey& key : raw.keys) grow(key.mesh.positions);
+  EXPECT_EQ(model.extent().min, expected.min);
+  EXPECT_EQ(model.extent().max, expected.max);
+  EXPECT_NEAR(model.extentRadius(), radius, kPositionTol);
+  // The bulges (0.4 * 0.5 beyond the unit sphere) reach past the base on every axis.
+  EXPECT_GT(model.extent().max[1], computeBounds(raw.base.positions).max[1] + 0.1f);
+
+  std::vector<float> out(raw.base.positions.size());
+  for (const Vector3d& view : spreadViews(400)) {
+    ASSERT_TRUE(model.evaluate(view, 0.0, out));
+    expectInside(model.extent(), model.extentRadius(), model.center(), out, "view");
+  }
+}
+
+// The case: a front key that raises the top of the model by 80% raises the extent's top
+// by as much; the base alone would frame it 80% too low.
+TEST(ViewDependentModelExtent, AKeyRaisingTheTopRaisesTheExtent) {
+  RawViewDependentModel raw;
+  raw.base = testing::uvSphere(8, 12);  // unit sphere: y in [-1, 1]
+  RawKey key;
+  key.name = "tall";
+  key.mesh = raw.base;
+  for (std::size_t v = 0; v < key.mesh.vertexCount(); ++v)
+    if (key.mesh.positions[3 * v + 1] > 0.0f) key.mesh.positions[3 * v + 1] *= 1.8f;
+  key.view = Vector3d(0, 0, 1);
+  raw.keys.push_back(key);
+  const ViewDependentModel model = ViewDependentModel::build(raw);
+  EXPECT_NEAR(model.extent().max[1], 1.8f, kPositionTol);
+  EXPECT_NEAR(model.extent().min[1], -1.0f, kPositionTol);
+  EXPECT_NEAR(model.extentRadius(), 1.8, kPositionTol);  // the centre is the base's box centre, the origin
 }
 
 }  // namespace

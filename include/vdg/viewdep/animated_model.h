@@ -65,6 +65,18 @@ class AnimatedViewDependentModel {
   // The viewing sphere; its key points are the views, in viewDirection() order.
   const ViewSphere& sphere() const { return sphere_; }
 
+  // What the model can draw at any frame, for framing and clip planes (computed once in build(),
+  // in model units). At frame f a blend is, per vertex, a convex combination of base(f) and the
+  // poses base(f) + T_v(f) o_i(f) of every view i (the weights are >= 0 and sum to 1), so every
+  // output of evaluate() lies in
+  //   extent():       the axis-aligned box of base(f) and of every view's pose at f, over every
+  //                   frame f in [0, frameCount()) (at a key's frame its pose is the key mesh);
+  //   extentRadius(): the largest distance from center() to a vertex of those meshes (at least 1e-6).
+  // Build cost: frameCount() x viewCount() poses of #V vertices, as many as rendering every frame
+  // from every key view once. evaluatePosed() with a caller's own base may leave the extent.
+  const Bounds& extent() const { return extent_; }
+  double extentRadius() const { return extent_radius_; }
+
   // Accessors for tools and export (not per-frame). An index out of range throws vdg::Error
   // "view I out of range (the model has N views)" (likewise for key frames and frames).
   std::size_t viewCount() const { return views_.size(); }
@@ -140,6 +152,8 @@ class AnimatedViewDependentModel {
   double sharpness_ = 1.0;
   bool loop_ = false;
   OffsetSpace offsets_space_ = OffsetSpace::kWorld;
+  Bounds extent_;
+  double extent_radius_ = 1e-6;
 };
 
 }  // namespace vdg

@@ -149,6 +149,16 @@ class ViewDependentModel {
   double sharpness() const { return sharpness_; }
   const ViewSphere& sphere() const { return sphere_; }
 
+  // What the model can draw, for framing and clip planes (computed once in build()). A blend is a
+  // convex combination of the base and the keys per vertex (the weights are >= 0 and sum to 1,
+  // section 3.2.2), so every blended vertex lies in
+  //   extent():       the axis-aligned box of the base's and every key mesh's positions;
+  //   extentRadius(): the largest distance from center() to a vertex of the base or of a key mesh
+  //                   (a sphere about center() holding every blend; at least 1e-6).
+  // Both are in model units; a key that raises the top by 80% raises extent().max[1] with it.
+  const Bounds& extent() const { return extent_; }
+  double extentRadius() const { return extent_radius_; }
+
   // normalize(eye - centre), the view direction for an eye position in model space, for any finite
   // distance (robust normalisation); the zero vector when the eye is at the centre or not finite.
   Eigen::Vector3d viewFromEye(const Eigen::Vector3d& eye) const;
@@ -192,6 +202,8 @@ class ViewDependentModel {
   ViewSphere sphere_;
   Eigen::Vector3d center_ = Eigen::Vector3d::Zero();
   double sharpness_ = 1.0;
+  Bounds extent_;
+  double extent_radius_ = 1e-6;
 };
 
 }  // namespace vdg
