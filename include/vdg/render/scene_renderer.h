@@ -1,0 +1,68 @@
+// SceneRenderer — one frame of a scene (vdg/scene/scene.h): every visible object of the hierarchy
+// drawn with the NPR style of renderer.h, seen by the scene's active camera (Rademacher 99,
+// section 5 and Figure 13; Parent 4.4 and 4.7).
+//
+// Per frame: Scene::evaluate gives every node's object-to-world transform; each view-dependent
+// instance is blended with its own view direction (Scene::instanceView: from the instance's
+// centre to the eye, in the instance's object coordinates) and each animated model at its own
+// frame; the blended positions are carried into the world on the CPU and drawn with the node's
+// colour as Cbase (materials of the object's base mesh on top, unless turned off), so the hue rule
+// of shading.h shows per object. An object used by many nodes is registered with the GPU once
+// (one SurfaceTopology); its instances are drawn one after another from the same buffers.
+//
+// Camera: the scene's active camera. A scene without one is framed automatically: looking at the
+// box that holds every visible object over the frames [frame_first, frame_last] (each model's
+// extent(): its base and every key), from the front and 15 degrees above.
+// Clip planes: fitted per frame to the boxes of the objects drawn in that frame.
+// A frame depends only on its number and the options: rendered alone or in a sequence, it is the
+// same image, byte for byte.
+#pragma once
+
+#include <memory>
+
+#include "vdg/geom/camera.h"
+#include "vdg/render/image.h"
+#include "vdg/render/renderer.h"
+#include "vdg/scene/scene.h"
+
+namespace vdg::render {
+
+struct SceneFrameOptions {
+  int width = 640, height = 360;  // pixels, each in [1, kMaxImageSize]
+  int samples = 8;                // MSAA
+  Rgb background{0.97f, 0.97f, 0.95f};
+  ShadingParams shading;
+  float silhouette_width = 0.0f;  // pixels; 0: max(3, height / 100)
+  bool borders = true;            // ink true open borders
+  float crease_angle_deg = 0.0f;  // ink creases sharper than this; <= 0: none
+  bool materials = true;          // the objects' materials and textures
+  // Draw every view-dependent object as its base (no key deformations): the same scene without
+  // view dependence, for comparisons (Figures 11 and 12) and for benchmarks.
+  bool base_only = false;
+  // The frames a scene without a camera is framed over (see above).
+  double frame_first = 0.0, frame_last = 0.0;
+};
+
+class SceneRenderer {
+ public:
+  // `scene` must outlive the renderer. Throws vdg::Error for bad sizes or no GL (see Renderer).
+  SceneRenderer(const scene::Scene& scene, const SceneFrameOptions& options);
+  ~SceneRenderer();
+
+  int width() const;
+  int height() const;
+  Renderer& renderer();
+  // The number of objects drawn by the last render() (visible nodes holding an object).
+  int drawnCount() const;
+
+  // Renders `frame` into `out` and returns the camera used. Throws vdg::Error "scene: frame F:
+  // ..." for a non-finite frame or a degenerate camera (eye on its centre of interest), and
+  // "render: ... (internal error)" if a call it makes refuses its input (a bug, never bad data).
+  Camera render(double frame, Image& out);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace vdg::render

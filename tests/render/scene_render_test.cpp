@@ -1,0 +1,247 @@
+// SceneRenderer: scenes of view-dependent instances (Rademacher 99, section 5) rendered headless.
+// Properties: an instance is blended for its own view (turning the whole world, instance and
+// camera together, gives the same picture as the model alone), a frame rendered alone equals the
+// same frame of a sequence byte for byte, node colours reach the shading, base_only drops the
+// keys, a scene without a camera is framed whole.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <memory>
+#include <numbers>
+
+#include "render/test_models.h"
+#include "vdg/geom/error.h"
+#include "vdg/render/model_renderer.h"
+#include "vdg/render/scene_renderer.h"
+#include "vdg/scene/scene.h"
+
+namespace vdg::render {
+namespace {
+
+constexpr int kSize = 128;
+// Two renders of the same picture through different float paths (positions carried by a node's
+// transform versus drawn in place) may differ at edge pixels: a channel counts as different above
+// kChannelTolerance, and at most kMaxDifferingFraction of the pixels may.
+constexpr int kChannelTolerance = 40;
+constexpr double kMaxDifferingFraction = 0.02;
+constexpr double kDegToRad = std::numbers::pi / 180.0;
+
+std::shared_ptr<const ViewDependentModel> sharedModel() {
+  static const auto model = std::make_shared<const ViewDependentModel>(ViewDependentModel::build(bumpyModel()));
+  return model;
+}
+
+// A camera node at `eye` looking at the origin (look_at a group at the origin).
+scene::RawScene sceneWithCamera(const Eigen::Vector3d& eye) {
+  scene::RawScene raw;
+  scene::RawNode origin;
+  origin.name = "origin";
+  raw.nodes.push_back(origin);
+  scene::RawNode cam;
+  cam.name = "camera";
+  cam.kind = scene::ObjectKind::kCamera;
+  cam.link.translation = eye;
+  cam.look_at = "origin";
+  cam.fov_deg = 35.0;
+  raw.nodes.push_back(cam);
+  return raw;
+}
+
+int addInstance(scene::RawScene& raw, const std::string& name, const Eigen::Vector3d& at,
+                const Eigen::Quaterniond& rotation, const Rgb& color = {1, 1, 1}) {
+  if (raw.models.empty()) raw.models.push_back(sharedModel());
+  scene::RawNode n;
+  n.name = name;
+  n.kind = scene::ObjectKind::kModel;
+  n.object = 0;
+  n.link.translation = at;
+  n.link.rotation = rotation;
+  n.color = color;
+  raw.nodes.push_back(n);
+  return static_cast<int>(raw.nodes.size()) - 1;
+}
+
+SceneFrameOptions smallOptions() {
+  SceneFrameOptions o;
+  o.width = o.height = kSize;
+  return o;
+}
+
+void expectSimilar(const Image& a, const Image& b) {
+  const ImageDiff d = compareImages(a, b, kChannelTolerance);
+  ASSERT_TRUE(d.same_size);
+  EXPECT_LE(d.differing_fraction, kMaxDifferingFraction) << d.differing_pixels << " pixels differ";
+}
+
+TEST(SceneRender, AnInstanceIsBlendedForItsOwnViewInItsOwnFrame) {
+  // The model turned by 70 degrees about Y, the camera on +Z: the instance sees the camera from
+  // 70 degrees to its own right of its front, so the picture is that of the model alone seen from
+  // there, turned with the world. The model alone: ModelRenderer from the rotated-back eye.
+  const Eigen::Quaterniond turn(Eigen::AngleAxisd(70.0 * kDegToRad, Eigen::Vector3d::UnitY()));
+  const Eigen::Vector3d eye(0, 0, 5);
+  scene::RawScene raw = sceneWithCamera(eye);
+  addInstance(raw, "turned", Eigen::Vector3d::Zero(), turn);
+  const scene::Scene s = scene::Scene::build(raw);
+  SceneRenderer sr(s, smallOptions());
+  Image in_scene;
+  sr.render(0.0, in_scene);
+  EXPECT_EQ(sr.drawnCount(), 1);
+
+  // The same picture: a ModelRenderer whose camera is the scene camera carried into the
+  // instance's frame (eye and up rotated back); the image is the same since the whole world
+  // turned together.
+  FrameOptions fo;
+  fo.width = fo.height = kSize;
+  ModelRenderer mr(*sharedModel(), fo);
+  Camera c;
+  c.eye = turn.inverse() * eye;
+  c.target = Eigen::Vector3d::Zero();
+  c.up = turn.inverse() * Eigen::Vector3d::UnitY();
+  c.fov_deg = 35.0;
+  Image alone;
+  mr.render(c, alone);
+  expectSimilar(in_scene, alone);
+
+  // And not the picture of an unturned instance (the view direction matters).
+  scene::RawScene straight = sceneWithCamera(eye);
+  addInstance(straight, "straight", Eigen::Vector3d::Zero(), Eigen::Quaterniond::Identity());
+  const scene::Scene s2 = scene::Scene::build(straight);
+  SceneRenderer sr2(s2, smallOptions());
+  Image unturned;
+  sr2.render(0.0, unturned);
+  EXPECT_GT(compareImages(in_scene, unturned, kChannelTolerance).differing_fraction, kMaxDifferingFraction);
+}
+
+TEST(SceneRender, BaseOnlyDropsTheKeys) {
+  scene::RawScene raw = sceneWithCamera(Eigen::Vector3d(0, 0, 5));
+  addInstance(raw, "a", Eigen::Vector3d::Zero(), Eigen::Quaterniond::Identity());
+  const scene::Scene s = scene::Scene::build(raw);
+  SceneFrameOptions o = smallOptions();
+  SceneRenderer with(s, o);
+  o.base_only = true;
+  SceneRenderer without(s, o);
+  Image a, b;
+  with.render(0.0, a);
+  without.render(0.0, b);
+  // Seen from the front key's view the front key's bump shows; without keys it does not.
+  EXPECT_GT(compareImages(a, b, kChannelTolerance).differing_fraction, kMaxDifferingFraction);
+}
+
+TEST(SceneRender, FrameAloneIsByteIdenticalToTheSameFrameOfASequence) {
+  scene::RawScene raw = sceneWithCamera(Eigen::Vector3d(1, 1, 6));
+  const int a = addInstance(raw, "a", Eigen::Vector3d(-1.2, 0, 0), Eigen::Quaterniond::Identity(), {0.9f, 0.3f, 0.3f});
+  addInstance(raw, "b", Eigen::Vector3d(1.2, 0, 0), Eigen::Quaterniond::Identity(), {0.3f, 0.4f, 0.9f});
+  scene::RawAction spin;
+  spin.kind = scene::RawAction::Kind::kChange;
+  spin.node = a;
+  spin.field = scene::Field::kRotation;
+  const Eigen::Quaterniond q(Eigen::AngleAxisd(std::numbers::pi, Eigen::Vector3d::UnitY()));
+  spin.value = Eigen::Vector4d(q.w(), q.x(), q.y(), q.z());
+  spin.from_frame = 0;
+  spin.to_frame = 10;
+  raw.actions.push_back(spin);
+  const scene::Scene s = scene::Scene::build(raw);
+
+  SceneRenderer sequence(s, smallOptions());
+  Image frame, f6_in_sequence;
+  for (int f = 0; f <= 9; ++f) {
+    sequence.render(f, frame);
+    if (f == 6) f6_in_sequence = frame;
+  }
+  SceneRenderer alone(s, smallOptions());
+  Image f6_alone;
+  alone.render(6, f6_alone);
+  EXPECT_EQ(f6_alone.rgba, f6_in_sequence.rgba);
+  Image f0;
+  alone.render(0, f0);
+  EXPECT_NE(f0.rgba, f6_alone.rgba);  // the spin shows
+}
+
+TEST(SceneRender, NodeColoursReachTheShading) {
+  // A node's colour is its object's Cbase, with the hue rule of shading.h: the picture equals the
+  // model alone rendered with that colour, and two colours give two pictures.
+  const Eigen::Vector3d eye(0, 0, 5);
+  Camera c;
+  c.eye = eye;
+  c.fov_deg = 35.0;
+  Image first;
+  for (const Rgb& color : {Rgb{0.9f, 0.1f, 0.1f}, Rgb{0.1f, 0.2f, 0.9f}}) {
+    scene::RawScene raw = sceneWithCamera(eye);
+    addInstance(raw, "coloured", Eigen::Vector3d::Zero(), Eigen::Quaterniond::Identity(), color);
+    const scene::Scene s = scene::Scene::build(raw);
+    SceneRenderer sr(s, smallOptions());
+    Image in_scene;
+    sr.render(0, in_scene);
+    FrameOptions fo;
+    fo.width = fo.height = kSize;
+    fo.color = color;
+    ModelRenderer mr(*sharedModel(), fo);
+    Image alone;
+    mr.render(c, alone);
+    expectSimilar(in_scene, alone);
+    if (first.rgba.empty())
+      first = in_scene;
+    else
+      EXPECT_GT(compareImages(first, in_scene, kChannelTolerance).differing_fraction, 0.2);
+  }
+}
+
+TEST(SceneRender, HiddenNodesAreNotDrawn) {
+  scene::RawScene raw = sceneWithCamera(Eigen::Vector3d(0, 0, 7));
+  addInstance(raw, "shown", Eigen::Vector3d(-1.2, 0, 0), Eigen::Quaterniond::Identity());
+  const int hidden = addInstance(raw, "hidden", Eigen::Vector3d(1.2, 0, 0), Eigen::Quaterniond::Identity());
+  raw.nodes[hidden].visible = false;
+  const scene::Scene s = scene::Scene::build(raw);
+  SceneRenderer sr(s, smallOptions());
+  Image img;
+  sr.render(0, img);
+  EXPECT_EQ(sr.drawnCount(), 1);
+}
+
+TEST(SceneRender, ASceneWithoutACameraIsFramedWhole) {
+  // Two instances far apart, no camera: the automatic camera sees both, and nothing touches the
+  // image border (the framing has a margin).
+  scene::RawScene raw;
+  raw.models.push_back(sharedModel());
+  for (int i = 0; i < 2; ++i) {
+    scene::RawNode n;
+    n.name = i ? "right" : "left";
+    n.kind = scene::ObjectKind::kModel;
+    n.object = 0;
+    n.link.translation = Eigen::Vector3d(i ? 6.0 : -6.0, 0, 0);
+    raw.nodes.push_back(n);
+  }
+  const scene::Scene s = scene::Scene::build(raw);
+  SceneRenderer sr(s, smallOptions());
+  Image img;
+  sr.render(0, img);
+  const Rgb bg = smallOptions().background;
+  auto isBg = [&](int x, int y) {
+    const std::uint8_t* p = img.pixel(x, y);
+    for (int c = 0; c < 3; ++c)
+      if (std::abs(int(p[c]) - int(std::lround(bg[c] * 255))) > 6) return false;
+    return true;
+  };
+  long left = 0, right = 0;
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) {
+      if (isBg(x, y)) continue;
+      (x < img.width / 2 ? left : right) += 1;
+      EXPECT_TRUE(x > 0 && y > 0 && x < img.width - 1 && y < img.height - 1) << "object pixel on the border";
+    }
+  EXPECT_GT(left, 50);
+  EXPECT_GT(right, 50);
+}
+
+TEST(SceneRender, ANonFiniteFrameIsOneClearError) {
+  scene::RawScene raw = sceneWithCamera(Eigen::Vector3d(0, 0, 5));
+  addInstance(raw, "a", Eigen::Vector3d::Zero(), Eigen::Quaterniond::Identity());
+  const scene::Scene s = scene::Scene::build(raw);
+  SceneRenderer sr(s, smallOptions());
+  Image img;
+  EXPECT_THROW(sr.render(std::nan(""), img), Error);
+}
+
+}  // namespace
+}  // namespace vdg::render
