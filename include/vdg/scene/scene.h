@@ -22,8 +22,10 @@
 //   translation   3 numbers                    link translation
 //   rotation      4 numbers (w, x, y, z)       link rotation, a quaternion (normalised)
 //   scale         3 numbers                    link scale (each non-zero)
-//   color         3 numbers in [0, 1]          the object's base colour Cbase (display RGB)
-//   visible       1 number                     drawn when > 0.5 (a hidden node hides its subtree)
+//   color         3 numbers in [0, 1]          the object's base colour Cbase (display RGB; clamped
+//                                              into [0, 1] in NodeState when CHANGEs push it out)
+//   visible       1 number                     drawn when > 0.5 (a hidden node, a group too, hides
+//                                              its whole subtree)
 //   sharpness     1 number                     view-dependent models: alpha of section 3.2.2; <= 0: the model's own
 //   frame_offset  1 number                     animated models: frame = floor(scene frame + offset) mod N
 //   fov           1 number, degrees in (0,180) cameras
@@ -34,9 +36,13 @@
 //      CHANGE from a to b by `value`: adds value * ease((f - a) / (b - a)) (clamped to [0, 1]) to
 //             the field: nothing before a, all of it from b on (relative, spread over the frames).
 //             Rotations compose: the field becomes rotation * slerp(identity, value, ease(u)),
-//             i.e. `value` is a turn about the node's own (already rotated) axes.
+//             i.e. `value` is a turn about the node's own (already rotated) axes, taken the way
+//             `value` turns (its angle 2 atan2(|xyz|, w) in [0, 360] degrees, no shortest-arc
+//             flip: a 270-degree turn turns 270 degrees); several CHANGEs compose in the order given.
 //   A SET at frame a discards every earlier contribution, including that of CHANGEs that are
-//   still running (they keep adding only what they add after a).
+//   still running (they keep adding only what they add after a). The SET in force is the one
+//   with the latest frame <= f (among equal frames, the last given); a jump CHANGE (to == from)
+//   at exactly its frame counts when it is given after that SET, not when given before.
 // A field may have a track or actions, or neither; both at once is refused by validate().
 //
 // Cameras (Parent 4.4): a camera node without a path looks along its node's -Z axis with its +Y up
@@ -44,7 +50,9 @@
 // computed in the camera node's coordinates and carried into the world by the node's transform.
 // `look_at` names a node whose world origin becomes the centre of interest at every frame (a
 // moving centre of interest), overriding the view direction of the node or path; the up vector is
-// the node's (or path's) up, orthogonalised. Scene::camera(frame) is the active camera.
+// the node's (or path's) up, orthogonalised (the node's -Z when that up is parallel to the view).
+// The field of view is always the node's `fov` field and the parallel height its ortho_height (a
+// path's own fov_deg and ortho_height are ignored). Scene::camera(frame) is the active camera.
 //
 // Instancing: many nodes may hold the same model (shared, immutable). A view-dependent model is
 // blended per node with its own view direction (instanceView): the direction from the instance's
@@ -60,6 +68,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "vdg/anim/camera_path.h"
@@ -112,9 +121,9 @@ struct RawNode {
   double frame_offset = 0.0;
   // Cameras.
   double fov_deg = 40.0;
-  double ortho_height = 0.0;                     // > 0: parallel projection of this height
-  std::optional<anim::RawCameraPath> path;       // times in frames; in the node's coordinates
-  std::string look_at;                           // name of a node: moving centre of interest
+  double ortho_height = 0.0;                // > 0: parallel projection of this height
+  std::optional<anim::RawCameraPath> path;  // times in frames; in the node's coordinates
+  std::string look_at;                      // name of a node: moving centre of interest
 };
 
 // A key-frame track driving one field of one node (Parent 4.9); key times in frames. Its type
@@ -153,13 +162,15 @@ struct RawScene {
   // duplicate or dotted name; a parent that is not an earlier node; an object index out of range
   // or a null object; an object on a group or camera; non-finite or zero scale, a zero
   // quaternion, non-finite values; a colour outside [0, 1]; a camera's fov outside (0, 180) or a
-  // negative ortho_height; a path that anim::CameraPath::build refuses; look_at naming no node or
-  // the camera itself; a track or action on a field its node's kind does not have (color,
-  // visible on every drawable node; sharpness on models; frame_offset on animated models; fov on
-  // cameras; translation, rotation, scale on all), of the wrong type or size, or on a field that
-  // also has the other kind; a track anim::Track::build refuses; non-finite action frames, a
-  // CHANGE with to_frame < from_frame; more than kMaxSceneActions actions; a `camera` naming no
-  // camera node. A scene without cameras is valid (a renderer then frames it itself).
+  // negative ortho_height; a path that anim::CameraPath::build refuses; a path or look_at on a node
+  // that is not a camera; look_at naming no node or the camera itself; a track or action on a
+  // field its node's kind does not have (color on every drawable node: mesh, model, animated
+  // model; sharpness on both model kinds; frame_offset on animated models; fov on cameras;
+  // translation, rotation, scale and visible on all), of the wrong type or size, or on a field that
+  // also has the other kind or a second track; a SET of a zero scale component, of a colour
+  // outside [0, 1] or of a fov outside (0, 180); a track anim::Track::build refuses; non-finite
+  // action frames, a CHANGE with to_frame < from_frame; more than kMaxSceneActions actions; a
+  // `camera` naming no camera node. A scene without cameras is valid (a renderer then frames it itself).
   void validate(const std::string& where = "scene") const;
 };
 
@@ -179,12 +190,13 @@ class Scene {
   // Validates (RawScene::validate) and builds the tracks and camera paths. Throws vdg::Error.
   static Scene build(const RawScene& raw, const std::string& where = "scene");
 
+  // Accessors (not per-frame): every one taking a node throws vdg::Error for an index out of range.
   int nodeCount() const;
-  const std::string& nodeName(int node) const;  // throws vdg::Error for an index out of range
-  int findNode(std::string_view name) const;    // -1 when there is none
+  const std::string& nodeName(int node) const;
+  int findNode(std::string_view name) const;  // -1 when there is none
   ObjectKind kind(int node) const;
   int parent(int node) const;
-  int cameraNode() const;  // the active camera; -1 when the scene has none
+  int cameraNode() const;                  // the active camera; -1 when the scene has none
   const RawNode& rawNode(int node) const;  // as given (initial values)
   // The node's object, or null when it holds another kind.
   const TriMesh* mesh(int node) const;
@@ -199,7 +211,8 @@ class Scene {
   [[nodiscard]] bool fieldValue(int node, Field field, double frame, std::span<double> out) const;
   // The active camera at `frame`, given the states evaluate() wrote for the same frame.
   // Violations: no camera node, states.size() != nodeCount(), frame not finite, a degenerate
-  // camera (eye on its centre of interest, a non-invertible world transform).
+  // camera (eye on its centre of interest, a non-invertible world transform, an up vector parallel
+  // to the view and to the node's -Z, an animated fov outside (0, 180)).
   [[nodiscard]] bool camera(double frame, std::span<const NodeState> states, Camera& out) const;
   // The view direction for model node `node` seen from world point `eye`: normalize(O^-1 eye -
   // centre) with O = state.object and centre the model's centre(), in object coordinates, as

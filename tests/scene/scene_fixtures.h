@@ -1,0 +1,78 @@
+// Small scenes for the scene tests: nodes, tracks and actions built in a line each.
+#pragma once
+
+#include <cmath>
+#include <initializer_list>
+#include <string>
+#include <vector>
+
+#include "vdg/scene/scene.h"
+
+namespace vdg::scene::fixtures {
+
+// A unit quaternion turning `degrees` about the unit `axis`.
+inline Eigen::Quaterniond turn(const Eigen::Vector3d& axis, double degrees) {
+  return Eigen::Quaterniond(Eigen::AngleAxisd(degrees * M_PI / 180.0, axis.normalized()));
+}
+
+inline Eigen::VectorXd values(std::initializer_list<double> v) {
+  Eigen::VectorXd out(static_cast<Eigen::Index>(v.size()));
+  Eigen::Index i = 0;
+  for (double x : v) out[i++] = x;
+  return out;
+}
+
+inline Eigen::VectorXd quaternionValue(const Eigen::Quaterniond& q) { return values({q.w(), q.x(), q.y(), q.z()}); }
+
+// Appends a node and returns its index.
+inline int addNode(RawScene& scene, const std::string& name, int parent = -1, ObjectKind kind = ObjectKind::kGroup,
+                   int object = -1) {
+  RawNode node;
+  node.name = name;
+  node.parent = parent;
+  node.kind = kind;
+  node.object = object;
+  scene.nodes.push_back(node);
+  return static_cast<int>(scene.nodes.size()) - 1;
+}
+
+inline RawAction set(int node, Field field, Eigen::VectorXd value, double frame) {
+  RawAction a;
+  a.kind = RawAction::Kind::kSet;
+  a.node = node;
+  a.field = field;
+  a.value = std::move(value);
+  a.from_frame = frame;
+  return a;
+}
+
+inline RawAction change(int node, Field field, Eigen::VectorXd value, double from, double to,
+                        anim::Ease ease = anim::Ease::linear()) {
+  RawAction a;
+  a.kind = RawAction::Kind::kChange;
+  a.node = node;
+  a.field = field;
+  a.value = std::move(value);
+  a.from_frame = from;
+  a.to_frame = to;
+  a.ease = ease;
+  return a;
+}
+
+inline anim::RawKey key(double time, Eigen::VectorXd value) {
+  anim::RawKey k;
+  k.time = time;
+  k.value = std::move(value);
+  return k;
+}
+
+// The world position of a node (the origin of its coordinates).
+inline Eigen::Vector3d origin(const NodeState& state) { return state.world.topRightCorner<3, 1>(); }
+
+inline std::vector<NodeState> evaluated(const Scene& scene, double frame) {
+  std::vector<NodeState> states(static_cast<std::size_t>(scene.nodeCount()));
+  if (!scene.evaluate(frame, states)) states.clear();
+  return states;
+}
+
+}  // namespace vdg::scene::fixtures
