@@ -134,6 +134,8 @@ const char* readScale(lua_State* L, int idx, double out[3]);            // numbe
 // The value of `field` (scene::fieldDimension numbers; rotations as w, x, y, z; visible also
 // true/false).
 const char* readFieldValue(lua_State* L, int idx, scene::Field field, double out[4]);
+// A CHANGE's delta of `field`: the same shapes, any finite numbers (a rotation: non-zero).
+const char* readFieldDelta(lua_State* L, int idx, scene::Field field, double out[4]);
 // An ease: an ease userdata, or the name "linear" or "sine".
 const char* readEase(lua_State* L, int idx, anim::Ease* out);
 

@@ -74,6 +74,7 @@ bool isWriteMode(const char* mode) { return std::strpbrk(mode, "wa+") != nullptr
 // io.open(path [, mode]): reads relative to the script's folder, writes relative to the output
 // folder, both confined there. Upvalue 1: the real io.open.
 int luaIoOpen(lua_State* L) {
+  lua_settop(L, 2);
   std::size_t size = 0;
   const char* path = luaL_checklstring(L, 1, &size);
   const char* mode = luaL_optstring(L, 2, "r");

@@ -224,7 +224,7 @@ void readPath(lua_State* L, int path, NodeSpec& spec) {
 
 const char* const kNodeKeys[] = {"name", "object", "parent", "translation", "rotation", "scale", "placement",
                                  "color", "visible", "sharpness", "frame_offset", nullptr};
-const char* const kGroupKeys[] = {"name", "parent", "translation", "rotation", "scale", nullptr};
+const char* const kGroupKeys[] = {"name", "parent", "translation", "rotation", "scale", "visible", nullptr};
 const char* const kCameraKeys[] = {"name", "parent", "translation", "rotation", "fov", "ortho", "path", "look_at", nullptr};
 const char* const kPlacementKeys[] = {"translation", "rotation", "scale", nullptr};
 
@@ -425,8 +425,9 @@ bool fieldApplies(ObjectKind kind, Field field) {
     case Field::kRotation:
     case Field::kScale:
       return true;
-    case Field::kColor:
     case Field::kVisible:
+      return true;
+    case Field::kColor:
       return drawable;
     case Field::kSharpness:
       return kind == ObjectKind::kModel || kind == ObjectKind::kAnimatedModel;
@@ -496,7 +497,7 @@ int addActions(lua_State* L, scene::RawAction::Kind kind) {
   const Field field_id = checkField(L, 2, f);
   const int count = checkTargets(L, 1, field_id, f, false);
   double value[4];
-  checked(L, readFieldValue(L, 3, field_id, value), f, set ? "value" : "delta");
+  checked(L, set ? readFieldValue(L, 3, field_id, value) : readFieldDelta(L, 3, field_id, value), f, set ? "value" : "delta");
   double from = 0, to = 0;
   anim::Ease ease;
   if (set) {

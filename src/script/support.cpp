@@ -16,6 +16,9 @@ void raiseKept(lua_State* L, const char* function) {
     lua_pushliteral(L, "not enough memory");
     lua_error(L);
   }
+  // Messages of the anim and scene builders already start with the `where` they were given.
+  const std::size_t n = std::strlen(function);
+  if (ctx.error.compare(0, n, function) == 0 && ctx.error.compare(n, 2, ": ") == 0) luaL_error(L, "%s", ctx.error.c_str());
   luaL_error(L, "%s: %s", function, ctx.error.c_str());
   std::abort();  // not reached: luaL_error does not return
 }
@@ -106,6 +109,29 @@ const char* readFieldValue(lua_State* L, int idx, scene::Field field, double out
       return nullptr;
     case scene::Field::kSharpness:
     case scene::Field::kFrameOffset:
+      return readNumber(L, idx, out);
+  }
+  return "unknown field";
+}
+
+const char* readFieldDelta(lua_State* L, int idx, scene::Field field, double out[4]) {
+  switch (field) {
+    case scene::Field::kRotation:
+      return readQuaternion(L, idx, out);
+    case scene::Field::kTranslation:
+    case scene::Field::kColor:
+      return readVector(L, idx, 3, out);
+    case scene::Field::kScale:
+      if (lua_type(L, idx) == LUA_TNUMBER) {
+        if (const char* why = readNumber(L, idx, &out[0])) return why;
+        out[1] = out[2] = out[0];
+        return nullptr;
+      }
+      return readVector(L, idx, 3, out) ? "expected a number or {dx, dy, dz}" : nullptr;
+    case scene::Field::kVisible:
+    case scene::Field::kSharpness:
+    case scene::Field::kFrameOffset:
+    case scene::Field::kFov:
       return readNumber(L, idx, out);
   }
   return "unknown field";
