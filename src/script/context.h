@@ -69,7 +69,7 @@ struct Context {
   int hook_interval = 1;
   bool budget_exceeded = false;
   std::size_t lua_bytes = 0;
-  std::size_t cxx_bytes = 0;  // the scene being built, estimated
+  std::size_t cxx_bytes = 0;   // the scene being built, estimated
   bool out_of_memory = false;  // an allocation or a charge was refused
 
   // What the script builds.
@@ -126,11 +126,11 @@ void charge(lua_State* L, std::size_t bytes);
 // ---- non-raising readers (phases 1 and 2) ----
 // Each returns nullptr on success, else a short static reason. `idx` must be absolute.
 
-const char* readNumber(lua_State* L, int idx, double* out);              // a finite number
-const char* readVector(lua_State* L, int idx, int n, double* out);      // a table of n finite numbers
-const char* readQuaternion(lua_State* L, int idx, double out[4]);        // quat userdata or {w,x,y,z}, non-zero
-const char* readColor(lua_State* L, int idx, double out[3]);            // 3 numbers in [0, 1]
-const char* readScale(lua_State* L, int idx, double out[3]);            // number or 3 numbers, non-zero
+const char* readNumber(lua_State* L, int idx, double* out);         // a finite number
+const char* readVector(lua_State* L, int idx, int n, double* out);  // a table of n finite numbers
+const char* readQuaternion(lua_State* L, int idx, double out[4]);   // quat userdata or {w,x,y,z}, non-zero
+const char* readColor(lua_State* L, int idx, double out[3]);        // 3 numbers in [0, 1]
+const char* readScale(lua_State* L, int idx, double out[3]);        // number or 3 numbers, non-zero
 // The value of `field` (scene::fieldDimension numbers; rotations as w, x, y, z; visible also
 // true/false).
 const char* readFieldValue(lua_State* L, int idx, scene::Field field, double out[4]);
@@ -176,9 +176,9 @@ int field(lua_State* L, int idx, const char* key);
 
 // Registration of the libraries (sandbox.cpp, math_bindings.cpp, scene_bindings.cpp). Each expects
 // the `vdg` table on top of the stack where it says so.
-void openSandbox(lua_State* L);          // globals: base, string, table, math, utf8, io, os (checked)
-void openMath(lua_State* L, int vdg);    // vdg.ease, vdg.quat, vdg.curve
-void openScene(lua_State* L, int vdg);   // vdg.load, node, group, camera, set, change, track, ...
+void openSandbox(lua_State* L);         // globals: base, string, table, math, utf8, io, os (checked)
+void openMath(lua_State* L, int vdg);   // vdg.ease, vdg.quat, vdg.curve
+void openScene(lua_State* L, int vdg);  // vdg.load, node, group, camera, set, change, track, ...
 
 // A path for `rel` under `base` (canonical folder) that stays there: refuses an empty path, a NUL,
 // an absolute path, a backslash, a ".." component, and a path whose existing part leads outside

@@ -53,7 +53,8 @@ int easeMake(lua_State* L) {
   if (two) {
     if (lua_gettop(L) != 3)
       return luaL_error(L, "vdg.ease.make: the %s ease takes two parameters (%s)", kind,
-                        kind[0] == 's' ? "t1, t2: vdg.ease.make(\"sinusoidal\", 0.2, 0.8)" : "a, b: vdg.ease.make(\"parabolic\", 0.2, 0.8)");
+                        kind[0] == 's' ? "t1, t2: vdg.ease.make(\"sinusoidal\", 0.2, 0.8)"
+                                       : "a, b: vdg.ease.make(\"parabolic\", 0.2, 0.8)");
     p1 = checkFinite(L, 2, "vdg.ease.make");
     p2 = checkFinite(L, 3, "vdg.ease.make");
   }
@@ -111,7 +112,8 @@ void checkQuat(lua_State* L, int idx, const char* function, double out[4]) {
 int quatNew(lua_State* L) {
   double q[4];
   for (int i = 0; i < 4; ++i) q[i] = checkFinite(L, i + 1, "vdg.quat.new");
-  if (q[0] == 0 && q[1] == 0 && q[2] == 0 && q[3] == 0) return luaL_error(L, "vdg.quat.new: a zero quaternion is no rotation");
+  if (q[0] == 0 && q[1] == 0 && q[2] == 0 && q[3] == 0)
+    return luaL_error(L, "vdg.quat.new: a zero quaternion is no rotation");
   pushQuat(L, q);
   return 1;
 }
@@ -188,14 +190,23 @@ int quatIndex(lua_State* L) {
   const char* key = luaL_checkstring(L, 2);
   if (key[0] != '\0' && key[1] == '\0') {
     switch (key[0]) {
-      case 'w': lua_pushnumber(L, q.w); return 1;
-      case 'x': lua_pushnumber(L, q.x); return 1;
-      case 'y': lua_pushnumber(L, q.y); return 1;
-      case 'z': lua_pushnumber(L, q.z); return 1;
+      case 'w':
+        lua_pushnumber(L, q.w);
+        return 1;
+      case 'x':
+        lua_pushnumber(L, q.x);
+        return 1;
+      case 'y':
+        lua_pushnumber(L, q.y);
+        return 1;
+      case 'z':
+        lua_pushnumber(L, q.z);
+        return 1;
     }
   }
   lua_getfield(L, lua_upvalueindex(1), key);  // methods
-  if (lua_isnil(L, -1)) return luaL_error(L, "quaternion: no field '%s' (w, x, y, z, rotate, normalized, inverse)", key);
+  if (lua_isnil(L, -1))
+    return luaL_error(L, "quaternion: no field '%s' (w, x, y, z, rotate, normalized, inverse)", key);
   return 1;
 }
 
@@ -222,8 +233,9 @@ int curveGc(lua_State* L) {
 }
 
 bool curveKindFromName(const char* name, anim::CurveKind* out) {
-  for (anim::CurveKind k : {anim::CurveKind::kLinear, anim::CurveKind::kCatmullRom, anim::CurveKind::kCentripetalCatmullRom,
-                            anim::CurveKind::kNaturalCubic, anim::CurveKind::kParabolicBlending, anim::CurveKind::kBezier})
+  for (anim::CurveKind k :
+       {anim::CurveKind::kLinear, anim::CurveKind::kCatmullRom, anim::CurveKind::kCentripetalCatmullRom,
+        anim::CurveKind::kNaturalCubic, anim::CurveKind::kParabolicBlending, anim::CurveKind::kBezier})
     if (std::strcmp(name, anim::curveKindName(k)) == 0) {
       *out = k;
       return true;
@@ -244,10 +256,13 @@ int curveNew(lua_State* L) {
   if (!lua_isnil(L, interpolation)) {
     const char* name = lua_type(L, interpolation) == LUA_TSTRING ? lua_tostring(L, interpolation) : "";
     if (!curveKindFromName(name, &kind))
-      return luaL_error(L, "vdg.curve: interpolation: expected linear, catmull-rom, centripetal-catmull-rom, natural-cubic, "
-                           "parabolic-blending or bezier");
+      return luaL_error(
+          L,
+          "vdg.curve: interpolation: expected linear, catmull-rom, centripetal-catmull-rom, natural-cubic, "
+          "parabolic-blending or bezier");
   }
-  if (lua_type(L, points) != LUA_TTABLE) return luaL_error(L, "vdg.curve: points: expected a list of points {{x, y, z}, ...}");
+  if (lua_type(L, points) != LUA_TTABLE)
+    return luaL_error(L, "vdg.curve: points: expected a list of points {{x, y, z}, ...}");
   const lua_Unsigned n = lua_rawlen(L, points);
   int dimension = 0;
   luaL_checkstack(L, 4, "vdg.curve");
@@ -260,10 +275,11 @@ int curveNew(lua_State* L) {
                         anim::kMaxCurveDimension);
     if (dimension == 0) dimension = static_cast<int>(d);
     if (static_cast<int>(d) != dimension)
-      return luaL_error(L, "vdg.curve: points[%d] has %d coordinates, points[1] has %d", static_cast<int>(i), static_cast<int>(d),
-                        dimension);
+      return luaL_error(L, "vdg.curve: points[%d] has %d coordinates, points[1] has %d", static_cast<int>(i),
+                        static_cast<int>(d), dimension);
     double coords[anim::kMaxCurveDimension];
-    if (readVector(L, p, dimension, coords)) return luaL_error(L, "vdg.curve: points[%d]: expected finite numbers", static_cast<int>(i));
+    if (readVector(L, p, dimension, coords))
+      return luaL_error(L, "vdg.curve: points[%d]: expected finite numbers", static_cast<int>(i));
     lua_pop(L, 1);
   }
   lua_Unsigned time_count = 0;
@@ -273,7 +289,8 @@ int curveNew(lua_State* L) {
     for (lua_Unsigned i = 1; i <= time_count; ++i) {
       double t;
       lua_rawgeti(L, times, static_cast<lua_Integer>(i));
-      if (readNumber(L, lua_gettop(L), &t)) return luaL_error(L, "vdg.curve: times[%d]: expected a finite number", static_cast<int>(i));
+      if (readNumber(L, lua_gettop(L), &t))
+        return luaL_error(L, "vdg.curve: times[%d]: expected a finite number", static_cast<int>(i));
       lua_pop(L, 1);
     }
   }
@@ -311,7 +328,8 @@ int curveNew(lua_State* L) {
 
 const anim::ArcLengthCurve& checkCurve(lua_State* L, const char* function) {
   const auto* box = toUserdata<CurveBox>(L, 1, contextOf(L).mt_curve);
-  if (!box || !box->curve) luaL_error(L, "%s: expected a curve (call it as c:%s(...))", function, std::strchr(function, ':') + 1);
+  if (!box || !box->curve)
+    luaL_error(L, "%s: expected a curve (call it as c:%s(...))", function, std::strchr(function, ':') + 1);
   return *box->curve;
 }
 
@@ -353,8 +371,8 @@ int curveRange(lua_State* L) {
 
 int curveToString(lua_State* L) {
   const anim::ArcLengthCurve& c = checkCurve(L, "curve:tostring");
-  lua_pushfstring(L, "curve %s (%d coordinates, %d segments)", anim::curveKindName(c.curve().kind()), c.curve().dimension(),
-                  c.curve().segmentCount());
+  lua_pushfstring(L, "curve %s (%d coordinates, %d segments)", anim::curveKindName(c.curve().kind()),
+                  c.curve().dimension(), c.curve().segmentCount());
   return 1;
 }
 
@@ -374,8 +392,11 @@ const void* newMetatable(lua_State* L, const char* name, const luaL_Reg* methods
 void openMath(lua_State* L, int vdg) {
   Context& ctx = contextOf(L);
 
-  const luaL_Reg ease_functions[] = {{"sine", easeSine}, {"sinusoidal", easeSinusoidal}, {"parabolic", easeParabolic},
-                                     {"make", easeMake}, {nullptr, nullptr}};
+  const luaL_Reg ease_functions[] = {{"sine", easeSine},
+                                     {"sinusoidal", easeSinusoidal},
+                                     {"parabolic", easeParabolic},
+                                     {"make", easeMake},
+                                     {nullptr, nullptr}};
   luaL_newlib(L, ease_functions);
   lua_setfield(L, vdg, "ease");
   const luaL_Reg ease_meta[] = {{"__call", easeEval}, {"__tostring", easeToString}, {nullptr, nullptr}};
@@ -387,15 +408,18 @@ void openMath(lua_State* L, int vdg) {
   lua_setfield(L, -2, "__index");
   lua_pop(L, 1);
 
-  const luaL_Reg quat_functions[] = {{"new", quatNew}, {"identity", quatIdentity}, {"axis_angle", quatAxisAngle},
-                                     {"slerp", quatSlerp}, {nullptr, nullptr}};
+  const luaL_Reg quat_functions[] = {{"new", quatNew},
+                                     {"identity", quatIdentity},
+                                     {"axis_angle", quatAxisAngle},
+                                     {"slerp", quatSlerp},
+                                     {nullptr, nullptr}};
   luaL_newlib(L, quat_functions);
   lua_setfield(L, vdg, "quat");
   const luaL_Reg quat_meta[] = {{"__mul", quatMul}, {"__tostring", quatToString}, {nullptr, nullptr}};
   ctx.mt_quat = newMetatable(L, "vdg.quat", quat_meta);
   luaL_getmetatable(L, "vdg.quat");
-  const luaL_Reg quat_methods[] = {{"rotate", quatRotate}, {"normalized", quatNormalized}, {"inverse", quatInverse},
-                                   {nullptr, nullptr}};
+  const luaL_Reg quat_methods[] = {
+      {"rotate", quatRotate}, {"normalized", quatNormalized}, {"inverse", quatInverse}, {nullptr, nullptr}};
   luaL_newlib(L, quat_methods);
   lua_pushcclosure(L, quatIndex, 1);
   lua_setfield(L, -2, "__index");
@@ -406,8 +430,11 @@ void openMath(lua_State* L, int vdg) {
   const luaL_Reg curve_meta[] = {{"__gc", curveGc}, {"__tostring", curveToString}, {nullptr, nullptr}};
   ctx.mt_curve = newMetatable(L, "vdg.curve", curve_meta);
   luaL_getmetatable(L, "vdg.curve");
-  const luaL_Reg curve_methods[] = {{"eval", curveEval}, {"length", curveLength}, {"at_length", curveAtLength},
-                                    {"range", curveRange}, {nullptr, nullptr}};
+  const luaL_Reg curve_methods[] = {{"eval", curveEval},
+                                    {"length", curveLength},
+                                    {"at_length", curveAtLength},
+                                    {"range", curveRange},
+                                    {nullptr, nullptr}};
   luaL_newlib(L, curve_methods);
   lua_setfield(L, -2, "__index");
   lua_pop(L, 1);

@@ -49,7 +49,8 @@ int luaLoadText(lua_State* L) {
 int luaCollectGarbage(lua_State* L) {
   const char* option = luaL_optstring(L, 1, "count");
   if (std::strcmp(option, "count") != 0)
-    return luaL_error(L, "collectgarbage: only collectgarbage(\"count\") is available in vdg scripts, not '%s'", option);
+    return luaL_error(L, "collectgarbage: only collectgarbage(\"count\") is available in vdg scripts, not '%s'",
+                      option);
   lua_pushnumber(L, static_cast<double>(lua_gc(L, LUA_GCCOUNT, 0)) + lua_gc(L, LUA_GCCOUNTB, 0) / 1024.0);
   return 1;
 }
@@ -82,7 +83,8 @@ int luaIoOpen(lua_State* L) {
   bool valid_mode = false;
   for (const char* m : {"r", "w", "a", "r+", "w+", "a+", "rb", "wb", "ab", "r+b", "w+b", "a+b"})
     valid_mode = valid_mode || std::strcmp(mode, m) == 0;
-  if (!valid_mode) return luaL_error(L, "io.open: invalid mode '%s' (expected r, w, a, r+, w+, a+, each with an optional b)", mode);
+  if (!valid_mode)
+    return luaL_error(L, "io.open: invalid mode '%s' (expected r, w, a, r+, w+, a+, each with an optional b)", mode);
   const bool write = isWriteMode(mode);
   Context& ctx = contextOf(L);
   if (!guarded(ctx, [&] {

@@ -73,7 +73,8 @@ int luaLoad(lua_State* L) {
           ctx.scene.meshes.push_back(std::move(mesh));
         } else {
           const RawViewDependentModel raw = loadModel(full, read);
-          bytes = raw.base.positions.size() * 4 * (raw.keys.size() + raw.base_frames.size() + 2) + raw.base.triangles.size() * 4;
+          bytes = raw.base.positions.size() * 4 * (raw.keys.size() + raw.base_frames.size() + 2) +
+                  raw.base.triangles.size() * 4;
           if (raw.animated()) {
             ref.kind = ObjectKind::kAnimatedModel;
             ref.index = static_cast<int>(ctx.scene.animated_models.size());
@@ -111,7 +112,7 @@ struct NodeSpec {
   ObjectKind kind = ObjectKind::kGroup;
   Text name;
   int parent = -1;
-  int object = -1;  // index into RawScene's list of its kind
+  int object = -1;                                        // index into RawScene's list of its kind
   double link[10] = {0, 0, 0, 1, 0, 0, 0, 1, 1, 1};       // translation, rotation (w x y z), scale
   double placement[10] = {0, 0, 0, 1, 0, 0, 0, 1, 1, 1};  // the same
   double color[3] = {1, 1, 1};
@@ -143,8 +144,9 @@ void readTransform(lua_State* L, int table, const char* function, double t[10]) 
 }
 
 bool curveKindFromName(const char* name, anim::CurveKind* out) {
-  for (anim::CurveKind k : {anim::CurveKind::kLinear, anim::CurveKind::kCatmullRom, anim::CurveKind::kCentripetalCatmullRom,
-                            anim::CurveKind::kNaturalCubic, anim::CurveKind::kParabolicBlending, anim::CurveKind::kBezier})
+  for (anim::CurveKind k :
+       {anim::CurveKind::kLinear, anim::CurveKind::kCatmullRom, anim::CurveKind::kCentripetalCatmullRom,
+        anim::CurveKind::kNaturalCubic, anim::CurveKind::kParabolicBlending, anim::CurveKind::kBezier})
     if (std::strcmp(name, anim::curveKindName(k)) == 0) {
       *out = k;
       return true;
@@ -152,7 +154,8 @@ bool curveKindFromName(const char* name, anim::CurveKind* out) {
   return false;
 }
 
-const char* const kPathKeys[] = {"points", "times", "interpolation", "ease", "start", "end", "view", "center", "up", "tilt", nullptr};
+const char* const kPathKeys[] = {"points", "times", "interpolation", "ease", "start", "end", "view",
+                                 "center", "up",    "tilt",          nullptr};
 
 void readPath(lua_State* L, int path, NodeSpec& spec) {
   const char* f = "vdg.camera";
@@ -164,7 +167,8 @@ void readPath(lua_State* L, int path, NodeSpec& spec) {
   for (lua_Unsigned i = 1; i <= n; ++i) {
     double p[3];
     lua_rawgeti(L, spec.path_points, static_cast<lua_Integer>(i));
-    if (readVector(L, lua_gettop(L), 3, p)) luaL_error(L, "%s: path.points[%d]: expected {x, y, z} of finite numbers", f, static_cast<int>(i));
+    if (readVector(L, lua_gettop(L), 3, p))
+      luaL_error(L, "%s: path.points[%d]: expected {x, y, z} of finite numbers", f, static_cast<int>(i));
     lua_pop(L, 1);
   }
   spec.path_times = field(L, path, "times");
@@ -175,14 +179,17 @@ void readPath(lua_State* L, int path, NodeSpec& spec) {
     for (lua_Unsigned i = 1; i <= lua_rawlen(L, spec.path_times); ++i) {
       double t;
       lua_rawgeti(L, spec.path_times, static_cast<lua_Integer>(i));
-      if (readNumber(L, lua_gettop(L), &t)) luaL_error(L, "%s: path.times[%d]: expected a finite number", f, static_cast<int>(i));
+      if (readNumber(L, lua_gettop(L), &t))
+        luaL_error(L, "%s: path.times[%d]: expected a finite number", f, static_cast<int>(i));
       lua_pop(L, 1);
     }
   }
   int v = field(L, path, "interpolation");
   if (!lua_isnil(L, v) && (lua_type(L, v) != LUA_TSTRING || !curveKindFromName(lua_tostring(L, v), &spec.path_kind)))
-    luaL_error(L, "%s: path.interpolation: expected linear, catmull-rom, centripetal-catmull-rom, natural-cubic, "
-                  "parabolic-blending or bezier", f);
+    luaL_error(L,
+               "%s: path.interpolation: expected linear, catmull-rom, centripetal-catmull-rom, natural-cubic, "
+               "parabolic-blending or bezier",
+               f);
   v = field(L, path, "ease");
   if (!lua_isnil(L, v)) checked(L, readEase(L, v, &spec.path_ease), f, "path.ease");
   v = field(L, path, "start");
@@ -222,10 +229,11 @@ void readPath(lua_State* L, int path, NodeSpec& spec) {
   }
 }
 
-const char* const kNodeKeys[] = {"name", "object", "parent", "translation", "rotation", "scale", "placement",
-                                 "color", "visible", "sharpness", "frame_offset", nullptr};
+const char* const kNodeKeys[] = {"name",      "object", "parent",  "translation", "rotation",     "scale",
+                                 "placement", "color",  "visible", "sharpness",   "frame_offset", nullptr};
 const char* const kGroupKeys[] = {"name", "parent", "translation", "rotation", "scale", "visible", nullptr};
-const char* const kCameraKeys[] = {"name", "parent", "translation", "rotation", "fov", "ortho", "path", "look_at", nullptr};
+const char* const kCameraKeys[] = {"name",  "parent", "translation", "rotation", "fov",
+                                   "ortho", "path",   "look_at",     nullptr};
 const char* const kPlacementKeys[] = {"translation", "rotation", "scale", nullptr};
 
 // Phase 1 of vdg.node / group / camera.
@@ -243,7 +251,8 @@ void readNode(lua_State* L, ObjectKind kind, const char* f, NodeSpec& spec) {
     spec.name.data = lua_tolstring(L, v, &spec.name.size);
     if (spec.name.size == 0) luaL_error(L, "%s: name: must not be empty", f);
     if (std::memchr(spec.name.data, '.', spec.name.size) || std::memchr(spec.name.data, '\0', spec.name.size))
-      luaL_error(L, "%s: name '%s': must not contain '.' (it separates node and field in \"node.field\")", f, spec.name.data);
+      luaL_error(L, "%s: name '%s': must not contain '.' (it separates node and field in \"node.field\")", f,
+                 spec.name.data);
     if (ctx.node_by_name.find(spec.name.view()) != ctx.node_by_name.end())
       luaL_error(L, "%s: name '%s': there is already a node of that name", f, spec.name.data);
   }
@@ -262,7 +271,8 @@ void readNode(lua_State* L, ObjectKind kind, const char* f, NodeSpec& spec) {
   readTransform(L, 1, f, spec.link);
   v = field(L, 1, "placement");
   if (!lua_isnil(L, v)) {
-    if (lua_type(L, v) != LUA_TTABLE) luaL_error(L, "%s: placement: expected {translation = ..., rotation = ..., scale = ...}", f);
+    if (lua_type(L, v) != LUA_TTABLE)
+      luaL_error(L, "%s: placement: expected {translation = ..., rotation = ..., scale = ...}", f);
     checkKeys(L, v, "vdg.node: placement", kPlacementKeys);
     readTransform(L, v, f, spec.placement);
   }
@@ -282,7 +292,8 @@ void readNode(lua_State* L, ObjectKind kind, const char* f, NodeSpec& spec) {
   }
   v = field(L, 1, "frame_offset");
   if (!lua_isnil(L, v)) {
-    if (spec.kind != ObjectKind::kAnimatedModel) luaL_error(L, "%s: frame_offset: only animated models have a frame offset", f);
+    if (spec.kind != ObjectKind::kAnimatedModel)
+      luaL_error(L, "%s: frame_offset: only animated models have a frame offset", f);
     checked(L, readNumber(L, v, &spec.frame_offset), f, "frame_offset");
   }
   if (kind == ObjectKind::kCamera) {
@@ -371,7 +382,9 @@ int makeNode(lua_State* L, ObjectKind kind, const char* f) {
         if (spec.name.data) {
           node.name.assign(spec.name.data, spec.name.size);
         } else {
-          const char* stem = spec.kind == ObjectKind::kCamera ? "camera" : spec.kind == ObjectKind::kGroup ? "group" : "node";
+          const char* stem = spec.kind == ObjectKind::kCamera  ? "camera"
+                             : spec.kind == ObjectKind::kGroup ? "group"
+                                                               : "node";
           do node.name = stem + std::to_string(ctx.next_auto_name++);
           while (ctx.node_by_name.count(node.name));
         }
@@ -411,8 +424,10 @@ int useCamera(lua_State* L) {
   Context& ctx = contextOf(L);
   const int n = checkNode(L, 1, "vdg.use_camera", "argument #1");
   if (ctx.scene.nodes[static_cast<std::size_t>(n)].kind != ObjectKind::kCamera)
-    luaL_error(L, "vdg.use_camera: node '%s' is not a camera", ctx.scene.nodes[static_cast<std::size_t>(n)].name.c_str());
-  if (!guarded(ctx, [&] { ctx.scene.camera = ctx.scene.nodes[static_cast<std::size_t>(n)].name; })) raiseKept(L, "vdg.use_camera");
+    luaL_error(L, "vdg.use_camera: node '%s' is not a camera",
+               ctx.scene.nodes[static_cast<std::size_t>(n)].name.c_str());
+  if (!guarded(ctx, [&] { ctx.scene.camera = ctx.scene.nodes[static_cast<std::size_t>(n)].name; }))
+    raiseKept(L, "vdg.use_camera");
   return 0;
 }
 
@@ -443,8 +458,10 @@ Field checkField(lua_State* L, int idx, const char* f) {
   const char* name = luaL_checkstring(L, idx);
   for (int i = 0; i < scene::kFieldCount; ++i)
     if (std::strcmp(name, scene::fieldName(static_cast<Field>(i))) == 0) return static_cast<Field>(i);
-  luaL_error(L, "%s: unknown field '%s' (expected translation, rotation, scale, color, visible, sharpness, frame_offset or fov)", f,
-             name);
+  luaL_error(
+      L,
+      "%s: unknown field '%s' (expected translation, rotation, scale, color, visible, sharpness, frame_offset or fov)",
+      f, name);
   return Field::kTranslation;
 }
 
@@ -460,8 +477,8 @@ int checkTargets(lua_State* L, int idx, Field field, const char* f, bool track) 
                  scene::fieldName(field));
     const int driven = ctx.driven[static_cast<std::size_t>(node)][static_cast<std::size_t>(field)];
     if (driven == 2)
-      luaL_error(L, "%s: %s.%s already has a track (a field has a track or set/change actions, not both)", f, n.name.c_str(),
-                 scene::fieldName(field));
+      luaL_error(L, "%s: %s.%s already has a track (a field has a track or set/change actions, not both)", f,
+                 n.name.c_str(), scene::fieldName(field));
     if (track && driven == 1)
       luaL_error(L, "%s: %s.%s already has set/change actions (a field has a track or set/change actions, not both)", f,
                  n.name.c_str(), scene::fieldName(field));
@@ -497,7 +514,8 @@ int addActions(lua_State* L, scene::RawAction::Kind kind) {
   const Field field_id = checkField(L, 2, f);
   const int count = checkTargets(L, 1, field_id, f, false);
   double value[4];
-  checked(L, set ? readFieldValue(L, 3, field_id, value) : readFieldDelta(L, 3, field_id, value), f, set ? "value" : "delta");
+  checked(L, set ? readFieldValue(L, 3, field_id, value) : readFieldDelta(L, 3, field_id, value), f,
+          set ? "value" : "delta");
   double from = 0, to = 0;
   anim::Ease ease;
   if (set) {
@@ -538,9 +556,11 @@ int luaSet(lua_State* L) { return addActions(L, scene::RawAction::Kind::kSet); }
 int luaChange(lua_State* L) { return addActions(L, scene::RawAction::Kind::kChange); }
 
 const anim::Interpolation kInterpolations[] = {
-    anim::Interpolation::kStep,          anim::Interpolation::kLinear,         anim::Interpolation::kCatmullRom,
-    anim::Interpolation::kCentripetalCatmullRom, anim::Interpolation::kNaturalCubic, anim::Interpolation::kParabolicBlending,
-    anim::Interpolation::kBezier,        anim::Interpolation::kSlerp,          anim::Interpolation::kQuaternionCurve};
+    anim::Interpolation::kStep,           anim::Interpolation::kLinear,
+    anim::Interpolation::kCatmullRom,     anim::Interpolation::kCentripetalCatmullRom,
+    anim::Interpolation::kNaturalCubic,   anim::Interpolation::kParabolicBlending,
+    anim::Interpolation::kBezier,         anim::Interpolation::kSlerp,
+    anim::Interpolation::kQuaternionCurve};
 
 const char* const kKeyKeys[] = {"ease", "in", "out", nullptr};
 
@@ -553,15 +573,19 @@ int luaTrack(lua_State* L) {
   const int count = checkTargets(L, 1, field_id, f, true);
   const int dimension = scene::fieldDimension(field_id);
   luaL_checktype(L, 3, LUA_TTABLE);
-  anim::Interpolation interpolation = field_id == Field::kRotation ? anim::Interpolation::kSlerp : anim::Interpolation::kLinear;
+  anim::Interpolation interpolation =
+      field_id == Field::kRotation ? anim::Interpolation::kSlerp : anim::Interpolation::kLinear;
   if (!lua_isnoneornil(L, 4)) {
     const char* name = luaL_checkstring(L, 4);
     bool found = false;
     for (anim::Interpolation i : kInterpolations)
       if (std::strcmp(name, anim::interpolationName(i)) == 0) interpolation = i, found = true;
     if (!found)
-      luaL_error(L, "%s: unknown interpolation '%s' (expected step, linear, catmull-rom, centripetal-catmull-rom, natural-cubic, "
-                    "parabolic-blending, bezier, slerp or quaternion-curve)", f, name);
+      luaL_error(
+          L,
+          "%s: unknown interpolation '%s' (expected step, linear, catmull-rom, centripetal-catmull-rom, natural-cubic, "
+          "parabolic-blending, bezier, slerp or quaternion-curve)",
+          f, name);
   }
   anim::Extrapolation extrapolation = anim::Extrapolation::kClamp;
   if (!lua_isnoneornil(L, 5)) {
@@ -588,7 +612,8 @@ int luaTrack(lua_State* L) {
     lua_rawgeti(L, key, 1);
     if (readNumber(L, lua_gettop(L), &time)) luaL_error(L, "%s: keys[%d]: the frame must be a finite number", f, i);
     lua_rawgeti(L, key, 2);
-    if (const char* why = readFieldValue(L, lua_gettop(L), field_id, value)) luaL_error(L, "%s: keys[%d]: value: %s", f, i, why);
+    if (const char* why = readFieldValue(L, lua_gettop(L), field_id, value))
+      luaL_error(L, "%s: keys[%d]: value: %s", f, i, why);
     lua_pushvalue(L, 6);
     if (lua_rawget(L, key) != LUA_TNIL) {
       anim::Ease e;
@@ -600,7 +625,8 @@ int luaTrack(lua_State* L) {
         double handle[4];
         if (interpolation != anim::Interpolation::kBezier)
           luaL_error(L, "%s: keys[%d]: handles (in, out) need the bezier interpolation", f, i);
-        if (const char* why = readVector(L, lua_gettop(L), dimension, handle)) luaL_error(L, "%s: keys[%d]: handle: %s", f, i, why);
+        if (const char* why = readVector(L, lua_gettop(L), dimension, handle))
+          luaL_error(L, "%s: keys[%d]: handle: %s", f, i, why);
       }
     }
     lua_settop(L, 8);
@@ -610,8 +636,8 @@ int luaTrack(lua_State* L) {
   if (!guarded(ctx, [&] {
         anim::RawTrack raw;
         raw.type = field_id == Field::kRotation ? anim::TrackType::kRotation
-                   : dimension == 1            ? anim::TrackType::kScalar
-                                               : anim::TrackType::kVector;
+                   : dimension == 1             ? anim::TrackType::kScalar
+                                                : anim::TrackType::kVector;
         raw.interpolation = interpolation;
         raw.extrapolation = extrapolation;
         for (int i = 1; i <= n; ++i) {
@@ -747,7 +773,8 @@ int luaRender(lua_State* L) {
   const int out = field(L, 1, "out");
   Text out_text{".", 1};
   if (!lua_isnil(L, out)) {
-    if (lua_type(L, out) != LUA_TSTRING) luaL_error(L, "%s: out: expected a folder name (relative to the output folder)", f);
+    if (lua_type(L, out) != LUA_TSTRING)
+      luaL_error(L, "%s: out: expected a folder name (relative to the output folder)", f);
     out_text.data = lua_tolstring(L, out, &out_text.size);
   }
   const int line = scriptLine(L);
@@ -780,8 +807,9 @@ int nodeIndex(lua_State* L) {
   } else if (std::strcmp(key, "kind") == 0) {
     lua_pushstring(L, scene::objectKindName(node.kind));
   } else {
-    return luaL_error(L, "node '%s': no field '%s' (nodes have name and kind; animate fields with vdg.set, vdg.change, vdg.track)",
-                      node.name.c_str(), key);
+    return luaL_error(
+        L, "node '%s': no field '%s' (nodes have name and kind; animate fields with vdg.set, vdg.change, vdg.track)",
+        node.name.c_str(), key);
   }
   return 1;
 }
@@ -834,9 +862,10 @@ const void* lockedMetatable(lua_State* L, const char* name, const luaL_Reg* meth
 
 void openScene(lua_State* L, int vdg) {
   Context& ctx = contextOf(L);
-  const luaL_Reg functions[] = {{"load", luaLoad}, {"node", luaNode}, {"group", luaGroup}, {"camera", luaCamera},
-                                {"use_camera", useCamera}, {"set", luaSet}, {"change", luaChange}, {"track", luaTrack},
-                                {"for_each", forEach}, {"render", luaRender}, {nullptr, nullptr}};
+  const luaL_Reg functions[] = {{"load", luaLoad},     {"node", luaNode},         {"group", luaGroup},
+                                {"camera", luaCamera}, {"use_camera", useCamera}, {"set", luaSet},
+                                {"change", luaChange}, {"track", luaTrack},       {"for_each", forEach},
+                                {"render", luaRender}, {nullptr, nullptr}};
   lua_pushvalue(L, vdg);
   luaL_setfuncs(L, functions, 0);
   lua_pop(L, 1);

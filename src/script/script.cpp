@@ -115,8 +115,8 @@ std::string failure(lua_State* L, int status, const Context& ctx) {
   } else {
     return name + ": the script raised an error value that is not a string (a " + lua_typename(L, type) + ")";
   }
-  const bool memory_message = message == "not enough memory" ||
-                              (message.size() > 19 && message.ends_with(": not enough memory"));
+  const bool memory_message =
+      message == "not enough memory" || (message.size() > 19 && message.ends_with(": not enough memory"));
   if (status == LUA_ERRMEM || (ctx.out_of_memory && memory_message))
     return name + ": out of memory (limit " + mib(ctx.memory_limit) + " MiB)";
   // Lua names the chunk by at most LUA_IDSIZE - 1 bytes of its name: give the whole name back.
@@ -136,7 +136,8 @@ Shot runScriptText(std::string_view text, const std::string& chunk_name, const s
                    const ScriptOptions& options) {
   namespace fs = std::filesystem;
   if (options.instruction_budget < 1)
-    throw Error(chunk_name + ": instruction budget must be at least 1, got " + std::to_string(options.instruction_budget));
+    throw Error(chunk_name + ": instruction budget must be at least 1, got " +
+                std::to_string(options.instruction_budget));
   if (options.memory_limit < kMinMemoryLimit)
     throw Error(chunk_name + ": memory limit must be at least " + mib(kMinMemoryLimit) + " MiB, got " +
                 std::to_string(options.memory_limit) + " bytes");

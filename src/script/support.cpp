@@ -18,7 +18,8 @@ void raiseKept(lua_State* L, const char* function) {
   }
   // Messages of the anim and scene builders already start with the `where` they were given.
   const std::size_t n = std::strlen(function);
-  if (ctx.error.compare(0, n, function) == 0 && ctx.error.compare(n, 2, ": ") == 0) luaL_error(L, "%s", ctx.error.c_str());
+  if (ctx.error.compare(0, n, function) == 0 && ctx.error.compare(n, 2, ": ") == 0)
+    luaL_error(L, "%s", ctx.error.c_str());
   luaL_error(L, "%s: %s", function, ctx.error.c_str());
   std::abort();  // not reached: luaL_error does not return
 }
@@ -44,9 +45,12 @@ const char* readNumber(lua_State* L, int idx, double* out) {
 }
 
 const char* readVector(lua_State* L, int idx, int n, double* out) {
-  if (lua_type(L, idx) != LUA_TTABLE) return n == 3 ? "expected a table of 3 numbers {x, y, z}" : "expected a table of numbers";
+  if (lua_type(L, idx) != LUA_TTABLE)
+    return n == 3 ? "expected a table of 3 numbers {x, y, z}" : "expected a table of numbers";
   if (lua_rawlen(L, idx) != static_cast<lua_Unsigned>(n))
-    return n == 3 ? "expected a table of 3 numbers {x, y, z}" : n == 4 ? "expected a table of 4 numbers" : "expected a table of numbers of the field's size";
+    return n == 3   ? "expected a table of 3 numbers {x, y, z}"
+           : n == 4 ? "expected a table of 4 numbers"
+                    : "expected a table of numbers of the field's size";
   for (int i = 0; i < n; ++i) {
     lua_rawgeti(L, idx, i + 1);
     const char* why = readNumber(L, lua_gettop(L), &out[i]);
@@ -105,7 +109,8 @@ const char* readFieldValue(lua_State* L, int idx, scene::Field field, double out
       }
       return readNumber(L, idx, out) ? "expected true, false or a number" : nullptr;
     case scene::Field::kFov:
-      if (readNumber(L, idx, out) || !(out[0] > 0 && out[0] < 180)) return "expected a field of view in (0, 180) degrees";
+      if (readNumber(L, idx, out) || !(out[0] > 0 && out[0] < 180))
+        return "expected a field of view in (0, 180) degrees";
       return nullptr;
     case scene::Field::kSharpness:
     case scene::Field::kFrameOffset:
@@ -159,7 +164,9 @@ const char* readEase(lua_State* L, int idx, anim::Ease* out) {
 
 int checkNode(lua_State* L, int idx, const char* function, const char* what) {
   const NodeHandle* h = toUserdata<NodeHandle>(L, idx, contextOf(L).mt_node);
-  if (!h) luaL_error(L, "%s: %s: expected a node (vdg.node, vdg.group or vdg.camera), got %s", function, what, luaL_typename(L, idx));
+  if (!h)
+    luaL_error(L, "%s: %s: expected a node (vdg.node, vdg.group or vdg.camera), got %s", function, what,
+               luaL_typename(L, idx));
   return h->node;
 }
 
@@ -220,9 +227,7 @@ int field(lua_State* L, int idx, const char* key) {
 std::string confinedPath(const std::string& base, std::string_view rel, const char* what) {
   namespace fs = std::filesystem;
   const std::string shown(rel);
-  auto refuse = [&](const std::string& why) {
-    throw Error(std::string(what) + " '" + shown + "': " + why);
-  };
+  auto refuse = [&](const std::string& why) { throw Error(std::string(what) + " '" + shown + "': " + why); };
   if (rel.empty()) refuse("an empty path");
   if (rel.find('\0') != std::string_view::npos) refuse("a path with a NUL byte");
   if (rel.front() == '/') refuse("absolute paths are refused (give a path relative to the folder)");
@@ -230,7 +235,8 @@ std::string confinedPath(const std::string& base, std::string_view rel, const ch
   std::size_t start = 0;
   while (start <= rel.size()) {
     const std::size_t end = std::min(rel.find('/', start), rel.size());
-    if (rel.substr(start, end - start) == "..") refuse("'..' components are refused (the path must stay in its folder)");
+    if (rel.substr(start, end - start) == "..")
+      refuse("'..' components are refused (the path must stay in its folder)");
     start = end + 1;
   }
   const fs::path full = fs::path(base) / fs::path(shown);

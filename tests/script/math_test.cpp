@@ -29,9 +29,9 @@ constexpr double kTol = 1e-12;
 TEST(ScriptMath, EaseFunctionsAreTheLibrarys) {
   for (double t : {0.0, 0.1, 0.35, 0.5, 0.9, 1.0}) {
     const std::string ts = std::to_string(t);
-    const auto v = numbers("vdg.ease.sine(" + ts + "), vdg.ease.sinusoidal(" + ts + ", 0.2, 0.7), vdg.ease.parabolic(" + ts +
-                           ", 0.3, 0.6), vdg.ease.make('sinusoidal', 0.2, 0.7)(" + ts + "), vdg.ease.make('sine'):eval(" + ts +
-                           ")");
+    const auto v = numbers("vdg.ease.sine(" + ts + "), vdg.ease.sinusoidal(" + ts + ", 0.2, 0.7), vdg.ease.parabolic(" +
+                           ts + ", 0.3, 0.6), vdg.ease.make('sinusoidal', 0.2, 0.7)(" + ts +
+                           "), vdg.ease.make('sine'):eval(" + ts + ")");
     ASSERT_EQ(v.size(), 5u);
     const double tt = std::stod(ts);
     EXPECT_NEAR(v[0], anim::easeSine(tt), kTol);
@@ -45,7 +45,8 @@ TEST(ScriptMath, EaseFunctionsAreTheLibrarys) {
   EXPECT_EQ(bench.errorOfRun("vdg.ease.make('bounce')"),
             "test.lua:1: vdg.ease.make: unknown ease 'bounce' (expected linear, sine, sinusoidal or parabolic)");
   EXPECT_EQ(bench.errorOfRun("vdg.ease.make('parabolic')"),
-            "test.lua:1: vdg.ease.make: the parabolic ease takes two parameters (a, b: vdg.ease.make(\"parabolic\", 0.2, 0.8))");
+            "test.lua:1: vdg.ease.make: the parabolic ease takes two parameters (a, b: vdg.ease.make(\"parabolic\", "
+            "0.2, 0.8))");
   EXPECT_EQ(bench.errorOfRun("vdg.ease.sine(0/0)"), "test.lua:1: vdg.ease.sine: argument #1 must be a finite number");
 }
 
@@ -54,7 +55,8 @@ TEST(ScriptMath, CurvesAndArcLengthAreTheLibrarys) {
   raw.kind = anim::CurveKind::kCatmullRom;
   raw.points = {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 2, 0), Eigen::Vector3d(3, 2, 1), Eigen::Vector3d(4, 0, 0)};
   const auto arc = anim::ArcLengthCurve::build(anim::Curve::build(raw));
-  const std::string c = "vdg.curve{points = {{0, 0, 0}, {1, 2, 0}, {3, 2, 1}, {4, 0, 0}}, interpolation = 'catmull-rom'}";
+  const std::string c =
+      "vdg.curve{points = {{0, 0, 0}, {1, 2, 0}, {3, 2, 1}, {4, 0, 0}}, interpolation = 'catmull-rom'}";
   const auto v = numbers("(function() local c = " + c +
                          " local p = c:eval(1.5) local q = c:at_length(2) local a, b = c:range()"
                          " return p[1], p[2], p[3], c:length(), q[1], q[2], q[3], a, b end)()");
@@ -74,8 +76,10 @@ TEST(ScriptMath, CurvesAndArcLengthAreTheLibrarys) {
   ScriptBench bench;
   EXPECT_EQ(bench.errorOfRun("vdg.curve{points = {{0, 0}, {1, 0, 0}}}"),
             "test.lua:1: vdg.curve: points[2] has 3 coordinates, points[1] has 2");
-  EXPECT_EQ(bench.errorOfRun("vdg.curve{points = {{0, 0}, {1, 1}}, times = {0, 0}}").rfind("test.lua:1: vdg.curve: ", 0), 0u);
-  EXPECT_EQ(bench.errorOfRun("vdg.curve{point = {}}"), "test.lua:1: vdg.curve: unknown field 'point' (expected points, times, interpolation)");
+  EXPECT_EQ(
+      bench.errorOfRun("vdg.curve{points = {{0, 0}, {1, 1}}, times = {0, 0}}").rfind("test.lua:1: vdg.curve: ", 0), 0u);
+  EXPECT_EQ(bench.errorOfRun("vdg.curve{point = {}}"),
+            "test.lua:1: vdg.curve: unknown field 'point' (expected points, times, interpolation)");
 }
 
 TEST(ScriptMath, QuaternionsAreTheLibrarys) {

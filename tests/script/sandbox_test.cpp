@@ -39,7 +39,9 @@ TEST(ScriptSandbox, PcallCannotHoldBackTheBudget) {
                     "local function f() return f() end",
                     options),
             "hostile.lua: exceeded its instruction budget (100000 instructions; endless loop?)");
-  EXPECT_EQ(hostile(bench, "local ok = false\nrepeat ok = xpcall(function() while true do end end, function(e) return e end) until false",
+  EXPECT_EQ(hostile(bench,
+                    "local ok = false\nrepeat ok = xpcall(function() while true do end end, function(e) return e end) "
+                    "until false",
                     options),
             "hostile.lua: exceeded its instruction budget (100000 instructions; endless loop?)");
 }
@@ -57,8 +59,9 @@ TEST(ScriptSandbox, HugeAllocationsEndWithTheMemoryMessage) {
   EXPECT_EQ(hostile(bench, "local ok, e = pcall(string.rep, 'x', 1 << 30)\nassert(not ok)\nerror(e, 0)", options),
             "hostile.lua: out of memory (limit 16 MiB)");
   // The scene the script builds counts too.
-  EXPECT_EQ(hostile(bench, "local n = vdg.group{}\nfor i = 1, 1e7 do vdg.set(n, 'translation', {i, 0, 0}, i) end", options),
-            "hostile.lua: out of memory (limit 16 MiB)");
+  EXPECT_EQ(
+      hostile(bench, "local n = vdg.group{}\nfor i = 1, 1e7 do vdg.set(n, 'translation', {i, 0, 0}, i) end", options),
+      "hostile.lua: out of memory (limit 16 MiB)");
 }
 
 TEST(ScriptSandbox, NoOsExecuteAndNoProcesses) {
@@ -69,28 +72,34 @@ TEST(ScriptSandbox, NoOsExecuteAndNoProcesses) {
   EXPECT_EQ(hostile(bench, "os.remove('x')"), "hostile.lua:1: attempt to call a nil value (field 'remove')");
   EXPECT_EQ(hostile(bench, "os.exit(3)"), "hostile.lua:1: attempt to call a nil value (field 'exit')");
   EXPECT_FALSE(fs::exists(bench.dir.file("pwned")));
-  bench.run("assert(os.getenv == nil and os.tmpname == nil and os.rename == nil and io.tmpfile == nil)\n"
-            "assert(io.write == nil and io.read == nil and io.input == nil and io.output == nil)\n"
-            "assert(type(os.clock()) == 'number' and type(os.time()) == 'number' and type(os.date()) == 'string')");
+  bench.run(
+      "assert(os.getenv == nil and os.tmpname == nil and os.rename == nil and io.tmpfile == nil)\n"
+      "assert(io.write == nil and io.read == nil and io.input == nil and io.output == nil)\n"
+      "assert(type(os.clock()) == 'number' and type(os.time()) == 'number' and type(os.date()) == 'string')");
 }
 
 TEST(ScriptSandbox, ReadingOutsideTheScriptFolderIsRefused) {
   ScriptBench bench;
-  EXPECT_EQ(hostile(bench, "local f = io.open('/etc/passwd')"),
-            "hostile.lua:1: io.open: reading '/etc/passwd': absolute paths are refused (give a path relative to the folder)");
-  EXPECT_EQ(hostile(bench, "for l in io.lines('../../../../etc/passwd') do end"),
-            "hostile.lua:1: io.lines: reading '../../../../etc/passwd': '..' components are refused (the path must stay "
-            "in its folder)");
-  EXPECT_EQ(hostile(bench, "vdg.load('/etc/passwd')"),
-            "hostile.lua:1: vdg.load: model '/etc/passwd': absolute paths are refused (give a path relative to the folder)");
+  EXPECT_EQ(
+      hostile(bench, "local f = io.open('/etc/passwd')"),
+      "hostile.lua:1: io.open: reading '/etc/passwd': absolute paths are refused (give a path relative to the folder)");
+  EXPECT_EQ(
+      hostile(bench, "for l in io.lines('../../../../etc/passwd') do end"),
+      "hostile.lua:1: io.lines: reading '../../../../etc/passwd': '..' components are refused (the path must stay "
+      "in its folder)");
+  EXPECT_EQ(
+      hostile(bench, "vdg.load('/etc/passwd')"),
+      "hostile.lua:1: vdg.load: model '/etc/passwd': absolute paths are refused (give a path relative to the folder)");
   // Through a symbolic link in the script folder.
   fs::create_symlink("/etc", bench.scripts + "/etc");
-  EXPECT_EQ(hostile(bench, "local f = io.open('etc/passwd')"),
-            "hostile.lua:1: io.open: reading 'etc/passwd': the path leads outside its folder (through a symbolic link)");
+  EXPECT_EQ(
+      hostile(bench, "local f = io.open('etc/passwd')"),
+      "hostile.lua:1: io.open: reading 'etc/passwd': the path leads outside its folder (through a symbolic link)");
   // A file of the script's folder reads.
   testing::writeText(bench.scripts + "/data.txt", "42\n");
-  bench.run("local f = assert(io.open('data.txt'))\nassert(f:read('n') == 42)\nf:close()\n"
-            "for l in io.lines('data.txt') do assert(l == '42') end");
+  bench.run(
+      "local f = assert(io.open('data.txt'))\nassert(f:read('n') == 42)\nf:close()\n"
+      "for l in io.lines('data.txt') do assert(l == '42') end");
 }
 
 TEST(ScriptSandbox, WritingOutsideTheOutputFolderIsRefused) {
@@ -99,15 +108,18 @@ TEST(ScriptSandbox, WritingOutsideTheOutputFolderIsRefused) {
   EXPECT_EQ(hostile(bench, "io.open('" + bench.dir.file("outside/x.txt") + "', 'w')"),
             "hostile.lua:1: io.open: writing '" + bench.dir.file("outside/x.txt") +
                 "': absolute paths are refused (give a path relative to the folder)");
-  EXPECT_EQ(hostile(bench, "io.open('../outside/x.txt', 'w')"),
-            "hostile.lua:1: io.open: writing '../outside/x.txt': '..' components are refused (the path must stay in its "
-            "folder)");
+  EXPECT_EQ(
+      hostile(bench, "io.open('../outside/x.txt', 'w')"),
+      "hostile.lua:1: io.open: writing '../outside/x.txt': '..' components are refused (the path must stay in its "
+      "folder)");
   EXPECT_EQ(hostile(bench, "io.open('a/../../x.txt', 'a+')"),
-            "hostile.lua:1: io.open: writing 'a/../../x.txt': '..' components are refused (the path must stay in its folder)");
+            "hostile.lua:1: io.open: writing 'a/../../x.txt': '..' components are refused (the path must stay in its "
+            "folder)");
   // Symbolic links in the output folder that lead out of it: to a folder, and dangling.
   fs::create_symlink(bench.dir.file("outside"), bench.out + "/link");
-  EXPECT_EQ(hostile(bench, "io.open('link/x.txt', 'w')"),
-            "hostile.lua:1: io.open: writing 'link/x.txt': the path leads outside its folder (through a symbolic link)");
+  EXPECT_EQ(
+      hostile(bench, "io.open('link/x.txt', 'w')"),
+      "hostile.lua:1: io.open: writing 'link/x.txt': the path leads outside its folder (through a symbolic link)");
   fs::create_symlink(bench.dir.file("outside/new.txt"), bench.out + "/dangling");
   EXPECT_EQ(hostile(bench, "io.open('dangling', 'w')"),
             "hostile.lua:1: io.open: writing 'dangling': a symbolic link that points nowhere is refused");
@@ -119,8 +131,9 @@ TEST(ScriptSandbox, WritingOutsideTheOutputFolderIsRefused) {
   EXPECT_EQ(testing::readText(bench.out + "/ok.txt"), "fine");
   EXPECT_FALSE(fs::exists(bench.scripts + "/ok.txt"));
   // vdg.render's folder must stay inside too.
-  EXPECT_EQ(hostile(bench, "vdg.render{out = '../frames'}"),
-            "hostile.lua:1: vdg.render: out '../frames': '..' components are refused (the path must stay in its folder)");
+  EXPECT_EQ(
+      hostile(bench, "vdg.render{out = '../frames'}"),
+      "hostile.lua:1: vdg.render: out '../frames': '..' components are refused (the path must stay in its folder)");
   EXPECT_EQ(hostile(bench, "vdg.render{out = 'link'}"),
             "hostile.lua:1: vdg.render: out 'link': the path leads outside its folder (through a symbolic link)");
 }
@@ -148,7 +161,8 @@ TEST(ScriptSandbox, NoModulesNoDebugNoBinaryChunks) {
 
 TEST(ScriptSandbox, ErrorValuesThatAreNotStrings) {
   ScriptBench bench;
-  EXPECT_EQ(hostile(bench, "error({})"), "hostile.lua: the script raised an error value that is not a string (a table)");
+  EXPECT_EQ(hostile(bench, "error({})"),
+            "hostile.lua: the script raised an error value that is not a string (a table)");
   EXPECT_EQ(hostile(bench, "error(setmetatable({}, {__tostring = function() while true do end end}))"),
             "hostile.lua: the script raised an error value that is not a string (a table)");
   EXPECT_EQ(hostile(bench, "error()"), "hostile.lua: the script raised an error value that is not a string (a nil)");
@@ -178,7 +192,9 @@ TEST(ScriptSandbox, OptionsOutOfRange) {
   options.memory_limit = 1000;
   EXPECT_EQ(testing::errorOf([&] { script::runScriptText("", "s.lua", bench.scripts, options); }),
             "s.lua: memory limit must be at least 1 MiB, got 1000 bytes");
-  EXPECT_EQ(testing::errorOf([&] { script::runScript(bench.scripts + "/missing.lua"); }).rfind(bench.scripts + "/missing.lua: ", 0),
+  EXPECT_EQ(testing::errorOf([&] {
+              script::runScript(bench.scripts + "/missing.lua");
+            }).rfind(bench.scripts + "/missing.lua: ", 0),
             0u);
 }
 

@@ -164,9 +164,10 @@ TEST(Script, CamerasWithPathsAndACentreOfInterest) {
 TEST(Script, LoadInstancesOneObjectPerPath) {
   ScriptBench bench;
   testing::writeText(bench.scripts + "/models/tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
-  EXPECT_EQ(bench.errorOfRun("vdg.load('models/../models/tri.obj')"),
-            "test.lua:1: vdg.load: model 'models/../models/tri.obj': '..' components are refused (the path must stay in "
-            "its folder)");
+  EXPECT_EQ(
+      bench.errorOfRun("vdg.load('models/../models/tri.obj')"),
+      "test.lua:1: vdg.load: model 'models/../models/tri.obj': '..' components are refused (the path must stay in "
+      "its folder)");
   const auto shot2 = bench.run(
       "local m = vdg.load('models/tri.obj')\n"
       "assert(m.kind == 'mesh' and m.path == 'models/tri.obj' and tostring(m) == \"mesh 'models/tri.obj'\")\n"
@@ -224,24 +225,31 @@ TEST(Script, BadArgumentsNameTheFunctionAndLine) {
       {"local n = vdg.group{}\nvdg.set(n, 'colour', {1, 0, 0})",
        "test.lua:2: vdg.set: unknown field 'colour' (expected translation, rotation, scale, color, visible, sharpness, "
        "frame_offset or fov)"},
-      {"local n = vdg.group{name = 'g'}\nvdg.set(n, 'fov', 30)", "test.lua:2: vdg.set: node 'g' (a group) has no field 'fov'"},
+      {"local n = vdg.group{name = 'g'}\nvdg.set(n, 'fov', 30)",
+       "test.lua:2: vdg.set: node 'g' (a group) has no field 'fov'"},
       {"local n = vdg.group{}\nvdg.set(n, 'translation', {0, 0})",
        "test.lua:2: vdg.set: value: expected a table of 3 numbers {x, y, z}"},
       {"local n = vdg.group{}\nvdg.set(n, 'scale', 0)", "test.lua:2: vdg.set: value: a scale of 0 is not invertible"},
-      {"local n = vdg.group{}\nvdg.set(n, 'rotation', {0, 0, 0, 0})", "test.lua:2: vdg.set: value: a zero quaternion is no rotation"},
+      {"local n = vdg.group{}\nvdg.set(n, 'rotation', {0, 0, 0, 0})",
+       "test.lua:2: vdg.set: value: a zero quaternion is no rotation"},
       {"local n = vdg.group{}\nvdg.change(n, 'translation', {1, 0, 0}, 10, 5)",
        "test.lua:2: vdg.change: the to frame (5.0) comes before the from frame (10.0)"},
       {"local n = vdg.group{}\nvdg.change(n, 'translation', {1, 0, 0}, 0, 5, 'bouncy')",
        "test.lua:2: vdg.change: ease: expected an ease (vdg.ease.make(...), \"linear\" or \"sine\")"},
-      {"local n = vdg.group{name = 'n'}\nvdg.set(n, 'translation', {1, 0, 0})\nvdg.track(n, 'translation', {{0, {0, 0, 0}}})",
-       "test.lua:3: vdg.track: n.translation already has set/change actions (a field has a track or set/change actions, not "
+      {"local n = vdg.group{name = 'n'}\nvdg.set(n, 'translation', {1, 0, 0})\nvdg.track(n, 'translation', {{0, {0, 0, "
+       "0}}})",
+       "test.lua:3: vdg.track: n.translation already has set/change actions (a field has a track or set/change "
+       "actions, not "
        "both)"},
       {"local n = vdg.group{}\nvdg.track(n, 'translation', {{0, {0, 0, 0}}, {0, {1, 0, 0}}})",
-       "test.lua:2: vdg.track: track 'group1.translation': 'keys'[1]: 'time' 0 must be greater than the previous key's 0"},
+       "test.lua:2: vdg.track: track 'group1.translation': 'keys'[1]: 'time' 0 must be greater than the previous key's "
+       "0"},
       {"local n = vdg.group{}\nvdg.track(n, 'translation', {{0, {0, 0, 0}}}, 'cubic')",
-       "test.lua:2: vdg.track: unknown interpolation 'cubic' (expected step, linear, catmull-rom, centripetal-catmull-rom, "
+       "test.lua:2: vdg.track: unknown interpolation 'cubic' (expected step, linear, catmull-rom, "
+       "centripetal-catmull-rom, "
        "natural-cubic, parabolic-blending, bezier, slerp or quaternion-curve)"},
-      {"vdg.group{name = 'a'}\nvdg.group{name = 'a'}", "test.lua:2: vdg.group: name 'a': there is already a node of that name"},
+      {"vdg.group{name = 'a'}\nvdg.group{name = 'a'}",
+       "test.lua:2: vdg.group: name 'a': there is already a node of that name"},
       {"vdg.group{name = 'a.b'}",
        "test.lua:1: vdg.group: name 'a.b': must not contain '.' (it separates node and field in \"node.field\")"},
       {"vdg.node{colour = {1, 0, 0}}",
@@ -255,10 +263,12 @@ TEST(Script, BadArgumentsNameTheFunctionAndLine) {
       {"vdg.use_camera(vdg.group{name = 'g'})", "test.lua:1: vdg.use_camera: node 'g' is not a camera"},
       {"vdg.for_each({1}, print)", "test.lua:1: vdg.for_each: object set element 1: expected a node, got number"},
       {"vdg.render{frames = '9-2'}", "test.lua:1: vdg.render: frames: the last frame (2) comes before the first (9)"},
-      {"vdg.render{frames = 'all'}", "test.lua:1: vdg.render: frames: expected \"first-last\" (e.g. \"1-48\"), got \"all\""},
+      {"vdg.render{frames = 'all'}",
+       "test.lua:1: vdg.render: frames: expected \"first-last\" (e.g. \"1-48\"), got \"all\""},
       {"vdg.render{size = {0, 10}}", "test.lua:1: vdg.render: size[1] (width): expected a whole number in [1, 16384]"},
       {"vdg.render{fps = 24}",
-       "test.lua:1: vdg.render: unknown field 'fps' (expected frames, size, out, samples, background, silhouette, creases)"},
+       "test.lua:1: vdg.render: unknown field 'fps' (expected frames, size, out, samples, background, silhouette, "
+       "creases)"},
       {"vdg.load('missing.obj')", ""},
   };
   for (const auto& [text, expected] : cases) {

@@ -58,10 +58,10 @@ struct Shot {
 };
 
 struct ScriptOptions {
-  std::string output_dir = ".";  // where render{} outputs go and where io.open may write
+  std::string output_dir = ".";                   // where render{} outputs go and where io.open may write
   std::int64_t instruction_budget = 200'000'000;  // Lua VM instructions (lua_sethook count), >= 1
-  std::size_t memory_limit = 512u << 20;  // bytes (Lua allocations + the scene built), >= kMinMemoryLimit
-  std::function<void(std::string_view)> print;  // receives each print() line (no newline); null: stdout
+  std::size_t memory_limit = 512u << 20;          // bytes (Lua allocations + the scene built), >= kMinMemoryLimit
+  std::function<void(std::string_view)> print;    // receives each print() line (no newline); null: stdout
 };
 
 inline constexpr std::size_t kMinMemoryLimit = std::size_t{1} << 20;
