@@ -282,3 +282,32 @@ TEST(Script, BadArgumentsNameTheFunctionAndLine) {
 
 }  // namespace
 }  // namespace vdg
+
+namespace vdg {
+namespace {
+
+// A script file: runScript reads it and names it in messages; the numbers of Parent 4.7.
+TEST(Script, SunEarthMoonFromAFile) {
+  testing::ScriptBench bench;
+  const std::string path = std::string(VDG_SOURCE_DIR) + "/tests/script/data/sun_earth_moon.lua";
+  const script::Shot shot = script::runScript(path, bench.options());
+  EXPECT_EQ(shot.script_path, path);
+  ASSERT_EQ(bench.printed, std::vector<std::string>{"earth orbit 10.0, moon orbit 2.0"});
+  ASSERT_EQ(shot.renders.size(), 1u);
+  EXPECT_EQ(shot.renders[0].last_frame, 364);
+  const auto s = scene::Scene::build(shot.scene, "test");
+  std::vector<scene::NodeState> states(static_cast<std::size_t>(s.nodeCount()));
+  // Day 7: the moon a quarter round the earth (90 degrees), the earth 7/365 of its orbit.
+  ASSERT_TRUE(s.evaluate(7, states));
+  const double a = 2 * M_PI * 7 / 365;
+  const Eigen::Vector3d earth = states[static_cast<std::size_t>(s.findNode("earth"))].world.block<3, 1>(0, 3);
+  EXPECT_NEAR(earth.x(), 10 * std::cos(a), 1e-9);
+  EXPECT_NEAR(earth.z(), -10 * std::sin(a), 1e-9);
+  const Eigen::Vector3d moon = states[static_cast<std::size_t>(s.findNode("moon"))].world.block<3, 1>(0, 3);
+  const double m = a + M_PI / 2;
+  EXPECT_NEAR((moon - earth).x(), 2 * std::cos(m), 1e-9);
+  EXPECT_NEAR((moon - earth).z(), -2 * std::sin(m), 1e-9);
+}
+
+}  // namespace
+}  // namespace vdg
