@@ -3,9 +3,11 @@
 
 #include <cmath>
 #include <initializer_list>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "support/test_meshes.h"
 #include "vdg/scene/scene.h"
 
 namespace vdg::scene::fixtures {
@@ -73,6 +75,44 @@ inline std::vector<NodeState> evaluated(const Scene& scene, double frame) {
   std::vector<NodeState> states(static_cast<std::size_t>(scene.nodeCount()));
   if (!scene.evaluate(frame, states)) states.clear();
   return states;
+}
+
+// A view-dependent sphere (centre at the origin) with six keys looking along +-X, +-Y, +-Z, each
+// pushing one vertex out.
+inline std::shared_ptr<const ViewDependentModel> sixKeyModel() {
+  RawViewDependentModel raw;
+  raw.base = testing::uvSphere(6, 8);
+  const Eigen::Vector3d views[] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  for (int k = 0; k < 6; ++k) {
+    RawKey key;
+    key.name = "k" + std::to_string(k);
+    key.mesh = raw.base;
+    key.mesh.positions[3 * static_cast<std::size_t>(k + 1)] *= 1.3f;
+    key.view = views[k];
+    raw.keys.push_back(key);
+  }
+  return std::make_shared<const ViewDependentModel>(ViewDependentModel::build(raw));
+}
+
+// An animated sphere of `frames` frames (it bobs along +Y) with one key seen from +Z at frame 0.
+inline std::shared_ptr<const AnimatedViewDependentModel> bobbingModel(int frames) {
+  RawViewDependentModel raw;
+  raw.base = testing::uvSphere(4, 6);
+  raw.base_animation = BaseAnimationSpec{};
+  raw.base_animation->obj_sequence = "frame_%02d.obj";
+  raw.base_animation->last = frames - 1;
+  for (int f = 0; f < frames; ++f) {
+    std::vector<float> p = raw.base.positions;
+    for (std::size_t v = 0; v < raw.base.vertexCount(); ++v) p[3 * v + 1] += 0.1f * static_cast<float>(f);
+    raw.base_frames.push_back(p);
+  }
+  RawKey key;
+  key.name = "front";
+  key.mesh = raw.base;
+  key.mesh.positions[0] += 0.2f;
+  key.view = {0, 0, 1};
+  raw.keys.push_back(key);
+  return std::make_shared<const AnimatedViewDependentModel>(AnimatedViewDependentModel::build(raw));
 }
 
 }  // namespace vdg::scene::fixtures
