@@ -32,6 +32,9 @@ function(_vdg_package_of dep out_find out_pc)
   elseif(dep MATCHES "^Boost::")
     set(find "find_dependency(Boost)")
     set(pc "")  # Boost ships no pkg-config files; its headers are in the default include path
+  elseif(dep STREQUAL "PkgConfig::LUA")  # script: Lua 5.4, whose pkg-config module is lua5.4
+    set(pc lua5.4)
+    set(find "find_dependency(PkgConfig)" "_vdg_find_pkg(LUA lua5.4)")
   elseif(dep MATCHES "^PkgConfig::(EPOXY|STB)$")
     string(TOLOWER "${CMAKE_MATCH_1}" pc)
     set(find "find_dependency(PkgConfig)" "_vdg_find_pkg(${CMAKE_MATCH_1} ${pc})")

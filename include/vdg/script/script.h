@@ -1,0 +1,86 @@
+// The animation language: Lua 5.4 scripts that build a scene (Parent, Computer Animation, sections
+// 4.6 and 4.8: an animation language with the host language's variables, expressions, functions
+// and loops, and the text's SET / CHANGE / FOR EACH semantics on top). The language itself, every
+// function with an example, the sandbox and its limits are documented in docs/language.md.
+//
+//   script text --runScript--> Shot { scene::RawScene, render requests }
+//
+// The script runs in a sandbox (docs/language.md, "Sandbox"):
+//  - libraries: the base library without dofile, loadfile, require; `load` of text chunks only;
+//    collectgarbage("count") only; setmetatable refuses __gc metamethods; string (without
+//    string.dump), table, math, utf8; os.clock, os.time and os.date only; no package, debug,
+//    coroutine or native modules;
+//  - files: io.open / io.lines READ under the script's folder (paths relative to it) and io.open
+//    WRITES under ScriptOptions::output_dir (paths relative to it); absolute paths, ".."
+//    components, backslashes and symbolic links that lead outside are refused; vdg.load reads
+//    models under the script's folder only;
+//  - an instruction budget (a count hook; pcall cannot catch its error for long: once spent,
+//    every further instruction raises it again) and a memory limit (a counting allocator; the
+//    scene the script builds is charged to the same limit).
+// Lua pattern matching (string.find / match / gmatch / gsub) runs inside one C call and is not
+// interrupted by the instruction budget.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "vdg/scene/scene.h"
+
+namespace vdg::script {
+
+// One vdg.render{...} call of the script (what to render; the script module renders nothing).
+struct RenderRequest {
+  int first_frame = 1, last_frame = 1;  // inclusive, 0 <= first <= last
+  int width = 640, height = 360;        // pixels, 1..kMaxImageSide
+  // Folder relative to the output dir (a checked relative path: no "..", not absolute); frames are
+  // written as out/frame_NNNN.png (4 digits, more if needed) by the renderer.
+  std::string out = ".";
+  int samples = 8;  // 1..kMaxSamples
+  std::array<float, 3> background{0.97f, 0.97f, 0.95f};
+  float silhouette_width = 0;  // pixels; 0: automatic
+  float crease_angle_deg = 0;  // [0, 180]; 0: the renderer's default
+  int line = 0;                // script line of the render{} call (messages)
+};
+
+inline constexpr int kMaxImageSide = 16384;
+inline constexpr int kMaxSamples = 64;
+inline constexpr int kMaxRenderFrames = 1000000;  // last - first + 1
+
+struct Shot {
+  scene::RawScene scene;  // validated (RawScene::validate) when it has nodes; empty otherwise
+  std::vector<RenderRequest> renders;
+  std::string script_path;  // as given (the name messages use)
+};
+
+struct ScriptOptions {
+  std::string output_dir = ".";                   // where render{} outputs go and where io.open may write
+  std::int64_t instruction_budget = 200'000'000;  // Lua VM instructions (lua_sethook count), >= 1
+  std::size_t memory_limit = 512u << 20;          // bytes (Lua allocations + the scene built), >= kMinMemoryLimit
+  std::function<void(std::string_view)> print;    // receives each print() line (no newline); null: stdout
+};
+
+inline constexpr std::size_t kMinMemoryLimit = std::size_t{1} << 20;
+
+// Runs the script at `path` (read with io's bounded reader, kMaxJsonFileBytes) and returns what it
+// built. Its folder is the script folder (vdg.load, io.open reads). Throws vdg::Error:
+//   "SCRIPT:LINE: message"   syntax and run-time errors, bad arguments to vdg functions (naming
+//                            the function: "SCRIPT:12: vdg.set: ..."), sandbox refusals;
+//   "SCRIPT: exceeded its instruction budget (N instructions; endless loop?)";
+//   "SCRIPT: out of memory (limit N MiB)";
+//   "SCRIPT: the script raised an error value that is not a string (a table)";
+//   "SCRIPT: node 'x': ..." (and the rest of RawScene::validate) for a scene that does not validate;
+//   "SCRIPT: ..." for a file that cannot be read, and for options out of range.
+// SCRIPT is `path` as given.
+Shot runScript(const std::string& path, const ScriptOptions& options = {});
+
+// The same for script text: `chunk_name` names it in messages (SCRIPT above), `script_dir` is its
+// folder (must exist).
+Shot runScriptText(std::string_view text, const std::string& chunk_name, const std::string& script_dir,
+                   const ScriptOptions& options = {});
+
+}  // namespace vdg::script
