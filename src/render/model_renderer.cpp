@@ -97,16 +97,8 @@ struct ModelRenderer::Impl {
     // animated base), not the base alone, so a key that raises the top stays inside the clip
     // planes and the observer panel.
     if (viewDependent()) {
-      // The farthest corner of the extent's box from the centre: half the box's diagonal when the
-      // centre is the box's (the plain mesh's rule, and the base's for keys that stay inside it).
       center = model ? model->center() : animated->center();
-      const Bounds& e = model ? model->extent() : animated->extent();
-      radius = 1e-6;
-      for (int corner = 0; corner < 8; ++corner) {
-        Eigen::Vector3d p;
-        for (int c = 0; c < 3; ++c) p[c] = (corner >> c & 1) ? e.max[c] : e.min[c];
-        radius = std::max(radius, (p - center).norm());
-      }
+      radius = model ? model->extentRadius() : animated->extentRadius();
     } else {
       const Bounds b = computeBounds(mesh.positions);
       const auto c = b.center();
