@@ -48,18 +48,15 @@ void run(const BakeOptions& opt) {
   std::vector<Camera> cameras;
   if (!raw.animated()) {
     const ViewDependentModel model = ViewDependentModel::build(raw);
-    const double distance =
-        opt.camera.cameraDistance(OrbitOptions::radiusAbout(model.base().positions, model.center()), aspect);
+    // As vdg render: the distance fits the base and every key (ViewDependentModel::extentRadius()).
+    const double distance = opt.camera.cameraDistance(model.extentRadius(), aspect);
     for (int f = range.first; f <= range.last; ++f) cameras.push_back(opt.camera.camera(f, model.center(), distance));
     input.bake = bakeCameraPath(model, cameras, opt.fps, aspect, opt.sharpness, whole_orbit);
   } else {
-    // As vdg render: the camera distance holds every frame of the base; output frame f shows
-    // animation frame f mod N (loop) or min(f, N - 1).
+    // As vdg render: the camera distance holds every frame of the base and every view's pose on it;
+    // output frame f shows animation frame f mod N (loop) or min(f, N - 1).
     const AnimatedViewDependentModel model = AnimatedViewDependentModel::build(raw);
-    double radius = 0.0;
-    for (int f = 0; f < model.frameCount(); ++f)
-      radius = std::max(radius, OrbitOptions::radiusAbout(model.baseFrame(f), model.center()));
-    const double distance = opt.camera.cameraDistance(radius, aspect);
+    const double distance = opt.camera.cameraDistance(model.extentRadius(), aspect);
     for (int f = range.first; f <= range.last; ++f) cameras.push_back(opt.camera.camera(f, model.center(), distance));
     input.bake =
         bakeAnimatedCameraPath(model, input, cameras, range.first, opt.fps, aspect, opt.sharpness, whole_orbit);

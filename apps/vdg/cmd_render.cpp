@@ -1,9 +1,14 @@
-// vdg render MODEL -o DIR|OUT.mp4|OUT.gif [--orbit N] [--frames A-B] [--observer] [--sphere] ...
+// vdg render MODEL -o DIR|OUT.mp4|OUT.gif [--orbit N | --camera FILE [--count N]] [--frames A-B] [--observer] ...
 //
 // Renders a view-dependent model (a manifest or a glTF file vdg exported) or a plain mesh headless with the NPR
-// renderer, one PNG per frame (DIR/frame_0000.png ...), the camera going once around the model in N frames. A frame's
-// image depends only on its number and the options, so --frames ranges can be split across
-// machines and give byte-identical frames.
+// renderer, one PNG per frame (DIR/frame_0000.png ...), the camera going once around the model in N frames, or
+// given by a file: a camera file (io/camera_json.h) holds one fixed camera, a camera path (an animation spec
+// {"camera_path": ...}, io/anim_json.h) moves the camera over [start_time, end_time], frame i of --count N at
+// time start + (end - start) * i / (N - 1). A frame's image depends only on its number and the options, so
+// --frames ranges can be split across machines and give byte-identical frames.
+//
+// Framing fits what will be drawn: the base and every key (of an animated model at every frame), so a
+// key that raises the model's top stays in the frame (ViewDependentModel::extentRadius()).
 //
 // An animated model (manifest "base_animation", M frames) advances one animation frame per output
 // frame: output frame f shows animation frame f mod M when the animation loops, min(f, M - 1)
@@ -24,14 +29,19 @@
 #include <cstring>
 #include <filesystem>
 #include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "cli.h"
 #include "orbit_options.h"
+#include "vdg/anim/camera_path.h"
 #include "vdg/geom/error.h"
+#include "vdg/io/anim_json.h"
 #include "vdg/io/atomic_file.h"
+#include "vdg/io/camera_json.h"
 #include "vdg/io/gltf_export.h"
 #include "vdg/io/manifest.h"
 #include "vdg/io/obj.h"
@@ -46,7 +56,11 @@ namespace fs = std::filesystem;
 
 struct RenderOptions {
   std::string model, output, size = "512x512", color, background;
-  OrbitOptions camera;  // --orbit, --azimuth, --elevation, --distance, --fov, --frames
+  OrbitOptions camera;                           // --orbit, --azimuth, --elevation, --distance, --fov, --frames
+  std::string camera_file;                       // --camera: a camera file or a camera path
+  int count = 1;                                 // --count: frames along --camera
+  std::vector<std::string> orbit_options_given;  // orbit options given with --camera (bad usage)
+  bool count_given = false, camera_given = false;
   int samples = 8;
   double sharpness = 0.0, line_width = 0.0, creases = 0.0;
   bool observer = false, sphere = false, flat = false, quiet = false, base_only = false;
@@ -81,6 +95,73 @@ render::Rgb parseColor(const std::string& text, const std::string& option) {
     throw UsageError(option + ": expected R,G,B with each channel in [0, 1], got " + shown(text));
   return {static_cast<float>(v.x()), static_cast<float>(v.y()), static_cast<float>(v.z())};
 }
+
+// The camera of every output frame: the orbit (OrbitOptions), or --camera FILE.
+class FrameCameras {
+ public:
+  // --camera FILE: a camera path when the file's top level holds "camera_path" (or another animation
+  // spec's key, refused by name), else a camera file. Throws vdg::Error naming the file and key.
+  void load(const std::string& path, int count) {
+    count_ = count;
+    const std::string text = readFileLimited(path, "camera", kMaxJsonFileBytes);
+    const std::string kind = animSpecKind(text);
+    if (kind.empty()) {
+      fixed_ = readCameraFile(path);
+      return;
+    }
+    if (kind != "camera_path")
+      throw Error(path + ": an animation spec of kind '" + kind +
+                  "', not a camera; --camera takes a camera file {\"eye\", \"target\", ...} or a camera path "
+                  "{\"camera_path\": ...} (docs/render.md)");
+    const anim::AnimSpec spec = anim::parseAnimSpec(text, path);
+    path_.emplace(anim::CameraPath::build(spec.camera_path, path + ": 'camera_path'"));
+  }
+
+  bool fromFile() const { return fixed_.has_value() || path_.has_value(); }
+  // Frame f of --count N: the fixed camera, or the path at start + (end - start) * f / (N - 1) (its
+  // start for N = 1), the rule of vdg sample --samples N.
+  Camera at(int f) const {
+    if (fixed_) return *fixed_;
+    const double lo = path_->startTime(), hi = path_->endTime();
+    const double t = count_ == 1 ? lo : lo + (hi - lo) * f / (count_ - 1);
+    Camera c;
+    if (!path_->evaluate(t, c)) throw Error("render: camera path time " + std::to_string(t) + " (internal error)");
+    return c;
+  }
+
+ private:
+  // The animation-spec key at the top of `text` ("ease", "curve", "track", "camera_path"), or ""
+  // when it has none (or is not JSON: the camera reader then says what is wrong, in vdg's words).
+  // An event parser that keeps nothing, so a deeply nested file costs no recursion.
+  static std::string animSpecKind(const std::string& text) {
+    struct TopKeys : nlohmann::json_sax<nlohmann::json> {
+      int depth = 0;
+      std::string kind;
+      bool null() override { return true; }
+      bool boolean(bool) override { return true; }
+      bool number_integer(number_integer_t) override { return true; }
+      bool number_unsigned(number_unsigned_t) override { return true; }
+      bool number_float(number_float_t, const string_t&) override { return true; }
+      bool string(string_t&) override { return true; }
+      bool binary(binary_t&) override { return true; }
+      bool start_object(std::size_t) override { return ++depth, true; }
+      bool end_object() override { return --depth, true; }
+      bool start_array(std::size_t) override { return ++depth, true; }
+      bool end_array() override { return --depth, true; }
+      bool key(string_t& k) override {
+        if (depth == 1 && kind.empty() && (k == "ease" || k == "curve" || k == "track" || k == "camera_path")) kind = k;
+        return true;
+      }
+      bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) override { return false; }
+    } keys;
+    if (!nlohmann::json::sax_parse(text, &keys)) return "";
+    return keys.kind;
+  }
+
+  int count_ = 1;
+  std::optional<Camera> fixed_;
+  std::optional<anim::CameraPath> path_;
+};
 
 bool findOnPath(const std::string& program) {
   const char* path = std::getenv("PATH");
@@ -120,7 +201,24 @@ void run(const RenderOptions& opt) {
   if (!opt.color.empty()) fo.color = parseColor(opt.color, "--color");
   if (!opt.background.empty()) fo.background = parseColor(opt.background, "--background");
 
-  const FrameRange range = opt.camera.range();
+  // --camera replaces the orbit: its options and --count do not mix with the other's.
+  if (opt.camera_given && opt.camera_file.empty()) throw UsageError("--camera: expected a file name, got ''");
+  if (!opt.camera_file.empty() && !opt.orbit_options_given.empty())
+    throw UsageError("--camera and " + opt.orbit_options_given.front() +
+                     " exclude each other (the camera file sets the camera)");
+  if (opt.camera_file.empty() && opt.count_given)
+    throw UsageError("--count: needs --camera FILE (an orbit's frames are --orbit N)");
+  FrameRange range{0, opt.count - 1};
+  if (opt.camera_file.empty()) {
+    range = opt.camera.range();
+  } else {
+    if (!opt.camera.frames.empty()) {
+      range = parseFrameRange(opt.camera.frames, "--frames");
+      if (range.last >= opt.count)
+        throw UsageError("--frames: expected frames within 0-" + std::to_string(opt.count - 1) + " (--count " +
+                         std::to_string(opt.count) + "), got " + shown(opt.camera.frames));
+    }
+  }
   checkCanvas(opt.size, fo);
 
   const bool video = hasExtension(opt.output, ".mp4") || hasExtension(opt.output, ".gif");
@@ -128,6 +226,12 @@ void run(const RenderOptions& opt) {
     throw Error("-o " + opt.output +
                 ": writing a video needs the 'ffmpeg' program, which is not on PATH; "
                 "install it, or write PNG frames with -o DIR");
+
+  FrameCameras cameras;
+  if (!opt.camera_file.empty()) {
+    checkInputFile(opt.camera_file, "camera");
+    cameras.load(opt.camera_file, opt.count);
+  }
 
   // The model: a manifest, or a plain mesh.
   std::unique_ptr<ViewDependentModel> model;
@@ -169,11 +273,11 @@ void run(const RenderOptions& opt) {
   const Eigen::Vector3d center = model      ? model->center()
                                  : animated ? animated->center()
                                             : Eigen::Vector3d(bc[0], bc[1], bc[2]);
-  // Bounding sphere about the centre, of every frame of an animated base.
-  double radius = OrbitOptions::radiusAbout(base.positions, center);
-  if (animated)
-    for (int f = 0; f < animated->frameCount(); ++f)
-      radius = std::max(radius, OrbitOptions::radiusAbout(animated->baseFrame(f), center));
+  // The sphere about the centre holding what will be drawn: the base and every key (of an
+  // animated model, at every frame), so a key that raises the top stays in the frame.
+  const double radius = model      ? model->extentRadius()
+                        : animated ? animated->extentRadius()
+                                   : OrbitOptions::radiusAbout(base.positions, center);
   const double aspect = static_cast<double>(fo.width) / fo.height;
   const double distance = opt.camera.cameraDistance(radius, aspect);
   fo.observer_camera = render::orbitCamera(center, render::fitDistance(radius, opt.camera.fov, aspect),
@@ -196,7 +300,7 @@ void run(const RenderOptions& opt) {
       const int count = animated->frameCount();
       renderer->setFrame(opt.hold_frame >= 0 ? opt.hold_frame : animated->loop() ? f % count : std::min(f, count - 1));
     }
-    renderer->render(opt.camera.camera(f, center, distance), image);
+    renderer->render(cameras.fromFile() ? cameras.at(f) : opt.camera.camera(f, center, distance), image);
     std::snprintf(name, sizeof name, "frame_%04d.png", f);
     render::writePng((out_dir / name).string(), image);
     progress.step(f - range.first + 1);
@@ -254,11 +358,19 @@ void addRenderCommand(CLI::App& app) {
   sub->add_option("-o,--output", opt->output, "Output folder for frame_NNNN.png, or OUT.mp4 / OUT.gif (needs ffmpeg)")
       ->required();
   opt->camera.add(*sub);
+  sub->add_option("--camera", opt->camera_file,
+                  "Camera file (one fixed camera; vdg align writes them) or camera path ({\"camera_path\": ...}, "
+                  "docs/anim.md) instead of the orbit");
+  sub->add_option("--count", opt->count,
+                  "Frames along --camera: a camera path sampled evenly from its start to its end time, or a fixed "
+                  "camera repeated (default 1)")
+      ->check(wholeNumber(1, OrbitOptions::kMaxOrbitFrames));
   sub->add_option("--size", opt->size,
                   "Image size WxH of the main view, each side in [1, " + std::to_string(render::kMaxImageSize) +
                       "] and within the OpenGL driver's limits (default 512x512)")
       ->check(imageSize('x', render::kMaxImageSize));
-  sub->add_option("--frames", opt->camera.frames, "Render only frames A-B (or N) of the orbit, 0 <= A <= B < --orbit");
+  sub->add_option("--frames", opt->camera.frames,
+                  "Render only frames A-B (or N) of the orbit (or of --count), 0 <= A <= B < --orbit");
   sub->add_flag("--observer", opt->observer, "Add the model seen from a fixed observer camera, to the right");
   sub->add_flag("--sphere", opt->sphere, "Add an inset of the viewing sphere (keys, hull, active triangle, view)");
   sub->add_option("--sharpness", opt->sharpness, "Blend sharpness alpha (default: the model's own)")
@@ -289,7 +401,14 @@ void addRenderCommand(CLI::App& app) {
   sub->add_option("--samples", opt->samples, "Multisample anti-aliasing samples (default 8, capped by the driver)")
       ->check(wholeNumber(1, kMaxSamples));
   sub->add_flag("-q,--quiet", opt->quiet, "No progress bar and no summary line");
-  sub->callback([opt] { run(*opt); });
+  sub->callback([opt, sub] {
+    opt->orbit_options_given.clear();
+    for (const char* name : {"--orbit", "--azimuth", "--elevation", "--distance", "--fov"})
+      if (sub->count(name) > 0) opt->orbit_options_given.push_back(name);
+    opt->count_given = sub->count("--count") > 0;
+    opt->camera_given = sub->count("--camera") > 0;
+    run(*opt);
+  });
 }
 
 }  // namespace vdg::cli

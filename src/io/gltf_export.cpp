@@ -758,13 +758,6 @@ GltfBakedAnimation bakeCameras(std::span<const Camera> cameras, double fps, doub
   return bake;
 }
 
-double radiusAbout(std::span<const float> positions, const Eigen::Vector3d& center) {
-  double radius = 0.0;
-  for (std::size_t v = 0; v + 2 < positions.size(); v += 3)
-    radius = std::max(radius, (Eigen::Vector3d(positions[v], positions[v + 1], positions[v + 2]) - center).norm());
-  return radius;
-}
-
 [[noreturn]] void noView(std::size_t camera) {
   throw Error("bake: camera " + std::to_string(camera) +
               ": no view direction (the eye is at the model centre, or the sharpness is not > 0)");
@@ -775,8 +768,8 @@ double radiusAbout(std::span<const float> positions, const Eigen::Vector3d& cent
 GltfBakedAnimation bakeCameraPath(const ViewDependentModel& model, std::span<const Camera> cameras, double fps,
                                   double aspect, double sharpness, bool close_loop) {
   const std::size_t keys = model.keyCount();
-  return bakeCameras(cameras, fps, aspect, close_loop, model.center(),
-                     radiusAbout(model.base().positions, model.center()), keys,
+  // The clip planes hold what the model draws: the base and every key (extentRadius()).
+  return bakeCameras(cameras, fps, aspect, close_loop, model.center(), model.extentRadius(), keys,
                      [&](std::size_t s, const Camera& camera, float* weights) {
                        const Eigen::Vector3d view = model.viewFromEye(camera.eye);
                        ViewWeights w;
@@ -801,8 +794,7 @@ GltfBakedAnimation bakeAnimatedCameraPath(const AnimatedViewDependentModel& mode
     const long f = static_cast<long>(first_frame) + static_cast<long>(s);
     return model.loop() ? static_cast<int>(f % n) : static_cast<int>(std::min<long>(f, n - 1));
   };
-  double radius = 0.0;
-  for (int f = 0; f < n; ++f) radius = std::max(radius, radiusAbout(model.baseFrame(f), model.center()));
+  const double radius = model.extentRadius();  // every frame of the base and every view's pose on it
   const std::size_t target_count = totalTargets(input);
   std::vector<double> coefficients;
   GltfBakedAnimation bake =

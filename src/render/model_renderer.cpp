@@ -93,13 +93,18 @@ struct ModelRenderer::Impl {
     const TriMesh& mesh = base();
     positions = mesh.positions;
     mesh_id = renderer.addSurface(mesh, SurfaceTopology::build(mesh));
-    const Bounds b = computeBounds(mesh.positions);
-    const auto c = b.center();
-    center = model ? model->center() : animated ? animated->center() : Eigen::Vector3d(c[0], c[1], c[2]);
-    radius = std::max(1e-6, 0.5 * static_cast<double>(b.diagonal()));
-    if (animated)  // every frame of the base must fit the clip planes
-      for (int f = 0; f < animated->frameCount(); ++f)
-        radius = std::max(radius, 0.5 * static_cast<double>(computeBounds(animated->baseFrame(f)).diagonal()));
+    // Frame what will be drawn: a model's extent (the base and every key, at every frame of an
+    // animated base), not the base alone, so a key that raises the top stays inside the clip
+    // planes and the observer panel.
+    if (viewDependent()) {
+      center = model ? model->center() : animated->center();
+      radius = model ? model->extentRadius() : animated->extentRadius();
+    } else {
+      const Bounds b = computeBounds(mesh.positions);
+      const auto c = b.center();
+      center = Eigen::Vector3d(c[0], c[1], c[2]);
+      radius = std::max(1e-6, 0.5 * static_cast<double>(b.diagonal()));
+    }
     if (options.silhouette_width <= 0.0f)
       options.silhouette_width = std::max(3.0f, static_cast<float>(options.height) / 100.0f);
     const double aspect = static_cast<double>(options.width) / options.height;
@@ -300,7 +305,8 @@ ViewWeights ModelRenderer::render(const Camera& camera, Image& out) {
   style.borders = o.borders;
   style.crease_angle_deg = o.crease_angle_deg;
   style.materials = o.materials;
-  // Clip planes around the model's bounding sphere (twice its radius: keys may move vertices out).
+  // Clip planes around the sphere that holds everything the model draws (twice its radius: room
+  // for the observer panel's camera mark at 1.5 radii).
   auto clip = [&](View& v) {
     const double d = (v.camera.eye - m.center).norm();
     v.z_near = std::max(0.01 * m.radius, d - 2.0 * m.radius);

@@ -13,6 +13,10 @@
 #include <string>
 #include <vector>
 
+#include "support/test_meshes.h"
+#include "vdg/io/image_file.h"
+#include "vdg/io/obj.h"
+
 #ifdef VDG_CLI
 
 namespace {
@@ -221,6 +225,135 @@ TEST(CliRender, VideoWithoutFfmpeg) {
   // An empty PATH hides ffmpeg whether or not it is installed.
   const Result r = vdg("render " + kSpot + " -o " + testing::TempDir() + "/x.mp4", "PATH=/nonexistent");
   expectOneLineError(r, 1, "ffmpeg");
+}
+
+// ---- Framing: what will be drawn, not the base alone -------------------------------------------
+
+// Rows and columns of a frame holding something other than the (white) background.
+struct Covered {
+  int top = -1, bottom = -1, left = -1, right = -1;
+};
+Covered coveredRows(const fs::path& png) {
+  const vdg::TextureImage img = vdg::readImageFile(png.string());
+  constexpr int kBackgroundLevel = 250;  // --background 1,1,1 gives 255; the model is shaded below this
+  Covered c;
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) {
+      const std::uint8_t* p = &img.rgba[4 * (static_cast<std::size_t>(y) * img.width + x)];
+      if (p[0] >= kBackgroundLevel && p[1] >= kBackgroundLevel && p[2] >= kBackgroundLevel) continue;
+      if (c.top < 0) c.top = y;
+      c.bottom = y;
+      c.left = c.left < 0 ? x : std::min(c.left, x);
+      c.right = std::max(c.right, x);
+    }
+  return c;
+}
+
+// A unit sphere whose front key (seen from +Z) raises its top half by 80%: fitted to the base, the
+// camera cut the key's top off at every size; fitted to the extent, the whole key is in the frame.
+fs::path tallKeyModel(const fs::path& dir) {
+  fs::create_directories(dir);
+  const vdg::TriMesh base = vdg::testing::uvSphere(12, 16);
+  vdg::TriMesh key = base;
+  for (std::size_t v = 0; v < key.vertexCount(); ++v)
+    if (key.positions[3 * v + 1] > 0.0f) key.positions[3 * v + 1] *= 1.8f;
+  vdg::writeObj((dir / "ball.obj").string(), base);
+  vdg::writeObj((dir / "tall.obj").string(), key);
+  std::ofstream(dir / "tall.vdg.json") << R"({"version": 1, "base": "ball.obj",
+    "keys": [{"name": "tall", "mesh": "tall.obj", "view": [0, 0, 1]}]})";
+  return dir / "tall.vdg.json";
+}
+
+TEST(CliRenderFraming, AKeyThatRaisesTheTopStaysInTheFrameAtEverySize) {
+  const fs::path model = tallKeyModel(freshDir("vdg_render_tall"));
+  for (const std::string size : {"64x64", "128x64", "64x128", "160x120"}) {
+    SCOPED_TRACE(size);
+    const fs::path out = freshDir("vdg_render_tall_" + size);
+    // --orbit 4: frame 0 is the front (the key fully on), frame 2 the back (the base).
+    const Result r = vdg("render " + model.string() + " -o " + out.string() + " --orbit 4 --size " + size +
+                         " --background 1,1,1 --quiet");
+    ASSERT_EQ(r.status, 0) << r.output;
+    const int w = std::stoi(size.substr(0, size.find('x'))), h = std::stoi(size.substr(size.find('x') + 1));
+    for (int f = 0; f < 4; ++f) {
+      char name[32];
+      std::snprintf(name, sizeof name, "frame_%04d.png", f);
+      const Covered c = coveredRows(out / name);
+      ASSERT_GE(c.top, 0) << name << ": nothing drawn";
+      // Nothing touches an edge of the frame: the fit leaves a margin (10% of the radius) all round.
+      EXPECT_GT(c.top, 0) << name;
+      EXPECT_LT(c.bottom, h - 1) << name;
+      EXPECT_GT(c.left, 0) << name;
+      EXPECT_LT(c.right, w - 1) << name;
+    }
+  }
+}
+
+// ---- --camera FILE: a fixed camera or a camera path ---------------------------------------------
+
+constexpr const char* kCirclePath = R"({"camera_path": {
+  "position": {"curve": "catmull-rom", "points": [[0, 1, 4], [4, 1, 0], [0, 1, -4], [-4, 1, 0], [0, 1, 4]]},
+  "start_time": 0, "end_time": 2, "view": "center", "center": [0, 0, 0], "fov_deg": 35}})";
+
+TEST(CliRenderCamera, AFixedCameraRendersCountIdenticalFrames) {
+  const fs::path dir = freshDir("vdg_render_fixed");
+  fs::create_directories(dir);
+  std::ofstream(dir / "cam.json") << R"({"version": 1, "eye": [2, 1, 4], "target": [0, 0, 0], "fov_deg": 35})";
+  std::ofstream(dir / "other.json") << R"({"eye": [-3, 1, 3], "target": [0, 0, 0], "fov_deg": 35})";
+  Result r = vdg("render " + kSpot + " -o " + (dir / "a").string() + " --camera " + (dir / "cam.json").string() +
+                 " --count 3 --size 64x64 --quiet");
+  ASSERT_EQ(r.status, 0) << r.output;
+  r = vdg("render " + kSpot + " -o " + (dir / "b").string() + " --camera " + (dir / "other.json").string() +
+          " --size 64x64 --quiet");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const std::string first = readBytes(dir / "a" / "frame_0000.png");
+  ASSERT_FALSE(first.empty());
+  EXPECT_EQ(first, readBytes(dir / "a" / "frame_0001.png"));
+  EXPECT_EQ(first, readBytes(dir / "a" / "frame_0002.png"));
+  EXPECT_FALSE(fs::exists(dir / "a" / "frame_0003.png"));
+  EXPECT_TRUE(fs::exists(dir / "b" / "frame_0000.png"));  // the default --count is 1
+  EXPECT_FALSE(fs::exists(dir / "b" / "frame_0001.png"));
+  EXPECT_NE(first, readBytes(dir / "b" / "frame_0000.png"));
+}
+
+TEST(CliRenderCamera, ACameraPathMovesTheCameraAndRangesAreByteIdentical) {
+  const fs::path dir = freshDir("vdg_render_path");
+  fs::create_directories(dir);
+  std::ofstream(dir / "path.json") << kCirclePath;
+  const std::string common = " --camera " + (dir / "path.json").string() + " --count 5 --size 64x64 --quiet";
+  Result r = vdg("render " + kSpot + " -o " + (dir / "all").string() + common);
+  ASSERT_EQ(r.status, 0) << r.output;
+  r = vdg("render " + kSpot + " -o " + (dir / "part").string() + common + " --frames 2-3");
+  ASSERT_EQ(r.status, 0) << r.output;
+  std::vector<std::string> frames;
+  for (int f = 0; f < 5; ++f) {
+    char name[32];
+    std::snprintf(name, sizeof name, "frame_%04d.png", f);
+    frames.push_back(readBytes(dir / "all" / name));
+    ASSERT_FALSE(frames.back().empty()) << name;
+    EXPECT_EQ(fs::exists(dir / "part" / name), f == 2 || f == 3) << name;
+  }
+  EXPECT_FALSE(fs::exists(dir / "all" / "frame_0005.png"));
+  EXPECT_EQ(frames[2], readBytes(dir / "part" / "frame_0002.png"));
+  EXPECT_EQ(frames[3], readBytes(dir / "part" / "frame_0003.png"));
+  // Frames 0-2 look from the front, the side and the back (times 0, 0.5 and 1 of the loop's 2).
+  EXPECT_NE(frames[0], frames[1]);
+  EXPECT_NE(frames[1], frames[2]);
+  EXPECT_NE(frames[0], frames[2]);
+}
+
+TEST(CliRenderCamera, CameraExcludesTheOrbitAndCountNeedsCamera) {
+  const fs::path dir = freshDir("vdg_render_camera_usage");
+  fs::create_directories(dir);
+  std::ofstream(dir / "path.json") << kCirclePath;
+  const std::string camera = " --camera " + (dir / "path.json").string();
+  const std::string out = " -o " + (dir / "out").string();
+  expectOneLineError(vdg("render " + kSpot + out + camera + " --orbit 4"), 2, "--camera and --orbit exclude");
+  expectOneLineError(vdg("render " + kSpot + out + camera + " --azimuth 30"), 2, "--camera and --azimuth exclude");
+  expectOneLineError(vdg("render " + kSpot + out + " --count 4"), 2, "--count: needs --camera");
+  expectOneLineError(vdg("render " + kSpot + out + camera + " --count 4 --frames 2-4"), 2,
+                     "--frames: expected frames within 0-3 (--count 4)");
+  expectOneLineError(vdg("render " + kSpot + out + camera + " --count 0"), 2, "--count");
+  EXPECT_FALSE(fs::exists(dir / "out"));
 }
 
 }  // namespace

@@ -50,7 +50,8 @@ struct FrameOptions {
   // paper's comparison of a conventional model with the view-dependent one (Figures 11 and 12).
   bool base_only = false;
   // The observer panel's camera; default: 35 degrees to the right of and 25 above the model's
-  // front (+Z), at the distance that fits the base model.
+  // front (+Z), at the distance that fits the sphere about the model's centre holding the base and
+  // every key (extentRadius(); a plain mesh: its bounding box's sphere).
   std::optional<Camera> observer_camera;
 };
 
@@ -67,7 +68,8 @@ class ModelRenderer {
   // `model` must outlive the renderer. Throws vdg::Error for bad sizes or no GL (see Renderer).
   ModelRenderer(const ViewDependentModel& model, const FrameOptions& options);
   // An animated model (section 4), drawn at frame 0 until setFrame(); `model` must outlive the
-  // renderer. The clip planes and the observer camera fit the base over all its frames.
+  // renderer. The clip planes and the observer camera fit its extent over all its frames (the
+  // base and every view's pose: AnimatedViewDependentModel::extentRadius()).
   ModelRenderer(const AnimatedViewDependentModel& model, const FrameOptions& options);
   // A plain mesh (no view dependence, no sphere inset); the mesh is copied.
   ModelRenderer(const TriMesh& mesh, const FrameOptions& options);
