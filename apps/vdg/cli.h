@@ -109,5 +109,6 @@ void addDeformCommand(CLI::App& app);
 void addRenderCommand(CLI::App& app);
 void addExportCommand(CLI::App& app);
 void addBakeCommand(CLI::App& app);
+void addRunCommand(CLI::App& app);
 
 }  // namespace vdg::cli

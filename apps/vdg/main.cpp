@@ -53,6 +53,7 @@ int main(int argc, char** argv) {
   vdg::cli::addRenderCommand(app);
   vdg::cli::addExportCommand(app);
   vdg::cli::addBakeCommand(app);
+  vdg::cli::addRunCommand(app);
 
   try {
     app.parse(argc, argv);

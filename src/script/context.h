@@ -12,7 +12,7 @@
 //   2. BUILD: inside guarded(): any C++ (containers, strings, anim/io/scene calls that throw
 //      vdg::Error). It may call only the NON-RAISING Lua functions: lua_type, lua_rawlen,
 //      lua_rawgeti, lua_rawget with a key already on the stack (lua_pushvalue), lua_tonumberx,
-//      lua_toboolean, lua_tolstring on a value that IS a string, lua_touserdata, lua_getmetatable,
+//      lua_tointegerx, lua_toboolean, lua_tolstring on a value that IS a string, lua_touserdata, lua_getmetatable,
 //      lua_topointer, lua_pop / lua_settop (no to-be-closed slots), and only with stack space
 //      reserved in phase 1. A C++ exception is caught there and its message kept in
 //      Context::error.
@@ -59,6 +59,7 @@ struct Context {
   // Inputs.
   std::string chunk_name;  // SCRIPT in messages
   std::string script_dir;  // canonical
+  std::string read_root;   // canonical; the script_dir or a folder above it (ScriptOptions::read_root)
   std::string output_dir;  // weakly canonical
   std::int64_t budget = 0;
   std::size_t memory_limit = 0;
@@ -181,8 +182,12 @@ void openMath(lua_State* L, int vdg);   // vdg.ease, vdg.quat, vdg.curve
 void openScene(lua_State* L, int vdg);  // vdg.load, node, group, camera, set, change, track, ...
 
 // A path for `rel` under `base` (canonical folder) that stays there: refuses an empty path, a NUL,
-// an absolute path, a backslash, a ".." component, and a path whose existing part leads outside
-// `base` through symbolic links (or ends in a dangling one). Throws vdg::Error "PATH: why" (phase 2).
-std::string confinedPath(const std::string& base, std::string_view rel, const char* what);
+// an absolute path, a backslash, and a path whose existing part leads outside `base` through
+// symbolic links (or ends in a dangling one). Without `from`, `rel` is relative to `base` and has no
+// ".." component (writes); with `from` (a folder below `base`: the script's, for reads under the
+// read root) it is relative to `from` and may climb with ".." as long as it stays below `base`.
+// Throws vdg::Error "WHAT 'PATH': why" (phase 2).
+std::string confinedPath(const std::string& base, std::string_view rel, const char* what,
+                         const std::string& from = {});
 
 }  // namespace vdg::script::detail

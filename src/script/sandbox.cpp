@@ -89,7 +89,7 @@ int luaIoOpen(lua_State* L) {
   Context& ctx = contextOf(L);
   if (!guarded(ctx, [&] {
         ctx.text = write ? confinedPath(ctx.output_dir, std::string_view(path, size), "writing")
-                         : confinedPath(ctx.script_dir, std::string_view(path, size), "reading");
+                         : confinedPath(ctx.read_root, std::string_view(path, size), "reading", ctx.script_dir);
       }))
     raiseKept(L, "io.open");
   lua_pushvalue(L, lua_upvalueindex(1));
@@ -104,7 +104,7 @@ int luaIoLines(lua_State* L) {
   std::size_t size = 0;
   const char* path = luaL_checklstring(L, 1, &size);
   Context& ctx = contextOf(L);
-  if (!guarded(ctx, [&] { ctx.text = confinedPath(ctx.script_dir, std::string_view(path, size), "reading"); }))
+  if (!guarded(ctx, [&] { ctx.text = confinedPath(ctx.read_root, std::string_view(path, size), "reading", ctx.script_dir); }))
     raiseKept(L, "io.lines");
   lua_pushlstring(L, ctx.text.data(), ctx.text.size());
   lua_replace(L, 1);

@@ -53,7 +53,7 @@ int luaLoad(lua_State* L) {
   int object = -1;
   std::size_t bytes = 0;
   if (!guarded(ctx, [&] {
-        const std::string full = confinedPath(ctx.script_dir, path.view(), "model");
+        const std::string full = confinedPath(ctx.read_root, path.view(), "model", ctx.script_dir);
         const std::string key = std::filesystem::weakly_canonical(full).string();
         if (auto it = ctx.object_by_path.find(key); it != ctx.object_by_path.end()) {
           object = it->second;
@@ -99,6 +99,68 @@ int luaLoad(lua_State* L) {
       }))
     raiseKept(L, "vdg.load");
   if (bytes) charge(L, bytes);
+  auto* h = static_cast<ObjectHandle*>(lua_newuserdatauv(L, sizeof(ObjectHandle), 0));
+  h->object = object;
+  luaL_setmetatable(L, "vdg.object");
+  return 1;
+}
+
+// vdg.mesh{positions = {x1, y1, z1, ...}, triangles = {a1, b1, c1, ...}} -> object: a mesh made
+// by the script (indices count from 1, as Lua lists and OBJ faces do). Each call is a new object.
+int luaMesh(lua_State* L) {
+  luaL_checktype(L, 1, LUA_TTABLE);
+  static const char* const kKeys[] = {"positions", "triangles", nullptr};
+  checkKeys(L, 1, "vdg.mesh", kKeys);
+  const int p = field(L, 1, "positions");
+  const int t = field(L, 1, "triangles");
+  if (!lua_istable(L, p)) return luaL_error(L, "vdg.mesh: positions: expected a list of numbers x, y, z, ...");
+  if (!lua_istable(L, t)) return luaL_error(L, "vdg.mesh: triangles: expected a list of vertex numbers a, b, c, ...");
+  const lua_Unsigned np = lua_rawlen(L, p), nt = lua_rawlen(L, t);
+  if (np < 9 || np % 3 != 0)
+    return luaL_error(L, "vdg.mesh: positions: expected 3 numbers per vertex and at least 3 vertices, got %d numbers",
+                      static_cast<int>(std::min<lua_Unsigned>(np, 1u << 30)));
+  if (nt < 3 || nt % 3 != 0)
+    return luaL_error(L, "vdg.mesh: triangles: expected 3 vertex numbers per triangle and at least one, got %d",
+                      static_cast<int>(std::min<lua_Unsigned>(nt, 1u << 30)));
+  charge(L, static_cast<std::size_t>(np + nt) * 4);
+  luaL_checkstack(L, 2, "vdg.mesh");
+  const int line = scriptLine(L);
+  Context& ctx = contextOf(L);
+  int object = -1;
+  if (!guarded(ctx, [&] {
+        auto mesh = std::make_shared<TriMesh>();
+        mesh->positions.reserve(np);
+        mesh->triangles.reserve(nt);
+        for (lua_Unsigned i = 1; i <= np; ++i) {
+          lua_rawgeti(L, p, static_cast<lua_Integer>(i));
+          int ok = 0;
+          const double v = lua_tonumberx(L, -1, &ok);
+          lua_pop(L, 1);
+          if (!ok || !std::isfinite(v) || std::abs(v) > 1e30)
+            throw Error("positions[" + std::to_string(i) + "]: expected a finite number");
+          mesh->positions.push_back(static_cast<float>(v));
+        }
+        const lua_Unsigned nv = np / 3;
+        for (lua_Unsigned i = 1; i <= nt; ++i) {
+          lua_rawgeti(L, t, static_cast<lua_Integer>(i));
+          int ok = 0;
+          const lua_Integer v = lua_tointegerx(L, -1, &ok);
+          lua_pop(L, 1);
+          if (!ok || v < 1 || static_cast<lua_Unsigned>(v) > nv)
+            throw Error("triangles[" + std::to_string(i) + "]: expected a vertex number in [1, " + std::to_string(nv) +
+                        "]");
+          mesh->triangles.push_back(static_cast<std::int32_t>(v - 1));
+        }
+        validateMesh(*mesh, "mesh");
+        ObjectRef ref;
+        ref.kind = ObjectKind::kMesh;
+        ref.index = static_cast<int>(ctx.scene.meshes.size());
+        ref.path = "vdg.mesh at line " + std::to_string(line);
+        ctx.scene.meshes.push_back(std::move(mesh));
+        object = static_cast<int>(ctx.objects.size());
+        ctx.objects.push_back(std::move(ref));
+      }))
+    raiseKept(L, "vdg.mesh");
   auto* h = static_cast<ObjectHandle*>(lua_newuserdatauv(L, sizeof(ObjectHandle), 0));
   h->object = object;
   luaL_setmetatable(L, "vdg.object");
@@ -862,7 +924,7 @@ const void* lockedMetatable(lua_State* L, const char* name, const luaL_Reg* meth
 
 void openScene(lua_State* L, int vdg) {
   Context& ctx = contextOf(L);
-  const luaL_Reg functions[] = {{"load", luaLoad},     {"node", luaNode},         {"group", luaGroup},
+  const luaL_Reg functions[] = {{"load", luaLoad},     {"mesh", luaMesh},         {"node", luaNode},         {"group", luaGroup},
                                 {"camera", luaCamera}, {"use_camera", useCamera}, {"set", luaSet},
                                 {"change", luaChange}, {"track", luaTrack},       {"for_each", forEach},
                                 {"render", luaRender}, {nullptr, nullptr}};

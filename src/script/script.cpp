@@ -146,6 +146,13 @@ Shot runScriptText(std::string_view text, const std::string& chunk_name, const s
   std::error_code ec;
   ctx.script_dir = fs::canonical(script_dir.empty() ? "." : script_dir, ec).string();
   if (ec) throw Error(chunk_name + ": script folder '" + script_dir + "': " + ec.message());
+  ctx.read_root = ctx.script_dir;
+  if (!options.read_root.empty()) {
+    ctx.read_root = fs::canonical(options.read_root, ec).string();
+    if (ec) throw Error(chunk_name + ": read root '" + options.read_root + "': " + ec.message());
+    if (ctx.script_dir != ctx.read_root && ctx.script_dir.compare(0, ctx.read_root.size() + 1, ctx.read_root + "/") != 0)
+      throw Error(chunk_name + ": the script is not inside its read root '" + options.read_root + "'");
+  }
   ctx.output_dir = fs::weakly_canonical(options.output_dir.empty() ? "." : options.output_dir, ec).string();
   if (ec) throw Error(chunk_name + ": output folder '" + options.output_dir + "': " + ec.message());
   ctx.budget = options.instruction_budget;

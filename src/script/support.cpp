@@ -224,7 +224,7 @@ int field(lua_State* L, int idx, const char* key) {
   return lua_gettop(L);
 }
 
-std::string confinedPath(const std::string& base, std::string_view rel, const char* what) {
+std::string confinedPath(const std::string& base, std::string_view rel, const char* what, const std::string& from) {
   namespace fs = std::filesystem;
   const std::string shown(rel);
   auto refuse = [&](const std::string& why) { throw Error(std::string(what) + " '" + shown + "': " + why); };
@@ -232,20 +232,23 @@ std::string confinedPath(const std::string& base, std::string_view rel, const ch
   if (rel.find('\0') != std::string_view::npos) refuse("a path with a NUL byte");
   if (rel.front() == '/') refuse("absolute paths are refused (give a path relative to the folder)");
   if (rel.find('\\') != std::string_view::npos) refuse("backslashes are refused");
-  std::size_t start = 0;
-  while (start <= rel.size()) {
-    const std::size_t end = std::min(rel.find('/', start), rel.size());
-    if (rel.substr(start, end - start) == "..")
-      refuse("'..' components are refused (the path must stay in its folder)");
-    start = end + 1;
+  auto inside = [&](const std::string& r) { return r == base || r.compare(0, base.size() + 1, base + "/") == 0; };
+  if (from.empty()) {
+    std::size_t start = 0;
+    while (start <= rel.size()) {
+      const std::size_t end = std::min(rel.find('/', start), rel.size());
+      if (rel.substr(start, end - start) == "..")
+        refuse("'..' components are refused (the path must stay in its folder)");
+      start = end + 1;
+    }
   }
-  const fs::path full = fs::path(base) / fs::path(shown);
+  const fs::path full = fs::path(from.empty() ? base : from) / fs::path(shown);
+  if (!from.empty() && !inside(full.lexically_normal().string()))
+    refuse("the path leads outside the folder the script may read (" + base + "; see vdg run --root)");
   std::error_code ec;
   const fs::path resolved = fs::weakly_canonical(full, ec);
   if (ec) refuse("cannot resolve the path: " + ec.message());
-  const std::string r = resolved.string();
-  if (r != base && r.compare(0, base.size() + 1, base + "/") != 0)
-    refuse("the path leads outside its folder (through a symbolic link)");
+  if (!inside(resolved.string())) refuse("the path leads outside its folder (through a symbolic link)");
   // A dangling symbolic link as the last component: writing would create its target elsewhere.
   if (fs::is_symlink(fs::symlink_status(full, ec)) && !fs::exists(full, ec))
     refuse("a symbolic link that points nowhere is refused");

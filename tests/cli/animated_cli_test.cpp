@@ -3,7 +3,6 @@
 // animated one with one clear line.
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
 #include <array>
 #include <cstdio>
 #include <cstdlib>
@@ -13,25 +12,15 @@
 #include <string>
 #include <vector>
 
+#include "cli/run_vdg.h"
 #include "support/test_meshes.h"
 
 namespace {
 
 using vdg::testing::readText;
 
-struct Result {
-  int code;
-  std::string out, err;
-};
-
-// Runs `vdg ARGS` from the source folder, capturing stdout and stderr separately.
-Result run(const std::string& args) {
-  vdg::testing::TempDir dir;
-  const std::string out = dir.file("out"), err = dir.file("err");
-  const std::string cmd = "cd '" VDG_SOURCE_DIR "' && '" VDG_BINARY "' " + args + " >'" + out + "' 2>'" + err + "'";
-  const int status = std::system(cmd.c_str());
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, readText(out), readText(err)};
-}
+using vdg::testing::Result;
+Result run(const std::string& args) { return vdg::testing::runVdg(args); }
 
 const std::string kWalker = "examples/walk/walker.vdg.json";
 const std::string kWalkerWorld = "examples/walk/walker-world.vdg.json";

@@ -78,15 +78,32 @@ TEST(ScriptSandbox, NoOsExecuteAndNoProcesses) {
       "assert(type(os.clock()) == 'number' and type(os.time()) == 'number' and type(os.date()) == 'string')");
 }
 
+TEST(ScriptSandbox, AReadRootAboveTheScriptFolderWidensWhatItMayRead) {
+  ScriptBench bench;
+  fs::create_directories(bench.dir.file("shared"));
+  testing::writeText(bench.dir.file("shared/tri.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  const std::string load = "vdg.node{object = vdg.load('../shared/tri.obj')}";
+  EXPECT_NE(bench.errorOfRun(load).find("leads outside the folder the script may read"), std::string::npos);
+  bench.read_root = bench.dir.path().string();
+  EXPECT_EQ(bench.run(load).scene.meshes.size(), 1u);
+  // Still nothing above the root, and writes still only below the output folder.
+  EXPECT_NE(bench.errorOfRun("local f = io.open('../../x.txt')").find("leads outside the folder the script may read"),
+            std::string::npos);
+  EXPECT_NE(bench.errorOfRun("local f = io.open('../shared/x.txt', 'w')").find("'..' components are refused"),
+            std::string::npos);
+  // A root that does not hold the script is refused.
+  bench.read_root = bench.dir.file("shared");
+  EXPECT_NE(bench.errorOfRun("local x = 1").find("is not inside its read root"), std::string::npos);
+}
+
 TEST(ScriptSandbox, ReadingOutsideTheScriptFolderIsRefused) {
   ScriptBench bench;
   EXPECT_EQ(
       hostile(bench, "local f = io.open('/etc/passwd')"),
       "hostile.lua:1: io.open: reading '/etc/passwd': absolute paths are refused (give a path relative to the folder)");
-  EXPECT_EQ(
-      hostile(bench, "for l in io.lines('../../../../etc/passwd') do end"),
-      "hostile.lua:1: io.lines: reading '../../../../etc/passwd': '..' components are refused (the path must stay "
-      "in its folder)");
+  EXPECT_EQ(hostile(bench, "for l in io.lines('../../../../etc/passwd') do end"),
+            "hostile.lua:1: io.lines: reading '../../../../etc/passwd': the path leads outside the folder the script "
+            "may read (" + fs::canonical(bench.scripts).string() + "; see vdg run --root)");
   EXPECT_EQ(
       hostile(bench, "vdg.load('/etc/passwd')"),
       "hostile.lua:1: vdg.load: model '/etc/passwd': absolute paths are refused (give a path relative to the folder)");

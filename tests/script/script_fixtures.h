@@ -19,6 +19,7 @@ struct ScriptBench {
   std::string scripts = dir.file("scripts");
   std::string out = dir.file("out");
   std::vector<std::string> printed;
+  std::string read_root;  // ScriptOptions::read_root (empty: the script folder)
 
   ScriptBench() {
     std::filesystem::create_directories(scripts);
@@ -27,6 +28,7 @@ struct ScriptBench {
   script::ScriptOptions options() {
     script::ScriptOptions o;
     o.output_dir = out;
+    o.read_root = read_root;
     o.print = [this](std::string_view line) { printed.emplace_back(line); };
     return o;
   }

@@ -222,6 +222,7 @@ class Scene {
                                   Eigen::Vector3d& out) const;
 
  private:
+  Scene() = default;  // only build() makes a Scene, so every Scene has its data
   struct Impl;
   std::shared_ptr<const Impl> impl_;
 };

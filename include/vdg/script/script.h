@@ -10,10 +10,10 @@
 //    collectgarbage("count") only; setmetatable refuses __gc metamethods; string (without
 //    string.dump), table, math, utf8; os.clock, os.time and os.date only; no package, debug,
 //    coroutine or native modules;
-//  - files: io.open / io.lines READ under the script's folder (paths relative to it) and io.open
-//    WRITES under ScriptOptions::output_dir (paths relative to it); absolute paths, ".."
-//    components, backslashes and symbolic links that lead outside are refused; vdg.load reads
-//    models under the script's folder only;
+//  - files: io.open / io.lines and vdg.load READ below ScriptOptions::read_root (default: the
+//    script's folder; paths relative to the script's folder), and io.open WRITES below
+//    ScriptOptions::output_dir (paths relative to it, no ".."); absolute paths, backslashes and
+//    paths or symbolic links that lead outside are refused;
 //  - an instruction budget (a count hook; pcall cannot catch its error for long: once spent,
 //    every further instruction raises it again) and a memory limit (a counting allocator; the
 //    scene the script builds is charged to the same limit).
@@ -62,6 +62,10 @@ struct ScriptOptions {
   std::int64_t instruction_budget = 200'000'000;  // Lua VM instructions (lua_sethook count), >= 1
   std::size_t memory_limit = 512u << 20;          // bytes (Lua allocations + the scene built), >= kMinMemoryLimit
   std::function<void(std::string_view)> print;    // receives each print() line (no newline); null: stdout
+  // The folder below which the script may read (io.open / io.lines reads, vdg.load), relative paths
+  // being relative to the script's folder and free to climb with ".." while they stay below it;
+  // empty: the script's own folder. It must hold the script.
+  std::string read_root;
 };
 
 inline constexpr std::size_t kMinMemoryLimit = std::size_t{1} << 20;
