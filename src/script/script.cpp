@@ -153,7 +153,10 @@ Shot runScriptText(std::string_view text, const std::string& chunk_name, const s
     if (ctx.script_dir != ctx.read_root && ctx.script_dir.compare(0, ctx.read_root.size() + 1, ctx.read_root + "/") != 0)
       throw Error(chunk_name + ": the script is not inside its read root '" + options.read_root + "'");
   }
-  ctx.output_dir = fs::weakly_canonical(options.output_dir.empty() ? "." : options.output_dir, ec).string();
+  // Absolute first: weakly_canonical keeps a relative path relative while none of it exists, and
+  // the checks compare it with the absolute paths of the folder once it does.
+  const fs::path output = fs::absolute(options.output_dir.empty() ? "." : options.output_dir, ec);
+  if (!ec) ctx.output_dir = fs::weakly_canonical(output, ec).string();
   if (ec) throw Error(chunk_name + ": output folder '" + options.output_dir + "': " + ec.message());
   ctx.budget = options.instruction_budget;
   ctx.hook_interval = static_cast<int>(std::min<std::int64_t>(options.instruction_budget, 1000));

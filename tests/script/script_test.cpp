@@ -311,3 +311,33 @@ TEST(Script, SunEarthMoonFromAFile) {
 
 }  // namespace
 }  // namespace vdg
+
+namespace vdg {
+namespace {
+
+TEST(Script, MeshesMadeByTheScriptCountVerticesFromOne) {
+  testing::ScriptBench bench;
+  const auto shot = bench.run(
+      "local tri = vdg.mesh{positions = {0, 0, 0, 1, 0, 0, 0, 1, 0}, triangles = {1, 2, 3}}\n"
+      "assert(tri.kind == 'mesh')\n"
+      "vdg.node{name = 'a', object = tri}\n"
+      "vdg.node{name = 'b', object = vdg.mesh{positions = {0, 0, 0, 1, 0, 0, 0, 1, 0}, triangles = {1, 3, 2}}}\n");
+  ASSERT_EQ(shot.scene.meshes.size(), 2u);  // each call is a new object
+  EXPECT_EQ(shot.scene.meshes[0]->triangles, (std::vector<std::int32_t>{0, 1, 2}));
+  EXPECT_EQ(shot.scene.meshes[1]->triangles, (std::vector<std::int32_t>{0, 2, 1}));
+  EXPECT_EQ(shot.scene.meshes[0]->positions[3], 1.0f);
+  EXPECT_EQ(bench.errorOfRun("vdg.mesh{positions = {0, 0, 0, 1, 0, 0, 0, 1, 0}, triangles = {1, 2, 4}}"),
+            "test.lua:1: vdg.mesh: triangles[3]: expected a vertex number in [1, 3]");
+  EXPECT_EQ(bench.errorOfRun("vdg.mesh{positions = {0, 0, 0, 1, 0, 0, 0, 1, 0}, triangles = {0, 1, 2}}"),
+            "test.lua:1: vdg.mesh: triangles[1]: expected a vertex number in [1, 3]");
+  EXPECT_EQ(bench.errorOfRun("vdg.mesh{positions = {0, 0, 0, 1, 0, 0, 0, 1, 0/0}, triangles = {1, 2, 3}}"),
+            "test.lua:1: vdg.mesh: positions[9]: expected a finite number");
+  EXPECT_EQ(bench.errorOfRun("vdg.mesh{positions = {0, 0, 0, 1, 0}, triangles = {1, 2, 3}}"),
+            "test.lua:1: vdg.mesh: positions: expected 3 numbers per vertex and at least 3 vertices, got 5 numbers");
+  EXPECT_EQ(bench.errorOfRun("vdg.mesh{positions = {0, 0, 0, 1, 0, 0, 0, 1, 0}, triangle = {1, 2, 3}}").find(
+                "test.lua:1: vdg.mesh: unknown field 'triangle'"),
+            0u);
+}
+
+}  // namespace
+}  // namespace vdg
