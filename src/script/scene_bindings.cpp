@@ -723,7 +723,11 @@ int luaTrack(lua_State* L) {
             if (lua_rawget(L, key) != LUA_TNIL) {
               double handle[4];
               (void)readVector(L, lua_gettop(L), dimension, handle);
-              (h == 7 ? k.in_handle : k.out_handle) = Eigen::Map<const Eigen::VectorXd>(handle, dimension);
+              Eigen::VectorXd v = Eigen::Map<const Eigen::VectorXd>(handle, dimension);
+              if (h == 7)
+                k.in_handle.emplace(std::move(v));
+              else
+                k.out_handle.emplace(std::move(v));
             }
           }
           lua_settop(L, 8);
