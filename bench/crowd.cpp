@@ -5,6 +5,7 @@
 // Run from the repository root, or set VDG_SOURCE_DIR.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <string>
@@ -17,9 +18,9 @@ namespace {
 
 constexpr int kSize = 256;
 
-std::string crowdScript() {
+std::string examplesDir() {
   const char* src = std::getenv("VDG_SOURCE_DIR");
-  return std::string(src ? src : ".") + "/examples/crowd/crowd.lua";
+  return std::string(src ? src : ".") + "/examples";
 }
 
 // Renders the request's frames; returns seconds per frame.
@@ -33,7 +34,8 @@ void BM_CrowdViewDependentVsBase(benchmark::State& state) {
   vdg::script::ScriptOptions so;
   so.print = [](std::string_view) {};
   so.output_dir = "/tmp";
-  const vdg::script::Shot shot = vdg::script::runScript(crowdScript(), so);
+  so.read_root = examplesDir();  // the script loads ../spot
+  const vdg::script::Shot shot = vdg::script::runScript(examplesDir() + "/crowd/crowd.lua", so);
   const vdg::scene::Scene scene = vdg::scene::Scene::build(shot.scene);
   const auto& request = shot.renders.at(0);
   vdg::render::SceneFrameOptions o;
