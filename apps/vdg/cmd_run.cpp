@@ -57,7 +57,8 @@ void run(const RunOptions& opt) {
     std::string asked;
     for (const auto& r : shot.renders)
       asked += (asked.empty() ? "" : ", ") + std::to_string(r.first_frame) + "-" + std::to_string(r.last_frame);
-    throw UsageError("--frames " + shown(opt.frames) + ": the script renders frames " + asked + ", none of them in the range");
+    throw UsageError("--frames " + shown(opt.frames) + ": the script renders frames " + asked +
+                     ", none of them in the range");
   }
 
   const scene::Scene scene = scene::Scene::build(shot.scene, opt.script);
@@ -95,8 +96,7 @@ void run(const RunOptions& opt) {
     }
   }
   progress.finish();
-  if (!opt.quiet)
-    std::printf("wrote %ld frame%s to %s\n", total, total == 1 ? "" : "s", opt.output.c_str());
+  if (!opt.quiet) std::printf("wrote %ld frame%s to %s\n", total, total == 1 ? "" : "s", opt.output.c_str());
 }
 
 }  // namespace

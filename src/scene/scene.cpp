@@ -39,26 +39,6 @@ bool drawable(ObjectKind kind) {
   return kind == ObjectKind::kMesh || kind == ObjectKind::kModel || kind == ObjectKind::kAnimatedModel;
 }
 
-// Which fields a node of `kind` has (see the header).
-bool hasField(ObjectKind kind, Field field) {
-  switch (field) {
-    case Field::kTranslation:
-    case Field::kRotation:
-    case Field::kScale:
-    case Field::kVisible:
-      return true;
-    case Field::kColor:
-      return drawable(kind);
-    case Field::kSharpness:
-      return kind == ObjectKind::kModel || kind == ObjectKind::kAnimatedModel;
-    case Field::kFrameOffset:
-      return kind == ObjectKind::kAnimatedModel;
-    case Field::kFov:
-      return kind == ObjectKind::kCamera;
-  }
-  return false;
-}
-
 std::string numberText(double v) {
   std::ostringstream out;
   out << v;
@@ -183,6 +163,25 @@ int fieldDimension(Field field) {
     default:
       return 1;
   }
+}
+
+bool hasField(ObjectKind kind, Field field) {
+  switch (field) {
+    case Field::kTranslation:
+    case Field::kRotation:
+    case Field::kScale:
+    case Field::kVisible:
+      return true;
+    case Field::kColor:
+      return drawable(kind);
+    case Field::kSharpness:
+      return kind == ObjectKind::kModel || kind == ObjectKind::kAnimatedModel;
+    case Field::kFrameOffset:
+      return kind == ObjectKind::kAnimatedModel;
+    case Field::kFov:
+      return kind == ObjectKind::kCamera;
+  }
+  return false;
 }
 
 Eigen::Matrix4d Transform::matrix() const {

@@ -172,6 +172,9 @@ void pushNumbers(lua_State* L, const double* v, int n);
 // Checks that every key of the table at `idx` is one of `allowed` (null-terminated), or with
 // `array`, an index 1..#t; raises "FUNCTION: unknown field 'KEY' (expected a, b, c)".
 void checkKeys(lua_State* L, int idx, const char* function, const char* const* allowed, bool array = false);
+// A metatable registered as `name` with the given metamethods, locked (`__metatable`, so scripts
+// can neither read nor replace it); returns its address (Context::mt_*). Phase 1.
+const void* lockedMetatable(lua_State* L, const char* name, const luaL_Reg* methods);
 // Pushes t[key] (raw) of the table at idx and returns its absolute index (phase 1).
 int field(lua_State* L, int idx, const char* key);
 

@@ -376,17 +376,6 @@ int curveToString(lua_State* L) {
   return 1;
 }
 
-// A locked metatable named `name` with the given metamethods; returns its address.
-const void* newMetatable(lua_State* L, const char* name, const luaL_Reg* methods) {
-  luaL_newmetatable(L, name);
-  luaL_setfuncs(L, methods, 0);
-  lua_pushliteral(L, "locked");
-  lua_setfield(L, -2, "__metatable");
-  const void* address = lua_topointer(L, -1);
-  lua_pop(L, 1);
-  return address;
-}
-
 }  // namespace
 
 void openMath(lua_State* L, int vdg) {
@@ -400,7 +389,7 @@ void openMath(lua_State* L, int vdg) {
   luaL_newlib(L, ease_functions);
   lua_setfield(L, vdg, "ease");
   const luaL_Reg ease_meta[] = {{"__call", easeEval}, {"__tostring", easeToString}, {nullptr, nullptr}};
-  ctx.mt_ease = newMetatable(L, "vdg.ease", ease_meta);
+  ctx.mt_ease = lockedMetatable(L, "vdg.ease", ease_meta);
   luaL_getmetatable(L, "vdg.ease");
   lua_newtable(L);
   lua_pushcfunction(L, easeEval);
@@ -416,7 +405,7 @@ void openMath(lua_State* L, int vdg) {
   luaL_newlib(L, quat_functions);
   lua_setfield(L, vdg, "quat");
   const luaL_Reg quat_meta[] = {{"__mul", quatMul}, {"__tostring", quatToString}, {nullptr, nullptr}};
-  ctx.mt_quat = newMetatable(L, "vdg.quat", quat_meta);
+  ctx.mt_quat = lockedMetatable(L, "vdg.quat", quat_meta);
   luaL_getmetatable(L, "vdg.quat");
   const luaL_Reg quat_methods[] = {
       {"rotate", quatRotate}, {"normalized", quatNormalized}, {"inverse", quatInverse}, {nullptr, nullptr}};
@@ -428,7 +417,7 @@ void openMath(lua_State* L, int vdg) {
   lua_pushcfunction(L, curveNew);
   lua_setfield(L, vdg, "curve");
   const luaL_Reg curve_meta[] = {{"__gc", curveGc}, {"__tostring", curveToString}, {nullptr, nullptr}};
-  ctx.mt_curve = newMetatable(L, "vdg.curve", curve_meta);
+  ctx.mt_curve = lockedMetatable(L, "vdg.curve", curve_meta);
   luaL_getmetatable(L, "vdg.curve");
   const luaL_Reg curve_methods[] = {{"eval", curveEval},
                                     {"length", curveLength},

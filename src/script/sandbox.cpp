@@ -104,7 +104,9 @@ int luaIoLines(lua_State* L) {
   std::size_t size = 0;
   const char* path = luaL_checklstring(L, 1, &size);
   Context& ctx = contextOf(L);
-  if (!guarded(ctx, [&] { ctx.text = confinedPath(ctx.read_root, std::string_view(path, size), "reading", ctx.script_dir); }))
+  if (!guarded(ctx, [&] {
+        ctx.text = confinedPath(ctx.read_root, std::string_view(path, size), "reading", ctx.script_dir);
+      }))
     raiseKept(L, "io.lines");
   lua_pushlstring(L, ctx.text.data(), ctx.text.size());
   lua_replace(L, 1);

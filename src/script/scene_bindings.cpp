@@ -495,27 +495,6 @@ int useCamera(lua_State* L) {
 
 // ---- set / change / track ----
 
-bool fieldApplies(ObjectKind kind, Field field) {
-  const bool drawable = kind == ObjectKind::kMesh || kind == ObjectKind::kModel || kind == ObjectKind::kAnimatedModel;
-  switch (field) {
-    case Field::kTranslation:
-    case Field::kRotation:
-    case Field::kScale:
-      return true;
-    case Field::kVisible:
-      return true;
-    case Field::kColor:
-      return drawable;
-    case Field::kSharpness:
-      return kind == ObjectKind::kModel || kind == ObjectKind::kAnimatedModel;
-    case Field::kFrameOffset:
-      return kind == ObjectKind::kAnimatedModel;
-    case Field::kFov:
-      return kind == ObjectKind::kCamera;
-  }
-  return false;
-}
-
 Field checkField(lua_State* L, int idx, const char* f) {
   const char* name = luaL_checkstring(L, idx);
   for (int i = 0; i < scene::kFieldCount; ++i)
@@ -534,7 +513,7 @@ int checkTargets(lua_State* L, int idx, Field field, const char* f, bool track) 
   Context& ctx = contextOf(L);
   auto check = [&](int node) {
     const scene::RawNode& n = ctx.scene.nodes[static_cast<std::size_t>(node)];
-    if (!fieldApplies(n.kind, field))
+    if (!scene::hasField(n.kind, field))
       luaL_error(L, "%s: node '%s' (a %s) has no field '%s'", f, n.name.c_str(), scene::objectKindName(n.kind),
                  scene::fieldName(field));
     const int driven = ctx.driven[static_cast<std::size_t>(node)][static_cast<std::size_t>(field)];
@@ -914,24 +893,14 @@ int objectToString(lua_State* L) {
   return 1;
 }
 
-const void* lockedMetatable(lua_State* L, const char* name, const luaL_Reg* methods) {
-  luaL_newmetatable(L, name);
-  luaL_setfuncs(L, methods, 0);
-  lua_pushliteral(L, "locked");
-  lua_setfield(L, -2, "__metatable");
-  const void* address = lua_topointer(L, -1);
-  lua_pop(L, 1);
-  return address;
-}
-
 }  // namespace
 
 void openScene(lua_State* L, int vdg) {
   Context& ctx = contextOf(L);
-  const luaL_Reg functions[] = {{"load", luaLoad},     {"mesh", luaMesh},         {"node", luaNode},         {"group", luaGroup},
-                                {"camera", luaCamera}, {"use_camera", useCamera}, {"set", luaSet},
-                                {"change", luaChange}, {"track", luaTrack},       {"for_each", forEach},
-                                {"render", luaRender}, {nullptr, nullptr}};
+  const luaL_Reg functions[] = {{"load", luaLoad},     {"mesh", luaMesh},     {"node", luaNode},
+                                {"group", luaGroup},   {"camera", luaCamera}, {"use_camera", useCamera},
+                                {"set", luaSet},       {"change", luaChange}, {"track", luaTrack},
+                                {"for_each", forEach}, {"render", luaRender}, {nullptr, nullptr}};
   lua_pushvalue(L, vdg);
   luaL_setfuncs(L, functions, 0);
   lua_pop(L, 1);

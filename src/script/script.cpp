@@ -150,7 +150,8 @@ Shot runScriptText(std::string_view text, const std::string& chunk_name, const s
   if (!options.read_root.empty()) {
     ctx.read_root = fs::canonical(options.read_root, ec).string();
     if (ec) throw Error(chunk_name + ": read root '" + options.read_root + "': " + ec.message());
-    if (ctx.script_dir != ctx.read_root && ctx.script_dir.compare(0, ctx.read_root.size() + 1, ctx.read_root + "/") != 0)
+    if (ctx.script_dir != ctx.read_root &&
+        ctx.script_dir.compare(0, ctx.read_root.size() + 1, ctx.read_root + "/") != 0)
       throw Error(chunk_name + ": the script is not inside its read root '" + options.read_root + "'");
   }
   // Absolute first: weakly_canonical keeps a relative path relative while none of it exists, and

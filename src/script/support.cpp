@@ -218,6 +218,16 @@ void checkKeys(lua_State* L, int idx, const char* function, const char* const* a
   }
 }
 
+const void* lockedMetatable(lua_State* L, const char* name, const luaL_Reg* methods) {
+  luaL_newmetatable(L, name);
+  luaL_setfuncs(L, methods, 0);
+  lua_pushliteral(L, "locked");
+  lua_setfield(L, -2, "__metatable");
+  const void* address = lua_topointer(L, -1);
+  lua_pop(L, 1);
+  return address;
+}
+
 int field(lua_State* L, int idx, const char* key) {
   lua_pushstring(L, key);
   lua_rawget(L, idx);

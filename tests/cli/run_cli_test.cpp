@@ -19,9 +19,7 @@ using vdg::testing::runVdg;
 
 bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
-void writeText(const std::string& path, const std::string& text) {
-  std::ofstream(path, std::ios::binary) << text;
-}
+void writeText(const std::string& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
 
 // A small scene built in the language: a tetrahedron mesh made from numbers, two instances, one
 // spinning, a fixed camera; frames 0-5 rendered at 64x48 into OUT/shot.
@@ -49,7 +47,8 @@ TEST(RunCli, FramesAreWrittenAndARangeEqualsTheSameFramesOfAFullRun) {
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_TRUE(contains(r.out, "wrote 2 frames")) << r.out;
   for (const char* name : {"frame_0003.png", "frame_0004.png"})
-    EXPECT_EQ(readText(dir.file(std::string("part/shot/") + name)), readText(dir.file(std::string("full/shot/") + name)))
+    EXPECT_EQ(readText(dir.file(std::string("part/shot/") + name)),
+              readText(dir.file(std::string("full/shot/") + name)))
         << name;
   EXPECT_FALSE(fs::exists(dir.file("part/shot/frame_0002.png")));
   EXPECT_FALSE(fs::exists(dir.file("part/shot/frame_0005.png")));
@@ -108,8 +107,8 @@ TEST(RunCli, AMissingScriptIsOneLine) {
 TEST(RunCli, TheExampleScriptsRun) {
   vdg::testing::TempDir dir;
   for (const char* example : {"figure13/figure13.lua", "crowd/crowd.lua", "solar/solar.lua"}) {
-    const Result r =
-        runVdg(std::string("run examples/") + example + " --root examples --frames 0 --quiet -o '" + dir.file("out") + "'");
+    const Result r = runVdg(std::string("run examples/") + example + " --root examples --frames 0 --quiet -o '" +
+                            dir.file("out") + "'");
     EXPECT_EQ(r.code, 0) << example << ": " << r.err;
   }
   for (const char* frame : {"out/figure13/frame_0000.png", "out/crowd/frame_0000.png", "out/solar/frame_0000.png"})

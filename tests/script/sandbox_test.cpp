@@ -103,7 +103,8 @@ TEST(ScriptSandbox, ReadingOutsideTheScriptFolderIsRefused) {
       "hostile.lua:1: io.open: reading '/etc/passwd': absolute paths are refused (give a path relative to the folder)");
   EXPECT_EQ(hostile(bench, "for l in io.lines('../../../../etc/passwd') do end"),
             "hostile.lua:1: io.lines: reading '../../../../etc/passwd': the path leads outside the folder the script "
-            "may read (" + fs::canonical(bench.scripts).string() + "; see vdg run --root)");
+            "may read (" +
+                fs::canonical(bench.scripts).string() + "; see vdg run --root)");
   EXPECT_EQ(
       hostile(bench, "vdg.load('/etc/passwd')"),
       "hostile.lua:1: vdg.load: model '/etc/passwd': absolute paths are refused (give a path relative to the folder)");

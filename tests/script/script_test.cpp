@@ -165,8 +165,9 @@ TEST(Script, LoadInstancesOneObjectPerPath) {
   ScriptBench bench;
   testing::writeText(bench.scripts + "/models/tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
   // '..' may climb while the path stays in the folder; the same file is the same object.
-  const auto climbed = bench.run("local a = vdg.node{object = vdg.load('models/../models/tri.obj')}\n"
-                                 "local b = vdg.node{object = vdg.load('models/tri.obj')}\n");
+  const auto climbed = bench.run(
+      "local a = vdg.node{object = vdg.load('models/../models/tri.obj')}\n"
+      "local b = vdg.node{object = vdg.load('models/tri.obj')}\n");
   EXPECT_EQ(climbed.scene.meshes.size(), 1u);
   const auto shot2 = bench.run(
       "local m = vdg.load('models/tri.obj')\n"
@@ -334,8 +335,8 @@ TEST(Script, MeshesMadeByTheScriptCountVerticesFromOne) {
             "test.lua:1: vdg.mesh: positions[9]: expected a finite number");
   EXPECT_EQ(bench.errorOfRun("vdg.mesh{positions = {0, 0, 0, 1, 0}, triangles = {1, 2, 3}}"),
             "test.lua:1: vdg.mesh: positions: expected 3 numbers per vertex and at least 3 vertices, got 5 numbers");
-  EXPECT_EQ(bench.errorOfRun("vdg.mesh{positions = {0, 0, 0, 1, 0, 0, 0, 1, 0}, triangle = {1, 2, 3}}").find(
-                "test.lua:1: vdg.mesh: unknown field 'triangle'"),
+  EXPECT_EQ(bench.errorOfRun("vdg.mesh{positions = {0, 0, 0, 1, 0, 0, 0, 1, 0}, triangle = {1, 2, 3}}")
+                .find("test.lua:1: vdg.mesh: unknown field 'triangle'"),
             0u);
 }
 

@@ -97,6 +97,10 @@ const char* fieldName(Field field);
 std::optional<Field> fieldFromName(std::string_view name);
 // Number of values: 3, 4, 3, 3, 1, 1, 1, 1.
 int fieldDimension(Field field);
+// Whether a node of `kind` has `field` (see the list above): translation, rotation, scale and
+// visible on every node; color on meshes and models; sharpness on both model kinds; frame_offset
+// on animated models; fov on cameras.
+bool hasField(ObjectKind kind, Field field);
 
 struct Transform {
   Eigen::Vector3d translation = Eigen::Vector3d::Zero();
