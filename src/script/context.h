@@ -41,6 +41,7 @@ extern "C" {
 #include <type_traits>
 #include <vector>
 
+#include "vdg/anim/curve.h"
 #include "vdg/anim/ease.h"
 #include "vdg/geom/error.h"
 #include "vdg/scene/scene.h"
@@ -172,6 +173,9 @@ void pushNumbers(lua_State* L, const double* v, int n);
 // Checks that every key of the table at `idx` is one of `allowed` (null-terminated), or with
 // `array`, an index 1..#t; raises "FUNCTION: unknown field 'KEY' (expected a, b, c)".
 void checkKeys(lua_State* L, int idx, const char* function, const char* const* allowed, bool array = false);
+// The curve kind named `name` ("linear", "catmull-rom", ...: anim::curveKindName); false for any
+// other name.
+bool curveKindFromName(const char* name, anim::CurveKind* out);
 // A metatable registered as `name` with the given metamethods, locked (`__metatable`, so scripts
 // can neither read nor replace it); returns its address (Context::mt_*). Phase 1.
 const void* lockedMetatable(lua_State* L, const char* name, const luaL_Reg* methods);
@@ -190,7 +194,6 @@ void openScene(lua_State* L, int vdg);  // vdg.load, node, group, camera, set, c
 // ".." component (writes); with `from` (a folder below `base`: the script's, for reads under the
 // read root) it is relative to `from` and may climb with ".." as long as it stays below `base`.
 // Throws vdg::Error "WHAT 'PATH': why" (phase 2).
-std::string confinedPath(const std::string& base, std::string_view rel, const char* what,
-                         const std::string& from = {});
+std::string confinedPath(const std::string& base, std::string_view rel, const char* what, const std::string& from = {});
 
 }  // namespace vdg::script::detail

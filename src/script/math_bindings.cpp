@@ -232,17 +232,6 @@ int curveGc(lua_State* L) {
   return 0;
 }
 
-bool curveKindFromName(const char* name, anim::CurveKind* out) {
-  for (anim::CurveKind k :
-       {anim::CurveKind::kLinear, anim::CurveKind::kCatmullRom, anim::CurveKind::kCentripetalCatmullRom,
-        anim::CurveKind::kNaturalCubic, anim::CurveKind::kParabolicBlending, anim::CurveKind::kBezier})
-    if (std::strcmp(name, anim::curveKindName(k)) == 0) {
-      *out = k;
-      return true;
-    }
-  return false;
-}
-
 const char* const kCurveKeys[] = {"points", "times", "interpolation", nullptr};
 
 // vdg.curve{points = {{x, y, z}, ...}, times = {...}, interpolation = "catmull-rom"}.

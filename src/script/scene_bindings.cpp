@@ -205,17 +205,6 @@ void readTransform(lua_State* L, int table, const char* function, double t[10]) 
   if (!lua_isnil(L, v)) checked(L, readScale(L, v, t + 7), function, "scale");
 }
 
-bool curveKindFromName(const char* name, anim::CurveKind* out) {
-  for (anim::CurveKind k :
-       {anim::CurveKind::kLinear, anim::CurveKind::kCatmullRom, anim::CurveKind::kCentripetalCatmullRom,
-        anim::CurveKind::kNaturalCubic, anim::CurveKind::kParabolicBlending, anim::CurveKind::kBezier})
-    if (std::strcmp(name, anim::curveKindName(k)) == 0) {
-      *out = k;
-      return true;
-    }
-  return false;
-}
-
 const char* const kPathKeys[] = {"points", "times", "interpolation", "ease", "start", "end", "view",
                                  "center", "up",    "tilt",          nullptr};
 

@@ -218,6 +218,17 @@ void checkKeys(lua_State* L, int idx, const char* function, const char* const* a
   }
 }
 
+bool curveKindFromName(const char* name, anim::CurveKind* out) {
+  for (anim::CurveKind k :
+       {anim::CurveKind::kLinear, anim::CurveKind::kCatmullRom, anim::CurveKind::kCentripetalCatmullRom,
+        anim::CurveKind::kNaturalCubic, anim::CurveKind::kParabolicBlending, anim::CurveKind::kBezier})
+    if (std::strcmp(name, anim::curveKindName(k)) == 0) {
+      *out = k;
+      return true;
+    }
+  return false;
+}
+
 const void* lockedMetatable(lua_State* L, const char* name, const luaL_Reg* methods) {
   luaL_newmetatable(L, name);
   luaL_setfuncs(L, methods, 0);
