@@ -16,6 +16,7 @@
 
 #include <Eigen/Geometry>
 
+#include "render/test_models.h"
 #include "vdg/geom/error.h"
 #include "vdg/render/image.h"
 #include "vdg/render/model_renderer.h"
@@ -23,7 +24,6 @@
 #include "vdg/render/shading.h"
 #include "vdg/render/silhouette.h"
 #include "vdg/viewdep/model.h"
-#include "render/test_models.h"
 
 namespace vdg::render {
 namespace {
