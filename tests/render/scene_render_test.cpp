@@ -129,6 +129,13 @@ TEST(SceneRender, BaseOnlyDropsTheKeys) {
 }
 
 TEST(SceneRender, FrameAloneIsByteIdenticalToTheSameFrameOfASequence) {
+#if defined(__SANITIZE_ADDRESS__)
+  // Under ASan this test passes, but LeakSanitizer's exit-time check then crashes in its own
+  // thread tracer ("Tracer caught signal 11") while llvmpipe's worker threads wind down, reliably
+  // for this test only. The property is checked in the ci build, and across processes by
+  // RunCli.FramesAreWrittenAndARangeEqualsTheSameFramesOfAFullRun.
+  GTEST_SKIP() << "LeakSanitizer's tracer crashes at exit after this test on llvmpipe";
+#endif
   scene::RawScene raw = sceneWithCamera(Eigen::Vector3d(1, 1, 6));
   const int a = addInstance(raw, "a", Eigen::Vector3d(-1.2, 0, 0), Eigen::Quaterniond::Identity(), {0.9f, 0.3f, 0.3f});
   addInstance(raw, "b", Eigen::Vector3d(1.2, 0, 0), Eigen::Quaterniond::Identity(), {0.3f, 0.4f, 0.9f});
@@ -143,18 +150,18 @@ TEST(SceneRender, FrameAloneIsByteIdenticalToTheSameFrameOfASequence) {
   raw.actions.push_back(spin);
   const scene::Scene s = scene::Scene::build(raw);
 
-  SceneRenderer sequence(s, smallOptions());
-  Image frame, f6_in_sequence;
+  // Frame 6 first, on a fresh renderer; then the whole sequence on the same one: frame 6 does not
+  // depend on what was drawn before it. (Separate processes: RunCli's --frames test.)
+  SceneRenderer renderer(s, smallOptions());
+  Image f6_alone, frame, f6_in_sequence;
+  renderer.render(6, f6_alone);
   for (int f = 0; f <= 9; ++f) {
-    sequence.render(f, frame);
+    renderer.render(f, frame);
     if (f == 6) f6_in_sequence = frame;
   }
-  SceneRenderer alone(s, smallOptions());
-  Image f6_alone;
-  alone.render(6, f6_alone);
   EXPECT_EQ(f6_alone.rgba, f6_in_sequence.rgba);
   Image f0;
-  alone.render(0, f0);
+  renderer.render(0, f0);
   EXPECT_NE(f0.rgba, f6_alone.rgba);  // the spin shows
 }
 
