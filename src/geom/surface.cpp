@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "vdg/geom/error.h"
+#include "vdg/geom/parallel.h"
 
 namespace vdg {
 namespace {
@@ -219,7 +220,34 @@ SurfaceTopology SurfaceTopology::build(const TriMesh& mesh, const SurfaceOptions
     }
     t.render_triangles_[c] = it->second;
   }
+  t.buildGatherLists();
   return t;
+}
+
+// Counting sort of the corners by slot; corners are visited in ascending order, so each slot's
+// triangles come out ascending (the order the scatter used to add them in).
+void SurfaceTopology::buildGatherLists() {
+  const std::size_t nv = weld_.size(), corners = triangles_.size();
+  copied_vertices_.clear();
+  for (std::size_t v = 0; v < nv; ++v)
+    if (vertex_home_[v] != static_cast<std::int32_t>(v)) copied_vertices_.push_back(static_cast<std::int32_t>(v));
+  const auto fill = [&](std::size_t slots, auto slot_of, std::vector<std::int32_t>& offsets,
+                        std::vector<std::int32_t>& entries) {
+    offsets.assign(slots + 1, 0);
+    for (std::size_t c = 0; c < corners; ++c) ++offsets[slot_of(c) + 1];
+    for (std::size_t s = 0; s < slots; ++s) offsets[s + 1] += offsets[s];
+    entries.resize(corners);
+    std::vector<std::int32_t> next(offsets.begin(), offsets.end() - 1);
+    for (std::size_t c = 0; c < corners; ++c)
+      entries[static_cast<std::size_t>(next[slot_of(c)]++)] = static_cast<std::int32_t>(c / 3);
+  };
+  fill(
+      nv,
+      [&](std::size_t c) { return static_cast<std::size_t>(vertex_home_[static_cast<std::size_t>(triangles_[c])]); },
+      home_offsets_, home_triangles_);
+  fill(
+      group_count_, [&](std::size_t c) { return static_cast<std::size_t>(corner_groups_[c]); }, group_offsets_,
+      group_triangles_);
 }
 
 SurfaceTopology SurfaceTopology::unwelded(std::span<const std::int32_t> triangles, std::size_t vertex_count) {
@@ -241,6 +269,7 @@ SurfaceTopology SurfaceTopology::unwelded(std::span<const std::int32_t> triangle
     std::iota(t.weld_.begin(), t.weld_.end(), 0);
     t.vertex_home_ = t.weld_;
     t.welded_count_ = vertex_count;
+    t.buildGatherLists();
     return t;
   }
   SurfaceOptions exact;
@@ -259,34 +288,46 @@ SurfaceTopology SurfaceTopology::unwelded(std::span<const std::int32_t> triangle
 
 namespace {
 
-// Adds each triangle's area-weighted normal to slot(corner) of `out`, then normalises.
-template <class Slot>
-void accumulateNormals(std::span<const std::int32_t> triangles, std::span<const float> positions, std::span<float> out,
-                       Slot slot) {
-  std::fill(out.begin(), out.end(), 0.0f);
-  for (std::size_t t = 0; t < triangles.size(); t += 3) {
-    const float* a = &positions[static_cast<std::size_t>(triangles[t]) * 3];
-    const float* b = &positions[static_cast<std::size_t>(triangles[t + 1]) * 3];
-    const float* c = &positions[static_cast<std::size_t>(triangles[t + 2]) * 3];
+// The normalised sum of the area-weighted normals of triangles ids[0 .. count) (each computed from
+// its first corner, as (b - a) x (c - a)), into out[0..2]; (0, 0, 0) when the sum is zero.
+inline void gatherNormal(const std::int32_t* tris, const float* positions, const std::int32_t* ids, std::size_t count,
+                         float* out) {
+  float sx = 0.0f, sy = 0.0f, sz = 0.0f;
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::int32_t* t = tris + 3 * static_cast<std::size_t>(ids[i]);
+    const float* a = positions + 3 * static_cast<std::size_t>(t[0]);
+    const float* b = positions + 3 * static_cast<std::size_t>(t[1]);
+    const float* c = positions + 3 * static_cast<std::size_t>(t[2]);
     const float e1x = b[0] - a[0], e1y = b[1] - a[1], e1z = b[2] - a[2];
     const float e2x = c[0] - a[0], e2y = c[1] - a[1], e2z = c[2] - a[2];
-    const float nx = e1y * e2z - e1z * e2y, ny = e1z * e2x - e1x * e2z, nz = e1x * e2y - e1y * e2x;
-    for (std::size_t k = 0; k < 3; ++k) {
-      const std::size_t s = slot(t + k) * 3;
-      out[s] += nx;
-      out[s + 1] += ny;
-      out[s + 2] += nz;
-    }
+    sx += e1y * e2z - e1z * e2y;
+    sy += e1z * e2x - e1x * e2z;
+    sz += e1x * e2y - e1y * e2x;
   }
-  for (std::size_t s = 0; s < out.size(); s += 3) {
-    const float len = std::sqrt(out[s] * out[s] + out[s + 1] * out[s + 1] + out[s + 2] * out[s + 2]);
-    if (len > 0.0f) {
-      const float inv = 1.0f / len;
-      out[s] *= inv;
-      out[s + 1] *= inv;
-      out[s + 2] *= inv;
-    }
+  const float len = std::sqrt(sx * sx + sy * sy + sz * sz);
+  if (len > 0.0f) {
+    const float inv = 1.0f / len;
+    sx *= inv;
+    sy *= inv;
+    sz *= inv;
   }
+  out[0] = sx;
+  out[1] = sy;
+  out[2] = sz;
+}
+
+// Normals of slots [0, slots) from a CSR (offsets, ids) into out (slots x 3).
+void gatherSlots(std::span<const std::int32_t> tris, std::span<const float> positions,
+                 std::span<const std::int32_t> offsets, std::span<const std::int32_t> ids, std::size_t slots,
+                 float* out) {
+  const std::int32_t* t = tris.data();
+  const float* p = positions.data();
+  const std::int32_t* off = offsets.data();
+  const std::int32_t* id = ids.data();
+  detail::parallelChunks(slots, kParallelNormalSlots, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t s = begin; s < end; ++s)
+      gatherNormal(t, p, id + off[s], static_cast<std::size_t>(off[s + 1] - off[s]), out + 3 * s);
+  });
 }
 
 }  // namespace
@@ -294,28 +335,47 @@ void accumulateNormals(std::span<const std::int32_t> triangles, std::span<const 
 bool computeGroupNormals(const SurfaceTopology& topology, std::span<const float> positions,
                          std::span<float> group_normals) {
   if (positions.size() != topology.vertexCount() * 3 || group_normals.size() != topology.groupCount() * 3) return false;
-  const auto groups = topology.cornerGroups();
-  accumulateNormals(topology.triangles(), positions, group_normals,
-                    [&](std::size_t corner) { return static_cast<std::size_t>(groups[corner]); });
+  gatherSlots(topology.triangles(), positions, topology.groupTriangleOffsets(), topology.groupTriangles(),
+              topology.groupCount(), group_normals.data());
   return true;
 }
 
 bool computeVertexNormals(const SurfaceTopology& topology, std::span<const float> positions, std::span<float> normals) {
   if (positions.size() != topology.vertexCount() * 3 || normals.size() != positions.size()) return false;
-  const auto tris = topology.triangles();
+  // Homes gather their triangles; the other vertices' ranges are empty and get (0, 0, 0) here,
+  // then their home's normal.
+  gatherSlots(topology.triangles(), positions, topology.homeTriangleOffsets(), topology.homeTriangles(),
+              topology.vertexCount(), normals.data());
   const auto home = topology.vertexHome();
-  accumulateNormals(tris, positions, normals, [&](std::size_t corner) {
-    return static_cast<std::size_t>(home[static_cast<std::size_t>(tris[corner])]);
-  });
-  // Every vertex takes its home's normal (homes have the lowest index of their class, so they are
-  // final when reached in order).
-  for (std::size_t v = 0; v < home.size(); ++v) {
-    const auto h = static_cast<std::size_t>(home[v]);
-    if (h == v) continue;
-    normals[v * 3] = normals[h * 3];
-    normals[v * 3 + 1] = normals[h * 3 + 1];
-    normals[v * 3 + 2] = normals[h * 3 + 2];
+  for (const std::int32_t v : topology.copiedVertices()) {
+    const auto d = static_cast<std::size_t>(v) * 3, h = static_cast<std::size_t>(home[static_cast<std::size_t>(v)]) * 3;
+    normals[d] = normals[h];
+    normals[d + 1] = normals[h + 1];
+    normals[d + 2] = normals[h + 2];
   }
+  return true;
+}
+
+bool computeVertexNormalsOf(const SurfaceTopology& topology, std::span<const float> positions,
+                            std::span<const std::int32_t> vertices, std::span<float> normals) {
+  const std::size_t nv = topology.vertexCount();
+  if (positions.size() != nv * 3 || normals.size() != positions.size()) return false;
+  for (const std::int32_t v : vertices)
+    if (v < 0 || static_cast<std::size_t>(v) >= nv) return false;
+  const std::int32_t* t = topology.triangles().data();
+  const float* p = positions.data();
+  const std::int32_t* home = topology.vertexHome().data();
+  const std::int32_t* off = topology.homeTriangleOffsets().data();
+  const std::int32_t* id = topology.homeTriangles().data();
+  const std::int32_t* list = vertices.data();
+  float* out = normals.data();
+  detail::parallelChunks(vertices.size(), kParallelNormalSlots, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      const auto h = static_cast<std::size_t>(home[static_cast<std::size_t>(list[i])]);
+      gatherNormal(t, p, id + off[h], static_cast<std::size_t>(off[h + 1] - off[h]),
+                   out + 3 * static_cast<std::size_t>(list[i]));
+    }
+  });
   return true;
 }
 
