@@ -12,6 +12,7 @@
 #include "key_views.h"
 #include "vdg/geom/error.h"
 #include "vdg/geom/normalize.h"
+#include "vdg/geom/parallel.h"
 
 namespace vdg {
 
@@ -329,6 +330,11 @@ ViewDependentModel ViewDependentModel::build(const RawViewDependentModel& raw) {
     }
     model.keys_.push_back(std::move(key));
   }
+  // Cached for ModelEvaluator: the base's normals, and per sparse key the vertices whose normal a
+  // move of that key can change.
+  model.base_normals_.resize(3 * nv);
+  (void)computeVertexNormals(model.surface_, model.base_.positions, model.base_normals_);  // sizes right
+  model.findNormalVertices();
   // Every blend is a convex combination of the base and the keys (see extent() in the header).
   detail::ExtentBuilder extent(model.center_);
   extent.add(raw.base.positions);
@@ -336,6 +342,55 @@ ViewDependentModel ViewDependentModel::build(const RawViewDependentModel& raw) {
   model.extent_ = extent.box();
   model.extent_radius_ = extent.radius();
   return model;
+}
+
+// A moved vertex m changes the area-weighted normal of every triangle at m, so the normals of the
+// homes of those triangles' corners, and the vertices copying those homes. The triangles at m are
+// among those its home gathers (homeTriangles() of vertexHome()[m], a superset when seam copies of
+// m carry other triangles), so the list may hold a few vertices more than needed, never fewer.
+void ViewDependentModel::findNormalVertices() {
+  const std::size_t nv = base_.vertexCount();
+  const auto home = surface_.vertexHome();
+  const auto off = surface_.homeTriangleOffsets();
+  const auto ids = surface_.homeTriangles();
+  const auto tris = surface_.triangles();
+  // The vertices copying each home (a small CSR over surface_.copiedVertices()).
+  std::vector<std::int32_t> copy_offsets(nv + 1, 0), copies(surface_.copiedVertices().size());
+  for (const std::int32_t v : surface_.copiedVertices())
+    ++copy_offsets[static_cast<std::size_t>(home[static_cast<std::size_t>(v)]) + 1];
+  for (std::size_t h = 0; h < nv; ++h) copy_offsets[h + 1] += copy_offsets[h];
+  {
+    std::vector<std::int32_t> next(copy_offsets.begin(), copy_offsets.end() - 1);
+    for (const std::int32_t v : surface_.copiedVertices())
+      copies[static_cast<std::size_t>(next[static_cast<std::size_t>(home[static_cast<std::size_t>(v)])]++)] = v;
+  }
+  std::vector<std::uint8_t> marked(nv, 0);
+  std::vector<std::int32_t> homes;
+  for (Key& key : keys_) {
+    if (key.dense) continue;
+    homes.clear();
+    for (const std::uint32_t m : key.indices) {
+      const auto h = static_cast<std::size_t>(home[m]);
+      for (auto i = off[h]; i < off[h + 1]; ++i)
+        for (std::size_t c = 0; c < 3; ++c) {
+          const std::int32_t corner_home =
+              home[static_cast<std::size_t>(tris[3 * static_cast<std::size_t>(ids[static_cast<std::size_t>(i)]) + c])];
+          if (!marked[static_cast<std::size_t>(corner_home)]) {
+            marked[static_cast<std::size_t>(corner_home)] = 1;
+            homes.push_back(corner_home);
+          }
+        }
+    }
+    key.normal_vertices = homes;
+    for (const std::int32_t h : homes) {
+      marked[static_cast<std::size_t>(h)] = 0;
+      const auto hs = static_cast<std::size_t>(h);
+      key.normal_vertices.insert(key.normal_vertices.end(), copies.begin() + copy_offsets[hs],
+                                 copies.begin() + copy_offsets[hs + 1]);
+    }
+    std::sort(key.normal_vertices.begin(), key.normal_vertices.end());  // ascending: memory order
+    key.normal_vertices.shrink_to_fit();
+  }
 }
 
 Eigen::Vector3d ViewDependentModel::viewFromEye(const Eigen::Vector3d& eye) const {
@@ -373,16 +428,42 @@ bool ViewDependentModel::weights(const Eigen::Vector3d& view, double sharpness, 
   return sphere_.weights(view, sharpness > 0.0 ? sharpness : sharpness_, out, hint);
 }
 
-// Section 3.2.3: v = sum_i w_i v^i, written as base + sum_i w_i (v^i - base) because the weights,
-// base included, sum to 1. Only the moved vertices of sparse keys are touched.
-bool ViewDependentModel::blend(const ViewWeights& w, std::span<float> out) const {
-  const std::size_t n = base_.positions.size();
-  if (out.size() != n) return false;
+bool ViewDependentModel::checkWeights(const ViewWeights& w) const {
   for (int slot = 0; slot < 3; ++slot) {
     if (w.key[slot] < -1 || w.key[slot] >= static_cast<int>(keys_.size())) return false;
     if (!std::isfinite(w.weight[slot])) return false;
   }
-  // Dense keys are fused into one pass over the base (one read of each array, one write);
+  return true;
+}
+
+void ViewDependentModel::scatterSparse(const ViewWeights& w, float* out) const {
+  for (int slot = 0; slot < 3; ++slot) {
+    const int k = w.key[slot];
+    const float weight = w.weight[slot];
+    if (k < 0 || weight == 0.0f) continue;
+    const Key& key = keys_[static_cast<std::size_t>(k)];
+    if (key.dense) continue;
+    const float* d = key.deltas.data();
+    const std::uint32_t* idx = key.indices.data();
+    // A key's indices are distinct, so its chunks write disjoint vertices.
+    detail::parallelChunks(key.indices.size(), kBlendGrain / 3, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t i = begin; i < end; ++i) {
+        float* v = out + 3 * static_cast<std::size_t>(idx[i]);
+        v[0] += weight * d[3 * i];
+        v[1] += weight * d[3 * i + 1];
+        v[2] += weight * d[3 * i + 2];
+      }
+    });
+  }
+}
+
+// Section 3.2.3: v = sum_i w_i v^i, written as base + sum_i w_i (v^i - base) because the weights,
+// base included, sum to 1. Only the moved vertices of sparse keys are touched.
+bool ViewDependentModel::blend(const ViewWeights& w, std::span<float> out) const {
+  const std::size_t n = base_.positions.size();
+  if (out.size() != n || !checkWeights(w)) return false;
+  // Dense keys are fused into one pass over the base (one read of each array, one write),
+  // vectorised (Eigen array maps) and split over TBB's threads in chunks of kBlendGrain floats;
   // sparse keys then scatter their moved vertices.
   const float* dense_delta[3] = {nullptr, nullptr, nullptr};
   float dense_weight[3] = {0.0f, 0.0f, 0.0f};
@@ -398,44 +479,31 @@ bool ViewDependentModel::blend(const ViewWeights& w, std::span<float> out) const
   }
   const float* b = base_.positions.data();
   float* o = out.data();
-  switch (dense_count) {
-    case 0:
-      std::memcpy(o, b, n * sizeof(float));
-      break;
-    case 1: {
-      const float* d0 = dense_delta[0];
-      const float w0 = dense_weight[0];
-      for (std::size_t i = 0; i < n; ++i) o[i] = b[i] + w0 * d0[i];
-      break;
+  using Array = Eigen::Map<Eigen::ArrayXf>;
+  using ConstArray = Eigen::Map<const Eigen::ArrayXf>;
+  detail::parallelChunks(n, kBlendGrain, [&](std::size_t begin, std::size_t end) {
+    const auto len = static_cast<Eigen::Index>(end - begin);
+    Array dst(o + begin, len);
+    const ConstArray base(b + begin, len);
+    switch (dense_count) {
+      case 0:
+        std::memcpy(o + begin, b + begin, (end - begin) * sizeof(float));
+        break;
+      case 1:
+        dst = base + dense_weight[0] * ConstArray(dense_delta[0] + begin, len);
+        break;
+      case 2:
+        dst = base + dense_weight[0] * ConstArray(dense_delta[0] + begin, len) +
+              dense_weight[1] * ConstArray(dense_delta[1] + begin, len);
+        break;
+      default:
+        dst = base + dense_weight[0] * ConstArray(dense_delta[0] + begin, len) +
+              dense_weight[1] * ConstArray(dense_delta[1] + begin, len) +
+              dense_weight[2] * ConstArray(dense_delta[2] + begin, len);
+        break;
     }
-    case 2: {
-      const float *d0 = dense_delta[0], *d1 = dense_delta[1];
-      const float w0 = dense_weight[0], w1 = dense_weight[1];
-      for (std::size_t i = 0; i < n; ++i) o[i] = b[i] + w0 * d0[i] + w1 * d1[i];
-      break;
-    }
-    default: {
-      const float *d0 = dense_delta[0], *d1 = dense_delta[1], *d2 = dense_delta[2];
-      const float w0 = dense_weight[0], w1 = dense_weight[1], w2 = dense_weight[2];
-      for (std::size_t i = 0; i < n; ++i) o[i] = b[i] + w0 * d0[i] + w1 * d1[i] + w2 * d2[i];
-      break;
-    }
-  }
-  for (int slot = 0; slot < 3; ++slot) {
-    const int k = w.key[slot];
-    const float weight = w.weight[slot];
-    if (k < 0 || weight == 0.0f) continue;
-    const Key& key = keys_[static_cast<std::size_t>(k)];
-    if (key.dense) continue;
-    const float* d = key.deltas.data();
-    const std::size_t m = key.indices.size();
-    for (std::size_t i = 0; i < m; ++i) {
-      float* v = o + 3 * static_cast<std::size_t>(key.indices[i]);
-      v[0] += weight * d[3 * i];
-      v[1] += weight * d[3 * i + 1];
-      v[2] += weight * d[3 * i + 2];
-    }
-  }
+  });
+  scatterSparse(w, o);
   return true;
 }
 

@@ -195,7 +195,19 @@ class ViewDependentModel {
     std::vector<std::uint32_t> indices;  // sparse: moved vertex indices (empty when dense)
     std::vector<float> deltas;           // sparse: moved_count x 3; dense: #V x 3
     bool dense = false;
+    // Sparse keys: the vertices whose normal a move of this key can change (the homes of the
+    // corners of every triangle at a moved vertex, and the vertices copying those homes),
+    // ascending; ModelEvaluator recomputes only these.
+    std::vector<std::int32_t> normal_vertices;
   };
+  friend class ModelEvaluator;
+  // Floats of positions per chunk of the threaded blend: a 3k-vertex model runs inline.
+  static constexpr std::size_t kBlendGrain = 3 * 16384;
+  bool checkWeights(const ViewWeights& w) const;
+  // Adds w's sparse keys' weighted deltas to out (#V x 3), slot by slot.
+  void scatterSparse(const ViewWeights& w, float* out) const;
+  void findNormalVertices();
+
   TriMesh base_;
   SurfaceTopology surface_;
   std::vector<Key> keys_;
@@ -204,6 +216,7 @@ class ViewDependentModel {
   double sharpness_ = 1.0;
   Bounds extent_;
   double extent_radius_ = 1e-6;
+  std::vector<float> base_normals_;  // computeVertexNormals of the base, #V x 3
 };
 
 }  // namespace vdg
