@@ -25,14 +25,14 @@ export PATH=$PATH:/usr/sbin:/sbin  # munged, slurmctld, slurmd
 
 skip_or_fail() {
   if [ "${VDG_REQUIRE_SLURM:-0}" = 1 ]; then
-    echo "FAIL: $* (VDG_REQUIRE_SLURM=1; scripts/install-deps installs slurm-wlm and munge)" >&2
+    echo "FAIL: $* (VDG_REQUIRE_SLURM=1: this test must run, not skip)" >&2
     exit 1
   fi
   echo "SKIP: $*" >&2
   exit 77
 }
 for c in munged slurmctld slurmd sbatch squeue scontrol scancel sinfo; do
-  command -v "$c" >/dev/null || skip_or_fail "$c not found (Debian packages slurm-wlm and munge)"
+  command -v "$c" >/dev/null || skip_or_fail "$c not found (scripts/install-deps installs the Debian packages slurm-wlm and munge)"
 done
 [ "$(id -u)" -eq 0 ] || skip_or_fail "the one-node Slurm cluster needs root (slurmd runs jobs as their user)"
 command -v python3 >/dev/null || skip_or_fail "python3 not found (to pick free ports)"
@@ -43,7 +43,6 @@ rm -rf "$work"
 mkdir -p "$work"
 cluster=$(mktemp -d /tmp/vdg-farm.XXXXXX)
 mkdir -p "$cluster/state" "$cluster/spool"
-job_id=""
 watchdog_pid=""
 
 log_tails() {
@@ -66,7 +65,7 @@ stop_daemon() {
     kill -0 "$pid" 2>/dev/null || return 0
     sleep 0.1
   done
-  echo "farm_test: $(basename "$pid_file" .pid) ($pid) did not stop on TERM: KILL" >&2
+  echo "farm_test: $(basename "$pid_file" .pid) (pid $pid) did not stop on TERM: KILL" >&2
   kill -KILL "$pid" 2>/dev/null || true
 }
 
@@ -75,14 +74,15 @@ stop_cluster() {
   set +e
   trap - EXIT INT TERM
   trap '' PIPE  # a closed stdout (| head) must not end the clean-up half-way
-  if [ -n "$job_id" ]; then
-    scancel "$job_id" 2>/dev/null
-    # Let slurmd end the job's steps before it stops itself.
+  if [ -n "${SLURM_CONF:-}" ]; then
+    # Every job of this private cluster is this test's; let slurmd end their steps before it stops.
+    scancel --partition=farm 2>/dev/null
     for _ in $(seq 50); do
-      [ -z "$(squeue -h -j "$job_id" 2>/dev/null)" ] && break
+      [ -z "$(squeue -h 2>/dev/null)" ] && break
       sleep 0.1
     done
   fi
+  stop_daemon "$cluster/submit.pid"
   stop_daemon "$cluster/slurmd.pid"
   stop_daemon "$cluster/slurmctld.pid"
   stop_daemon "$cluster/munged.pid"
@@ -105,7 +105,7 @@ fail() {
 # session stops the daemons when this script's process is gone.
 setsid bash -c '
   while kill -0 "$1" 2>/dev/null; do sleep 1; done
-  for d in slurmd slurmctld munged; do
+  for d in submit slurmd slurmctld munged; do
     [ -s "$2/$d.pid" ] && kill -TERM "$(cat "$2/$d.pid")" 2>/dev/null
   done
   sleep 2
@@ -174,36 +174,44 @@ until [ "$(sinfo -h -n "$node" -o %T 2>/dev/null)" = idle ]; do
   sleep 0.2
 done
 
-# --- the orbit on the farm: 4 tasks of 10 frames, in the job's working directory WORK_DIR
-cd "$work"
-job_id=$("$source_dir/scripts/farm/submit" --frames "0-$((kFrames - 1))" --tasks "$kTasks" \
-  --vdg "$vdg" --sbatch "--output=$work/task-%a.log" -- \
-  run "$source_dir/tests/farm/orbit.lua" --root "$source_dir" -o "$work/farm" --quiet)
-job_id=${job_id%%;*}
-[[ $job_id =~ ^[0-9]+$ ]] || fail "submit printed '$job_id', not a job id"
-
-# --- meanwhile the same orbit locally
+# --- the same orbit locally, then on the farm: 4 tasks of 10 frames, run in WORK_DIR; submit --wait
+# returns when every task has ended, with status 0 only when every task's was 0.
 "$vdg" run "$source_dir/tests/farm/orbit.lua" --root "$source_dir" -o "$work/local" --quiet ||
   fail "the local render failed"
-
-deadline=$((SECONDS + kWaitSeconds))
-while [ -n "$(squeue -h -j "$job_id" 2>/dev/null)" ]; do
-  [ "$SECONDS" -lt "$deadline" ] || {
-    squeue -j "$job_id" >&2
-    fail "job $job_id did not end within ${kWaitSeconds} s"
-  }
-  sleep 0.5
-done
+cd "$work"
+# In the background, with its pid in a pid file, so that the clean-up and the watchdog stop it too.
+timeout "$kWaitSeconds" "$source_dir/scripts/farm/submit" --frames "0-$((kFrames - 1))" \
+  --tasks "$kTasks" --vdg "$vdg" --sbatch "--output=$work/task-%a.log" --wait -- \
+  run "$source_dir/tests/farm/orbit.lua" --root "$source_dir" -o "$work/farm" --quiet \
+  >"$work/job_id" &
+echo $! >"$cluster/submit.pid"
+submit_status=0
+wait $! || submit_status=$?
+job_id=$(head -n 1 "$work/job_id")
+job_id=${job_id%%;*}
+show_task_logs() {
+  for f in "$work"/task-*.log; do
+    [ -e "$f" ] || continue
+    echo "---- $f" >&2
+    cat "$f" >&2
+  done
+}
+if [ "$submit_status" -eq 124 ]; then
+  squeue >&2
+  fail "the job array did not end within ${kWaitSeconds} s"
+fi
+[[ $job_id =~ ^[0-9]+$ ]] || fail "submit printed '$job_id', not a job id (exit status $submit_status)"
+if [ "$submit_status" -ne 0 ]; then
+  show_task_logs
+  fail "submit --wait: exit status $submit_status (a task failed)"
+fi
 
 # Every task ended COMPLETED with exit code 0 (the controller keeps ended jobs MinJobAge seconds).
 states=$(scontrol -o show job "$job_id" | grep -o 'JobState=[A-Z_]* .* ExitCode=[0-9:]*' |
   sed -E 's/JobState=([A-Z_]+) .* ExitCode=([0-9:]+)/\1 \2/')
 tasks_done=$(grep -c '^COMPLETED 0:0$' <<<"$states" || true)
 if [ "$tasks_done" -ne "$kTasks" ]; then
-  for f in "$work"/task-*.log; do
-    echo "---- $f" >&2
-    cat "$f" >&2
-  done
+  show_task_logs
   fail "$tasks_done of $kTasks array tasks completed (state and exit code of each: $(tr '\n' ',' <<<"$states"))"
 fi
 
