@@ -20,7 +20,8 @@ source_dir=$(cd "$2" && pwd)
 work=$3
 kFrames=40         # frames of the orbit: 0-39
 kTasks=4           # array tasks
-kWaitSeconds=45    # for the cluster to come up, and again for the job to end
+kStartSeconds=60   # for the cluster to come up (a few seconds)
+kJobSeconds=150    # for the job array to end (about 10 s; a minute under ASan on a loaded machine)
 export PATH=$PATH:/usr/sbin:/sbin  # munged, slurmctld, slurmd
 
 skip_or_fail() {
@@ -165,28 +166,29 @@ slurmd -D -N "$node" -f "$SLURM_CONF" >"$cluster/slurmd.out" 2>&1 &
 slurmd_pid=$!
 
 # Wait for the node to be idle; a daemon that exits fails the test at once.
-deadline=$((SECONDS + kWaitSeconds))
+deadline=$((SECONDS + kStartSeconds))
 until [ "$(sinfo -h -n "$node" -o %T 2>/dev/null)" = idle ]; do
   kill -0 "$slurmctld_pid" 2>/dev/null || fail "slurmctld exited while the cluster started (its log below)"
   kill -0 "$slurmd_pid" 2>/dev/null || fail "slurmd exited while the cluster started (its log below)"
   [ "$SECONDS" -lt "$deadline" ] ||
-    fail "the one-node cluster did not come up within ${kWaitSeconds} s (node state: '$(sinfo -h -n "$node" -o %T 2>&1)')"
+    fail "the one-node cluster did not come up within ${kStartSeconds} s (node state: '$(sinfo -h -n "$node" -o %T 2>&1)')"
   sleep 0.2
 done
 
-# --- the same orbit locally, then on the farm: 4 tasks of 10 frames, run in WORK_DIR; submit --wait
-# returns when every task has ended, with status 0 only when every task's was 0.
-"$vdg" run "$source_dir/tests/farm/orbit.lua" --root "$source_dir" -o "$work/local" --quiet ||
-  fail "the local render failed"
+# --- the orbit on the farm, 4 tasks of 10 frames run in WORK_DIR, and meanwhile locally. submit
+# --wait returns when every task has ended, with status 0 only when every task's was 0; it runs in
+# the background with its pid in a pid file, so that the clean-up and the watchdog stop it too.
 cd "$work"
-# In the background, with its pid in a pid file, so that the clean-up and the watchdog stop it too.
-timeout "$kWaitSeconds" "$source_dir/scripts/farm/submit" --frames "0-$((kFrames - 1))" \
+timeout "$kJobSeconds" "$source_dir/scripts/farm/submit" --frames "0-$((kFrames - 1))" \
   --tasks "$kTasks" --vdg "$vdg" --sbatch "--output=$work/task-%a.log" --wait -- \
   run "$source_dir/tests/farm/orbit.lua" --root "$source_dir" -o "$work/farm" --quiet \
   >"$work/job_id" &
-echo $! >"$cluster/submit.pid"
+submit_pid=$!
+echo "$submit_pid" >"$cluster/submit.pid"
+"$vdg" run "$source_dir/tests/farm/orbit.lua" --root "$source_dir" -o "$work/local" --quiet ||
+  fail "the local render failed"
 submit_status=0
-wait $! || submit_status=$?
+wait "$submit_pid" || submit_status=$?
 job_id=$(head -n 1 "$work/job_id")
 job_id=${job_id%%;*}
 show_task_logs() {
@@ -198,7 +200,7 @@ show_task_logs() {
 }
 if [ "$submit_status" -eq 124 ]; then
   squeue >&2
-  fail "the job array did not end within ${kWaitSeconds} s"
+  fail "the job array did not end within ${kJobSeconds} s"
 fi
 [[ $job_id =~ ^[0-9]+$ ]] || fail "submit printed '$job_id', not a job id (exit status $submit_status)"
 if [ "$submit_status" -ne 0 ]; then
@@ -221,7 +223,7 @@ farm_count=$(find "$work/farm/orbit" -name 'frame_*.png' 2>/dev/null | wc -l)
 [ "$local_count" -eq "$kFrames" ] || fail "the local render wrote $local_count frames, not $kFrames"
 [ "$farm_count" -eq "$kFrames" ] || fail "the farm wrote $farm_count frames, not $kFrames"
 for ((f = 0; f < kFrames; ++f)); do
-  name=$(printf 'frame_%04d.png' "$f")
+  printf -v name 'frame_%04d.png' "$f"
   cmp "$work/local/orbit/$name" "$work/farm/orbit/$name" ||
     fail "$name rendered on the farm differs from the local render"
 done
