@@ -104,6 +104,7 @@ fail() {
 
 # ctest kills a test past its TIMEOUT with SIGKILL, which no trap sees: a watchdog in its own
 # session stops the daemons when this script's process is gone.
+# shellcheck disable=SC2016  # the watchdog's own script, expanded by the bash that runs it
 setsid bash -c '
   while kill -0 "$1" 2>/dev/null; do sleep 1; done
   for d in submit slurmd slurmctld munged; do
