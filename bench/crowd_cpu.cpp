@@ -34,7 +34,7 @@ std::string examplesDir() {
 
 const vdg::ViewDependentModel& spot() {
   static const vdg::ViewDependentModel model =
-      vdg::ViewDependentModel::build(vdg::io::loadManifest(examplesDir() + "/spot/spot.vdg.json"));
+      vdg::ViewDependentModel::build(vdg::loadManifest(examplesDir() + "/spot/spot.vdg.json"));
   return model;
 }
 
