@@ -93,7 +93,8 @@ struct ModelRenderer::Impl {
   void setup() {
     const TriMesh& mesh = base();
     positions = mesh.positions;
-    mesh_id = renderer.addSurface(mesh, SurfaceTopology::build(mesh));
+    // The GPU blend registers the model itself (below); the CPU path draws a surface.
+    if (!(options.gpu_blend && model)) mesh_id = renderer.addSurface(mesh, SurfaceTopology::build(mesh));
     // Frame what will be drawn: a model's extent (the base and every key, at every frame of an
     // animated base), not the base alone, so a key that raises the top stays inside the clip
     // planes and the observer panel.
