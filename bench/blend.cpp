@@ -19,6 +19,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <ctime>
 #include <numbers>
 #include <numeric>
 
@@ -98,6 +99,14 @@ Eigen::Vector3d pathView(int frame) {  // a coherent camera path; three keys act
 
 using Clock = std::chrono::steady_clock;
 double seconds(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
+// CPU seconds of the whole process (every thread, TBB's workers included): on a shared, loaded
+// machine a thread that waits for a core shows in the wall time but not here, so the cpu_x_*
+// counters are the steadier figure there (they count TBB's brief spinning too).
+double cpuSeconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
 
 // The floor: one pass over both cores reading base + 3 deltas + the triangle indices, writing
 // positions and normals (the same bytes a full dense evaluation must move).
@@ -188,9 +197,10 @@ void fullDenseBenchmark(benchmark::State& state, bool evaluator) {
   std::vector<float> positions(n), normals(n), floor_p(n), floor_n(n);
   Floor floor = floorOf(m, floor_p, floor_n);
   vdg::ModelEvaluator instance(m);
-  double eval_s = 0.0, floor_s = 0.0;
+  double eval_s = 0.0, floor_s = 0.0, eval_cpu = 0.0, floor_cpu = 0.0;
   int frame = 0, hint = -1;
   for (auto _ : state) {
+    const double c0 = cpuSeconds();
     const auto t0 = Clock::now();
     const bool ok = evaluator ? instance.evaluate(pathView(frame++), 1.0, &hint)
                               : m.evaluate(pathView(frame++), 1.0, positions, normals, &hint);
@@ -200,17 +210,22 @@ void fullDenseBenchmark(benchmark::State& state, bool evaluator) {
     }
     benchmark::ClobberMemory();
     const auto t1 = Clock::now();
+    const double c1 = cpuSeconds();
     floor.run();
     benchmark::ClobberMemory();
     const auto t2 = Clock::now();
+    const double c2 = cpuSeconds();
     eval_s += seconds(t0, t1);
     floor_s += seconds(t1, t2);
+    eval_cpu += c1 - c0;
+    floor_cpu += c2 - c1;
     state.SetIterationTime(seconds(t0, t1));
   }
   benchmark::DoNotOptimize(floor.sink);
   state.counters["vertices"] = static_cast<double>(m.vertexCount());
   state.counters["floor_ms"] = 1e3 * floor_s / static_cast<double>(state.iterations());
   state.counters["x_floor"] = eval_s / floor_s;
+  state.counters["cpu_x_floor"] = eval_cpu / floor_cpu;
 }
 
 // Sparse keys, positions + normals, as a ratio to the dense model's full evaluation in the same run.
@@ -220,17 +235,22 @@ void sparseBenchmark(benchmark::State& state, Keys keys, bool evaluator) {
   const std::size_t n = m.base().positions.size();
   std::vector<float> positions(n), normals(n), dense_p(n), dense_n(n);
   vdg::ModelEvaluator instance(m);
-  double sparse_s = 0.0, dense_s = 0.0;
+  double sparse_s = 0.0, dense_s = 0.0, sparse_cpu = 0.0, dense_cpu = 0.0;
   int frame = 0, hint = -1, dense_hint = -1;
   for (auto _ : state) {
     const Eigen::Vector3d view = pathView(frame++);
+    const double c0 = cpuSeconds();
     const auto t0 = Clock::now();
     const bool ok = evaluator ? instance.evaluate(view, 1.0, &hint) : m.evaluate(view, 1.0, positions, normals, &hint);
     benchmark::ClobberMemory();
     const auto t1 = Clock::now();
+    const double c1 = cpuSeconds();
     const bool dense_ok = dense.evaluate(view, 1.0, dense_p, dense_n, &dense_hint);
     benchmark::ClobberMemory();
     const auto t2 = Clock::now();
+    const double c2 = cpuSeconds();
+    sparse_cpu += c1 - c0;
+    dense_cpu += c2 - c1;
     if (!ok || !dense_ok) {
       state.SkipWithError("evaluate refused its input (internal error)");
       break;
@@ -243,6 +263,7 @@ void sparseBenchmark(benchmark::State& state, Keys keys, bool evaluator) {
   for (std::size_t k = 0; k < m.keyCount(); ++k) moved += m.keyMovedCount(k);
   state.counters["moved_per_key"] = static_cast<double>(moved) / static_cast<double>(m.keyCount());
   state.counters["x_dense"] = sparse_s / dense_s;
+  state.counters["cpu_x_dense"] = sparse_cpu / dense_cpu;
 }
 
 void BM_PositionsDenseKeys(benchmark::State& state) { positionsBenchmark(state, Keys::kDense); }

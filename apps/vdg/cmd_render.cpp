@@ -20,6 +20,10 @@
 // Surfaces: seams of the mesh are welded (never inked), true holes are inked unless --no-borders,
 // --creases DEG inks sharp edges, and the mesh's materials and textures colour it unless
 // --no-materials (docs/render.md: the paper's equation per material and per texel).
+//
+// --gpu-blend blends the model, computes its normals and finds its silhouettes on the GPU
+// (Renderer::addBlendModel; OpenGL 4.3), for static view-dependent models; the frames equal the
+// CPU path's within rounding.
 #include <sys/stat.h>
 #include <unistd.h>
 #include <cerrno>
@@ -64,7 +68,7 @@ struct RenderOptions {
   int samples = 8;
   double sharpness = 0.0, line_width = 0.0, creases = 0.0;
   bool observer = false, sphere = false, flat = false, quiet = false, base_only = false;
-  bool no_borders = false, no_materials = false, strict = false;
+  bool no_borders = false, no_materials = false, strict = false, gpu_blend = false;
   int hold_frame = -1;  // -1: advance one animation frame per output frame
 };
 
@@ -198,6 +202,7 @@ void run(const RenderOptions& opt) {
   fo.crease_angle_deg = static_cast<float>(opt.creases);
   fo.borders = !opt.no_borders;
   fo.materials = !opt.no_materials;
+  fo.gpu_blend = opt.gpu_blend;
   if (!opt.color.empty()) fo.color = parseColor(opt.color, "--color");
   if (!opt.background.empty()) fo.background = parseColor(opt.background, "--background");
 
@@ -267,6 +272,11 @@ void run(const RenderOptions& opt) {
     throw UsageError("--hold-frame: expected a frame in [0, " + std::to_string(animated->frameCount() - 1) + "] (" +
                      opt.model + " has " + std::to_string(animated->frameCount()) + " frames), got " +
                      std::to_string(opt.hold_frame));
+  if (opt.gpu_blend && !model)
+    throw UsageError("--gpu-blend: " + opt.model + " is " +
+                     (animated ? "an animated model (base_animation), which is blended on the CPU"
+                               : "a plain mesh, with no keys to blend") +
+                     "; the GPU blend takes static view-dependent models");
   const TriMesh& base = model ? model->base() : animated ? animated->base() : mesh;
   const Bounds bounds = computeBounds(base.positions);
   const auto bc = bounds.center();
@@ -398,6 +408,9 @@ void addRenderCommand(CLI::App& app) {
   sub->add_flag("--strict", opt->strict,
                 "A missing or broken material library or texture of the mesh (or of a model's base) is an error "
                 "(default: a warning, and the surface shows its base colour)");
+  sub->add_flag("--gpu-blend", opt->gpu_blend,
+                "Blend, shade and ink on the GPU (compute shaders; needs OpenGL 4.3): the same picture within "
+                "rounding; static view-dependent models only");
   sub->add_option("--samples", opt->samples, "Multisample anti-aliasing samples (default 8, capped by the driver)")
       ->check(wholeNumber(1, kMaxSamples));
   sub->add_flag("-q,--quiet", opt->quiet, "No progress bar and no summary line");

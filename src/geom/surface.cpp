@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <numeric>
 #include <string>
@@ -288,6 +289,20 @@ SurfaceTopology SurfaceTopology::unwelded(std::span<const std::int32_t> triangle
 
 namespace {
 
+// (sx, sy, sz) normalised into out[0..2]; (0, 0, 0) stays.
+inline void finishNormal(float sx, float sy, float sz, float* out) {
+  const float len = std::sqrt(sx * sx + sy * sy + sz * sz);
+  if (len > 0.0f) {
+    const float inv = 1.0f / len;
+    sx *= inv;
+    sy *= inv;
+    sz *= inv;
+  }
+  out[0] = sx;
+  out[1] = sy;
+  out[2] = sz;
+}
+
 // The normalised sum of the area-weighted normals of triangles ids[0 .. count) (each computed from
 // its first corner, as (b - a) x (c - a)), into out[0..2]; (0, 0, 0) when the sum is zero.
 inline void gatherNormal(const std::int32_t* tris, const float* positions, const std::int32_t* ids, std::size_t count,
@@ -304,19 +319,21 @@ inline void gatherNormal(const std::int32_t* tris, const float* positions, const
     sy += e1z * e2x - e1x * e2z;
     sz += e1x * e2y - e1y * e2x;
   }
-  const float len = std::sqrt(sx * sx + sy * sy + sz * sz);
-  if (len > 0.0f) {
-    const float inv = 1.0f / len;
-    sx *= inv;
-    sy *= inv;
-    sz *= inv;
-  }
-  out[0] = sx;
-  out[1] = sy;
-  out[2] = sz;
+  finishNormal(sx, sy, sz, out);
 }
 
+// Triangles whose normals one block of slots caches on the stack (96 KB of floats).
+constexpr std::size_t kFaceWindow = 8192;
+
 // Normals of slots [0, slots) from a CSR (offsets, ids) into out (slots x 3).
+//
+// Neighbouring slots share triangles (each triangle is in three slots' lists), so rather than
+// computing a triangle's normal once per corner, a block of consecutive slots whose triangles lie
+// in a window of at most kFaceWindow consecutive indices first computes the window's face normals
+// (a streaming, vectorisable loop), then sums them per slot. That needs a mesh whose neighbouring
+// vertices have neighbouring triangles (as exported meshes do); where the window would compute more
+// normals than the block has corners, the block sums per corner instead. Either way each slot adds
+// the same float normals in the same order, so the result does not depend on the path.
 void gatherSlots(std::span<const std::int32_t> tris, std::span<const float> positions,
                  std::span<const std::int32_t> offsets, std::span<const std::int32_t> ids, std::size_t slots,
                  float* out) {
@@ -325,8 +342,51 @@ void gatherSlots(std::span<const std::int32_t> tris, std::span<const float> posi
   const std::int32_t* off = offsets.data();
   const std::int32_t* id = ids.data();
   detail::parallelChunks(slots, kParallelNormalSlots, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t s = begin; s < end; ++s)
-      gatherNormal(t, p, id + off[s], static_cast<std::size_t>(off[s + 1] - off[s]), out + 3 * s);
+    float face[kFaceWindow * 3];
+    std::size_t s = begin;
+    while (s < end) {
+      // The longest run of slots from s whose triangles fit in one window (lists are ascending).
+      std::int32_t lo = std::numeric_limits<std::int32_t>::max(), hi = -1;
+      std::size_t e = s;
+      for (; e < end; ++e) {
+        if (off[e] == off[e + 1]) continue;
+        const std::int32_t first = id[off[e]], last = id[off[e + 1] - 1];
+        const std::int32_t new_lo = std::min(lo, first), new_hi = std::max(hi, last);
+        if (static_cast<std::size_t>(new_hi - new_lo) >= kFaceWindow) break;
+        lo = new_lo;
+        hi = new_hi;
+      }
+      const std::size_t corners = static_cast<std::size_t>(off[e] - off[s]);
+      if (e == s || static_cast<std::size_t>(hi - lo + 1) > corners) {
+        // No window worth computing: sum per corner, for at least one slot.
+        const std::size_t stop = std::max(e, s + 1);
+        for (; s < stop; ++s)
+          gatherNormal(t, p, id + off[s], static_cast<std::size_t>(off[s + 1] - off[s]), out + 3 * s);
+        continue;
+      }
+      for (std::int32_t f = lo; f <= hi; ++f) {
+        const std::int32_t* tri = t + 3 * static_cast<std::size_t>(f);
+        const float* a = p + 3 * static_cast<std::size_t>(tri[0]);
+        const float* b = p + 3 * static_cast<std::size_t>(tri[1]);
+        const float* c = p + 3 * static_cast<std::size_t>(tri[2]);
+        const float e1x = b[0] - a[0], e1y = b[1] - a[1], e1z = b[2] - a[2];
+        const float e2x = c[0] - a[0], e2y = c[1] - a[1], e2z = c[2] - a[2];
+        float* n = face + 3 * static_cast<std::size_t>(f - lo);
+        n[0] = e1y * e2z - e1z * e2y;
+        n[1] = e1z * e2x - e1x * e2z;
+        n[2] = e1x * e2y - e1y * e2x;
+      }
+      for (; s < e; ++s) {
+        float sx = 0.0f, sy = 0.0f, sz = 0.0f;
+        for (std::int32_t i = off[s]; i < off[s + 1]; ++i) {
+          const float* n = face + 3 * static_cast<std::size_t>(id[i] - lo);
+          sx += n[0];
+          sy += n[1];
+          sz += n[2];
+        }
+        finishNormal(sx, sy, sz, out + 3 * s);
+      }
+    }
   });
 }
 

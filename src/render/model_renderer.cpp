@@ -75,6 +75,7 @@ struct ModelRenderer::Impl {
   FrameOptions options;
   Renderer renderer;
   int mesh_id = -1;
+  int blend_id = -1;             // options.gpu_blend: the model's GPU blend handle
   std::vector<float> positions;  // this frame's; the renderer computes the normals per smoothing group
   Eigen::Vector3d center = Eigen::Vector3d::Zero();
   double radius = 1.0;
@@ -92,7 +93,8 @@ struct ModelRenderer::Impl {
   void setup() {
     const TriMesh& mesh = base();
     positions = mesh.positions;
-    mesh_id = renderer.addSurface(mesh, SurfaceTopology::build(mesh));
+    // The GPU blend registers the model itself (below); the CPU path draws a surface.
+    if (!(options.gpu_blend && model)) mesh_id = renderer.addSurface(mesh, SurfaceTopology::build(mesh));
     // Frame what will be drawn: a model's extent (the base and every key, at every frame of an
     // animated base), not the base alone, so a key that raises the top stays inside the clip
     // planes and the observer panel.
@@ -110,6 +112,13 @@ struct ModelRenderer::Impl {
     const double aspect = static_cast<double>(options.width) / options.height;
     observer = options.observer_camera ? *options.observer_camera
                                        : orbitCamera(center, fitDistance(radius, kFovDeg, aspect), 35.0, 25.0, kFovDeg);
+    if (options.gpu_blend) {
+      if (!model)
+        throw Error(std::string("render: the GPU blend (--gpu-blend) takes a static view-dependent model; ") +
+                    (animated ? "an animated model (base_animation) is blended on the CPU"
+                              : "a plain mesh has no keys to blend"));
+      blend_id = renderer.addBlendModel(*model);
+    }
     if (!viewDependent()) {
       check(renderer.updateMesh(mesh_id, positions, {}), "updateMesh");
       return;
@@ -277,8 +286,10 @@ ViewWeights ModelRenderer::render(const Camera& camera, Image& out) {
       w = ViewWeights{};
       w.base = 1.0f;
     }
-    check(m.model->blend(w, m.positions), "blend");
-    check(m.renderer.updateMesh(m.mesh_id, m.positions, {}), "updateMesh");
+    if (m.blend_id < 0) {
+      check(m.model->blend(w, m.positions), "blend");
+      check(m.renderer.updateMesh(m.mesh_id, m.positions, {}), "updateMesh");
+    }
   } else if (m.animated) {
     // Section 4.1: the same per frame, on the animated base at frame m.frame.
     view = camera.isOrtho()
@@ -312,11 +323,22 @@ ViewWeights ModelRenderer::render(const Camera& camera, Image& out) {
     v.z_near = std::max(0.01 * m.radius, d - 2.0 * m.radius);
     v.z_far = d + 2.0 * m.radius;
   };
+  // The mesh as the CPU blended it, or blended on the GPU (one instance, in model space).
+  InstanceBlend instance;
+  instance.weights = w;
+  const auto draw = [&](const View& v, const MeshStyle& s) {
+    if (m.blend_id < 0) {
+      check(m.renderer.drawMesh(m.mesh_id, v, s), "drawMesh");
+      return;
+    }
+    instance.color = s.color;
+    check(m.renderer.drawBlendInstances(m.blend_id, {&instance, 1}, v, s), "drawBlendInstances");
+  };
   View main;
   main.viewport = {0, 0, o.width, o.height};
   main.camera = camera;
   clip(main);
-  check(m.renderer.drawMesh(m.mesh_id, main, style), "drawMesh");
+  draw(main, style);
 
   if (o.observer) {
     View obs;
@@ -329,7 +351,7 @@ ViewWeights ModelRenderer::render(const Camera& camera, Image& out) {
     observer_style.shading.vary_by_hue = false;
     observer_style.shading.k = effectiveConstants(o.shading, o.observer_color);
     observer_style.shading.k.k2 *= 0.25f;
-    check(m.renderer.drawMesh(m.mesh_id, obs, observer_style), "drawMesh");
+    draw(obs, observer_style);
     // Where the main camera is: a short orange ray from the centre towards its eye.
     std::array<float, 6> ray;
     const Eigen::Vector3d tip = m.center + view * (1.5 * m.radius);

@@ -11,24 +11,28 @@ uniform mat4 u_proj;
 out vec3 v_pos;
 out vec3 v_normal;
 out vec2 v_uv;
+flat out vec3 v_color;
 void main() {
   vec4 p = u_view * vec4(a_position, 1.0);
   v_pos = p.xyz;
   v_normal = mat3(u_view) * a_normal;
   v_uv = a_uv;
+  v_color = vec3(1.0);
   gl_Position = u_proj * p;
 }
 )";
 
 // C = ka*Cbase + max(0, l1.n)(Cwarm - Cbase*k1)*k2 + max(0, l2.n)(Ccool - Cbase*k3)*k4
 // (Rademacher 99, section 3.2.4; the same expression as shade() in shading.cpp). A textured
-// surface has Cbase = u_base x texel, and with u_hue_rule the constants are u_k adjusted by the
-// hue of that Cbase, per fragment: hsv() and hueAdjusted() are toHsv() and
+// surface has Cbase = u_base x texel; with u_instance_base (the GPU blend's faces without a
+// material) Cbase is the instance's colour v_color. With u_hue_rule the constants are u_k
+// adjusted by the hue of that Cbase, per fragment: hsv() and hueAdjusted() are toHsv() and
 // hueAdjustedConstants() of shading.cpp, line for line (the render tests compare them).
 const char* const kMeshFragment = R"(#version 330 core
 in vec3 v_pos;
 in vec3 v_normal;
 in vec2 v_uv;
+flat in vec3 v_color;
 uniform vec3 u_base;
 uniform vec3 u_warm;
 uniform vec3 u_cool;
@@ -39,6 +43,7 @@ uniform vec4 u_k;
 uniform int u_flat;
 uniform int u_textured;
 uniform int u_hue_rule;
+uniform int u_instance_base;
 uniform sampler2D u_texture;
 out vec4 o_color;
 
@@ -87,12 +92,10 @@ void main() {
     n = len > 1e-20 ? v_normal / len : vec3(0.0, 0.0, 1.0);
     if (!gl_FrontFacing) n = -n;
   }
-  vec3 base = u_base;
+  vec3 base = u_instance_base != 0 ? v_color : u_base;
   vec4 k = u_k;
-  if (u_textured != 0) {
-    base *= texture(u_texture, vec2(v_uv.x, 1.0 - v_uv.y)).rgb;
-    if (u_hue_rule != 0) k = hueAdjusted(k, base);
-  }
+  if (u_textured != 0) base *= texture(u_texture, vec2(v_uv.x, 1.0 - v_uv.y)).rgb;
+  if (u_hue_rule != 0) k = hueAdjusted(k, base);
   float d1 = max(dot(u_light_warm, n), 0.0);
   float d2 = max(dot(u_light_cool, n), 0.0);
   vec3 c = u_ka * base + d1 * (u_warm - base * k.x) * k.y + d2 * (u_cool - base * k.z) * k.w;
@@ -158,5 +161,179 @@ void main() {
   o_color = vec4(u_color, clamp((1.0 - r) / rim, 0.0, 1.0));
 }
 )";
+
+// ---------------------------------------------------------------------------------------------
+// GPU blend (GLSL 4.30). Buffers are float / int arrays (std430, no vec3 padding); a batch holds
+// instances [u_first_instance, u_first_instance + gl_WorkGroupID.y / gl_InstanceID], and its
+// blended positions (#V x 3 per instance, world space) and group normals (#G x 3) are indexed by
+// the instance's place in the batch.
+
+#define VDG_INSTANCE_BLOCK \
+  "struct Instance {\n"    \
+  "  mat4 object;\n"       \
+  "  ivec4 keys;\n"        \
+  "  vec4 weights;\n"      \
+  "  vec4 color;\n"        \
+  "};\n"                   \
+  "layout(std430, binding = 2) readonly buffer Instances { Instance instances[]; };\n"
+
+// Pass 1: p = object * (base + sum_i w_i delta_i) (Rademacher 99, section 3.2.3).
+const char* const kBlendCompute =
+    "#version 430 core\n"
+    "layout(local_size_x = 64) in;\n" VDG_INSTANCE_BLOCK R"(
+layout(std430, binding = 0) readonly buffer Base { float base[]; };
+layout(std430, binding = 1) readonly buffer Deltas { float deltas[]; };
+layout(std430, binding = 3) writeonly buffer Positions { float positions[]; };
+uniform int u_vertex_count;
+uniform int u_first_instance;
+uniform int u_item_offset;
+void main() {
+  int v = u_item_offset + int(gl_GlobalInvocationID.x);
+  if (v >= u_vertex_count) return;
+  int local = int(gl_WorkGroupID.y);
+  Instance ins = instances[u_first_instance + local];
+  vec3 p = vec3(base[3 * v], base[3 * v + 1], base[3 * v + 2]);
+  for (int s = 0; s < 3; ++s) {
+    int k = ins.keys[s];
+    float w = ins.weights[s];
+    if (k < 0 || w == 0.0) continue;
+    int d = 3 * (k * u_vertex_count + v);
+    p += w * vec3(deltas[d], deltas[d + 1], deltas[d + 2]);
+  }
+  vec3 q = (ins.object * vec4(p, 1.0)).xyz;
+  int o = 3 * (local * u_vertex_count + v);
+  positions[o] = q.x;
+  positions[o + 1] = q.y;
+  positions[o + 2] = q.z;
+}
+)";
+
+// Pass 2: the normal of each smoothing group, computeGroupNormals's rule as a gather: the
+// unnormalised cross products of the faces listed for the group (once per corner in it), summed
+// and normalised ((0, 0, 0) for a zero sum).
+const char* const kNormalsCompute = R"(#version 430 core
+layout(local_size_x = 64) in;
+layout(std430, binding = 3) readonly buffer Positions { float positions[]; };
+layout(std430, binding = 4) readonly buffer Triangles { int triangles[]; };
+layout(std430, binding = 5) readonly buffer GroupStart { int group_start[]; };
+layout(std430, binding = 6) readonly buffer GroupFaces { int group_faces[]; };
+layout(std430, binding = 7) writeonly buffer Normals { float normals[]; };
+uniform int u_vertex_count;
+uniform int u_group_count;
+uniform int u_item_offset;
+vec3 at(int first, int v) { int i = 3 * (first + v); return vec3(positions[i], positions[i + 1], positions[i + 2]); }
+void main() {
+  int g = u_item_offset + int(gl_GlobalInvocationID.x);
+  if (g >= u_group_count) return;
+  int local = int(gl_WorkGroupID.y);
+  int first = local * u_vertex_count;
+  vec3 n = vec3(0.0);
+  for (int j = group_start[g]; j < group_start[g + 1]; ++j) {
+    int f = 3 * group_faces[j];
+    vec3 a = at(first, triangles[f]);
+    n += cross(at(first, triangles[f + 1]) - a, at(first, triangles[f + 2]) - a);
+  }
+  float len = length(n);
+  if (len > 0.0) n /= len;
+  int o = 3 * (local * u_group_count + g);
+  normals[o] = n.x;
+  normals[o + 1] = n.y;
+  normals[o + 2] = n.z;
+}
+)";
+
+// Pass 3: silhouette, border and crease edges (faceFacing, silhouetteEdges and creaseEdges of
+// silhouette.cpp, per instance). Each found edge appends its two vertices' places in the batch's
+// position buffer to its list; the list's count is the `count` of its indirect draw command
+// (commands[0..4]: silhouettes and borders, growing up from index 0; commands[5..9]: creases,
+// growing down from index u_capacity; an edge is in one list at most, so u_capacity = 2 x edges
+// x instances holds both). kCreaseStartCompute then sets the crease command's first index.
+const char* const kEdgesCompute = R"(#version 430 core
+layout(local_size_x = 64) in;
+layout(std430, binding = 3) readonly buffer Positions { float positions[]; };
+layout(std430, binding = 4) readonly buffer Triangles { int triangles[]; };
+layout(std430, binding = 8) readonly buffer Edges { ivec4 edges[]; };
+layout(std430, binding = 9) buffer Commands { uint commands[]; };
+layout(std430, binding = 10) writeonly buffer Strokes { uint strokes[]; };
+uniform int u_vertex_count;
+uniform int u_edge_count;
+uniform vec3 u_eye;
+uniform int u_silhouettes;
+uniform int u_borders;
+uniform int u_creases;
+uniform float u_cos_crease;
+uniform uint u_capacity;
+uniform int u_item_offset;
+vec3 at(int first, int v) { int i = 3 * (first + v); return vec3(positions[i], positions[i + 1], positions[i + 2]); }
+// (v1 - v0) x (v2 - v0) of face f, and whether it faces the eye.
+vec3 faceCross(int first, int f, out bool front) {
+  vec3 a = at(first, triangles[3 * f]);
+  vec3 n = cross(at(first, triangles[3 * f + 1]) - a, at(first, triangles[3 * f + 2]) - a);
+  front = dot(n, u_eye - a) > 0.0;
+  return n;
+}
+void main() {
+  int e = u_item_offset + int(gl_GlobalInvocationID.x);
+  if (e >= u_edge_count) return;
+  int first = int(gl_WorkGroupID.y) * u_vertex_count;
+  ivec4 edge = edges[e];
+  bool front0, front1;
+  vec3 n0 = faceCross(first, edge.z, front0);
+  uint slot;
+  if (edge.w < 0) {
+    if (u_silhouettes == 0 || u_borders == 0) return;
+    slot = atomicAdd(commands[0], 2u);
+  } else {
+    vec3 n1 = faceCross(first, edge.w, front1);
+    if (front0 != front1) {
+      if (u_silhouettes == 0) return;
+      slot = atomicAdd(commands[0], 2u);
+    } else {
+      float scale = length(n0) * length(n1);
+      if (u_creases == 0 || !front0 || !(scale > 0.0) || dot(n0, n1) >= u_cos_crease * scale) return;
+      slot = u_capacity - 2u - atomicAdd(commands[5], 2u);
+    }
+  }
+  strokes[slot] = uint(first + edge.x);
+  strokes[slot + 1u] = uint(first + edge.y);
+}
+)";
+
+const char* const kCreaseStartCompute = R"(#version 430 core
+layout(local_size_x = 1) in;
+layout(std430, binding = 9) buffer Commands { uint commands[]; };
+uniform uint u_capacity;
+void main() { commands[7] = u_capacity - commands[5]; }
+)";
+
+// The instanced draw of a batch: render vertex (vertex, group) of instance gl_InstanceID.
+const char* const kBlendVertex = R"(#version 430 core
+layout(location = 0) in ivec2 a_ref;
+layout(location = 2) in vec2 a_uv;
+)" VDG_INSTANCE_BLOCK R"(
+layout(std430, binding = 3) readonly buffer Positions { float positions[]; };
+layout(std430, binding = 7) readonly buffer Normals { float normals[]; };
+uniform mat4 u_view;
+uniform mat4 u_proj;
+uniform int u_vertex_count;
+uniform int u_group_count;
+uniform int u_first_instance;
+out vec3 v_pos;
+out vec3 v_normal;
+out vec2 v_uv;
+flat out vec3 v_color;
+void main() {
+  int i = 3 * (gl_InstanceID * u_vertex_count + a_ref.x);
+  int n = 3 * (gl_InstanceID * u_group_count + a_ref.y);
+  vec4 p = u_view * vec4(positions[i], positions[i + 1], positions[i + 2], 1.0);
+  v_pos = p.xyz;
+  v_normal = mat3(u_view) * vec3(normals[n], normals[n + 1], normals[n + 2]);
+  v_uv = a_uv;
+  v_color = instances[u_first_instance + gl_InstanceID].color.rgb;
+  gl_Position = u_proj * p;
+}
+)";
+
+#undef VDG_INSTANCE_BLOCK
 
 }  // namespace vdg::render::shaders

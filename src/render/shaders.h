@@ -1,4 +1,6 @@
-// GLSL sources of the renderer (private to the render module), GLSL 3.30 core.
+// GLSL sources of the renderer (private to the render module), GLSL 3.30 core; the GPU blend's
+// are GLSL 4.30 (compute shaders, storage buffers) and use kMeshFragment with its version line
+// raised to 4.30.
 #pragma once
 
 namespace vdg::render::shaders {
@@ -11,5 +13,11 @@ extern const char* const kStrokeVertex;
 extern const char* const kLineGeometry;
 extern const char* const kLineFragment;
 extern const char* const kDotFragment;
+// GPU blend: blend, group normals and edges (compute), and the instanced draw's vertex stage.
+extern const char* const kBlendCompute;
+extern const char* const kNormalsCompute;
+extern const char* const kEdgesCompute;
+extern const char* const kCreaseStartCompute;
+extern const char* const kBlendVertex;
 
 }  // namespace vdg::render::shaders

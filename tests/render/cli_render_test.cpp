@@ -16,6 +16,7 @@
 #include "support/test_meshes.h"
 #include "vdg/io/image_file.h"
 #include "vdg/io/obj.h"
+#include "vdg/render/image.h"
 
 #ifdef VDG_CLI
 
@@ -225,6 +226,32 @@ TEST(CliRender, VideoWithoutFfmpeg) {
   // An empty PATH hides ffmpeg whether or not it is installed.
   const Result r = vdg("render " + kSpot + " -o " + testing::TempDir() + "/x.mp4", "PATH=/nonexistent");
   expectOneLineError(r, 1, "ffmpeg");
+}
+
+// --gpu-blend: the frames of the CPU path within the GPU blend tests' tolerance (a pixel differs
+// when a channel is off by more than 48 levels; at most 0.4% of the pixels may), and one clear
+// line for a model the GPU blend does not take (bad usage) or an OpenGL older than 4.3.
+TEST(CliRender, GpuBlendFramesMatchTheCpuFramesAndItsErrorsAreOneLine) {
+  constexpr int kLevels = 48;
+  constexpr double kMaxDifferingFraction = 0.004;
+  const fs::path cpu = freshDir("cpu"), gpu = freshDir("gpu");
+  ASSERT_EQ(vdg("render " + kSpot + " -o " + cpu.string() + " --orbit 3 --size 96x96 -q").status, 0);
+  const Result r = vdg("render " + kSpot + " -o " + gpu.string() + " --orbit 3 --size 96x96 -q --gpu-blend");
+  ASSERT_EQ(r.status, 0) << r.output;
+  for (const char* frame : {"frame_0000.png", "frame_0001.png", "frame_0002.png"}) {
+    const vdg::render::ImageDiff d = vdg::render::compareImages(vdg::render::readPng((cpu / frame).string()),
+                                                                vdg::render::readPng((gpu / frame).string()), kLevels);
+    EXPECT_TRUE(d.same_size) << frame;
+    EXPECT_LE(d.differing_fraction, kMaxDifferingFraction) << frame;
+  }
+  expectOneLineError(
+      vdg("render " + kSource + "/examples/meshes/teapot.obj -o " + freshDir("x").string() + " --gpu-blend"), 2,
+      "--gpu-blend: ");
+  expectOneLineError(
+      vdg("render " + kSource + "/examples/walk/walker.vdg.json -o " + freshDir("x").string() + " --gpu-blend"), 2,
+      "an animated model");
+  expectOneLineError(vdg("render " + kSpot + " -o " + freshDir("x").string() + " --gpu-blend", "VDG_RENDER_GL=3.3"), 1,
+                     "OpenGL: the GPU blend (--gpu-blend) needs OpenGL 4.3");
 }
 
 // ---- Framing: what will be drawn, not the base alone -------------------------------------------

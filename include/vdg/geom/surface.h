@@ -118,9 +118,10 @@ class SurfaceTopology {
 // unnormalised cross products (b - a) x (c - a) of triangle (a, b, c)) of the triangles that have
 // a corner there, in ascending triangle order, and the sum is normalised (a slot touched only by
 // degenerate triangles, or by none, gets (0, 0, 0)). The slots are computed independently (a
-// gather over the lists above, no atomics), in parallel with oneTBB on meshes of more than
-// kParallelNormalSlots slots and inline on the calling thread below that; the result does not
-// depend on the number of threads. The first threaded call starts TBB's worker threads.
+// gather over the lists above, no atomics), in parallel with oneTBB (chunks of at least
+// kParallelNormalSlots slots) from 2 x kParallelNormalSlots slots on, and inline on the calling
+// thread below that; the result does not depend on the number of threads. The first threaded call
+// starts TBB's worker threads. Uses 96 KB of the calling (or worker) thread's stack.
 //
 // Per-frame contract: sizes are checked on entry (positions.size() == 3 #V and the output's size
 // below); on a violation the function returns false and has written nothing; no throw, no

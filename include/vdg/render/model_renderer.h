@@ -49,6 +49,10 @@ struct FrameOptions {
   // Draw the base model only (no key deformations, every view weighs the base fully): the
   // paper's comparison of a conventional model with the view-dependent one (Figures 11 and 12).
   bool base_only = false;
+  // Blend on the GPU (Renderer::addBlendModel, OpenGL 4.3): the same picture within rounding;
+  // the renderer throws vdg::Error for an animated model or a plain mesh (the GPU blend takes
+  // static view-dependent models) and on an OpenGL older than 4.3.
+  bool gpu_blend = false;
   // The observer panel's camera; default: 35 degrees to the right of and 25 above the model's
   // front (+Z), at the distance that fits the sphere about the model's centre holding the base and
   // every key (extentRadius(); a plain mesh: its bounding box's sphere).

@@ -6,7 +6,9 @@
 // platform (EGL_EXT_platform_device; NVIDIA and Mesa GPU drivers), the default display. An OpenGL
 // 4.5 core context is requested, then 3.3 core. GL functions are loaded through libepoxy.
 // Setting the environment variable VDG_RENDER_NO_GL=1 makes context creation fail as if no EGL
-// display existed (to test the error path).
+// display existed (to test the error path); VDG_RENDER_GL=3.3 makes the renderer take its context
+// for OpenGL 3.3 (what an older driver gives: to test the GPU blend's error path; drivers may
+// give a newer version than asked for, so asking for 3.3 would not do).
 //
 // Created once (owns the context, programs, framebuffers and buffers); per-frame calls reuse
 // buffers and allocate nothing once the largest mesh has been seen. Per-frame calls check their
@@ -30,6 +32,26 @@
 // and each edge end a round dot of the same diameter (point sprite), which fills the cracks. Both
 // are depth-tested (LEQUAL) against the shaded front faces, after pulling the edge towards the eye
 // by `silhouette_pull` line widths so the inner half of the line is not buried in the surface.
+//
+// GPU blend (addBlendModel / drawBlendInstances; OpenGL 4.3 compute shaders): many instances of
+// one view-dependent model, each blended for its own weights, in one call. The base positions
+// and every key's delta (keyPositions - base, dense: keyCount() x #V x 3 floats) are uploaded once
+// at set-up; per call only the instances (object matrix, key indices, weights, colour: 112 bytes
+// each) are uploaded. Compute passes then, per instance:
+//  1. blend: p = object * (base + sum_i w_i (key_i - base)) (section 3.2.3; world space);
+//  2. normals per smoothing group, the rule of computeGroupNormals (each face's unnormalised
+//     cross product summed over the corners of the group, normalised), gathered through a
+//     precomputed list of (group -> faces) so no float atomics are needed;
+//  3. edges: facing of each welded edge's two faces against the eye (faceFacing's test, world
+//     space), appending silhouette, open-border and crease edges to index lists (one integer
+//     atomic counter per list, in an indirect draw command).
+// The instanced draw reads the blended positions and normals per render vertex (materials and
+// textures as drawMesh), then the edge lists are drawn as drawMesh draws its strokes (quads plus
+// round dots, the same programs): the picture equals drawMesh on the CPU-blended mesh within
+// rounding. Instances are processed in batches sized so that each batch's buffers fit the
+// driver's largest storage block (and at most kBlendBatchBytes in all), so any number of
+// instances can be drawn; every batch's strokes lie over its own shaded faces and those of the
+// batches before it.
 #pragma once
 
 #include <cstdint>
@@ -42,8 +64,13 @@
 #include "vdg/geom/tri_mesh.h"
 #include "vdg/render/image.h"
 #include "vdg/render/shading.h"
+#include "vdg/viewdep/model.h"
 
 namespace vdg::render {
+
+// GPU blend: the most bytes of per-batch buffers (blended positions, normals, edge lists) one
+// drawBlendInstances call allocates; more instances are drawn in several batches.
+inline constexpr std::size_t kBlendBatchBytes = std::size_t{256} << 20;
 
 // Largest canvas side accepted, in pixels.
 inline constexpr int kMaxImageSize = 16384;
@@ -89,6 +116,13 @@ struct MeshStyle {
   float crease_width = 0.0f;  // pixels; <= 0: half the silhouette width
   // The mesh's materials and textures (addSurface); false: `color` everywhere, untextured.
   bool materials = true;
+};
+
+// One instance of a blended model (drawBlendInstances).
+struct InstanceBlend {
+  Eigen::Matrix4f object = Eigen::Matrix4f::Identity();  // object -> world (affine, finite)
+  ViewWeights weights;          // from the model's sphere: key indices in [-1, keyCount()), finite weights
+  Rgb color{1.0f, 1.0f, 1.0f};  // Cbase of faces without a material (of every face when !materials)
 };
 
 class Renderer {
@@ -158,6 +192,40 @@ class Renderer {
                                bool depth_test, float pull = 1.0f);
   [[nodiscard]] bool drawDots(std::span<const float> points, const View& view, float diameter, const Rgb& color,
                               bool depth_test, float pull = 1.0f);
+
+  // GPU blend (see the top of this file). Registers a static view-dependent model: its base
+  // surface (model.surface()), materials and textures as addSurface, and its key deltas, uploaded
+  // once (keyCount() x #V x 12 bytes of GPU memory, plus the topology). The model is not kept.
+  // Returns a handle numbered apart from addMesh's (0, 1, 2, ... in order). Set-up, not per-frame:
+  // throws vdg::Error "OpenGL: the GPU blend (--gpu-blend) needs OpenGL 4.3 (the driver gives
+  // X)" on an older context, "render: addBlendModel: ..." when the deltas or one instance's
+  // buffers exceed the driver's largest storage block, and as addSurface for its textures.
+  int addBlendModel(const ViewDependentModel& model);
+
+  // Blends, shades and inks every instance of blend model `handle` (see the top of this file)
+  // as drawMesh would draw each instance's CPU blend transformed by its object matrix: back
+  // faces culled, creases, silhouettes and open borders as `style` says. style.color is not
+  // used: each instance's `color` takes its place. An empty span draws nothing (true). Per-frame
+  // contract as above; violations: a bad handle, an invalid View, an instance with a non-finite
+  // object matrix or colour, a key index outside [-1, keyCount()) or a non-finite weight.
+  // Allocates GPU buffers when a call needs more than any before (up to kBlendBatchBytes).
+  [[nodiscard]] bool drawBlendInstances(int handle, std::span<const InstanceBlend> instances, const View& view,
+                                        const MeshStyle& style);
+
+  // Passes 1 and 2 only (blend and group normals; see the top of this file), batch by batch as
+  // drawBlendInstances runs them, drawing nothing: for timing the blend (with finish()) and for
+  // readBlendInstance. Per-frame contract as drawBlendInstances (no View).
+  [[nodiscard]] bool blendInstances(int handle, std::span<const InstanceBlend> instances);
+  // Waits until the GPU has carried out every call so far (glFinish), for timing.
+  void finish();
+
+  // For tests and debugging (not per-frame): reads back the blended positions (#V x 3, world
+  // space) and smoothing-group normals (#G x 3, G = model.surface().groupCount()) of
+  // instances[instance] of the last drawBlendInstances or blendInstances call on `handle`.
+  // Returns false, having written nothing, for a bad handle, an instance outside that call's last
+  // batch (every instance is in it when the call fit one batch), or spans of other sizes.
+  [[nodiscard]] bool readBlendInstance(int handle, std::size_t instance, std::span<float> positions,
+                                       std::span<float> group_normals);
 
   // Resolves the multisampled canvas into `out` (resized on first use; alpha = 255).
   void readPixels(Image& out);
