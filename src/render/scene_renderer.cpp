@@ -49,6 +49,10 @@ struct SceneRenderer::Impl {
   // One object registered with the GPU, shared by every node that holds it.
   struct Object {
     int handle = -1;
+    // GPU blend (options.gpu_blend, static view-dependent models only): the renderer's blend
+    // model, and this frame's instances, gathered and drawn in one drawBlendInstances call.
+    int blend_handle = -1;
+    std::vector<InstanceBlend> instances;
     Bounds box;
     std::vector<float> local;  // this instance's blended positions, object coordinates
     std::vector<float> world;  // the same carried into the world
@@ -88,15 +92,25 @@ struct SceneRenderer::Impl {
       auto [it, fresh] = known.try_emplace(key, static_cast<int>(objects.size()));
       if (fresh) {
         Object obj;
-        obj.handle = topology ? renderer.addSurface(*base, *topology)
-                              : renderer.addSurface(*base, SurfaceTopology::build(*base));
+        if (const auto* m = scene.model(i); m && options.gpu_blend) {
+          obj.blend_handle = renderer.addBlendModel(*m);
+        } else {
+          obj.handle = topology ? renderer.addSurface(*base, *topology)
+                                : renderer.addSurface(*base, SurfaceTopology::build(*base));
+          obj.local = base->positions;
+          obj.world.resize(base->positions.size());
+        }
         obj.box = boundsOf(scene, i);
-        obj.local = base->positions;
-        obj.world.resize(base->positions.size());
         objects.push_back(std::move(obj));
       }
       object_of_node[i] = it->second;
     }
+    // Room for every node of a blend model, so that frames allocate nothing on the CPU side.
+    std::vector<std::size_t> nodes_of(objects.size(), 0);
+    for (int i = 0; i < n; ++i)
+      if (object_of_node[i] >= 0) ++nodes_of[static_cast<std::size_t>(object_of_node[i])];
+    for (std::size_t k = 0; k < objects.size(); ++k)
+      if (objects[k].blend_handle >= 0) objects[k].instances.reserve(nodes_of[k]);
     if (scene.cameraNode() < 0) frameAutomatically();
   }
 
@@ -175,6 +189,7 @@ struct SceneRenderer::Impl {
     style.crease_angle_deg = options.crease_angle_deg;
     style.materials = options.materials;
     drawn = 0;
+    for (Object& obj : objects) obj.instances.clear();
     for (std::size_t i = 0; i < states.size(); ++i) {
       const int o = object_of_node[i];
       if (o < 0 || !states[i].visible) continue;
@@ -183,6 +198,16 @@ struct SceneRenderer::Impl {
       const int node = static_cast<int>(i);
       Eigen::Vector3d dir;
       const bool has_view = !options.base_only && scene.instanceView(node, st, camera.eye, dir);
+      if (obj.blend_handle >= 0) {  // GPU blend: weights here, the blend in drawBlendInstances
+        InstanceBlend instance;
+        instance.object = st.object.cast<float>();
+        instance.color = st.color;
+        instance.weights.base = 1.0f;
+        if (has_view) check(scene.model(node)->weights(dir, st.sharpness, instance.weights), "weights");
+        obj.instances.push_back(instance);
+        ++drawn;
+        continue;
+      }
       if (const auto* m = scene.model(node)) {
         if (has_view)
           check(m->evaluate(dir, st.sharpness, obj.local), "evaluate");
@@ -212,6 +237,9 @@ struct SceneRenderer::Impl {
       check(renderer.drawMesh(obj.handle, view, style), "drawMesh");
       ++drawn;
     }
+    for (const Object& obj : objects)
+      if (obj.blend_handle >= 0 && !obj.instances.empty())
+        check(renderer.drawBlendInstances(obj.blend_handle, obj.instances, view, style), "drawBlendInstances");
     renderer.readPixels(out);
     return camera;
   }
