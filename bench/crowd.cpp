@@ -1,7 +1,9 @@
 // Frames per second of the crowd example (examples/crowd/crowd.lua: one view-dependent model
 // replicated many times, each member blended for its own view, Rademacher 99, section 1) as a
 // ratio to the same instances drawn without view dependence (every member its base mesh), both
-// rendered in this run: the ratio is the cost of per-instance view dependence in a scene.
+// rendered in this run: the ratio is the cost of per-instance view dependence in a scene. The
+// same frames are also drawn with the GPU blend (SceneFrameOptions::gpu_blend: every cow blended,
+// shaded and inked in one call), against the same baseline.
 // Run from the repository root, or set VDG_SOURCE_DIR.
 #include <benchmark/benchmark.h>
 
@@ -43,6 +45,9 @@ void BM_CrowdViewDependentVsBase(benchmark::State& state) {
   o.frame_first = request.first_frame;
   o.frame_last = request.last_frame;
   vdg::render::SceneRenderer blended(scene, o);
+  o.gpu_blend = true;  // the same frames with every cow blended on the GPU (one call per frame)
+  vdg::render::SceneRenderer gpu(scene, o);
+  o.gpu_blend = false;
   o.base_only = true;
   vdg::render::SceneRenderer plain(scene, o);
   // A dozen frames spread over the shot.
@@ -50,16 +55,20 @@ void BM_CrowdViewDependentVsBase(benchmark::State& state) {
   vdg::render::Image img;
   secondsPerFrame(blended, first, first, img);  // warm-up
   secondsPerFrame(plain, first, first, img);
-  double t_blend = 0, t_plain = 0;
+  secondsPerFrame(gpu, first, first, img);
+  double t_blend = 0, t_plain = 0, t_gpu = 0;
   for (auto _ : state) {
     t_blend += secondsPerFrame(blended, first, last, img);
     t_plain += secondsPerFrame(plain, first, last, img);
+    t_gpu += secondsPerFrame(gpu, first, last, img);
   }
   const double n = static_cast<double>(state.iterations());
   state.counters["instances"] = blended.drawnCount();
   state.counters["fps_view_dependent"] = n / t_blend;
   state.counters["fps_without"] = n / t_plain;
   state.counters["ratio_time_to_without"] = t_blend / t_plain;
+  state.counters["fps_gpu_blend"] = n / t_gpu;
+  state.counters["gpu_blend_ratio_time_to_without"] = t_gpu / t_plain;
 }
 BENCHMARK(BM_CrowdViewDependentVsBase)->Unit(benchmark::kMillisecond)->Iterations(3);
 
