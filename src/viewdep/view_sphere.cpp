@@ -297,6 +297,15 @@ void ViewSphere::buildIndex() {
   const int feature_count = static_cast<int>(isolated_.size() + arcs_.size());
   all_features_.resize(static_cast<std::size_t>(feature_count));
   for (int f = 0; f < feature_count; ++f) all_features_[static_cast<std::size_t>(f)] = f;
+  // Arc frames: v lies over the arc (a, b) when v.(b x n) >= 0 and v.(n x a) >= 0; those two
+  // numbers are also proportional to the barycentric weights of a and b at v's projection.
+  arc_frames_.clear();
+  for (const auto& arc : arcs_) {
+    const Vector3d& a = points_[arc[0]];
+    const Vector3d& b = points_[arc[1]];
+    const Vector3d normal = a.cross(b).normalized();  // arcs are shorter than half a turn
+    arc_frames_.push_back({normal, b.cross(normal), normal.cross(a)});
+  }
 
   // Neighbours across edges: the edge opposite corner k is (v[k+1], v[k+2]).
   std::map<std::pair<int, int>, std::vector<std::pair<int, int>>> edges;  // edge -> (triangle, corner)
@@ -330,8 +339,9 @@ void ViewSphere::buildIndex() {
     }
   }
 
-  const int n = std::clamp(static_cast<int>(std::ceil(std::sqrt(2.0 * std::max(triangle_count, feature_count) / 3.0))),
-                           kMinGridSize, kMaxGridSize);
+  const int n =
+      std::clamp(static_cast<int>(std::ceil(std::sqrt(kCellsPerItem * (triangle_count + feature_count) / 6.0))),
+                 kMinGridSize, kMaxGridSize);
   grid_size_ = n;
   const std::size_t cells = 6u * static_cast<std::size_t>(n) * static_cast<std::size_t>(n);
   cell_triangle_start_.assign(cells + 1, 0);
@@ -339,22 +349,56 @@ void ViewSphere::buildIndex() {
   cell_triangles_.clear();
   cell_features_.clear();
   std::vector<double> distance(static_cast<std::size_t>(feature_count));
+  // The cap around a cell's centre through its farthest corner (the cell, a convex spherical
+  // quadrilateral less than 55 degrees across, lies inside it).
+  auto cellCap = [&](int face, int i, int j, Vector3d& centre) {
+    const double s0 = -1.0 + 2.0 * i / n, s1 = -1.0 + 2.0 * (i + 1) / n;
+    const double t0 = -1.0 + 2.0 * j / n, t1 = -1.0 + 2.0 * (j + 1) / n;
+    centre = faceDirection(face, 0.5 * (s0 + s1), 0.5 * (t0 + t1)).normalized();
+    double radius = 0.0;
+    for (const double s : {s0, s1})
+      for (const double t : {t0, t1})
+        radius = std::max(radius, angleBetween(centre, faceDirection(face, s, t).normalized()));
+    return radius;
+  };
+  // A cheap first test (a dot product) of triangle against cell, from the largest cell cap (the
+  // faces are alike): the build costs O(cells x triangles) dot products, plus exact tests of the
+  // few pairs that pass.
+  double largest_cell = 0.0;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      Vector3d centre;
+      largest_cell = std::max(largest_cell, cellCap(0, i, j, centre));
+    }
+  std::vector<double> min_dot(triangles_.size());
+  for (int t = 0; t < triangle_count; ++t)
+    min_dot[t] = std::cos(std::min(std::numbers::pi, largest_cell + cap_radius[t] + 2.0 * kIndexMarginRad)) - 1e-9;
   for (int face = 0; face < 6; ++face)
     for (int i = 0; i < n; ++i)
       for (int j = 0; j < n; ++j) {
         const std::size_t cell = (static_cast<std::size_t>(face) * n + i) * n + j;
         const double s0 = -1.0 + 2.0 * i / n, s1 = -1.0 + 2.0 * (i + 1) / n;
         const double t0 = -1.0 + 2.0 * j / n, t1 = -1.0 + 2.0 * (j + 1) / n;
-        const Vector3d centre = faceDirection(face, 0.5 * (s0 + s1), 0.5 * (t0 + t1)).normalized();
-        // The cell (a convex spherical quadrilateral, less than 55 degrees across) lies in the cap
-        // around its centre through its farthest corner.
-        double radius = 0.0;
-        for (const double s : {s0, s1})
-          for (const double t : {t0, t1})
-            radius = std::max(radius, angleBetween(centre, faceDirection(face, s, t).normalized()));
-        for (int t = 0; t < triangle_count; ++t)
-          if (angleBetween(centre, cap_centre[t]) <= radius + cap_radius[t] + kIndexMarginRad)
-            cell_triangles_.push_back(t);
+        Vector3d centre;
+        const double radius = cellCap(face, i, j, centre);
+        // Listed triangles, the ones that cover most of the cell first (counted on a 5 x 5 grid of
+        // sample views): the first one tested then usually contains the view.
+        std::vector<std::pair<int, int>> listed;  // (-covered samples, triangle)
+        for (int t = 0; t < triangle_count; ++t) {
+          if (centre.dot(cap_centre[t]) < min_dot[t] ||
+              !(angleBetween(centre, cap_centre[t]) <= radius + cap_radius[t] + kIndexMarginRad))
+            continue;
+          int covered = 0;
+          for (int a = 0; a < 5; ++a)
+            for (int b = 0; b < 5; ++b) {
+              const Vector3d sample =
+                  faceDirection(face, s0 + (s1 - s0) * (a + 0.5) / 5, t0 + (t1 - t0) * (b + 0.5) / 5).normalized();
+              covered += coneCoordinates(cones_[t].inverse, sample).minCoeff() >= 0.0;
+            }
+          listed.emplace_back(-covered, t);
+        }
+        std::sort(listed.begin(), listed.end());
+        for (const auto& [covered, t] : listed) cell_triangles_.push_back(t);
         // A feature can be the nearest to some view x of the cell only if its distance from the
         // centre is at most (distance of x to the nearest feature) + radius, and that is at most
         // (the centre's nearest distance) + 2 radius (geodesic distance is 1-Lipschitz).
@@ -396,16 +440,11 @@ double ViewSphere::featureDistance(const Eigen::Vector3d& x, int feature) const 
   const auto& arc = arcs_[feature - isolated];
   const Vector3d& a = points_[arc[0]];
   const Vector3d& b = points_[arc[1]];
-  const Vector3d nrm = a.cross(b);
-  const double nn = nrm.squaredNorm();
-  const Vector3d proj = x - x.dot(nrm) / nn * nrm;
-  const double len = proj.norm();
-  if (len > 1e-12) {
-    const Vector3d q = proj / len;
-    const double la = q.cross(b).dot(nrm) / nn;
-    const double lb = a.cross(q).dot(nrm) / nn;
-    if (la >= 0.0 && lb >= 0.0 && la + lb > 0.0) return angleBetween(x, q);
-  }
+  const ArcFrame& frame = arc_frames_[feature - isolated];
+  const double h = x.dot(frame.normal);
+  const double c2 = 1.0 - h * h;
+  const double la = x.dot(frame.to_a), lb = x.dot(frame.to_b);
+  if (c2 > 1e-24 && la >= 0.0 && lb >= 0.0 && la + lb > 0.0) return std::atan2(std::abs(h), std::sqrt(c2));
   return std::min(angleBetween(x, a), angleBetween(x, b));
 }
 
@@ -472,28 +511,21 @@ ViewWeights ViewSphere::falloff(const Eigen::Vector3d& v, std::span<const int> f
       continue;
     }
     const auto& arc = arcs_[feature - isolated];
-    const Vector3d& a = points_[arc[0]];
-    const Vector3d& b = points_[arc[1]];
-    const Vector3d n = a.cross(b);
-    const double nn = n.squaredNorm();
-    const Vector3d proj = v - v.dot(n) / nn * n;
-    const double len = proj.norm();
-    if (len > 1e-12) {
-      const Vector3d q = proj / len;
-      const double la = q.cross(b).dot(n) / nn;  // q = la * a + lb * b
-      const double lb = a.cross(q).dot(n) / nn;
-      if (la >= 0.0 && lb >= 0.0 && la + lb > 0.0) {
-        const double c = v.dot(q);
-        if (c > best_cos) {
-          best_cos = c;
-          best = ViewWeights{};
-          best.key[0] = arc[0];
-          best.key[1] = arc[1];
-          best.weight[0] = static_cast<float>(la / (la + lb));
-          best.weight[1] = static_cast<float>(lb / (la + lb));
-        }
-        continue;
+    const ArcFrame& frame = arc_frames_[feature - isolated];
+    const double h = v.dot(frame.normal);
+    const double c2 = 1.0 - h * h;  // squared length of v's projection onto the arc's plane
+    const double la = v.dot(frame.to_a), lb = v.dot(frame.to_b);
+    if (c2 > 1e-24 && la >= 0.0 && lb >= 0.0 && la + lb > 0.0) {
+      const double c = std::sqrt(c2);  // cosine of the angle to the projection
+      if (c > best_cos) {
+        best_cos = c;
+        best = ViewWeights{};
+        best.key[0] = arc[0];
+        best.key[1] = arc[1];
+        best.weight[0] = static_cast<float>(la / (la + lb));
+        best.weight[1] = static_cast<float>(lb / (la + lb));
       }
+      continue;
     }
     consider_point(arc[0]);
     consider_point(arc[1]);
@@ -544,24 +576,35 @@ bool ViewSphere::weightsByScan(const Eigen::Vector3d& view, double sharpness, Vi
 ViewWeights ViewSphere::triangleWeights(int t, const Eigen::Vector3d& lambda, double sharpness) const {
   double p[3] = {std::max(lambda[0], 0.0), std::max(lambda[1], 0.0), std::max(lambda[2], 0.0)};
   const double largest = std::max({p[0], p[1], p[2]});
-  ViewWeights w;
-  w.triangle = t;
   if (!(largest > 0.0)) {  // unreachable for a unit view inside the cone; as locateInTriangle
     p[0] = p[1] = p[2] = 1.0;
   } else if (sharpness != 1.0) {
+    // Without data-dependent branches for the common alphas (random views would mispredict them).
     const double inverse = 1.0 / largest;
-    for (double& x : p) x = x == largest ? 1.0 : sharpen(x * inverse, sharpness);
+    const int integer = static_cast<int>(sharpness);
+    if (sharpness == 2.0) {
+      for (double& x : p) x = (x * inverse) * (x * inverse);
+    } else if (sharpness <= kMultiplySharpnessMax && sharpness == integer) {
+      for (double& x : p) {
+        const double r = x * inverse;
+        x = r;
+        for (int i = 1; i < integer; ++i) x *= r;
+      }
+    } else {
+      for (double& x : p) x = x == largest ? 1.0 : std::pow(x * inverse, sharpness);  // pow(r < 1, +inf) = 0
+    }
   }
   const double scale = 1.0 / (p[0] + p[1] + p[2]);
+  ViewWeights w;
+  w.triangle = t;
   for (int k = 0; k < 3; ++k) {
     const int point = triangles_[t][k];
     const float weight = static_cast<float>(p[k] * scale);
-    if (isDummy(point)) {
-      w.base += weight;
-    } else if (weight != 0.0f) {
-      w.key[k] = point;
-      w.weight[k] = weight;
-    }
+    const bool dummy = isDummy(point);
+    const bool keep = !dummy && weight != 0.0f;
+    w.base += dummy ? weight : 0.0f;
+    w.key[k] = keep ? point : -1;
+    w.weight[k] = keep ? weight : 0.0f;
   }
   return w;
 }
@@ -642,7 +685,7 @@ ViewWeights ViewSphere::locate(const Eigen::Vector3d& v, double sharpness, int* 
     }
     t = neighbours_[t][k];
   }
-  // The grid cell's triangles, in index order (as the scan tests them).
+  // The grid cell's triangles, those covering most of the cell first.
   const int cell = cellOf(v);
   const std::uint32_t begin = cell_triangle_start_[cell], end = cell_triangle_start_[cell + 1];
   for (std::uint32_t i = begin; i < end; ++i) {

@@ -35,17 +35,22 @@
 //    walks to the neighbour across the edge it is farthest beyond (at most kMaxWalkSteps steps);
 //    a coherent camera path therefore costs one or two triangle tests per frame;
 //  - otherwise (no hint, or the walk left the covered region or ran out of steps) it looks the view
-//    up in a cube-map grid built once by build(): 6 x N x N cells (N = ceil(sqrt(2 T / 3)) for T
-//    triangles, clamped to [kMinGridSize, kMaxGridSize], so about four cells per triangle), each
-//    listing the triangles whose circumscribed cap overlaps the cell's bounding cap (in index
-//    order), and in the cosine modes the boundary arcs and isolated keys that can be nearest to a
-//    view in the cell. A query tests only its cell's lists: O(1) for evenly spread keys.
-//    In Base mode a view that no listed triangle contains (possible only through rounding at a
-//    vertex of a needle-thin triangle) falls back to the full scan, so the grid can only speed up.
-// The grid costs 4 bytes per cell (offsets) plus 4 bytes per listed triangle or arc: about 30 KB
-// for 200 evenly spread keys, at most about 0.4 MB (N = 64) plus the lists for very large key sets;
-// building it is O(cells x (triangles + arcs)). The result equals weightsByScan()'s except where
-// the view lies on an edge shared by two triangles (both contain it, within kInsideTol; either
+//    up in a cube-map grid built once by build(): 6 x N x N cells (N = ceil(sqrt(8 (T + F) / 6))
+//    for T triangles and F boundary arcs and isolated keys, clamped to [kMinGridSize,
+//    kMaxGridSize]: about kCellsPerItem cells per item), each listing the triangles whose
+//    circumscribed cap overlaps the cell's bounding cap (those covering most of the cell first),
+//    and in the cosine modes the boundary arcs and isolated keys that can be nearest to a view in
+//    the cell. A query tests only its cell's lists: O(1) for evenly spread keys.
+//    A view that no listed triangle contains lies in no triangle (the lists are conservative,
+//    with a margin for rounding); only a view within the 1e-9 inside tolerance of a needle-thin
+//    triangle's tip may miss it. Base mode then falls back to the full scan; the cosine modes
+//    treat it as uncovered, which at that distance from the covered region gives the same
+//    weights to float rounding.
+// The grid costs 8 bytes per cell (offsets) plus 4 bytes per listed triangle, arc or key (6 to 10
+// per cell): about 100 KB for 200 keys over the sphere, 0.2 MB plus 4 bytes per listed item at
+// most (N = 64) for very large key sets. build() spends O(cells x (triangles + arcs)) on it: about
+// 30 ms for 200 keys, 0.5 s for 3,000. The result equals weightsByScan()'s except where
+// the view lies on an edge shared by two triangles (both contain it, within 1e-9; either
 // gives the same weights up to that tolerance), and then only which triangle is reported differs.
 #pragma once
 
@@ -116,7 +121,8 @@ class ViewSphere {
 
   // Spatial index parameters (see "Locating a view" above).
   static constexpr int kMaxWalkSteps = 8;
-  static constexpr int kMinGridSize = 2;
+  static constexpr int kMinGridSize = 4;
+  static constexpr double kCellsPerItem = 8.0;  // grid cells per triangle, arc or isolated key
   static constexpr int kMaxGridSize = 64;
   // Integer sharpness up to this value is computed by repeated multiplication instead of std::pow.
   static constexpr int kMultiplySharpnessMax = 8;
@@ -138,6 +144,9 @@ class ViewSphere {
  private:
   struct Cone {
     Eigen::Matrix3d inverse;  // inverse of [a b c]: lambda = inverse * v
+  };
+  struct ArcFrame {  // of an arc (a, b): unit normal n of its plane, b x n and n x a
+    Eigen::Vector3d normal, to_a, to_b;
   };
   // The entry checks of weights() and weightsByScan(): false on a violation; otherwise the unit
   // view and the hint to start from (-1 for none).
@@ -171,6 +180,7 @@ class ViewSphere {
   // Spatial index (built by buildIndex()). Features of the falloff: 0 .. isolated_.size() - 1 are
   // isolated_ keys, the following ones arcs_, in the order the scan considers them.
   std::vector<int> all_features_;               // 0, 1, ...: every feature (the scan's list)
+  std::vector<ArcFrame> arc_frames_;            // per arc
   std::vector<std::array<int, 3>> neighbours_;  // per triangle, across the edge opposite corner k
   int grid_size_ = 0;
   std::vector<std::uint32_t> cell_triangle_start_;  // per cell, into cell_triangles_ (+1 end)
