@@ -66,6 +66,7 @@ TEST_P(Allocation, SphereWeights) {
               for (int i = 0; i < kFrames; ++i) {
                 ViewWeights w;
                 ok = sphere.weights(orbit(i), 1.5, w, &hint) && ok;
+                ok = sphere.weightsByScan(orbit(i), 1.5, w) && ok;
               }
             }),
             0);

@@ -1,0 +1,152 @@
+// Locate + weigh one view: ViewSphere::weights (hint walk + cube-map grid) in ns per query, and
+// its ratio to the plain scan ViewSphere::weightsByScan measured in the same run (x_scan < 1 is
+// faster). Goals (issue 12): <= 50 ns on a coherent camera path (with the hint), <= 150 ns for
+// random views (no hint), with 6 and with 200 keys, Base and Cosine modes, sharpness 1 and 2.
+//
+// Key sets: "octahedron" (6 keys around the object, as bench/blend), "half6" (6 keys of a
+// character: front, back, sides, top, three-quarter above; the lower half is uncovered),
+// "sphere200" (200 random keys over the whole sphere), "half200" (200 random keys on the upper
+// half sphere). Views are precomputed so that only the query is timed: a closed orbit sampled every
+// ~0.01 rad (the hint carried from frame to frame) or 4096 random directions (no hint). The scan
+// ratio (thread CPU time of both, timed back to back) compares like with like: the path against the scan given the same
+// hint (the algorithm weights() used before the grid), random views against the scan without one.
+#include <benchmark/benchmark.h>
+
+#include <Eigen/Core>
+#include <cmath>
+#include <cstdlib>
+#include <ctime>
+#include <numbers>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "vdg/viewdep/view_sphere.h"
+
+namespace {
+
+using Eigen::Vector3d;
+
+Vector3d fromAngles(double azimuth_deg, double elevation_deg) {
+  const double a = azimuth_deg * std::numbers::pi / 180.0, e = elevation_deg * std::numbers::pi / 180.0;
+  return {std::cos(e) * std::sin(a), std::sin(e), std::cos(e) * std::cos(a)};
+}
+
+std::vector<Vector3d> randomDirections(int n, unsigned seed, bool upper_half) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> g;
+  std::vector<Vector3d> dirs;
+  while (static_cast<int>(dirs.size()) < n) {
+    Vector3d v(g(rng), g(rng), g(rng));
+    if (v.norm() < 1e-6) continue;
+    if (upper_half) v.y() = std::abs(v.y());
+    dirs.push_back(v.normalized());
+  }
+  return dirs;
+}
+
+std::vector<Vector3d> keySet(const std::string& name) {
+  if (name == "octahedron") return {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  if (name == "half6")
+    return {fromAngles(0, 0),   fromAngles(90, 0), fromAngles(180, 0),
+            fromAngles(270, 0), fromAngles(0, 89), fromAngles(45, 40)};
+  if (name == "sphere200") return randomDirections(200, 12, false);
+  return randomDirections(200, 13, true);  // half200
+}
+
+// A closed orbit slightly above the horizon (as bench/blend's camera), ~0.01 rad per frame.
+const std::vector<Vector3d>& pathViews() {
+  static const std::vector<Vector3d> views = [] {
+    constexpr int kFrames = 628;  // one turn, step 2 pi / 628 ~ 0.01 rad
+    std::vector<Vector3d> v;
+    for (int i = 0; i < kFrames; ++i) {
+      const double t = 2.0 * std::numbers::pi * i / kFrames;
+      v.emplace_back(std::sin(t), 0.4, std::cos(t));
+    }
+    return v;
+  }();
+  return views;
+}
+
+const std::vector<Vector3d>& randomViews() {
+  static const std::vector<Vector3d> views = randomDirections(4096, 99, false);
+  return views;
+}
+
+// Thread CPU seconds (the machine is shared: wall time also counts other people's work).
+double threadSeconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+// CPU seconds per query of `query(view, hint)` over `queries` queries cycling through `views`.
+template <typename Query>
+double secondsPerQuery(const std::vector<Vector3d>& views, long queries, bool hinted, Query query) {
+  int hint = -1;
+  std::size_t i = 0;
+  const double t0 = threadSeconds();
+  for (long q = 0; q < queries; ++q) {
+    benchmark::DoNotOptimize(query(views[i], hinted ? &hint : nullptr));
+    if (++i == views.size()) i = 0;
+  }
+  return (threadSeconds() - t0) / static_cast<double>(queries);
+}
+
+void locateBenchmark(benchmark::State& state, const std::string& keys, vdg::Uncovered mode, bool path,
+                     double sharpness) {
+  const vdg::ViewSphere sphere = vdg::ViewSphere::build(keySet(keys), {mode});
+  const std::vector<Vector3d>& views = path ? pathViews() : randomViews();
+  int hint = -1;
+  int* hint_ptr = path ? &hint : nullptr;
+  std::size_t i = 0;
+  vdg::ViewWeights w;
+  for (auto _ : state) {
+    if (!sphere.weights(views[i], sharpness, w, hint_ptr)) {
+      state.SkipWithError("weights refused its input (internal error)");
+      break;
+    }
+    benchmark::DoNotOptimize(w);
+    if (++i == views.size()) i = 0;
+  }
+  // The same queries through the fast path and the scan, timed back to back in this run.
+  const long queries = path ? 400'000 : std::max(20'000L, 4'000'000L / static_cast<long>(sphere.triangles().size()));
+  auto fast = [&](const Vector3d& v, int* h) {
+    vdg::ViewWeights r;
+    return sphere.weights(v, sharpness, r, h) ? r.base : -1.0f;
+  };
+  auto scan = [&](const Vector3d& v, int* h) {
+    vdg::ViewWeights r;
+    return sphere.weightsByScan(v, sharpness, r, h) ? r.base : -1.0f;
+  };
+  const double fast_s = secondsPerQuery(views, queries, path, fast);
+  const double scan_s = secondsPerQuery(views, queries, path, scan);
+  state.counters["triangles"] = static_cast<double>(sphere.triangles().size());
+  state.counters["grid"] = sphere.gridSize();
+  state.counters["fast_cpu_ns"] = fast_s * 1e9;
+  state.counters["scan_cpu_ns"] = scan_s * 1e9;
+  state.counters["x_scan"] = fast_s / scan_s;  // the figure to watch with ns per query
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  double load[3] = {0, 0, 0};
+  if (getloadavg(load, 3) == 3)
+    benchmark::AddCustomContext(
+        "load_average", std::to_string(load[0]) + " " + std::to_string(load[1]) + " " + std::to_string(load[2]));
+  for (const bool path : {true, false})
+    for (const char* keys : {"octahedron", "half6", "sphere200", "half200"})
+      for (const vdg::Uncovered mode : {vdg::Uncovered::Base, vdg::Uncovered::Cosine})
+        for (const double sharpness : {1.0, 2.0}) {
+          const std::string name = std::string("Locate/") + (path ? "path" : "random") + "/" + keys + "/" +
+                                   vdg::uncoveredName(mode) + "/alpha" + std::to_string(static_cast<int>(sharpness));
+          benchmark::RegisterBenchmark(
+              name.c_str(), [=](benchmark::State& state) { locateBenchmark(state, keys, mode, path, sharpness); });
+        }
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
