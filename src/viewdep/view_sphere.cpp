@@ -448,19 +448,7 @@ double ViewSphere::featureDistance(const Eigen::Vector3d& x, int feature) const 
   return std::min(angleBetween(x, a), angleBetween(x, b));
 }
 
-ViewWeights ViewSphere::locateInTriangle(int t, const Eigen::Vector3d& lambda) const {
-  const Vector3d clamped = lambda.cwiseMax(0.0);
-  const double sum = clamped.sum();
-  ViewWeights w;
-  w.triangle = t;
-  for (int k = 0; k < 3; ++k) {
-    w.key[k] = triangles_[t][k];
-    w.weight[k] = static_cast<float>(sum > 0.0 ? clamped[k] / sum : 1.0 / 3.0);
-  }
-  return w;
-}
-
-// Sharpens the three slot weights (section 3.2.2) and moves dummy points' weight to the base.
+// Sharpens the (falloff) slot weights (section 3.2.2) and moves dummy points' weight to the base.
 // w_i^a / sum_j w_j^a is computed as r_i^a / sum_j r_j^a with r_i = w_i / max_j w_j: the same
 // value, but the largest term is exactly 1, so the sum never underflows to 0 (plain w^a does for
 // a above ~1100 when w <= 1/2) and never overflows. Ties for the largest weight share it evenly.
@@ -570,21 +558,21 @@ bool ViewSphere::weightsByScan(const Eigen::Vector3d& view, double sharpness, Vi
   return true;
 }
 
-// locateInTriangle + finishWeights in one pass on doubles (the per-frame hot path): barycentric
+// Weights in a triangle (section 3.2.2) in one pass on doubles (the per-frame hot path): barycentric
 // weights l_i / sum l, sharpened as (l_i / l_max)^a / sum_j (l_j / l_max)^a (the normalisation by
 // sum l cancels), dummy points' weight moved to the base.
 ViewWeights ViewSphere::triangleWeights(int t, const Eigen::Vector3d& lambda, double sharpness) const {
   double p[3] = {std::max(lambda[0], 0.0), std::max(lambda[1], 0.0), std::max(lambda[2], 0.0)};
   const double largest = std::max({p[0], p[1], p[2]});
-  if (!(largest > 0.0)) {  // unreachable for a unit view inside the cone; as locateInTriangle
+  if (!(largest > 0.0)) {  // unreachable for a unit view inside the cone: equal weights then
     p[0] = p[1] = p[2] = 1.0;
   } else if (sharpness != 1.0) {
     // Without data-dependent branches for the common alphas (random views would mispredict them).
     const double inverse = 1.0 / largest;
-    const int integer = static_cast<int>(sharpness);
     if (sharpness == 2.0) {
       for (double& x : p) x = (x * inverse) * (x * inverse);
-    } else if (sharpness <= kMultiplySharpnessMax && sharpness == integer) {
+    } else if (sharpness <= kMultiplySharpnessMax && sharpness == std::floor(sharpness)) {
+      const int integer = static_cast<int>(sharpness);
       for (double& x : p) {
         const double r = x * inverse;
         x = r;
@@ -697,8 +685,7 @@ ViewWeights ViewSphere::locate(const Eigen::Vector3d& v, double sharpness, int* 
     }
   }
   if (settings_.uncovered == Uncovered::Base) {
-    // Only through rounding at a needle-thin triangle's tip: the scan's choice (never reached on
-    // the key sets of the tests).
+    // Only through rounding at a needle-thin triangle's tip: the scan's choice.
     Vector3d lambda;
     const int found = scanTriangles(v, lambda);
     if (found < 0) {

@@ -162,7 +162,6 @@ class ViewSphere {
   ViewWeights triangleWeights(int t, const Eigen::Vector3d& lambda, double sharpness) const;
   // Uncovered view (cosine modes): falloff towards the nearest of `features` (see features_).
   ViewWeights uncoveredWeights(const Eigen::Vector3d& v, double sharpness, std::span<const int> features) const;
-  ViewWeights locateInTriangle(int t, const Eigen::Vector3d& lambda) const;
   ViewWeights falloff(const Eigen::Vector3d& v, std::span<const int> features, double& nearest_cos) const;
   void finishWeights(ViewWeights& w, double sharpness) const;
   // Geodesic distance (radians) from the unit direction x to a feature (see features_).
