@@ -62,6 +62,19 @@ int addInstance(scene::RawScene& raw, const std::string& name, const Eigen::Vect
   return static_cast<int>(raw.nodes.size()) - 1;
 }
 
+// A CHANGE action turning `node` half a turn about Y over frames 0 to 10.
+void addHalfTurn(scene::RawScene& raw, int node) {
+  scene::RawAction spin;
+  spin.kind = scene::RawAction::Kind::kChange;
+  spin.node = node;
+  spin.field = scene::Field::kRotation;
+  const Eigen::Quaterniond q(Eigen::AngleAxisd(std::numbers::pi, Eigen::Vector3d::UnitY()));
+  spin.value = Eigen::Vector4d(q.w(), q.x(), q.y(), q.z());
+  spin.from_frame = 0;
+  spin.to_frame = 10;
+  raw.actions.push_back(spin);
+}
+
 SceneFrameOptions smallOptions() {
   SceneFrameOptions o;
   o.width = o.height = kSize;
@@ -139,15 +152,7 @@ TEST(SceneRender, FrameAloneIsByteIdenticalToTheSameFrameOfASequence) {
   scene::RawScene raw = sceneWithCamera(Eigen::Vector3d(1, 1, 6));
   const int a = addInstance(raw, "a", Eigen::Vector3d(-1.2, 0, 0), Eigen::Quaterniond::Identity(), {0.9f, 0.3f, 0.3f});
   addInstance(raw, "b", Eigen::Vector3d(1.2, 0, 0), Eigen::Quaterniond::Identity(), {0.3f, 0.4f, 0.9f});
-  scene::RawAction spin;
-  spin.kind = scene::RawAction::Kind::kChange;
-  spin.node = a;
-  spin.field = scene::Field::kRotation;
-  const Eigen::Quaterniond q(Eigen::AngleAxisd(std::numbers::pi, Eigen::Vector3d::UnitY()));
-  spin.value = Eigen::Vector4d(q.w(), q.x(), q.y(), q.z());
-  spin.from_frame = 0;
-  spin.to_frame = 10;
-  raw.actions.push_back(spin);
+  addHalfTurn(raw, a);
   const scene::Scene s = scene::Scene::build(raw);
 
   // Frame 6 first, on a fresh renderer; then the whole sequence on the same one: frame 6 does not
@@ -269,15 +274,7 @@ TEST(SceneRender, TheGpuBlendDrawsTheSamePictureAsTheCpuPath) {
   ball.link.translation = Eigen::Vector3d(0, 2.7, 0);
   ball.link.scale = Eigen::Vector3d::Constant(0.5);
   raw.nodes.push_back(ball);
-  scene::RawAction spin;
-  spin.kind = scene::RawAction::Kind::kChange;
-  spin.node = spinning;
-  spin.field = scene::Field::kRotation;
-  const Eigen::Quaterniond q(Eigen::AngleAxisd(std::numbers::pi, Eigen::Vector3d::UnitY()));
-  spin.value = Eigen::Vector4d(q.w(), q.x(), q.y(), q.z());
-  spin.from_frame = 0;
-  spin.to_frame = 10;
-  raw.actions.push_back(spin);
+  addHalfTurn(raw, spinning);
   const scene::Scene s = scene::Scene::build(raw);
 
   SceneFrameOptions o = smallOptions();

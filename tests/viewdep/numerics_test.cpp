@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "support/random_direction.h"
 #include "support/test_meshes.h"
 #include "vdg/geom/error.h"
 #include "vdg/viewdep/model.h"
@@ -55,14 +56,7 @@ ViewWeights weightsOf(const ViewDependentModel& m, const Vector3d& view, double 
   return w;
 }
 
-Vector3d randomDirection(std::mt19937& rng) {
-  std::normal_distribution<double> n;
-  Vector3d v;
-  do {
-    v = Vector3d(n(rng), n(rng), n(rng));
-  } while (v.norm() < 1e-6);
-  return v.normalized();
-}
+using testing::randomDirection;
 
 // ---- Sharpness (Rademacher 3.2.2) -------------------------------------------------------------
 

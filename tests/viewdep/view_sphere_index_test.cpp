@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "support/random_direction.h"
 #include "vdg/viewdep/view_sphere.h"
 
 namespace vdg {
@@ -49,14 +50,7 @@ constexpr double kPathStepRad = 0.01;
 
 const std::vector<Uncovered> kModes = {Uncovered::Base, Uncovered::Cosine, Uncovered::Cosine2};
 
-Vector3d randomDirection(std::mt19937& rng) {
-  std::normal_distribution<double> n;
-  Vector3d v;
-  do {
-    v = Vector3d(n(rng), n(rng), n(rng));
-  } while (v.norm() < 1e-6);
-  return v.normalized();
-}
+using testing::randomDirection;
 
 Vector3d fromAngles(double azimuth_rad, double elevation_rad) {
   return {std::cos(elevation_rad) * std::sin(azimuth_rad), std::sin(elevation_rad),
@@ -170,7 +164,7 @@ void compareOn(const ViewSphere& s, const std::string& where, int views, std::mt
     ASSERT_TRUE(s.weights(v, alpha, fast));
     ASSERT_TRUE(s.weightsByScan(v, alpha, oracle));
     expectSame(s, v, fast, oracle, where + ", random, alpha " + std::to_string(alpha), tally);
-    if (testing::Test::HasFatalFailure()) return;
+    if (::testing::Test::HasFatalFailure()) return;
   }
   // Camera paths: great circles through random points, with the hint carried from frame to frame.
   int hint = -1;
@@ -190,7 +184,7 @@ void compareOn(const ViewSphere& s, const std::string& where, int views, std::mt
     ASSERT_TRUE(s.weights(v, alpha, fast, &hint));
     ASSERT_TRUE(s.weightsByScan(v, alpha, oracle));
     expectSame(s, v, fast, oracle, where + ", path, alpha " + std::to_string(alpha), tally);
-    if (testing::Test::HasFatalFailure()) return;
+    if (::testing::Test::HasFatalFailure()) return;
     // The hint follows the triangle found and stays as it was for an uncovered view.
     ASSERT_EQ(hint, fast.triangle >= 0 ? fast.triangle : before) << where;
   }

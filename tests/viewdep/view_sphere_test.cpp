@@ -8,6 +8,7 @@
 #include <numbers>
 #include <random>
 
+#include "support/random_direction.h"
 #include "vdg/geom/error.h"
 
 namespace vdg {
@@ -39,14 +40,7 @@ ViewWeights weightsOf(const ViewSphere& s, const Vector3d& view, double sharpnes
   return w;
 }
 
-Vector3d randomDirection(std::mt19937& rng) {
-  std::normal_distribution<double> n;
-  Vector3d v;
-  do {
-    v = Vector3d(n(rng), n(rng), n(rng));
-  } while (v.norm() < 1e-6);
-  return v.normalized();
-}
+using testing::randomDirection;
 
 Vector3d fromAngles(double azimuth_deg, double elevation_deg) {
   const double a = azimuth_deg * std::numbers::pi / 180.0, e = elevation_deg * std::numbers::pi / 180.0;
