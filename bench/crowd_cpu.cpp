@@ -81,7 +81,8 @@ void BM_CrowdOnTheCpu(benchmark::State& state) {
     oneapi::tbb::parallel_for(oneapi::tbb::blocked_range<int>(0, count), [&](const oneapi::tbb::blocked_range<int>& r) {
       for (int i = r.begin(); i != r.end(); ++i) {
         const Eigen::Vector3d view = m.viewFromEye(eye - crowd.centres[static_cast<std::size_t>(i)]);
-        if (!crowd.evaluators[static_cast<std::size_t>(i)].evaluate(view, 0.0, &crowd.hints[static_cast<std::size_t>(i)]))
+        if (!crowd.evaluators[static_cast<std::size_t>(i)].evaluate(view, 0.0,
+                                                                    &crowd.hints[static_cast<std::size_t>(i)]))
           ok = false;
       }
     });
