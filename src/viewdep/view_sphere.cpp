@@ -339,9 +339,12 @@ void ViewSphere::buildIndex() {
     }
   }
 
-  const int n =
-      std::clamp(static_cast<int>(std::ceil(std::sqrt(kCellsPerItem * (triangle_count + feature_count) / 6.0))),
-                 kMinGridSize, kMaxGridSize);
+  // The build tests every (cell, item) pair once, so very large key sets get coarser cells: at most
+  // kMaxIndexPairs pairs (lists grow instead, and stay exact).
+  const double items = std::max(1, triangle_count + feature_count);
+  const int affordable = static_cast<int>(std::floor(std::sqrt(kMaxIndexPairs / (6.0 * items))));
+  const int n = std::clamp(static_cast<int>(std::ceil(std::sqrt(kCellsPerItem * items / 6.0))), kMinGridSize,
+                           std::clamp(affordable, kMinGridSize, kMaxGridSize));
   grid_size_ = n;
   const std::size_t cells = 6u * static_cast<std::size_t>(n) * static_cast<std::size_t>(n);
   cell_triangle_start_.assign(cells + 1, 0);

@@ -124,6 +124,10 @@ class ViewSphere {
   static constexpr int kMinGridSize = 4;
   static constexpr double kCellsPerItem = 8.0;  // grid cells per triangle, arc or isolated key
   static constexpr int kMaxGridSize = 64;
+  // Most (cell, triangle or feature) pairs the build tests: beyond about 1,000 keys N shrinks below
+  // the formula above so that build() stays O(keys) (a few milliseconds per thousand keys), and the
+  // cells' lists grow instead.
+  static constexpr double kMaxIndexPairs = 5e7;
   // Integer sharpness up to this value is computed by repeated multiplication instead of std::pow.
   static constexpr int kMultiplySharpnessMax = 8;
   // Cells per cube face edge of the grid (N above).
