@@ -1,0 +1,146 @@
+// Session — the editing document of `vdg studio`, the authoring loop of Rademacher 99, section 3.1:
+// a base model, a camera turned (or solved from 2D-3D correspondences, 3.1.1) until the model sits
+// on a drawing, and strokes dragged across the image plane (3.1.2) that become a key deformation
+// with its key viewpoint. No window and no OpenGL here: the editor's window (apps/vdg/studio) shows
+// a Session and turns mouse and keys into its calls; tests drive it directly.
+//
+// Every stroke is one entry of the key's edit log (vdg/deform/edits.h: the camera it was made in,
+// the image size, its operations), so a key saved here replays and undoes with `vdg deform`, and a
+// drag here gives the same key mesh as the same DragOp through `vdg deform` (tested).
+//
+// Files: saveKey() writes the key mesh, its edit log and the manifest as one step
+// (vdg/io/file_transaction.h, the journal and folder lock `vdg deform` uses), so a failure changes
+// nothing. After every stroke, undo and redo the unsaved strokes are autosaved, atomically, to
+// recoveryPath(); a crash or a kill loses at most the stroke in progress, and the next open of the
+// same model offers them back (recoverableStrokes(), recover(), discardRecovery()).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "vdg/deform/align.h"
+#include "vdg/deform/edits.h"
+#include "vdg/geom/camera.h"
+#include "vdg/geom/tri_mesh.h"
+#include "vdg/viewdep/model.h"
+
+namespace vdg::studio {
+
+struct OpenOptions {
+  // For an OBJ or glTF model: the manifest keys are saved to; empty: STEM.vdg.json beside it. When
+  // that file already exists open() refuses (open the manifest itself instead), so an existing
+  // manifest is never replaced by a new one.
+  std::string manifest_out;
+};
+
+// What a mouse stroke does (3.1.2): drag across the image plane (depth kept), push/pull along the
+// view (vertical mouse motion), rotate about the view axis through the picked vertex (horizontal
+// motion), scale in the image plane about it (horizontal motion).
+enum class Tool { kDrag, kPushPull, kRotate, kScale };
+const char* toolName(Tool tool);
+
+// Mouse motion -> tool amounts (image pixels).
+inline constexpr double kPushPullPerPixel = 0.005;  // x the base's bounding-box diagonal, per pixel
+inline constexpr double kRotateDegPerPixel = 0.5;
+inline constexpr double kScalePerPixel = 0.005;     // factor = exp(pixels x this)
+// Undo depth: strokes kept with their shapes (older ones stay in the log but cannot be undone here).
+inline constexpr std::size_t kMaxUndo = 256;
+
+class Session {
+ public:
+  // Opens a manifest (*.json), or an OBJ / glTF (*.obj, *.gltf, *.glb) as the base of a new model.
+  // Throws vdg::Error naming the file for anything that cannot be read or validated.
+  static Session open(const std::string& path, const OpenOptions& options = {});
+  ~Session();
+  Session(Session&&) noexcept;
+  Session& operator=(Session&&) noexcept;
+
+  const RawViewDependentModel& model() const;  // the keys as saved, plus the key being edited
+  const std::string& modelPath() const;        // the file opened
+  const std::string& manifestPath() const;     // the manifest saveKey() writes
+  bool animated() const;                       // animated base: shown, not edited (no key strokes)
+  const TriMesh& baseMesh() const;
+  double baseDiagonal() const;                 // of the base's bounding box (> 0)
+
+  // The key being edited (an index into model().keys), or -1: the base is shown, nothing to edit.
+  int currentKey() const;
+  bool currentKeyIsNew() const;  // made in this session and never saved
+  // The shape shown: the current key's positions with its strokes (#V x 3), or the base's.
+  std::span<const float> positions() const;
+  // Changes whenever positions(), the keys or the current key change (for the window's caches).
+  std::uint64_t revision() const;
+
+  // The viewport camera, and the image it maps to: a drawing's size in pixels, or the viewport's.
+  Camera camera;
+  int image_width = 1024, image_height = 768;
+
+  Tool tool = Tool::kDrag;
+  DistanceMetric metric = DistanceMetric::kEuclidean;
+  Falloff falloff;  // open() sets radius = 0.15 x baseDiagonal(), power 2 (the paper's falloff)
+
+  // The vertex of the first front-facing triangle hit by the ray through `pixel` (image pixels, y
+  // down) that is nearest to the hit point, or nothing when the ray misses the shape shown.
+  std::optional<std::int32_t> pick(const Eigen::Vector2d& pixel) const;
+  // Falloff weights (#V, in [0, 1]) of a stroke picked at `vertex` with the current settings.
+  std::vector<double> selectionWeights(std::int32_t vertex) const;
+
+  // Keys. newKey: a key `name` (checkKeyName) starting from the base, its camera the current one,
+  // mesh NAME.obj; throws vdg::Error for a bad or used name or an animated model. editKey: makes
+  // key `index` current (its shape, its saved edit log) and sets the camera to its edit camera.
+  // Either refuses (vdg::Error) while the current key has unsaved strokes.
+  void newKey(const std::string& name);
+  void editKey(std::size_t index);
+  bool dirty() const;  // the current key has strokes not saved
+  // Writes the current key (mesh, edit log; the manifest when the key is new) as one transaction.
+  // Throws vdg::Error naming the file, having changed nothing (on disk and in the session).
+  void saveKey();
+  // Sets the current key's camera to `camera` (a new key only; a saved key keeps its camera).
+  void setKeyCamera(const Camera& camera);
+
+  // Strokes with the current tool, in image pixels. begin picks nothing: give the picked vertex.
+  void beginStroke(std::int32_t vertex, const Eigen::Vector2d& pixel);
+  void updateStroke(const Eigen::Vector2d& pixel);  // the shape follows the mouse
+  void endStroke();                                 // commits one log entry; no-op if nothing moved
+  void cancelStroke();                              // restores the shape before the stroke
+  bool stroking() const;
+  // One stroke of explicit operations in the current camera (throws vdg::Error for an invalid op,
+  // changing nothing).
+  void applyOps(std::span<const EditOp> ops);
+  // The ops of stroke i of this session's unsaved-and-saved history (for tests and the log panel).
+  std::size_t strokeCount() const;
+  bool canUndo() const;
+  bool canRedo() const;
+  void undo();
+  void redo();
+
+  // Alignment (3.1.1): pairs of a base vertex and the drawing pixel where it belongs.
+  struct Pair {
+    std::int32_t vertex = 0;
+    Eigen::Vector2d pixel = Eigen::Vector2d::Zero();
+  };
+  std::vector<Pair> pairs;
+  // alignCamera on the pairs (base positions) in image_width x image_height; throws vdg::Error.
+  AlignResult solveAlignment(bool ortho) const;
+
+  // Crash recovery. The file lives in a ".vdg-studio" folder beside the manifest.
+  const std::string& recoveryPath() const;
+  // Strokes found in a recovery file of this model when it was opened (0: none).
+  std::size_t recoverableStrokes() const;
+  // Re-applies them (making their key current; a new key is re-created) and keeps the file;
+  // throws vdg::Error if the file no longer fits the model. discardRecovery removes the file.
+  void recover();
+  void discardRecovery();
+
+ private:
+  Session();
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace vdg::studio
