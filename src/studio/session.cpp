@@ -8,6 +8,8 @@
 #include <numbers>
 #include <utility>
 
+#include <Eigen/Geometry>
+
 #include "vdg/deform/falloff.h"
 #include "vdg/deform/image_plane.h"
 #include "vdg/deform/key_edit.h"
@@ -18,6 +20,7 @@
 #include "vdg/io/manifest.h"
 #include "vdg/io/obj.h"
 #include "vdg/io/studio_recovery.h"
+#include "vdg/studio/navigation.h"
 
 namespace vdg::studio {
 namespace fs = std::filesystem;
@@ -137,8 +140,7 @@ struct Session::Impl {
     r.manifest = manifest_path;
     r.key = key.name;
     r.new_key = is_new;
-    r.mesh_path = key.mesh_path;
-    if (is_new) r.key_camera = key.camera;
+    if (is_new) r.mesh_path = key.mesh_path, r.key_camera = key.camera;
     r.logged = base_log.entries.size();
     r.strokes.assign(strokes.begin(), strokes.begin() + static_cast<std::ptrdiff_t>(cursor));
     try {
