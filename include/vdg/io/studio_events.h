@@ -43,9 +43,9 @@ struct InputEvent {
   double x = 0, y = 0;                // window pixels, y down (mouse and scroll events; finite, |v| <= 1e6)
   int button = 0;                     // kMouseDown/kMouseUp: 0 left, 1 right, 2 middle (JSON "left"/"right"/"middle")
   double scroll_x = 0, scroll_y = 0;  // kScroll (JSON "dx"/"dy"; finite, |v| <= 1e6)
-  std::string key;                    // kKeyDown/kKeyUp: a name from inputKeyNames()
+  std::string key{};                  // kKeyDown/kKeyUp: a name from inputKeyNames()
   bool ctrl = false, shift = false, alt = false, super = false;  // JSON "mods": ["ctrl", ...]
-  std::string text;  // kText: UTF-8 typed into the focused text field, 1..kMaxInputTextBytes bytes
+  std::string text{};  // kText: UTF-8 typed into the focused text field, 1..kMaxInputTextBytes bytes
 
   bool operator==(const InputEvent&) const = default;
 };

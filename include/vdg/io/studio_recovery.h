@@ -20,17 +20,17 @@ namespace vdg {
 inline constexpr int kStudioRecoveryVersion = 1;
 
 struct StudioRecovery {
-  std::string model;                  // the file the session opened (absolute path)
-  std::string manifest;               // the manifest the session saves to (absolute path; may not exist yet)
-  std::string key;                    // the key the strokes edit (not empty)
-  bool new_key = false;               // the key is not in the manifest yet
-  std::string mesh_path;              // new key: its mesh path relative to the manifest (not empty); else empty
-  std::optional<Camera> key_camera;   // new key: its camera (required); else none
+  std::string model{};                 // the file the session opened (absolute path)
+  std::string manifest{};              // the manifest the session saves to (absolute path; may not exist yet)
+  std::string key{};                   // the key the strokes edit (not empty)
+  bool new_key = false;                // the key is not in the manifest yet
+  std::string mesh_path{};             // new key: its mesh path relative to the manifest (not empty); else empty
+  std::optional<Camera> key_camera{};  // new key: its camera (required); else none
   // Entries of the key's edit log that the strokes follow: when the session made the key current
   // its log had this many (0 for a new key). A later save in the lost session may have appended
   // some of the strokes to the log; recovery truncates the log to `logged` and replays the strokes.
   std::size_t logged = 0;
-  std::vector<EditLogEntry> strokes;  // unsaved strokes in order, each with its camera and image size
+  std::vector<EditLogEntry> strokes{};  // unsaved strokes in order, each with its camera and image size
 };
 // The most edit log entries `logged` may count.
 inline constexpr std::int64_t kMaxLoggedEntries = 1'000'000'000;
