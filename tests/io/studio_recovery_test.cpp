@@ -85,6 +85,7 @@ void expectSame(const StudioRecovery& a, const StudioRecovery& b) {
   EXPECT_EQ(a.key, b.key);
   EXPECT_EQ(a.new_key, b.new_key);
   EXPECT_EQ(a.mesh_path, b.mesh_path);
+  EXPECT_EQ(a.logged, b.logged);
   ASSERT_EQ(a.key_camera.has_value(), b.key_camera.has_value());
   if (a.key_camera) expectSameCamera(*a.key_camera, *b.key_camera);
   ASSERT_EQ(a.strokes.size(), b.strokes.size());
@@ -98,7 +99,10 @@ void expectSame(const StudioRecovery& a, const StudioRecovery& b) {
 }
 
 TEST(StudioRecovery, RoundTripsNewAndExistingKeys) {
-  for (const StudioRecovery& r : {newKey(), existingKey(), StudioRecovery{"/m", "/m", "k", false, "", {}, {}}}) {
+  StudioRecovery after_log = existingKey();
+  after_log.logged = 7;  // the strokes follow the first 7 entries of the key's log
+  for (const StudioRecovery& r :
+       {newKey(), existingKey(), after_log, StudioRecovery{"/m", "/m", "k", false, "", {}, 0, {}}}) {
     const std::string text = formatStudioRecovery(r);
     const StudioRecovery back = parseStudioRecovery(text, "rec.json");
     expectSame(back, r);
@@ -138,10 +142,12 @@ TEST(StudioRecovery, EveryRefusalNamesItsKeyPath) {
   const Case cases[] = {
       {R"({"model": "/a", "manifest": "/a", "key": "k", "new_key": false, "strokes": []})",
        "REC: missing 'version' (this vdg reads studio recovery files version 1)"},
+      {"{" + head + R"("new_key": false, "logged": -1, "strokes": []})",
+       "REC: 'logged': expected an integer from 0 to 1000000000, got -1"},
       {R"({"version": 3})", "REC: 'version': this vdg reads studio recovery files version 1, got 3"},
       {"{" + head + R"("new_key": false, "strokes": [], "undo": []})",
        "REC: unknown key 'undo' (expected one of 'version', 'model', 'manifest', 'key', 'new_key', 'mesh', "
-       "'key_camera', 'strokes')"},
+       "'key_camera', 'logged', 'strokes')"},
       {R"({"version": 1, "model": "m.obj", "manifest": "/a", "key": "k", "new_key": false, "strokes": []})",
        "REC: 'model': expected an absolute path, got \"m.obj\""},
       {R"({"version": 1, "model": "/a", "manifest": "", "key": "k", "new_key": false, "strokes": []})",
