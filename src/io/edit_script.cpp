@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "camera_fields.h"
+#include "edit_fields.h"
 #include "json_reader.h"
 #include "vdg/geom/error.h"
 #include "vdg/io/atomic_file.h"
@@ -339,6 +340,29 @@ bool isOriginFileName(const std::string& origin) {
 
 }  // namespace
 
+namespace io {
+
+EditLogEntry editLogEntryFrom(const Json& value, const Ctx& ctx) {
+  allowKeys(value, ctx, {"camera", "image_size", "ops"});
+  EditLogEntry entry;
+  entry.camera = cameraFrom(required(value, "camera", ctx), ctx.key("camera"));
+  entry.image_size = readImageSize(value, ctx);
+  entry.ops = readOps(value, ctx);
+  return entry;
+}
+
+nlohmann::ordered_json editLogEntryJson(const EditLogEntry& entry, const std::string& at) {
+  OJson j;
+  j["camera"] = cameraJson(entry.camera);
+  if (entry.image_size) j["image_size"] = *entry.image_size;
+  j["ops"] = OJson::array();
+  for (std::size_t i = 0; i < entry.ops.size(); ++i)
+    j["ops"].push_back(writeOp(entry.ops[i], at + ".'ops'[" + std::to_string(i) + "]"));
+  return j;
+}
+
+}  // namespace io
+
 namespace {
 
 EditScript scriptFrom(const Json& doc, const std::string& source) {
@@ -371,15 +395,8 @@ EditLog logFrom(const Json& doc, const std::string& source) {
   }
   const Json& entries = io::required(doc, "entries", ctx);
   if (!entries.is_array()) ctx.key("entries").fail("expected an array, got " + io::describe(entries));
-  for (std::size_t e = 0; e < entries.size(); ++e) {
-    const Ctx ectx = ctx.key("entries").index(e);
-    io::allowKeys(entries[e], ectx, {"camera", "image_size", "ops"});
-    EditLogEntry entry;
-    entry.camera = io::cameraFrom(io::required(entries[e], "camera", ectx), ectx.key("camera"));
-    entry.image_size = readImageSize(entries[e], ectx);
-    entry.ops = readOps(entries[e], ectx);
-    log.entries.push_back(std::move(entry));
-  }
+  for (std::size_t e = 0; e < entries.size(); ++e)
+    log.entries.push_back(io::editLogEntryFrom(entries[e], ctx.key("entries").index(e)));
   return log;
 }
 
@@ -409,17 +426,9 @@ std::string formatEditLog(const EditLog& log) {
   j["key"] = log.key;
   j["origin"] = log.origin;
   j["entries"] = OJson::array();
-  for (std::size_t e = 0; e < log.entries.size(); ++e) {
-    const EditLogEntry& entry = log.entries[e];
-    OJson je;
-    je["camera"] = io::cameraJson(entry.camera);
-    if (entry.image_size) je["image_size"] = *entry.image_size;
-    je["ops"] = OJson::array();
-    for (std::size_t i = 0; i < entry.ops.size(); ++i)
-      je["ops"].push_back(writeOp(entry.ops[i], "edit log of key '" + log.key + "': 'entries'[" + std::to_string(e) +
-                                                    "].'ops'[" + std::to_string(i) + "]"));
-    j["entries"].push_back(std::move(je));
-  }
+  for (std::size_t e = 0; e < log.entries.size(); ++e)
+    j["entries"].push_back(io::editLogEntryJson(
+        log.entries[e], "edit log of key '" + log.key + "': 'entries'[" + std::to_string(e) + "]"));
   return compactScalarArrays(j.dump(2)) + "\n";
 }
 

@@ -1,0 +1,43 @@
+// Recovery files of `vdg studio`: the strokes a session has not saved yet, written after every
+// stroke so that a crash loses nothing (docs/studio-files.md):
+//   {"version": 1, "model": "/abs/spot.vdg.json", "manifest": "/abs/spot.vdg.json", "key": "side",
+//    "new_key": true, "mesh": "side.obj", "key_camera": {camera}, "strokes": [{edit log entry}, ...]}
+// "key_camera" is the camera object of vdg/io/camera_json.h and each stroke the edit log entry
+// object of vdg/io/edit_script.h ({"camera", "image_size", "ops"}): one JSON for each, shared.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "vdg/deform/edits.h"
+#include "vdg/geom/camera.h"
+
+namespace vdg {
+
+// Current version of the recovery file format.
+inline constexpr int kStudioRecoveryVersion = 1;
+
+struct StudioRecovery {
+  std::string model;                  // the file the session opened (absolute path)
+  std::string manifest;               // the manifest the session saves to (absolute path; may not exist yet)
+  std::string key;                    // the key the strokes edit (not empty)
+  bool new_key = false;               // the key is not in the manifest yet
+  std::string mesh_path;              // new key: its mesh path relative to the manifest (not empty); else empty
+  std::optional<Camera> key_camera;   // new key: its camera (required); else none
+  std::vector<EditLogEntry> strokes;  // unsaved strokes in order, each with its camera and image size
+};
+
+// The file's text (version 1). Throws vdg::Error "studio recovery: 'FIELD': ..." for a recovery
+// that parseStudioRecovery would refuse: an empty key, a model or manifest path that is not
+// absolute, mesh/key_camera given without new_key or missing with it, an op out of range
+// ("studio recovery: 'strokes'[2].'ops'[0] (drag).'radius': ...").
+std::string formatStudioRecovery(const StudioRecovery& r);
+// Parses a recovery file's text. Throws vdg::Error "SOURCE: KEY PATH: PROBLEM" (one line) for bad
+// JSON, a missing or unknown version or key, a wrong type, and each rule above; strokes are read as
+// edit log entries, with their messages ("SOURCE: 'strokes'[0].'camera'.'fov_deg': ...").
+StudioRecovery parseStudioRecovery(const std::string& text, const std::string& source);
+// Reads `path` (a regular file of at most kMaxJsonFileBytes, vdg/io/read_file.h) and parses it.
+StudioRecovery readStudioRecovery(const std::string& path);
+
+}  // namespace vdg
