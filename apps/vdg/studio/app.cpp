@@ -658,6 +658,7 @@ struct Studio::Impl {
     dl->PopClipRect();
   }
   std::int32_t stroke_vertex = -1;
+  bool framed = false;
 };
 
 Studio::Studio(const StudioOptions& options) : impl_(std::make_unique<Impl>()) {
@@ -685,8 +686,7 @@ Studio::Studio(const StudioOptions& options) : impl_(std::make_unique<Impl>()) {
   c.target = center;
   c.eye = center + Eigen::Vector3d(0, 0, std::max(1e-3, static_cast<double>(b.diagonal())) * 2.0);
   c.fov_deg = 35.0;
-  m.session->camera = c;
-  m.frameModel();
+  m.session->camera = c;  // framed on the first frame, in the viewport's aspect
   if (m.drawing) m.status = "drawing " + std::to_string(m.drawing->width) + "x" + std::to_string(m.drawing->height);
 }
 
@@ -698,6 +698,10 @@ void Studio::frame(Window& window, int frame, const std::vector<Event>& events) 
   Impl& m = *impl_;
   m.window = &window;
   m.layout(window);
+  if (m.session && !m.framed) {
+    m.framed = true;
+    m.frameModel();
+  }
   if (m.session) {
     for (const Event& e : events)
       if (e.type == EventType::kMouseDown && m.mode == Mode::kDeform && e.button == 0 && m.rect.contains(e.x, e.y))
@@ -718,7 +722,7 @@ void Studio::frame(Window& window, int frame, const std::vector<Event>& events) 
     if (m.show_preview) {
       ImGui::SetNextWindowPos(ImVec2(kPanelWidth + 20, m.area.h - 380), ImGuiCond_Appearing);
       if (ImGui::Begin("Preview (Figure 6)", &m.show_preview, ImGuiWindowFlags_AlwaysAutoResize))
-        m.preview.draw(m.session->model(), m.session->revision(), frame);
+        m.preview.draw(window, m.session->model(), m.session->revision(), frame);
       ImGui::End();
     }
     ImDrawList* dl = ImGui::GetBackgroundDrawList();

@@ -72,7 +72,7 @@ struct Preview::Impl {
 Preview::Preview() : impl_(std::make_unique<Impl>()) {}
 Preview::~Preview() = default;
 
-void Preview::draw(const RawViewDependentModel& raw, std::uint64_t revision, int frame) {
+void Preview::draw(Window& window, const RawViewDependentModel& raw, std::uint64_t revision, int frame) {
   Impl& m = *impl_;
   if (revision != m.built_revision || m.settings_changed) {
     m.settings_changed = false;
@@ -127,6 +127,7 @@ void Preview::draw(const RawViewDependentModel& raw, std::uint64_t revision, int
                                                   kTurnDegPerFrame * frame, 15.0, 35.0);
   try {
     m.weights = m.renderer->render(turning, m.image);
+    window.makeCurrent();
     m.texture.upload(m.image);
   } catch (const std::exception& e) {
     m.problem = e.what();

@@ -19,8 +19,9 @@ class Preview {
   Preview();
   ~Preview();
   // Draws the panel's contents (inside an ImGui window the caller opened). Rebuilds the model
-  // when `revision` changed; `frame` turns the camera (degrees per frame below).
-  void draw(const RawViewDependentModel& raw, std::uint64_t revision, int frame);
+  // when `revision` changed; `frame` turns the camera. `window`'s context is made current again
+  // after the preview's renderer (its own EGL context) has drawn.
+  void draw(Window& window, const RawViewDependentModel& raw, std::uint64_t revision, int frame);
 
  private:
   struct Impl;

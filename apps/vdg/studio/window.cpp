@@ -37,13 +37,17 @@ Window* self(GLFWwindow* w) { return static_cast<Window*>(glfwGetWindowUserPoint
 // ---- Texture ----------------------------------------------------------------------------------
 
 Texture::~Texture() {
-  if (name_ != 0) glDeleteTextures(1, &name_);
+  if (name_ == 0) return;
+  // Renderers make their own EGL contexts current: delete in the context the texture lives in.
+  if (context_ != nullptr) glfwMakeContextCurrent(static_cast<GLFWwindow*>(context_));
+  glDeleteTextures(1, &name_);
 }
 
 void Texture::upload(const vdg::render::Image& image) { upload(image.width, image.height, image.rgba.data()); }
 
 void Texture::upload(int width, int height, const std::uint8_t* rgba) {
   if (name_ == 0) {
+    context_ = glfwGetCurrentContext();
     glGenTextures(1, &name_);
     glBindTexture(GL_TEXTURE_2D, name_);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);

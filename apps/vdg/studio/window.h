@@ -22,7 +22,8 @@ class Texture {
   ~Texture();
   Texture(const Texture&) = delete;
   Texture& operator=(const Texture&) = delete;
-  // Uploads `image` (top row first); the window's context must be current.
+  // Uploads `image` (top row first); the window's context must be current (the first upload
+  // ties the texture to it).
   void upload(const vdg::render::Image& image);
   void upload(int width, int height, const std::uint8_t* rgba);
   void* id() const;  // for ImGui (ImTextureID)
@@ -32,6 +33,7 @@ class Texture {
 
  private:
   unsigned name_ = 0;
+  void* context_ = nullptr;  // the GLFWwindow whose context holds the texture
   int width_ = 0, height_ = 0;
 };
 
