@@ -30,7 +30,7 @@ std::string absolutePath(const Json& doc, const char* key, const Ctx& ctx) {
 StudioRecovery recoveryFrom(const Json& doc, const std::string& source) {
   const Ctx ctx{source, ""};
   io::formatVersion(doc, ctx, "studio recovery files", kStudioRecoveryVersion, kStudioRecoveryVersion);
-  io::allowKeys(doc, ctx, {"version", "model", "manifest", "key", "new_key", "mesh", "key_camera", "strokes"});
+  io::allowKeys(doc, ctx, {"version", "model", "manifest", "key", "new_key", "mesh", "key_camera", "logged", "strokes"});
   StudioRecovery r;
   r.model = absolutePath(doc, "model", ctx);
   r.manifest = absolutePath(doc, "manifest", ctx);
@@ -47,6 +47,8 @@ StudioRecovery recoveryFrom(const Json& doc, const std::string& source) {
     if (r.mesh_path.empty()) ctx.key("mesh").fail("expected a mesh file name, got an empty string");
     r.key_camera = io::cameraFrom(doc.at("key_camera"), ctx.key("key_camera"));
   }
+  if (doc.contains("logged"))
+    r.logged = static_cast<std::size_t>(io::integer(doc.at("logged"), ctx.key("logged"), 0, kMaxLoggedEntries));
   const Json& strokes = io::required(doc, "strokes", ctx);
   if (!strokes.is_array()) ctx.key("strokes").fail("expected an array of strokes, got " + io::describe(strokes));
   r.strokes.reserve(strokes.size());
@@ -68,6 +70,7 @@ std::string formatStudioRecovery(const StudioRecovery& r) {
   j["new_key"] = r.new_key;
   if (r.new_key || !r.mesh_path.empty()) j["mesh"] = r.mesh_path;
   if (r.key_camera) j["key_camera"] = io::cameraJson(*r.key_camera);
+  if (r.logged > 0) j["logged"] = r.logged;
   j["strokes"] = OJson::array();
   for (std::size_t s = 0; s < r.strokes.size(); ++s)
     j["strokes"].push_back(io::editLogEntryJson(r.strokes[s], where + ": 'strokes'[" + std::to_string(s) + "]"));

@@ -5,13 +5,13 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
-#include <set>
 #include <string>
 #include <utility>
 
 #include "vdg/geom/error.h"
 #include "vdg/geom/normalize.h"
 #include "vdg/geom/surface.h"
+#include "vdg/render/sphere_inset.h"
 
 namespace vdg::render {
 namespace {
@@ -24,23 +24,8 @@ void check(bool ok, const char* what) {
 
 constexpr double kDegToRad = std::numbers::pi / 180.0;
 constexpr double kFovDeg = 30.0;
-constexpr Rgb kKeyColor{0.15f, 0.15f, 0.18f};
-constexpr Rgb kActiveKeyColor{0.85f, 0.1f, 0.1f};
-constexpr Rgb kDummyColor{0.6f, 0.6f, 0.6f};
-constexpr Rgb kViewColor{0.1f, 0.3f, 0.9f};
-constexpr Rgb kWireColor{0.35f, 0.35f, 0.38f};
-constexpr Rgb kGuideColor{0.8f, 0.8f, 0.8f};
-constexpr Rgb kPanelColor{1.0f, 1.0f, 1.0f};
-constexpr Rgb kBorderColor{0.7f, 0.7f, 0.7f};
-constexpr Rgb kHullColor{0.92f, 0.92f, 0.92f};
-constexpr Rgb kActiveColor{0.35f, 0.8f, 0.35f};
+constexpr Rgb kBorderColor{0.7f, 0.7f, 0.7f};  // the separator between the panels
 constexpr Rgb kCameraMarkColor{0.9f, 0.45f, 0.1f};
-
-void push(std::vector<float>& v, const Eigen::Vector3d& p) {
-  v.push_back(static_cast<float>(p.x()));
-  v.push_back(static_cast<float>(p.y()));
-  v.push_back(static_cast<float>(p.z()));
-}
 
 void checkSize(int w, int h, const char* what) {
   if (w < 1 || h < 1 || w > kMaxImageSize || h > kMaxImageSize)
@@ -80,8 +65,7 @@ struct ModelRenderer::Impl {
   Eigen::Vector3d center = Eigen::Vector3d::Zero();
   double radius = 1.0;
   Camera observer;
-  // Viewing-sphere diagram: static parts built once, per-frame parts in reused buffers.
-  std::vector<float> wire, guide, key_dots, dummy_dots, hull_rest, active_tri, active_dots, view_ray, view_dot;
+  std::optional<SphereInset> inset;  // the viewing-sphere diagram (a view-dependent model)
 
   Impl(const FrameOptions& o, int image_width)
       : options(o), renderer(RendererSettings{image_width, o.height, o.samples}) {}
@@ -123,104 +107,17 @@ struct ModelRenderer::Impl {
       check(renderer.updateMesh(mesh_id, positions, {}), "updateMesh");
       return;
     }
-    buildSphereDiagram();
+    inset.emplace(sphere());
+    inset->shading = options.shading;
   }
 
-  void buildSphereDiagram() {
-    const ViewSphere& s = sphere();
-    const auto pts = s.points();
-    std::set<std::pair<int, int>> edges;
-    for (const auto& t : s.triangles())
-      for (int i = 0; i < 3; ++i) edges.insert(std::minmax(t[i], t[(i + 1) % 3]));
-    for (const auto& [a, b] : edges) {
-      push(wire, pts[a]);
-      push(wire, pts[b]);
-    }
-    // Boundary arcs of the covered region (cosine modes), as great-circle polylines.
-    for (const auto& arc : s.boundaryArcs()) {
-      const Eigen::Vector3d a = pts[arc[0]], b = pts[arc[1]];
-      constexpr int kSteps = 16;
-      for (int i = 0; i < kSteps; ++i) {
-        const auto lerp = [&](double t) { return ((1 - t) * a + t * b).normalized(); };
-        push(wire, lerp(double(i) / kSteps));
-        push(wire, lerp(double(i + 1) / kSteps));
-      }
-    }
-    // Guide circles: the equator and the meridian through the front, for orientation.
-    constexpr int kCircle = 48;
-    for (int i = 0; i < kCircle; ++i) {
-      const double a0 = 2 * std::numbers::pi * i / kCircle, a1 = 2 * std::numbers::pi * (i + 1) / kCircle;
-      push(guide, {std::sin(a0), 0, std::cos(a0)});
-      push(guide, {std::sin(a1), 0, std::cos(a1)});
-      push(guide, {0, std::sin(a0), std::cos(a0)});
-      push(guide, {0, std::sin(a1), std::cos(a1)});
-    }
-    for (std::size_t i = 0; i < pts.size(); ++i) push(s.isDummy(static_cast<int>(i)) ? dummy_dots : key_dots, pts[i]);
-    hull_rest.reserve(s.triangles().size() * 9);
-    active_tri.reserve(9);
-    active_dots.reserve(9);
-    view_ray.reserve(6);
-    view_dot.reserve(3);
-  }
-
+  // The inset in the bottom-right corner of the main view: a square of 28% of its shorter side
+  // (at least 48 pixels) inside a one-pixel frame, a margin of 1/20 of that from the corner.
   void drawSphereInset(const Eigen::Vector3d& view, const ViewWeights& w) {
-    const ViewSphere& s = sphere();
-    const auto pts = s.points();
     const int side = std::max(48, static_cast<int>(0.28 * std::min(options.width, options.height)));
     const int margin = std::max(2, side / 20);
-    const Viewport border{options.width - side - margin - 1, options.height - side - margin - 1, side + 2, side + 2};
-    const Viewport inner{border.x + 1, border.y + 1, side, side};
-    renderer.clear(kBorderColor, &border);
-    renderer.clear(kPanelColor, &inner);
-
-    // Seen from 30 degrees to the side of and 20 degrees above the current view, so the active
-    // triangle faces the viewer while the sphere's turning stays readable.
-    const double az = std::atan2(view.x(), view.z()) / kDegToRad + 30.0;
-    const double el = std::clamp(std::asin(std::clamp(view.y(), -1.0, 1.0)) / kDegToRad + 20.0, -70.0, 70.0);
-    View v;
-    v.viewport = inner;
-    const double dist = fitDistance(1.15, kFovDeg, 1.0);
-    v.camera = orbitCamera(Eigen::Vector3d::Zero(), dist, az, el, kFovDeg);
-    v.z_near = dist - 2.0;
-    v.z_far = dist + 2.0;
-    const float unit = std::max(1.0f, side / 120.0f);
-
-    check(renderer.drawLines(guide, v, unit, kGuideColor, false), "drawLines");
-    hull_rest.clear();
-    active_tri.clear();
-    active_dots.clear();
-    const auto tris = s.triangles();
-    for (std::size_t t = 0; t < tris.size(); ++t)
-      for (int i = 0; i < 3; ++i) push(static_cast<int>(t) == w.triangle ? active_tri : hull_rest, pts[tris[t][i]]);
-    MeshStyle hull_style;
-    hull_style.color = kHullColor;
-    hull_style.shading = options.shading;
-    hull_style.shading.ka = 1.0f;  // a diagram: mostly its own colours, lightly shaded
-    hull_style.shading.vary_by_hue = false;
-    hull_style.shading.k = {1.0f, 0.15f, 1.0f, 0.3f};
-    check(renderer.drawTriangles(hull_rest, v, hull_style), "drawTriangles");
-    MeshStyle active_style = hull_style;
-    active_style.color = kActiveColor;
-    active_style.shading.vary_by_hue = false;
-    check(renderer.drawTriangles(active_tri, v, active_style), "drawTriangles");
-    check(renderer.drawLines(wire, v, unit * 1.2f, kWireColor, true, 2.0f), "drawLines");
-    check(renderer.drawDots(key_dots, v, unit * 6.0f, kKeyColor, true, 4.0f), "drawDots");
-    check(renderer.drawDots(dummy_dots, v, unit * 5.0f, kDummyColor, true, 4.0f), "drawDots");
-    check(renderer.drawDots(dummy_dots, v, unit * 2.5f, kPanelColor, true, 5.0f), "drawDots");
-    for (int i = 0; i < 3; ++i)
-      if (w.key[i] >= 0 && w.weight[i] > 0.0f) push(active_dots, pts[w.key[i]]);
-    if (w.triangle >= 0) {  // the triangle's three corners, dummies included (Figure 4's red keys)
-      active_dots.clear();
-      for (int i = 0; i < 3; ++i) push(active_dots, pts[tris[w.triangle][i]]);
-    }
-    check(renderer.drawDots(active_dots, v, unit * 8.0f, kActiveKeyColor, true, 6.0f), "drawDots");
-    view_ray.clear();
-    view_dot.clear();
-    push(view_ray, Eigen::Vector3d::Zero());
-    push(view_ray, view * 1.25);
-    push(view_dot, view);
-    check(renderer.drawLines(view_ray, v, unit * 1.5f, kViewColor, true, 2.0f), "drawLines");
-    check(renderer.drawDots(view_dot, v, unit * 7.0f, kViewColor, true, 8.0f), "drawDots");
+    const Viewport area{options.width - side - margin - 1, options.height - side - margin - 1, side + 2, side + 2};
+    check(inset->draw(renderer, area, view, w), "SphereInset::draw");
   }
 };
 

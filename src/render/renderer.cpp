@@ -277,6 +277,11 @@ struct Renderer::Impl {
   GlBuffer instance_buffer;
   std::size_t instance_capacity = 0;  // bytes
   std::vector<GpuInstance> instance_staging;
+  // Backdrops: the program and its empty vertex array are created with the first one.
+  GlProgram backdrop_program;
+  GLint backdrop_image = -1, backdrop_paper = -1, backdrop_opacity = -1;
+  GlVertexArray backdrop_vao;
+  std::vector<GlTexture> backdrops;
   GlVertexArray overlay_vao;
   GlBuffer overlay_buffer;
   std::size_t overlay_capacity = 0;
@@ -639,18 +644,21 @@ std::vector<float> renderUvs(const SurfaceTopology& t, std::span<const float> uv
   return out;
 }
 
-GlTexture uploadTexture(const TextureImage& image) {
+// A mipmapped, linearly filtered RGBA8 texture of `image`, `wrap` (GL_REPEAT, GL_CLAMP_TO_EDGE)
+// at its edges.
+GlTexture uploadTexture(const TextureImage& image, GLint wrap) {
   GlTexture texture = makeTexture();
   glBindTexture(GL_TEXTURE_2D, texture.get());
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  // Rows go up as stored (top row first, at t = 0); the shader samples at (u, 1 - v), so v = 0
-  // (the uv origin, bottom-left) reads the last row.
+  // Rows go up as stored (top row first, at t = 0). The mesh shader samples at (u, 1 - v), so
+  // v = 0 (the uv origin, bottom-left) reads the last row; the backdrop shader has t = 0 at the
+  // top of its viewport.
   glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, image.width, image.height, 0, GL_RGBA, GL_UNSIGNED_BYTE, image.rgba.data());
   glGenerateMipmap(GL_TEXTURE_2D);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, wrap);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, wrap);
   glBindTexture(GL_TEXTURE_2D, 0);
   return texture;
 }
@@ -673,7 +681,7 @@ void uploadMaterials(const TriMesh& mesh, const std::string& what, std::vector<G
                     std::to_string(image.height) + " exceeds the OpenGL driver's limit of " +
                     std::to_string(max_texture) + " pixels a side");
       const auto [it, inserted] = uploaded.try_emplace(&image, static_cast<int>(textures.size()));
-      if (inserted) textures.push_back(uploadTexture(image));
+      if (inserted) textures.push_back(uploadTexture(image, GL_REPEAT));
       g.texture = it->second;
     }
     materials.push_back(g);
@@ -935,6 +943,68 @@ bool Renderer::drawDots(std::span<const float> points, const View& view, float d
   m.beginOverlay(view, points, depth_test);
   m.drawRoundDots(view, static_cast<GLsizei>(points.size() / 3), diameter, color, depth_test ? pull : 0.0f);
   m.endOverlay();
+  return true;
+}
+
+int Renderer::addBackdrop(const TextureImage& image) {
+  Impl& m = *impl_;
+  const std::string what = "render: addBackdrop: ";
+  const std::string size = std::to_string(image.width) + "x" + std::to_string(image.height);
+  if (image.width < 1 || image.height < 1) throw Error(what + "the image is empty (" + size + ")");
+  const std::size_t bytes = static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height) * 4;
+  if (image.rgba.size() != bytes)
+    throw Error(what + "a " + size + " image has " + std::to_string(image.rgba.size()) + " bytes of RGBA, not " +
+                std::to_string(bytes));
+  m.context.makeCurrent();
+  GLint max_texture = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_texture);
+  if (image.width > max_texture || image.height > max_texture)
+    throw Error(what + "the image (" + size + ") exceeds the OpenGL driver's limit of " + std::to_string(max_texture) +
+                " pixels a side");
+  if (!m.backdrop_program.get()) {
+    m.backdrop_program = link("backdrop", shaders::kBackdropVertex, nullptr, shaders::kBackdropFragment);
+    m.backdrop_image = glGetUniformLocation(m.backdrop_program.get(), "u_image");
+    m.backdrop_paper = glGetUniformLocation(m.backdrop_program.get(), "u_paper");
+    m.backdrop_opacity = glGetUniformLocation(m.backdrop_program.get(), "u_opacity");
+    m.backdrop_vao = makeVertexArray();
+  }
+  // Errors left by earlier calls are not this upload's (each call clears one error flag).
+  for (int flag = 0; flag < 8 && glGetError() != GL_NO_ERROR; ++flag) {
+  }
+  GlTexture texture = uploadTexture(image, GL_CLAMP_TO_EDGE);
+  if (const GLenum err = glGetError(); err != GL_NO_ERROR)
+    throw Error(what + "the OpenGL driver cannot store the image (" + size + "; error " + std::to_string(err) + ")");
+  m.backdrops.push_back(std::move(texture));
+  return static_cast<int>(m.backdrops.size()) - 1;
+}
+
+bool Renderer::drawBackdrop(int handle, const Viewport& viewport, float opacity, const Rgb& paper) {
+  Impl& m = *impl_;
+  if (handle < 0 || static_cast<std::size_t>(handle) >= m.backdrops.size()) return false;
+  if (viewport.width < 1 || viewport.height < 1) return false;
+  if (!(opacity >= 0.0f && opacity <= 1.0f)) return false;
+  if (!std::all_of(paper.begin(), paper.end(), [](float c) { return std::isfinite(c); })) return false;
+  m.context.makeCurrent();
+  glBindFramebuffer(GL_FRAMEBUFFER, m.ms_fbo.get());
+  View full;
+  full.viewport = viewport;
+  m.setView(full);
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_CULL_FACE);
+  glUseProgram(m.backdrop_program.get());
+  glUniform1i(m.backdrop_image, 0);
+  glUniform3fv(m.backdrop_paper, 1, paper.data());
+  glUniform1f(m.backdrop_opacity, opacity);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, m.backdrops[static_cast<std::size_t>(handle)].get());
+  glBindVertexArray(m.backdrop_vao.get());
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glBindVertexArray(0);
+  glBindTexture(GL_TEXTURE_2D, 0);
+  // The picture lies behind whatever is drawn next.
+  glDepthMask(GL_TRUE);
+  glClearDepth(1.0);
+  glClear(GL_DEPTH_BUFFER_BIT);
   return true;
 }
 

@@ -2,6 +2,32 @@
 
 namespace vdg::render::shaders {
 
+// One triangle, (-1, -1) (3, -1) (-1, 3) in clip space, covers the whole viewport; no vertex
+// attributes. v_uv runs from (0, 0) at the viewport's top-left corner to (1, 1) at its bottom-right
+// corner: the texture's rows are uploaded as stored (the picture's top row at t = 0), so the
+// picture appears upright in the image readPixels returns (rows top-down).
+const char* const kBackdropVertex = R"(#version 330 core
+out vec2 v_uv;
+void main() {
+  vec2 p = vec2(gl_VertexID == 1 ? 3.0 : -1.0, gl_VertexID == 2 ? 3.0 : -1.0);
+  v_uv = vec2(p.x + 1.0, 1.0 - p.y) * 0.5;
+  gl_Position = vec4(p, 0.0, 1.0);
+}
+)";
+
+// colour = mix(paper, texel, opacity * texel alpha), opaque.
+const char* const kBackdropFragment = R"(#version 330 core
+in vec2 v_uv;
+uniform sampler2D u_image;
+uniform vec3 u_paper;
+uniform float u_opacity;
+out vec4 o_color;
+void main() {
+  vec4 texel = texture(u_image, v_uv);
+  o_color = vec4(mix(u_paper, texel.rgb, u_opacity * texel.a), 1.0);
+}
+)";
+
 const char* const kMeshVertex = R"(#version 330 core
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;

@@ -13,6 +13,10 @@ extern const char* const kStrokeVertex;
 extern const char* const kLineGeometry;
 extern const char* const kLineFragment;
 extern const char* const kDotFragment;
+// Backdrop image: one triangle covering the viewport, the image stretched over it and blended
+// with the paper colour (Renderer::drawBackdrop).
+extern const char* const kBackdropVertex;
+extern const char* const kBackdropFragment;
 // GPU blend: blend, group normals and edges (compute), and the instanced draw's vertex stage.
 extern const char* const kBlendCompute;
 extern const char* const kNormalsCompute;

@@ -8,6 +8,8 @@
 #include <numbers>
 #include <utility>
 
+#include <Eigen/Geometry>
+
 #include "vdg/deform/falloff.h"
 #include "vdg/deform/image_plane.h"
 #include "vdg/deform/key_edit.h"
@@ -18,6 +20,7 @@
 #include "vdg/io/manifest.h"
 #include "vdg/io/obj.h"
 #include "vdg/io/studio_recovery.h"
+#include "vdg/studio/navigation.h"
 
 namespace vdg::studio {
 namespace fs = std::filesystem;
@@ -41,18 +44,20 @@ fs::path meshFile(const fs::path& folder, const std::string& mesh_path) {
   return fs::path(mesh_path).is_absolute() ? fs::path(mesh_path) : folder / mesh_path;
 }
 
-Eigen::Vector3d vertexOf(std::span<const float> p, std::int32_t v) {
-  return {p[3 * v], p[3 * v + 1], p[3 * v + 2]};
-}
+Eigen::Vector3d vertexOf(std::span<const float> p, std::int32_t v) { return {p[3 * v], p[3 * v + 1], p[3 * v + 2]}; }
 
 }  // namespace
 
 const char* toolName(Tool tool) {
   switch (tool) {
-    case Tool::kDrag: return "drag";
-    case Tool::kPushPull: return "push/pull";
-    case Tool::kRotate: return "rotate";
-    case Tool::kScale: return "scale";
+    case Tool::kDrag:
+      return "drag";
+    case Tool::kPushPull:
+      return "push/pull";
+    case Tool::kRotate:
+      return "rotate";
+    case Tool::kScale:
+      return "scale";
   }
   return "?";
 }
@@ -60,7 +65,7 @@ const char* toolName(Tool tool) {
 struct Session::Impl {
   RawViewDependentModel raw;
   std::string model_path, manifest_path, recovery_path;
-  fs::path folder;          // the manifest's folder
+  fs::path folder;  // the manifest's folder
   bool manifest_exists = false;
   double diagonal = 1.0;
   std::uint64_t revision = 1;
@@ -68,16 +73,16 @@ struct Session::Impl {
   // The current key (-1: none) and its history in this session.
   int current = -1;
   bool is_new = false;
-  bool log_existed = false;   // the key had an edit log on disk when it became current
-  EditLog base_log;           // its log as it was when it became current
-  std::vector<float> origin;  // its positions then
-  std::vector<EditLogEntry> strokes;            // this session's strokes, in order
-  std::vector<std::vector<float>> shapes;       // shapes[i]: positions after strokes[undo_floor + i]
-  std::size_t undo_floor = 0;                   // undo stops here (older shapes are dropped, kMaxUndo)
-  std::vector<float> floor_shape;               // positions with strokes[0, undo_floor) applied
-  std::size_t cursor = 0;                       // strokes[0, cursor) are applied
-  std::size_t saved = 0;                        // strokes[0, saved) are on disk
-  bool saved_valid = true;                      // false when an undo went below a save: dirty until saved
+  bool log_existed = false;                // the key had an edit log on disk when it became current
+  EditLog base_log;                        // its log as it was when it became current
+  std::vector<float> origin;               // its positions then
+  std::vector<EditLogEntry> strokes;       // this session's strokes, in order
+  std::vector<std::vector<float>> shapes;  // shapes[i]: positions after strokes[undo_floor + i]
+  std::size_t undo_floor = 0;              // undo stops here (older shapes are dropped, kMaxUndo)
+  std::vector<float> floor_shape;          // positions with strokes[0, undo_floor) applied
+  std::size_t cursor = 0;                  // strokes[0, cursor) are applied
+  std::size_t saved = 0;                   // strokes[0, saved) are on disk
+  bool saved_valid = true;                 // false when an undo went below a save: dirty until saved
 
   // The stroke in progress.
   bool stroking = false;
@@ -91,6 +96,7 @@ struct Session::Impl {
   double stroke_depth = 0;
 
   std::optional<StudioRecovery> recovery;
+  std::size_t recovery_unsaved = 0;  // its strokes not in the key's log on disk
 
   std::vector<float>& shown() { return current >= 0 ? raw.keys[current].mesh.positions : raw.base.positions; }
   const std::vector<float>& shown() const {
@@ -137,8 +143,7 @@ struct Session::Impl {
     r.manifest = manifest_path;
     r.key = key.name;
     r.new_key = is_new;
-    r.mesh_path = key.mesh_path;
-    if (is_new) r.key_camera = key.camera;
+    if (is_new) r.mesh_path = key.mesh_path, r.key_camera = key.camera;
     r.logged = base_log.entries.size();
     r.strokes.assign(strokes.begin(), strokes.begin() + static_cast<std::ptrdiff_t>(cursor));
     try {
@@ -166,9 +171,10 @@ Session Session::open(const std::string& path, const OpenOptions& options) {
   } else {
     m.raw.base = readMesh(path);
     m.raw.source = path;
-    m.manifest_path = options.manifest_out.empty()
-                          ? (fs::path(m.model_path).parent_path() / (fs::path(path).stem().string() + ".vdg.json")).string()
-                          : fs::absolute(options.manifest_out).lexically_normal().string();
+    m.manifest_path =
+        options.manifest_out.empty()
+            ? (fs::path(m.model_path).parent_path() / (fs::path(path).stem().string() + ".vdg.json")).string()
+            : fs::absolute(options.manifest_out).lexically_normal().string();
     if (fs::exists(m.manifest_path))
       throw Error(m.manifest_path + " already exists: open it (vdg studio " + m.manifest_path +
                   ") to add keys to that model, or give another manifest to create");
@@ -176,8 +182,8 @@ Session Session::open(const std::string& path, const OpenOptions& options) {
     m.raw.validate();
   }
   m.folder = fs::path(m.manifest_path).parent_path();
-  m.recovery_path = (m.folder / kRecoveryFolder / (fs::path(m.manifest_path).filename().string() + ".recovery.json"))
-                        .string();
+  m.recovery_path =
+      (m.folder / kRecoveryFolder / (fs::path(m.manifest_path).filename().string() + ".recovery.json")).string();
   const Bounds b = computeBounds(m.raw.base.positions);
   m.diagonal = std::max(static_cast<double>(b.diagonal()), 1e-9);
   s.falloff = Falloff{kDefaultRadiusShare * m.diagonal, 2.0, FalloffShape::kPower};
@@ -191,7 +197,19 @@ Session Session::open(const std::string& path, const OpenOptions& options) {
   if (fs::exists(m.recovery_path)) {
     try {
       StudioRecovery r = readStudioRecovery(m.recovery_path);
-      if (!r.strokes.empty()) m.recovery = std::move(r);
+      // Strokes a save in the lost session wrote to the key's log are not offered again.
+      std::size_t saved = 0;
+      for (const RawKey& key : m.raw.keys) {
+        const std::string log = editLogPath(m.keyMeshFile(key).string());
+        if (!r.new_key && key.name == r.key && fs::exists(log)) {
+          const std::size_t n = readEditLog(log).entries.size();
+          saved = n > r.logged ? n - r.logged : 0;
+        }
+      }
+      if (r.strokes.size() > saved) {
+        m.recovery_unsaved = r.strokes.size() - saved;
+        m.recovery = std::move(r);
+      }
     } catch (const Error&) {
       // An unreadable recovery file is offered as nothing; recover() is never called on it.
     }
@@ -213,7 +231,7 @@ bool Session::dirty() const { return impl_->current >= 0 && impl_->dirty(); }
 bool Session::stroking() const { return impl_->stroking; }
 std::size_t Session::strokeCount() const { return impl_->cursor; }
 const std::string& Session::recoveryPath() const { return impl_->recovery_path; }
-std::size_t Session::recoverableStrokes() const { return impl_->recovery ? impl_->recovery->strokes.size() : 0; }
+std::size_t Session::recoverableStrokes() const { return impl_->recovery ? impl_->recovery_unsaved : 0; }
 
 std::optional<std::int32_t> Session::pick(const Eigen::Vector2d& pixel) const {
   const Impl& m = *impl_;
@@ -524,7 +542,8 @@ void Session::saveKey() {
   if (!m.log_existed && log.origin != "base") {
     TriMesh before = key.mesh;
     before.positions = m.origin;
-    transaction.write(snapshot.string(), formatObj(before, "vdg studio: key '" + key.name + "' before its first logged edit"));
+    transaction.write(snapshot.string(),
+                      formatObj(before, "vdg studio: key '" + key.name + "' before its first logged edit"));
   }
   transaction.write(mesh.string(), formatObj(key.mesh, "vdg studio: key '" + key.name + "'"));
   transaction.write(log_path, formatEditLog(log));
@@ -538,15 +557,13 @@ void Session::saveKey() {
   m.autosave();
 }
 
-
 void Session::recover() {
   Impl& m = *impl_;
   if (!m.recovery) throw Error("recover: no recovered strokes for " + m.manifest_path);
   requireIdle(*this, "recover");
   const StudioRecovery r = *m.recovery;
   const std::string where = m.recovery_path;
-  if (r.manifest != m.manifest_path)
-    throw Error(where + ": it recovers " + r.manifest + ", not " + m.manifest_path);
+  if (r.manifest != m.manifest_path) throw Error(where + ": it recovers " + r.manifest + ", not " + m.manifest_path);
   int index = -1;
   for (std::size_t k = 0; k < m.raw.keys.size(); ++k)
     if (m.raw.keys[k].name == r.key) index = static_cast<int>(k);

@@ -1,11 +1,12 @@
 // Recovery files of `vdg studio`: the strokes a session has not saved yet, written after every
 // stroke so that a crash loses nothing (docs/studio-files.md):
 //   {"version": 1, "model": "/abs/spot.vdg.json", "manifest": "/abs/spot.vdg.json", "key": "side",
-//    "new_key": true, "mesh": "side.obj", "key_camera": {camera}, "strokes": [{edit log entry}, ...]}
+//    "new_key": true, "mesh": "side.obj", "key_camera": {camera}, "logged": 0, "strokes": [{edit log entry}, ...]}
 // "key_camera" is the camera object of vdg/io/camera_json.h and each stroke the edit log entry
 // object of vdg/io/edit_script.h ({"camera", "image_size", "ops"}): one JSON for each, shared.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -25,8 +26,14 @@ struct StudioRecovery {
   bool new_key = false;               // the key is not in the manifest yet
   std::string mesh_path;              // new key: its mesh path relative to the manifest (not empty); else empty
   std::optional<Camera> key_camera;   // new key: its camera (required); else none
+  // Entries of the key's edit log that the strokes follow: when the session made the key current
+  // its log had this many (0 for a new key). A later save in the lost session may have appended
+  // some of the strokes to the log; recovery truncates the log to `logged` and replays the strokes.
+  std::size_t logged = 0;
   std::vector<EditLogEntry> strokes;  // unsaved strokes in order, each with its camera and image size
 };
+// The most edit log entries `logged` may count.
+inline constexpr std::int64_t kMaxLoggedEntries = 1'000'000'000;
 
 // The file's text (version 1). Throws vdg::Error "studio recovery: 'FIELD': ..." for a recovery
 // that parseStudioRecovery would refuse: an empty key, a model or manifest path that is not

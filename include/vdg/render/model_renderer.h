@@ -5,7 +5,8 @@
 //    is visible;
 //  - the viewing-sphere inset (Figure 4): key viewpoints as dots (dummy base points as small hollow
 //    grey dots), the hull triangulation in wireframe, the active triangle filled green with its
-//    keys in red, and the current view as a blue marker with its ray from the centre.
+//    keys in red, and the current view as a blue marker with its ray from the centre
+//    (SphereInset, sphere_inset.h).
 //
 // The mesh is drawn as a surface (SurfaceTopology of the base, Renderer::addSurface): seams of
 // the file are welded for silhouettes and normals, and its hard edges (vertices split with

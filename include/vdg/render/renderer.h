@@ -52,6 +52,14 @@
 // driver's largest storage block (and at most kBlendBatchBytes in all), so any number of
 // instances can be drawn; every batch's strokes lie over its own shaded faces and those of the
 // batches before it.
+//
+// Backdrop (addBackdrop / drawBackdrop): a picture behind the model, such as the drawing that
+// vdg studio aligns a key to. The image is uploaded once (RGBA8, mipmapped, linear filtering,
+// clamped at its edges) and drawn stretched over a whole viewport, upright: its row 0 (the top
+// of the picture, as TextureImage stores it) at the top of the viewport in readPixels' image and
+// its column 0 at the left, whatever the aspect of the viewport. Each pixel becomes
+// mix(paper, texel, opacity * texel_alpha) (8-bit channels as values in [0, 1], no gamma), and
+// the viewport's depth is cleared, so a mesh drawn after lies over the picture.
 #pragma once
 
 #include <cstdint>
@@ -60,6 +68,7 @@
 #include <string>
 
 #include "vdg/geom/camera.h"
+#include "vdg/geom/material.h"
 #include "vdg/geom/surface.h"
 #include "vdg/geom/tri_mesh.h"
 #include "vdg/render/image.h"
@@ -226,6 +235,20 @@ class Renderer {
   // batch (every instance is in it when the call fit one batch), or spans of other sizes.
   [[nodiscard]] bool readBlendInstance(int handle, std::size_t instance, std::span<float> positions,
                                        std::span<float> group_normals);
+
+  // Backdrop (see the top of this file). Uploads `image` (width x height RGBA8, row 0 at the top
+  // of the picture) and returns its handle: 0, 1, 2, ... in order, numbered apart from meshes and
+  // blend models. The image is not kept. Set-up, not per-frame: throws vdg::Error "render:
+  // addBackdrop: ..." for an empty image (a side < 1), one whose rgba does not hold width x height
+  // x 4 bytes, and one larger than the driver's textures allow (GL_MAX_TEXTURE_SIZE a side) or
+  // than its memory allows.
+  int addBackdrop(const TextureImage& image);
+  // Fills `viewport` with `paper` blended with backdrop `handle` stretched over the whole
+  // viewport: colour = mix(paper, texel, opacity * texel_alpha); opacity 0 gives the paper, 1 the
+  // picture where it is opaque. Clears the viewport's depth (the canvas outside the viewport is
+  // untouched). Per-frame contract as above; violations: a bad handle, a viewport with width or
+  // height < 1, an opacity outside [0, 1] (NaN included), a paper channel that is not finite.
+  [[nodiscard]] bool drawBackdrop(int handle, const Viewport& viewport, float opacity, const Rgb& paper);
 
   // Resolves the multisampled canvas into `out` (resized on first use; alpha = 255).
   void readPixels(Image& out);

@@ -48,7 +48,7 @@ const char* toolName(Tool tool);
 // Mouse motion -> tool amounts (image pixels).
 inline constexpr double kPushPullPerPixel = 0.005;  // x the base's bounding-box diagonal, per pixel
 inline constexpr double kRotateDegPerPixel = 0.5;
-inline constexpr double kScalePerPixel = 0.005;     // factor = exp(pixels x this)
+inline constexpr double kScalePerPixel = 0.005;  // factor = exp(pixels x this)
 // Undo depth: strokes kept with their shapes (older ones stay in the log but cannot be undone here).
 inline constexpr std::size_t kMaxUndo = 256;
 
@@ -66,7 +66,7 @@ class Session {
   const std::string& manifestPath() const;     // the manifest saveKey() writes
   bool animated() const;                       // animated base: shown, not edited (no key strokes)
   const TriMesh& baseMesh() const;
-  double baseDiagonal() const;                 // of the base's bounding box (> 0)
+  double baseDiagonal() const;  // of the base's bounding box (> 0)
 
   // The key being edited (an index into model().keys), or -1: the base is shown, nothing to edit.
   int currentKey() const;
@@ -130,7 +130,8 @@ class Session {
 
   // Crash recovery. The file lives in a ".vdg-studio" folder beside the manifest.
   const std::string& recoveryPath() const;
-  // Strokes found in a recovery file of this model when it was opened (0: none).
+  // Unsaved strokes found in a recovery file of this model when it was opened (0: none): its
+  // strokes less those a save in the lost session already wrote to the key's edit log.
   std::size_t recoverableStrokes() const;
   // Re-applies them (making their key current; a new key is re-created) and keeps the file;
   // throws vdg::Error if the file no longer fits the model. discardRecovery removes the file.
