@@ -34,9 +34,11 @@ snapshot() { (cd "$1" && find . -type f -print0 | sort -z | xargs -0 sha1sum); }
 # The window is 960x600; the tool panel takes the left 300 pixels, so the viewport (no drawing)
 # is 660x600 image pixels at x >= 300 and the model, framed, sits at its centre (630, 300).
 W=960 H=600 IW=660 IH=600 CX=630 CY=300 DX=40 DY=-25
-DRAG=("1:key_down:2" "2:key_up:2" "3:mouse_move:$CX:$CY" "4:mouse_down:$CX:$CY" "5:mouse_move:$((CX + 10)):$((CY - 6))"
-  "6:mouse_move:$((CX + 25)):$((CY - 15))" "7:mouse_move:$((CX + DX)):$((CY + DY))" "9:mouse_up:$((CX + DX)):$((CY + DY))")
-SAVE=("11:key_down:S:ctrl" "12:key_up:S:ctrl")
+# An orbit first (the example's key 'front' already has the front view), then a drag in Deform.
+ORBIT=("1:mouse_down:$CX:$CY" "2:mouse_move:$((CX - 30)):$CY" "3:mouse_move:$((CX - 50)):$((CY + 10))" "4:mouse_up:$((CX - 50)):$((CY + 10))")
+DRAG=("${ORBIT[@]}" "5:key_down:2" "6:key_up:2" "7:mouse_move:$CX:$CY" "8:mouse_down:$CX:$CY" "9:mouse_move:$((CX + 10)):$((CY - 6))"
+  "10:mouse_move:$((CX + 25)):$((CY - 15))" "11:mouse_move:$((CX + DX)):$((CY + DY))" "13:mouse_up:$((CX + DX)):$((CY + DY))")
+SAVE=("15:key_down:S:ctrl" "16:key_up:S:ctrl")
 
 # ---- (a) replayed drag == vdg deform --------------------------------------------------------
 building "$TMP/a"
@@ -46,6 +48,7 @@ if studio "$TMP/a/building.vdg.json" --replay "$TMP/drag_save.json" 2>"$TMP/a.er
     building "$TMP/a_deform"
     $TOOL ops "$TMP/a/building.vdg.json" key1 "$TMP/a_ops.json" &&
       "$VDG" deform "$TMP/a_deform/building.vdg.json" --key key1 --ops "$TMP/a_ops.json" -q >/dev/null &&
+      ! $TOOL objclose "$TMP/a/key1.obj" "$TMP/a/base.obj" 1e-4 >/dev/null 2>&1 &&
       $TOOL objclose "$TMP/a/key1.obj" "$TMP/a_deform/key1.obj" 1e-5 &&
       pass "(a) replayed drag gives vdg deform's key mesh" || fail "(a) studio key differs from vdg deform's"
   else
@@ -127,8 +130,8 @@ fi
 
 # ---- (d) crash recovery ------------------------------------------------------------------------------
 building "$TMP/d"
-$TOOL events "$TMP/drag.json" $W $H "${DRAG[@]}" "20:mouse_move:10:10"
-VDG_STUDIO_ABORT_AT_FRAME=12 studio "$TMP/d/building.vdg.json" --replay "$TMP/drag.json" >/dev/null 2>&1
+$TOOL events "$TMP/drag.json" $W $H "${DRAG[@]}" "24:mouse_move:10:10"
+VDG_STUDIO_ABORT_AT_FRAME=16 studio "$TMP/d/building.vdg.json" --replay "$TMP/drag.json" >/dev/null 2>&1
 rc=$?
 if [ $rc -eq 0 ] || [ $rc -eq 1 ]; then fail "(d) the session did not abort (exit $rc)"; fi
 if [ -e "$TMP/d/key1.obj" ]; then fail "(d) the key was saved before the crash"; fi
