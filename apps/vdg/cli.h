@@ -110,5 +110,6 @@ void addRenderCommand(CLI::App& app);
 void addExportCommand(CLI::App& app);
 void addBakeCommand(CLI::App& app);
 void addRunCommand(CLI::App& app);
+void addStudioCommand(CLI::App& app);  // only in a build with GLFW and Dear ImGui (VDG_WITH_STUDIO)
 
 }  // namespace vdg::cli

@@ -54,6 +54,9 @@ int main(int argc, char** argv) {
   vdg::cli::addExportCommand(app);
   vdg::cli::addBakeCommand(app);
   vdg::cli::addRunCommand(app);
+#ifdef VDG_WITH_STUDIO
+  vdg::cli::addStudioCommand(app);
+#endif
 
   try {
     app.parse(argc, argv);

@@ -1,0 +1,159 @@
+#!/usr/bin/env bash
+# vdg studio under a virtual X server (xvfb-run): replayed input, screenshots, start-up errors,
+# crash recovery. Usage: studio_test.sh VDG SOURCE_DIR
+#   (a) a replayed drag gives the key mesh `vdg deform` gives for the same DragOp (1e-5);
+#   (b) a screenshot shows the drawing (known colours) and the model, and matches a golden PNG
+#       (VDG_UPDATE_GOLDEN=1 rewrites tests/studio/golden/*.png);
+#   (c) a missing model, a corrupt model, a corrupt drawing, a save into a read-only folder: a
+#       message on stderr, exit status 1, no file changed;
+#   (d) a crash (VDG_STUDIO_ABORT_AT_FRAME) after a stroke, then --recover and Ctrl+S: the same key
+#       as without the crash.
+# Without xvfb-run the test is skipped (exit 77), unless VDG_REQUIRE_XVFB=1.
+set -u
+VDG=$(realpath "$1")
+SRC=$(realpath "$2")
+HERE="$SRC/tests/studio"
+TOOL="python3 $HERE/studio_tool.py"
+if ! command -v xvfb-run >/dev/null 2>&1; then
+  if [ "${VDG_REQUIRE_XVFB:-0}" = 1 ]; then
+    echo "studio_test: xvfb-run is missing and VDG_REQUIRE_XVFB=1" >&2
+    exit 1
+  fi
+  echo "studio_test: SKIPPED: xvfb-run is missing (apt-get install xvfb)"
+  exit 77
+fi
+TMP=$(mktemp -d)
+trap 'chmod -R u+w "$TMP" 2>/dev/null; rm -rf "$TMP"' EXIT
+FAILED=0
+fail() { echo "FAIL: $*" >&2; FAILED=1; }
+pass() { echo "ok: $*"; }
+studio() { xvfb-run -a -s "-screen 0 1280x800x24" "$VDG" studio "$@"; }
+building() { mkdir -p "$1" && cp "$SRC"/examples/building/{building.vdg.json,base.obj,front.obj} "$1"/; }
+snapshot() { (cd "$1" && find . -type f -print0 | sort -z | xargs -0 sha1sum); }
+
+# The window is 960x600; the tool panel takes the left 300 pixels, so the viewport (no drawing)
+# is 660x600 image pixels at x >= 300 and the model, framed, sits at its centre (630, 300).
+W=960 H=600 IW=660 IH=600 CX=630 CY=300 DX=40 DY=-25
+# An orbit first (the example's key 'front' already has the front view), then a drag in Deform.
+ORBIT=("1:mouse_down:$CX:$CY" "2:mouse_move:$((CX - 30)):$CY" "3:mouse_move:$((CX - 50)):$((CY + 10))" "4:mouse_up:$((CX - 50)):$((CY + 10))")
+DRAG=("${ORBIT[@]}" "5:key_down:2" "6:key_up:2" "7:mouse_move:$CX:$CY" "8:mouse_down:$CX:$CY" "9:mouse_move:$((CX + 10)):$((CY - 6))"
+  "10:mouse_move:$((CX + 25)):$((CY - 15))" "11:mouse_move:$((CX + DX)):$((CY + DY))" "13:mouse_up:$((CX + DX)):$((CY + DY))")
+SAVE=("15:key_down:S:ctrl" "16:key_up:S:ctrl")
+
+# ---- (a) replayed drag == vdg deform --------------------------------------------------------
+building "$TMP/a"
+$TOOL events "$TMP/drag_save.json" $W $H "${DRAG[@]}" "${SAVE[@]}"
+if studio "$TMP/a/building.vdg.json" --replay "$TMP/drag_save.json" 2>"$TMP/a.err"; then
+  if $TOOL logcheck "$TMP/a/building.vdg.json" key1 $DX $DY $IW $IH; then
+    building "$TMP/a_deform"
+    $TOOL ops "$TMP/a/building.vdg.json" key1 "$TMP/a_ops.json" &&
+      "$VDG" deform "$TMP/a_deform/building.vdg.json" --key key1 --ops "$TMP/a_ops.json" -q >/dev/null &&
+      ! $TOOL objclose "$TMP/a/key1.obj" "$TMP/a/base.obj" 1e-4 >/dev/null 2>&1 &&
+      $TOOL objclose "$TMP/a/key1.obj" "$TMP/a_deform/key1.obj" 1e-5 &&
+      pass "(a) replayed drag gives vdg deform's key mesh" || fail "(a) studio key differs from vdg deform's"
+  else
+    fail "(a) the saved edit log is not the replayed drag"
+  fi
+else
+  fail "(a) vdg studio --replay failed: $(cat "$TMP/a.err")"
+fi
+
+# ---- (b) screenshots ----------------------------------------------------------------------------
+# 640x400 window: viewport 340x400 at x = 300; a 200x150 drawing (4:3) letterboxed to 340x255 at
+# y = 72. Its corners show the drawing at opacity 0.5 over the paper (0.97, 0.97, 0.95).
+$TOOL drawing "$TMP/drawing.png" 200 150
+building "$TMP/b"
+if studio "$TMP/b/building.vdg.json" --drawing "$TMP/drawing.png" --size 640x400 --frames 3 \
+  --screenshot "$TMP/b.png" 2>"$TMP/b.err"; then
+  $TOOL pixel "$TMP/b.png" 306 80 234 144 141 8 && pass "(b) red half of the drawing at opacity 0.5" ||
+    fail "(b) drawing colour (red half)"
+  $TOOL pixel "$TMP/b.png" 634 320 144 154 231 8 && pass "(b) blue half of the drawing at opacity 0.5" ||
+    fail "(b) drawing colour (blue half)"
+  $TOOL notpixel "$TMP/b.png" 470 200 234 144 141 30 && pass "(b) the model covers the drawing's centre" ||
+    fail "(b) no model at the viewport's centre"
+  if [ "${VDG_UPDATE_GOLDEN:-0}" = 1 ]; then
+    cp "$TMP/b.png" "$HERE/golden/studio_drawing.png" && echo "updated $HERE/golden/studio_drawing.png"
+  fi
+  $TOOL compare "$TMP/b.png" "$HERE/golden/studio_drawing.png" 24 0.02 && pass "(b) screenshot matches the golden" ||
+    fail "(b) screenshot differs from golden/studio_drawing.png (see $TMP/b.png)"
+else
+  fail "(b) vdg studio --screenshot failed: $(cat "$TMP/b.err")"
+fi
+
+# ---- (c) errors at start-up and when saving ------------------------------------------------------
+expect_error() {  # NAME EXPECTED_TEXT -- ARGS...
+  local name=$1 text=$2
+  shift 3
+  studio "$@" --frames 2 >/dev/null 2>"$TMP/c.err"
+  local rc=$?
+  if [ $rc -eq 1 ] && grep -q -- "$text" "$TMP/c.err"; then pass "(c) $name: exit 1, '$(head -c 150 "$TMP/c.err")'"
+  else fail "(c) $name: exit $rc, stderr '$(cat "$TMP/c.err")'"; fi
+}
+mkdir -p "$TMP/c"
+printf 'v 0 0 0\nv 1 0\nf 1 2 7\n' >"$TMP/c/bad.obj"
+printf 'not a png' >"$TMP/c/bad.png"
+cp "$SRC/examples/building/base.obj" "$TMP/c/good.obj"
+before=$(snapshot "$TMP/c")
+expect_error "missing model" "missing.obj" -- "$TMP/c/missing.obj"
+expect_error "corrupt model" "bad.obj" -- "$TMP/c/bad.obj"
+expect_error "corrupt drawing" "bad.png" -- "$TMP/c/good.obj" --drawing "$TMP/c/bad.png"
+[ "$(snapshot "$TMP/c")" = "$before" ] && [ ! -e "$TMP/c/.vdg-studio" ] && pass "(c) no file changed" ||
+  fail "(c) files changed: $(ls -la "$TMP/c")"
+
+# A read-only folder: root ignores permissions, so run as nobody when we are root.
+building "$TMP/ro"
+chmod 755 "$TMP"
+AS=()
+if [ "$(id -u)" = 0 ]; then
+  if command -v setpriv >/dev/null 2>&1 && setpriv --reuid=65534 --regid=65534 --clear-groups true 2>/dev/null; then
+    AS=(setpriv --reuid=65534 --regid=65534 --clear-groups)
+  else
+    AS=(skip)
+  fi
+fi
+if [ "${AS[0]:-}" = skip ]; then
+  echo "(c) read-only folder: SKIPPED (running as root without setpriv)"
+else
+  chmod -R a-w "$TMP/ro"
+  chmod a+r "$TMP/drag_save.json"
+  before=$(snapshot "$TMP/ro")
+  "${AS[@]}" xvfb-run -a -s "-screen 0 1280x800x24" "$VDG" studio "$TMP/ro/building.vdg.json" \
+    --replay "$TMP/drag_save.json" >/dev/null 2>"$TMP/ro.err"
+  rc=$?
+  if [ $rc -eq 1 ] && [ -s "$TMP/ro.err" ] && [ "$(snapshot "$TMP/ro")" = "$before" ]; then
+    pass "(c) read-only folder: exit 1, '$(head -c 200 "$TMP/ro.err")', nothing changed"
+  else
+    fail "(c) read-only folder: exit $rc, stderr '$(cat "$TMP/ro.err")'"
+  fi
+  chmod -R u+w "$TMP/ro"
+fi
+
+# ---- (d) crash recovery ------------------------------------------------------------------------------
+building "$TMP/d"
+$TOOL events "$TMP/drag.json" $W $H "${DRAG[@]}" "24:mouse_move:10:10"
+VDG_STUDIO_ABORT_AT_FRAME=16 studio "$TMP/d/building.vdg.json" --replay "$TMP/drag.json" >/dev/null 2>&1
+rc=$?
+if [ $rc -eq 0 ] || [ $rc -eq 1 ]; then fail "(d) the session did not abort (exit $rc)"; fi
+if [ -e "$TMP/d/key1.obj" ]; then fail "(d) the key was saved before the crash"; fi
+if ls "$TMP"/d/.vdg-studio/*.recovery.json >/dev/null 2>&1; then
+  pass "(d) the aborted session left its recovery file"
+else
+  fail "(d) no recovery file after the crash"
+fi
+$TOOL events "$TMP/save.json" $W $H "3:key_down:S:ctrl" "4:key_up:S:ctrl"
+if studio "$TMP/d/building.vdg.json" --recover --replay "$TMP/save.json" 2>"$TMP/d.err"; then
+  $TOOL objclose "$TMP/d/key1.obj" "$TMP/a/key1.obj" 0 && pass "(d) recovered and saved: the key of the session without the crash" ||
+    fail "(d) recovered key differs"
+else
+  fail "(d) vdg studio --recover failed: $(cat "$TMP/d.err")"
+fi
+
+# ---- usage --------------------------------------------------------------------------------------------
+"$VDG" studio "$TMP/a/building.vdg.json" --recover --discard-recovery >/dev/null 2>&1
+[ $? -eq 2 ] && pass "usage: --recover with --discard-recovery is exit 2" || fail "usage: expected exit 2"
+env -u DISPLAY -u WAYLAND_DISPLAY "$VDG" studio "$TMP/a/building.vdg.json" --frames 1 >/dev/null 2>"$TMP/nodisp.err"
+rc=$?
+[ $rc -eq 1 ] && [ "$(wc -l <"$TMP/nodisp.err")" = 1 ] && pass "no display: one line, exit 1" ||
+  fail "no display: exit $rc, '$(cat "$TMP/nodisp.err")'"
+
+exit $FAILED
