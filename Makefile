@@ -24,17 +24,17 @@ build: deps $(BUILD)/CMakeCache.txt
 demo: build
 	scripts/demo $(BUILD)/bin/vdg out/demo
 
-# make test installs the glTF validator and Slurm + munge (scripts/install-deps), so their tests
-# (tests/tools, tests/farm) must not skip here.
+# make test installs the glTF validator, Slurm + munge and Xvfb (scripts/install-deps), so their
+# tests (tests/tools, tests/farm, tests/studio's window test) must not skip here.
 test-release: deps
 	cmake --preset ci
 	cmake --build build/ci -j $(JOBS)
-	VDG_REQUIRE_GLTF_VALIDATOR=1 VDG_REQUIRE_SLURM=1 ctest --test-dir build/ci --output-on-failure -j $(JOBS)
+	VDG_REQUIRE_GLTF_VALIDATOR=1 VDG_REQUIRE_SLURM=1 VDG_REQUIRE_XVFB=1 ctest --test-dir build/ci --output-on-failure -j $(JOBS)
 
 test-asan: deps
 	cmake --preset asan
 	cmake --build $(ASAN_BUILD) -j $(JOBS)
-	VDG_REQUIRE_GLTF_VALIDATOR=1 VDG_REQUIRE_SLURM=1 ctest --test-dir $(ASAN_BUILD) --output-on-failure -j $(JOBS)
+	VDG_REQUIRE_GLTF_VALIDATOR=1 VDG_REQUIRE_SLURM=1 VDG_REQUIRE_XVFB=1 ctest --test-dir $(ASAN_BUILD) --output-on-failure -j $(JOBS)
 
 # libFuzzer + ASan + UBSan (clang): each target FUZZ_SECONDS on a copy of fuzz/corpus in build/fuzz;
 # fails on any finding (see CONTRIBUTING.md, "Fuzzing").
