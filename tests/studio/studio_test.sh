@@ -152,6 +152,15 @@ else
   fail "(d) vdg studio --recover failed: $(cat "$TMP/d.err")"
 fi
 
+# ---- (e) a real textured model (Spot: materials, a texture, five keys) opens and edits -----------------
+mkdir -p "$TMP/e" && cp -r "$SRC"/examples/spot "$TMP/e/"
+if studio "$TMP/e/spot/spot.vdg.json" --replay "$TMP/drag_save.json" 2>"$TMP/e.err" && [ -s "$TMP/e/spot/key1.obj" ]; then
+  ! $TOOL objclose "$TMP/e/spot/key1.obj" "$TMP/e/spot/spot.obj" 1e-4 >/dev/null 2>&1 &&
+    pass "(e) Spot opens, and a replayed drag saves a new key" || fail "(e) Spot's new key did not move"
+else
+  fail "(e) vdg studio on Spot failed: $(cat "$TMP/e.err")"
+fi
+
 # ---- usage --------------------------------------------------------------------------------------------
 "$VDG" studio "$TMP/a/building.vdg.json" --recover --discard-recovery >/dev/null 2>&1
 [ $? -eq 2 ] && pass "usage: --recover with --discard-recovery is exit 2" || fail "usage: expected exit 2"

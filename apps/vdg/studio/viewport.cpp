@@ -81,7 +81,10 @@ struct ViewportRenderer::Impl {
 
 ViewportRenderer::ViewportRenderer(const TriMesh& base, const TextureImage* drawing) : impl_(std::make_unique<Impl>()) {
   impl_->base = base;
+  // The editor shows the paper's plain NPR shading (white Cbase), the clearest over a drawing: the
+  // mesh's materials and textures are left out.
   impl_->base.materials.clear();
+  impl_->base.face_materials.clear();
   impl_->topology = SurfaceTopology::build(impl_->base);
   impl_->drawing = drawing;
   std::set<std::pair<std::int32_t, std::int32_t>> unique;
