@@ -161,6 +161,18 @@ else
   fail "(e) vdg studio on Spot failed: $(cat "$TMP/e.err")"
 fi
 
+# ---- (f) an animated model (the walker) opens with the Preview and its timeline; it is not editable --
+mkdir -p "$TMP/f" && cp -r "$SRC"/examples/walk "$TMP/f/"
+$TOOL events "$TMP/preview.json" $W $H "1:key_down:P" "2:key_up:P" "3:mouse_down:$CX:$CY" "4:mouse_move:$((CX + 30)):$CY" \
+  "5:mouse_up:$((CX + 30)):$CY" "6:key_down:S:ctrl" "7:key_up:S:ctrl"
+before=$(snapshot "$TMP/f")
+if studio "$TMP/f/walk/walker.vdg.json" --replay "$TMP/preview.json" --screenshot "$TMP/f.png" 2>"$TMP/f.err" &&
+  [ -s "$TMP/f.png" ] && [ "$before" = "$(snapshot "$TMP/f")" ]; then
+  pass "(f) the walker opens with its timeline; a stroke and Ctrl+S change no file"
+else
+  fail "(f) animated model: $(cat "$TMP/f.err")"
+fi
+
 # ---- usage --------------------------------------------------------------------------------------------
 "$VDG" studio "$TMP/a/building.vdg.json" --recover --discard-recovery >/dev/null 2>&1
 [ $? -eq 2 ] && pass "usage: --recover with --discard-recovery is exit 2" || fail "usage: expected exit 2"

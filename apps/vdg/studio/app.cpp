@@ -531,12 +531,17 @@ struct Studio::Impl {
       for (std::size_t i = 0; i < keys.size(); ++i) {
         ImGui::PushID(static_cast<int>(i));
         const bool current = static_cast<int>(i) == session->currentKey();
-        ImGui::Text("%s %s%s", current ? ">" : " ", keys[i].name.c_str(),
-                    current && session->dirty() ? " *" : (current && session->currentKeyIsNew() ? " (new)" : ""));
+        if (session->animated())  // an animated model's keys deform the base at their frames (section 4)
+          ImGui::Text("  %s (frame %d)", keys[i].name.c_str(), keys[i].frame);
+        else
+          ImGui::Text("%s %s%s", current ? ">" : " ", keys[i].name.c_str(),
+                      current && session->dirty() ? " *" : (current && session->currentKeyIsNew() ? " (new)" : ""));
         ImGui::SameLine(190);
         if (ImGui::SmallButton("view")) jumpToKey(i);
-        ImGui::SameLine();
-        if (!session->animated() && ImGui::SmallButton("edit")) attempt("edit key", [&] { session->editKey(i); });
+        if (!session->animated()) {
+          ImGui::SameLine();
+          if (ImGui::SmallButton("edit")) attempt("edit key", [&] { session->editKey(i); });
+        }
         ImGui::PopID();
       }
       if (!session->animated()) {
