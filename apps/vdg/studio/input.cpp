@@ -6,14 +6,8 @@
 #include <utility>
 
 #include "vdg/geom/error.h"
-
-#if __has_include("vdg/io/studio_events.h")
 #include "vdg/io/atomic_file.h"
 #include "vdg/io/studio_events.h"
-#define VDG_STUDIO_HAS_EVENT_FILES 1
-#else
-#define VDG_STUDIO_HAS_EVENT_FILES 0
-#endif
 
 namespace vdg::studio::app {
 
@@ -47,7 +41,6 @@ constexpr NamedKey kNamedKeys[] = {
     {"RightBracket", GLFW_KEY_RIGHT_BRACKET},
 };
 
-#if VDG_STUDIO_HAS_EVENT_FILES
 EventType fromFile(InputEventType t) {
   switch (t) {
     case InputEventType::kMouseMove:
@@ -86,12 +79,10 @@ InputEventType toFile(EventType t) {
   }
   return InputEventType::kMouseMove;
 }
-#endif
 
 }  // namespace
 
 EventScript readEvents(const std::string& path) {
-#if VDG_STUDIO_HAS_EVENT_FILES
   const InputScript file = readInputScript(path);
   EventScript script;
   script.window = file.window;
@@ -100,13 +91,9 @@ EventScript readEvents(const std::string& path) {
     script.events.push_back(Event{e.frame, fromFile(e.type), e.x, e.y, e.button, e.scroll_x, e.scroll_y, e.key, e.ctrl,
                                   e.shift, e.alt, e.super, e.text});
   return script;
-#else
-  throw Error(path + ": this vdg was built without studio event files (vdg/io/studio_events.h)");
-#endif
 }
 
 void writeEvents(const std::string& path, const EventScript& script) {
-#if VDG_STUDIO_HAS_EVENT_FILES
   InputScript file;
   file.window = script.window;
   for (const Event& e : script.events) {
@@ -127,10 +114,6 @@ void writeEvents(const std::string& path, const EventScript& script) {
     file.events.push_back(std::move(f));
   }
   writeFileAtomically(path, formatInputScript(file));
-#else
-  (void)script;
-  throw Error(path + ": this vdg was built without studio event files (vdg/io/studio_events.h)");
-#endif
 }
 
 int keyCode(const std::string& name) {

@@ -7,13 +7,7 @@
 
 #include "vdg/geom/error.h"
 #include "vdg/geom/surface.h"
-
-#if __has_include("vdg/render/sphere_inset.h")
 #include "vdg/render/sphere_inset.h"
-#define VDG_STUDIO_HAS_SPHERE_INSET 1
-#else
-#define VDG_STUDIO_HAS_SPHERE_INSET 0
-#endif
 
 namespace vdg::studio::app {
 
@@ -23,42 +17,6 @@ using vdg::render::Image;
 using vdg::render::Renderer;
 using vdg::render::Rgb;
 using vdg::render::Viewport;
-
-// Renderer::addBackdrop / drawBackdrop when this vdg's renderer has them (vdg studio's drawing
-// behind the model); otherwise the app blends the drawing into the paper itself (compositeDrawing).
-template <class R>
-int addBackdropIfAny(R& r, const TextureImage& image) {
-  if constexpr (requires { r.addBackdrop(image); })
-    return r.addBackdrop(image);
-  else
-    return -1;
-}
-template <class R>
-bool drawBackdropIfAny(R& r, int handle, const Viewport& viewport, float opacity, const Rgb& paper) {
-  if constexpr (requires { r.drawBackdrop(handle, viewport, opacity, paper); })
-    return r.drawBackdrop(handle, viewport, opacity, paper);
-  else
-    return false;
-}
-
-// Fallback of drawBackdrop: pixels still showing the paper become mix(paper, drawing, opacity x
-// alpha), the drawing sampled (nearest) stretched over the canvas.
-void compositeDrawing(Image& image, const TextureImage& drawing, float opacity, const Rgb& paper) {
-  const std::uint8_t pr = static_cast<std::uint8_t>(std::lround(paper[0] * 255.0f));
-  const std::uint8_t pg = static_cast<std::uint8_t>(std::lround(paper[1] * 255.0f));
-  const std::uint8_t pb = static_cast<std::uint8_t>(std::lround(paper[2] * 255.0f));
-  for (int y = 0; y < image.height; ++y) {
-    const int sy = std::min(drawing.height - 1, y * drawing.height / image.height);
-    for (int x = 0; x < image.width; ++x) {
-      std::uint8_t* p = image.pixel(x, y);
-      if (std::abs(p[0] - pr) > 1 || std::abs(p[1] - pg) > 1 || std::abs(p[2] - pb) > 1) continue;
-      const int sx = std::min(drawing.width - 1, x * drawing.width / image.width);
-      const std::uint8_t* t = &drawing.rgba[(static_cast<std::size_t>(sy) * drawing.width + sx) * 4];
-      const float a = opacity * (t[3] / 255.0f);
-      for (int c = 0; c < 3; ++c) p[c] = static_cast<std::uint8_t>(std::lround(p[c] * (1.0f - a) + t[c] * a));
-    }
-  }
-}
 
 }  // namespace
 
@@ -73,9 +31,7 @@ struct ViewportRenderer::Impl {
   std::vector<float> segments;
   Image image;
   std::shared_ptr<const ViewDependentModel> sphere_model;
-#if VDG_STUDIO_HAS_SPHERE_INSET
   std::unique_ptr<vdg::render::SphereInset> inset;
-#endif
   Viewport inset_viewport;
 };
 
@@ -102,28 +58,16 @@ ViewportRenderer::~ViewportRenderer() = default;
 
 void ViewportRenderer::setSphereModel(std::shared_ptr<const ViewDependentModel> model) {
   impl_->sphere_model = std::move(model);
-#if VDG_STUDIO_HAS_SPHERE_INSET
   impl_->inset.reset();
   if (impl_->sphere_model) impl_->inset = std::make_unique<vdg::render::SphereInset>(impl_->sphere_model->sphere());
-#endif
 }
 
-bool ViewportRenderer::insetAvailable() const {
-#if VDG_STUDIO_HAS_SPHERE_INSET
-  return impl_->inset != nullptr;
-#else
-  return false;
-#endif
-}
+bool ViewportRenderer::insetAvailable() const { return impl_->inset != nullptr; }
 
 Viewport ViewportRenderer::insetViewport() const { return impl_->inset_viewport; }
 
 int ViewportRenderer::insetKeyAt(const Eigen::Vector2d& pixel) const {
-#if VDG_STUDIO_HAS_SPHERE_INSET
   if (impl_->inset && impl_->inset_viewport.width > 0) return impl_->inset->keyAt(impl_->inset_viewport, pixel);
-#else
-  (void)pixel;
-#endif
   return -1;
 }
 
@@ -134,7 +78,7 @@ const Image& ViewportRenderer::render(int width, int height, const Camera& camer
     m.renderer.reset();
     m.renderer = std::make_unique<Renderer>(vdg::render::RendererSettings{width, height, 4});
     m.mesh = m.renderer->addSurface(m.base, m.topology);
-    m.backdrop = m.drawing != nullptr ? addBackdropIfAny(*m.renderer, *m.drawing) : -1;
+    m.backdrop = m.drawing != nullptr ? m.renderer->addBackdrop(*m.drawing) : -1;
   }
   Renderer& r = *m.renderer;
   if (!r.updateMesh(m.mesh, positions, {})) throw Error("studio: the viewport refused the mesh (internal error)");
@@ -149,9 +93,8 @@ const Image& ViewportRenderer::render(int width, int height, const Camera& camer
 
   r.clear(style.paper);
   const bool drawing = m.drawing != nullptr && style.show_drawing;
-  bool drawn_backdrop = false;
-  if (drawing && m.backdrop >= 0)
-    drawn_backdrop = drawBackdropIfAny(r, m.backdrop, view.viewport, style.drawing_opacity, style.paper);
+  if (drawing && !r.drawBackdrop(m.backdrop, view.viewport, style.drawing_opacity, style.paper))
+    throw Error("studio: the viewport refused the drawing (internal error)");
   if (style.wireframe) {
     m.segments.resize(m.edges.size() * 6);
     for (std::size_t e = 0; e < m.edges.size(); ++e)
@@ -167,7 +110,6 @@ const Image& ViewportRenderer::render(int width, int height, const Camera& camer
     if (!r.drawMesh(m.mesh, view, mesh_style)) throw Error("studio: the viewport refused the camera (internal error)");
   }
   m.inset_viewport = {};
-#if VDG_STUDIO_HAS_SPHERE_INSET
   if (style.sphere_inset && m.inset) {
     const int side = std::max(64, std::min(width, height) / 4);
     m.inset_viewport = {width - side, height - side, side, side};
@@ -175,9 +117,7 @@ const Image& ViewportRenderer::render(int width, int height, const Camera& camer
     ViewWeights w;
     if (m.sphere_model->weights(dir, 0.0, w)) (void)m.inset->draw(r, m.inset_viewport, dir, w);
   }
-#endif
   r.readPixels(m.image);
-  if (drawing && !drawn_backdrop) compositeDrawing(m.image, *m.drawing, style.drawing_opacity, style.paper);
   return m.image;
 }
 
