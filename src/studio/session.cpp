@@ -313,22 +313,35 @@ void Session::editKey(std::size_t index) {
                 std::to_string(m.raw.keys.size()) + " keys)");
   if (m.raw.animated())
     throw Error(m.model_path + ": the editor edits keys of static models; this one has an animated base");
-  // A new key never saved is dropped when another key becomes current.
+  if (static_cast<int>(index) == m.current && m.is_new) {  // the draft itself: back to its camera
+    camera = keyEditCamera(m.raw, m.raw.keys[index]);
+    ++m.revision;
+    return;
+  }
+  const RawKey& key = m.raw.keys[index];
+  const fs::path mesh = m.keyMeshFile(key);
+  // A key whose mesh file another key also uses cannot be edited alone (as `vdg deform` says).
+  std::error_code ec;
+  for (const RawKey& other : m.raw.keys)
+    if (&other != &key && fs::weakly_canonical(m.keyMeshFile(other), ec) == fs::weakly_canonical(mesh, ec))
+      throw Error("key '" + key.name + "' shares its mesh file " + mesh.string() + " with key '" + other.name +
+                  "': a stroke would change both; give each key its own mesh file in the manifest");
+  const std::string log_path = editLogPath(mesh.string());
+  const fs::path snapshot = mesh.parent_path() / (mesh.stem().string() + ".origin.obj");
+  const bool log_existed = fs::exists(log_path);
+  EditLog log = log_existed ? readEditLog(log_path) : startEditLog(m.raw, key, snapshot.filename().string());
+  // Nothing throws from here on. A new key never saved (and never stroked: requireIdle) is dropped.
   if (m.current >= 0 && m.is_new) {
     m.raw.keys.erase(m.raw.keys.begin() + m.current);
     if (static_cast<int>(index) > m.current) --index;
   }
-  const RawKey& key = m.raw.keys[index];
-  const fs::path mesh = m.keyMeshFile(key);
-  const std::string log_path = editLogPath(mesh.string());
-  const fs::path snapshot = mesh.parent_path() / (mesh.stem().string() + ".origin.obj");
-  m.log_existed = fs::exists(log_path);
-  m.base_log = m.log_existed ? readEditLog(log_path) : startEditLog(m.raw, key, snapshot.filename().string());
+  m.log_existed = log_existed;
+  m.base_log = std::move(log);
   m.current = static_cast<int>(index);
   m.is_new = false;
-  m.origin = key.mesh.positions;
+  m.origin = m.raw.keys[index].mesh.positions;
   m.resetHistory();
-  camera = keyEditCamera(m.raw, key);
+  camera = keyEditCamera(m.raw, m.raw.keys[index]);
   ++m.revision;
 }
 

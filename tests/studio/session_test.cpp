@@ -203,6 +203,48 @@ TEST_F(Fixture, EditingAKeyUsesItsCameraAndAppendsToItsLog) {
   EXPECT_EQ(readEditLog(editLogPath(dir.file("k.obj"))).entries.size(), 2u);
 }
 
+TEST_F(Fixture, AnEmptyDraftKeyGivesWayToTheKeyChosen) {
+  {
+    Session s = withKey();
+    s.beginStroke(centerVertex(s), {320, 240});
+    s.updateStroke({330, 250});
+    s.endStroke();
+    s.saveKey();
+  }
+  Session s = Session::open(dir.file("ball.vdg.json"));
+  s.camera = orbit(s.camera, -60, 0);
+  s.newKey("draft");
+  ASSERT_EQ(s.model().keys.size(), 2u);
+  s.editKey(1);  // the draft itself: it stays current
+  EXPECT_EQ(s.currentKey(), 1);
+  EXPECT_TRUE(s.currentKeyIsNew());
+  s.editKey(0);  // another key: the draft, never stroked, is dropped
+  EXPECT_EQ(s.currentKey(), 0);
+  EXPECT_EQ(s.model().keys.size(), 1u);
+  EXPECT_EQ(s.model().keys[0].name, "k");
+}
+
+TEST_F(Fixture, AKeySharingItsMeshFileIsNotEdited) {
+  {
+    Session s = withKey();
+    s.beginStroke(centerVertex(s), {320, 240});
+    s.updateStroke({330, 250});
+    s.endStroke();
+    s.saveKey();
+  }
+  // A second key, seen from the other side, listed with the first key's mesh file.
+  RawViewDependentModel raw = loadManifest(dir.file("ball.vdg.json"));
+  RawKey twin = raw.keys[0];
+  twin.name = "twin";
+  twin.camera.reset();
+  twin.view = -raw.keys[0].view;
+  raw.keys.push_back(twin);
+  saveManifest(dir.file("ball.vdg.json"), raw);
+  Session s = Session::open(dir.file("ball.vdg.json"));
+  EXPECT_NE(errorOf([&] { s.editKey(1); }).find("shares its mesh file"), std::string::npos);
+  EXPECT_EQ(s.currentKey(), -1);
+}
+
 TEST_F(Fixture, AFailedSaveChangesNothing) {
   Session s = withKey();
   s.beginStroke(centerVertex(s), {320, 240});
