@@ -39,6 +39,18 @@ struct Fixture : ::testing::Test {
     s.newKey("k");
     return s;
   }
+  // Saves ball.vdg.json with key 'k' made by one drag.
+  void saveOneStrokeKey() {
+    Session s = withKey();
+    stroke(s, {330, 250});
+    s.saveKey();
+  }
+  // One drag from the image centre's vertex.
+  static void stroke(Session& s, const Eigen::Vector2d& to) {
+    s.beginStroke(centerVertex(s), {320, 240});
+    s.updateStroke(to);
+    s.endStroke();
+  }
   // The vertex nearest the image centre (front of the sphere).
   static std::int32_t centerVertex(const Session& s) {
     return *s.pick(Eigen::Vector2d(s.image_width / 2.0, s.image_height / 2.0));
@@ -184,13 +196,7 @@ TEST_F(Fixture, SavingWritesAModelTheCommandLineToolsRead) {
 }
 
 TEST_F(Fixture, EditingAKeyUsesItsCameraAndAppendsToItsLog) {
-  {
-    Session s = withKey();
-    s.beginStroke(centerVertex(s), {320, 240});
-    s.updateStroke({330, 250});
-    s.endStroke();
-    s.saveKey();
-  }
+  saveOneStrokeKey();
   Session s = Session::open(dir.file("ball.vdg.json"));
   EXPECT_EQ(s.currentKey(), -1);
   s.editKey(0);
@@ -204,13 +210,7 @@ TEST_F(Fixture, EditingAKeyUsesItsCameraAndAppendsToItsLog) {
 }
 
 TEST_F(Fixture, AnEmptyDraftKeyGivesWayToTheKeyChosen) {
-  {
-    Session s = withKey();
-    s.beginStroke(centerVertex(s), {320, 240});
-    s.updateStroke({330, 250});
-    s.endStroke();
-    s.saveKey();
-  }
+  saveOneStrokeKey();
   Session s = Session::open(dir.file("ball.vdg.json"));
   s.camera = orbit(s.camera, -60, 0);
   s.newKey("draft");
@@ -225,13 +225,7 @@ TEST_F(Fixture, AnEmptyDraftKeyGivesWayToTheKeyChosen) {
 }
 
 TEST_F(Fixture, AKeySharingItsMeshFileIsNotEdited) {
-  {
-    Session s = withKey();
-    s.beginStroke(centerVertex(s), {320, 240});
-    s.updateStroke({330, 250});
-    s.endStroke();
-    s.saveKey();
-  }
+  saveOneStrokeKey();
   // A second key, seen from the other side, listed with the first key's mesh file.
   RawViewDependentModel raw = loadManifest(dir.file("ball.vdg.json"));
   RawKey twin = raw.keys[0];
