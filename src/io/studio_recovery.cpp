@@ -30,7 +30,8 @@ std::string absolutePath(const Json& doc, const char* key, const Ctx& ctx) {
 StudioRecovery recoveryFrom(const Json& doc, const std::string& source) {
   const Ctx ctx{source, ""};
   io::formatVersion(doc, ctx, "studio recovery files", kStudioRecoveryVersion, kStudioRecoveryVersion);
-  io::allowKeys(doc, ctx, {"version", "model", "manifest", "key", "new_key", "mesh", "key_camera", "logged", "strokes"});
+  io::allowKeys(doc, ctx,
+                {"version", "model", "manifest", "key", "new_key", "mesh", "key_camera", "logged", "strokes"});
   StudioRecovery r;
   r.model = absolutePath(doc, "model", ctx);
   r.manifest = absolutePath(doc, "manifest", ctx);
