@@ -617,7 +617,9 @@ struct Studio::Impl {
       std::optional<std::int32_t> v = hover_vertex;
       if (session->stroking()) v = stroke_vertex;
       if (v) {
-        if (weights_vertex != *v || weights_revision != session->revision()) {
+        // A stroke keeps the weights of its start (the session moves the shape with those), so the
+        // shape changing under the mouse does not recompute them (a geodesic solve per frame).
+        if (weights_vertex != *v || (weights_revision != session->revision() && !session->stroking())) {
           weights = session->selectionWeights(*v);
           weights_vertex = *v;
           weights_revision = session->revision();
