@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# vdg studio under a virtual X server (xvfb-run): replayed input, screenshots, start-up errors,
+# vdg studio under a virtual X server (Xvfb): replayed input, screenshots, start-up errors,
 # crash recovery. Usage: studio_test.sh VDG SOURCE_DIR
 #   (a) a replayed drag gives the key mesh `vdg deform` gives for the same DragOp (1e-5);
 #   (b) a screenshot shows the drawing (known colours) and the model, and matches a golden PNG
@@ -8,18 +8,18 @@
 #       message on stderr, exit status 1, no file changed;
 #   (d) a crash (VDG_STUDIO_ABORT_AT_FRAME) after a stroke, then --recover and Ctrl+S: the same key
 #       as without the crash.
-# Without xvfb-run the test is skipped (exit 77), unless VDG_REQUIRE_XVFB=1.
+# Without Xvfb the test is skipped (exit 77), unless VDG_REQUIRE_XVFB=1.
 set -u
 VDG=$(realpath "$1")
 SRC=$(realpath "$2")
 HERE="$SRC/tests/studio"
 TOOL="python3 $HERE/studio_tool.py"
-if ! command -v xvfb-run >/dev/null 2>&1; then
+if ! command -v Xvfb >/dev/null 2>&1; then
   if [ "${VDG_REQUIRE_XVFB:-0}" = 1 ]; then
-    echo "studio_test: xvfb-run is missing and VDG_REQUIRE_XVFB=1" >&2
+    echo "studio_test: Xvfb is missing and VDG_REQUIRE_XVFB=1" >&2
     exit 1
   fi
-  echo "studio_test: SKIPPED: xvfb-run is missing (apt-get install xvfb)"
+  echo "studio_test: SKIPPED: Xvfb is missing (apt-get install xvfb)"
   exit 77
 fi
 # Under AddressSanitizer, leak checking is off for the studio process only: Mesa's X11 GL driver,
@@ -27,11 +27,21 @@ fi
 # attribute ("<unknown module>"); every other ASan and UBSan check stays on.
 export ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0"
 TMP=$(mktemp -d)
-trap 'chmod -R u+w "$TMP" 2>/dev/null; rm -rf "$TMP"' EXIT
+# One X server for the whole test, on a free display it reports once it is ready (-displayfd).
+# (xvfb-run around every command failed its own clean-up now and then under load: exit 5.)
+Xvfb -displayfd 3 -screen 0 1280x800x24 -nolisten tcp 3>"$TMP/display" 2>"$TMP/xvfb.err" &
+XVFB_PID=$!
+trap 'kill $XVFB_PID 2>/dev/null; chmod -R u+w "$TMP" 2>/dev/null; rm -rf "$TMP"' EXIT
+for _ in $(seq 100); do [ -s "$TMP/display" ] && break; sleep 0.1; done
+if ! [ -s "$TMP/display" ]; then
+  echo "studio_test: Xvfb did not start: $(cat "$TMP/xvfb.err")" >&2
+  exit 1
+fi
+export DISPLAY=":$(head -1 "$TMP/display")"
 FAILED=0
 fail() { echo "FAIL: $*" >&2; FAILED=1; }
 pass() { echo "ok: $*"; }
-studio() { xvfb-run -a -s "-screen 0 1280x800x24" "$VDG" studio "$@"; }
+studio() { "$VDG" studio "$@"; }
 building() { mkdir -p "$1" && cp "$SRC"/examples/building/{building.vdg.json,base.obj,front.obj} "$1"/; }
 snapshot() { (cd "$1" && find . -type f -print0 | sort -z | xargs -0 sha1sum); }
 
@@ -121,7 +131,7 @@ else
   chmod -R a-w "$TMP/ro"
   chmod a+r "$TMP/drag_save.json"
   before=$(snapshot "$TMP/ro")
-  "${AS[@]}" xvfb-run -a -s "-screen 0 1280x800x24" "$VDG" studio "$TMP/ro/building.vdg.json" \
+  "${AS[@]}" "$VDG" studio "$TMP/ro/building.vdg.json" \
     --replay "$TMP/drag_save.json" >/dev/null 2>"$TMP/ro.err"
   rc=$?
   if [ $rc -eq 1 ] && [ -s "$TMP/ro.err" ] && [ "$(snapshot "$TMP/ro")" = "$before" ]; then
