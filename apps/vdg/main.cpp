@@ -54,6 +54,9 @@ int main(int argc, char** argv) {
   vdg::cli::addExportCommand(app);
   vdg::cli::addBakeCommand(app);
   vdg::cli::addRunCommand(app);
+  vdg::cli::addMorphCommand(app);
+  vdg::cli::addMorph3dCommand(app);
+  vdg::cli::addImplicitCommand(app);
 #ifdef VDG_WITH_STUDIO
   vdg::cli::addStudioCommand(app);
 #endif

@@ -39,6 +39,38 @@ inline TriMesh uvSphere(int rings = 8, int segments = 12) {
   return m;
 }
 
+// An axis-aligned box [min, max] as a closed mesh: 8 shared vertices, 12 triangles wound
+// counter-clockwise seen from outside.
+inline TriMesh closedBox(float x0, float y0, float z0, float x1, float y1, float z1) {
+  TriMesh m;
+  for (int i = 0; i < 8; ++i)
+    m.positions.insert(m.positions.end(), {(i & 1) ? x1 : x0, (i & 2) ? y1 : y0, (i & 4) ? z1 : z0});
+  m.triangles = {0, 2, 3, 0, 3, 1,  4, 5, 7, 4, 7, 6,  0, 1, 5, 0, 5, 4,
+                 2, 6, 7, 2, 7, 3,  0, 4, 6, 0, 6, 2,  1, 3, 7, 1, 7, 5};
+  return m;
+}
+
+// A torus about the y axis: ring radius R, tube radius r; rings x sides vertices (genus 1).
+inline TriMesh torus(double R = 1.0, double r = 0.4, int rings = 32, int sides = 16) {
+  TriMesh m;
+  for (int i = 0; i < rings; ++i) {
+    const double u = 2.0 * M_PI * i / rings;
+    for (int j = 0; j < sides; ++j) {
+      const double v = 2.0 * M_PI * j / sides;
+      const double d = R + r * std::cos(v);
+      m.positions.insert(m.positions.end(), {static_cast<float>(d * std::cos(u)), static_cast<float>(r * std::sin(v)),
+                                             static_cast<float>(-d * std::sin(u))});
+    }
+  }
+  auto at = [&](int i, int j) { return (i % rings) * sides + (j % sides); };
+  for (int i = 0; i < rings; ++i)
+    for (int j = 0; j < sides; ++j) {
+      m.triangles.insert(m.triangles.end(), {at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+      m.triangles.insert(m.triangles.end(), {at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+    }
+  return m;
+}
+
 // A unit cube ([-1, 1]^3) as exporters write it: 24 vertices (each face its own four), with the
 // face normals as file normals (TriMesh::normals, one per vertex), so its edges are hard.
 inline TriMesh splitCube() {

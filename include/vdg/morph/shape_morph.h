@@ -1,0 +1,79 @@
+// 3D shape interpolation (Parent 4.10, "Shape Interpolation, Metamorphosis"): from a source mesh A
+// at t = 0 to a destination mesh B at t = 1, by three of the methods the text describes.
+//   DistanceMorph   signed distance volumes of A and B blended with t, the zero level set
+//                   polygonised (OpenVDB); the topology may change on the way.
+//   SphericalMorph  Kent: both star-shaped genus-0 meshes projected onto a sphere about their
+//                   centres, their edges overlaid (arcs intersected) into one common connectivity,
+//                   then vertex-to-vertex interpolation.
+//   minkowskiMorph  sizes interpolated through the Minkowski sum (1 - t) A + t B (CGAL).
+// Every mesh given must be closed (see vdg/morph/mesh_checks.h). Meshes are in their own units;
+// nothing is normalised.
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+#include "vdg/geom/tri_mesh.h"
+
+namespace vdg::morph {
+
+struct DistanceMorphOptions {
+  double voxel_size = 0;  // world units; 0: the larger bounding-box diagonal of A and B / 96
+  // The narrow band kept each side of the surfaces, in voxels (>= 3).
+  double band_voxels = 3;
+  // Refused before anything is allocated when the voxel count of the box holding both meshes
+  // (plus the band) would exceed this: "... needs N voxels (about M MiB); use a --voxel of at
+  // least S".
+  std::size_t max_voxels = std::size_t{1} << 28;
+};
+
+// Builder: checks both meshes closed, makes both signed distance volumes once (throws vdg::Error
+// naming "A"/"B" via the `what` strings for open meshes and too many voxels).
+class DistanceMorph {
+ public:
+  DistanceMorph(const TriMesh& a, const TriMesh& b, const DistanceMorphOptions& options,
+                const std::string& what_a = "A", const std::string& what_b = "B");
+  ~DistanceMorph();
+  DistanceMorph(DistanceMorph&&) noexcept;
+  DistanceMorph& operator=(DistanceMorph&&) noexcept;
+  // The zero level set of (1 - t) dA + t dB, polygonised (triangles; closed). t in [0, 1].
+  TriMesh at(double t) const;
+  double voxelSize() const;
+  std::size_t activeVoxelCount() const;  // of both volumes together (for the benchmark)
+  std::size_t memoryBytes() const;       // of both volumes together
+
+ private:
+  struct Volumes;
+  std::unique_ptr<Volumes> volumes_;
+};
+
+// Builder: checks both meshes closed, genus 0 and star-shaped about their centres (the bounding-box
+// centre; every ray from it crosses the surface once), and builds the common connectivity (throws
+// vdg::Error naming the mesh and the first face that fails).
+class SphericalMorph {
+ public:
+  SphericalMorph(const TriMesh& a, const TriMesh& b, const std::string& what_a = "A",
+                 const std::string& what_b = "B");
+  // The common connectivity, posed at t (vertex positions (1 - t) pa + t pb). Exact A at t = 0
+  // and B at t = 1 as surfaces (every original vertex of each is a vertex of the common mesh).
+  TriMesh at(double t) const;
+  // Per-frame, allocation-free: writes vertexCount() * 3 floats. False (nothing written) when
+  // `positions` has the wrong size or t is not finite.
+  [[nodiscard]] bool evaluate(double t, std::span<float> positions) const;
+  std::size_t vertexCount() const { return pos_a_.size() / 3; }
+  std::span<const std::int32_t> triangles() const { return triangles_; }
+
+ private:
+  std::vector<float> pos_a_, pos_b_;  // the common vertices placed on A and on B
+  std::vector<std::int32_t> triangles_;
+};
+
+// The Minkowski-sum inbetween (1 - t) A + t B, each scaled about its own centre (the bounding-box
+// centre) and the result centred at (1 - t) cA + t cB. A and B closed; t = 0 gives A, t = 1 gives
+// B exactly. Non-convex meshes work (CGAL Nef polyhedra) but are slow. Throws vdg::Error.
+TriMesh minkowskiMorph(const TriMesh& a, const TriMesh& b, double t, const std::string& what_a = "A",
+                       const std::string& what_b = "B");
+
+}  // namespace vdg::morph

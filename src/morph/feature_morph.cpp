@@ -1,0 +1,1 @@
+// Placeholder: implemented in the issue-14 branch for this file.

@@ -1,0 +1,2 @@
+// Placeholder: the tests come with the implementation.
+#include <gtest/gtest.h>
