@@ -196,6 +196,32 @@ TEST(SphericalMorph, GenericStarShapedMeshes) {
   EXPECT_GT(morph.vertexCount(), a.vertexCount() + b.vertexCount());
 }
 
+TEST(SphericalMorph, NearlyIdenticalMeshes) {
+  // Rotated by a hair (down to float rounding of the positions): crossings next to vertices,
+  // slivers of every kind; still closed and both surfaces at the ends.
+  for (const double angle : {1e-3, 1e-6, 1e-9}) {
+    SCOPED_TRACE(angle);
+    expectGoodMorph(uvSphere(8, 12), transformed(uvSphere(8, 12), angle, {0.3, 1, 0.2}, {0, 0, 0}));
+    expectGoodMorph(closedBox(-1, -1, -1, 1, 1, 1),
+                    transformed(closedBox(-1, -1, -1, 1, 1, 1), angle, {1, 1, 1}, {0, 0, 0}));
+  }
+}
+
+TEST(SphericalMorph, LargeMeshes) {
+  const TriMesh a = transformed(bumpySphere(40, 70, 3), 0.3, {1, 0, 1}, {0, 0, 0});
+  const TriMesh b = uvSphere(50, 64);
+  ASSERT_GT(a.triangleCount(), 5000u);
+  ASSERT_GT(b.triangleCount(), 6000u);
+  const SphericalMorph morph(a, b);
+  const TriMesh mid = morph.at(0.5);
+  EXPECT_EQ(errorOf([&] { requireClosed(mid, "common"); }), "");
+  EXPECT_EQ(eulerCharacteristic(mid), 2);
+  const TriMesh at0 = morph.at(0.0), at1 = morph.at(1.0);
+  const double va = signedVolume(a.positions, a.triangles), vb = signedVolume(b.positions, b.triangles);
+  EXPECT_NEAR(signedVolume(at0.positions, morph.triangles()), va, kRelative * va);
+  EXPECT_NEAR(signedVolume(at1.positions, morph.triangles()), vb, kRelative * vb);
+}
+
 TEST(SphericalMorph, IdenticalMeshesGiveTheInputBack) {
   for (const TriMesh& m : {uvSphere(8, 12), closedBox(-1, -2, -3, 2, 1, 0)}) {
     const SphericalMorph morph(m, m);

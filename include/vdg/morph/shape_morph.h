@@ -78,7 +78,8 @@ class SphericalMorph {
   // The common connectivity, posed at t (vertex positions (1 - t) pa + t pb). Exact A at t = 0
   // and B at t = 1 as surfaces (every original vertex of each is a vertex of the common mesh,
   // with its position unchanged; every other vertex lies on a triangle or edge of the mesh).
-  // t outside [0, 1] extrapolates.
+  // t outside [0, 1] extrapolates. Positions and triangles only (no texture coordinates, normals
+  // or materials). Throws vdg::Error when t is not finite.
   TriMesh at(double t) const;
   // Per-frame, allocation-free: writes vertexCount() * 3 floats. False (nothing written) when
   // `positions` has the wrong size or t is not finite.
