@@ -159,6 +159,60 @@ TriMesh bumpySphere(int rings, int segments, unsigned seed) {
   return m;
 }
 
+// The surface of the cube [-n, n]^3 on the integer grid, each unit square split along one of its
+// diagonals (`flip` chooses which, and alternates by square when `checker`): directions with exact
+// coincidences, vertices on edges and edges along edges against another such cube.
+TriMesh latticeCube(int n, bool flip, bool checker) {
+  TriMesh m;
+  std::map<std::array<int, 3>, std::int32_t> index;
+  auto id = [&](std::array<int, 3> p) {
+    const auto [it, fresh] = index.try_emplace(p, static_cast<std::int32_t>(m.vertexCount()));
+    if (fresh)
+      m.positions.insert(m.positions.end(),
+                         {static_cast<float>(p[0]), static_cast<float>(p[1]), static_cast<float>(p[2])});
+    return it->second;
+  };
+  for (int axis = 0; axis < 3; ++axis)
+    for (const int sign : {-1, 1}) {
+      const int u = (axis + 1) % 3, w = (axis + 2) % 3;
+      for (int i = -n; i < n; ++i)
+        for (int j = -n; j < n; ++j) {
+          auto at = [&](int di, int dj) {
+            std::array<int, 3> p{};
+            p[axis] = sign * n;
+            p[u] = i + di;
+            p[w] = j + dj;
+            return id(p);
+          };
+          // Counter-clockwise seen from outside: (u, w) is right-handed about +axis.
+          std::array<std::int32_t, 4> q{at(0, 0), at(1, 0), at(1, 1), at(0, 1)};
+          if (sign < 0) std::swap(q[1], q[3]);
+          const bool diagonal = flip != (checker && ((i + j) & 1));
+          if (diagonal)
+            m.triangles.insert(m.triangles.end(), {q[0], q[1], q[2], q[0], q[2], q[3]});
+          else
+            m.triangles.insert(m.triangles.end(), {q[0], q[1], q[3], q[1], q[2], q[3]});
+        }
+    }
+  return m;
+}
+
+TEST(SphericalMorph, LatticeCubesWithExactDegeneracies) {
+  const TriMesh c1 = latticeCube(1, false, false), c2 = latticeCube(2, true, true), c3 = latticeCube(3, false, true);
+  ASSERT_EQ(errorOf([&] { requireClosed(c2, "c2"); }), "");
+  expectGoodMorph(c1, c2);
+  expectGoodMorph(c2, c3);
+  expectGoodMorph(c3, c1);
+  expectGoodMorph(c2, latticeCube(2, false, true));
+  // An octahedron's corners are the cube's face centres.
+  TriMesh octahedron;
+  octahedron.positions = {2, 0, 0, -2, 0, 0, 0, 2, 0, 0, -2, 0, 0, 0, 2, 0, 0, -2};
+  octahedron.triangles = {0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4, 2, 0, 5, 1, 2, 5, 3, 1, 5, 0, 3, 5};
+  expectGoodMorph(octahedron, c2);
+  expectGoodMorph(c3, octahedron);
+  expectGoodMorph(octahedron, uvSphere(8, 12));
+}
+
 TEST(SphericalMorph, SphereToBoxIsBothSurfacesAtTheEnds) {
   // Degenerate: the sphere's poles and equator points lie on the box's face diagonals.
   expectGoodMorph(uvSphere(8, 12), closedBox(-1, -1, -1, 1, 1, 1));
