@@ -245,9 +245,49 @@ TEST(SphericalMorph, GenericStarShapedMeshes) {
   const TriMesh b = transformed(bumpySphere(9, 23, 2), 1.9, {-2, 1, 0.5}, {3, 1, -2}, 1.7);
   expectGoodMorph(a, b);
   expectGoodMorph(b, a);
-  // A fine mesh against a coarse one: the overlay has every vertex of both and their crossings.
+  // In general position the common vertices are exactly A's, B's and one per crossing of an edge
+  // of A with an edge of B on the sphere (counted here by brute force over all pairs of edges).
+  auto directions = [](const TriMesh& m) {
+    const Bounds box = computeBounds(m.positions);
+    std::vector<V3> d;
+    for (std::size_t v = 0; v < m.vertexCount(); ++v) {
+      V3 p = vertex(m.positions, v);
+      for (int k = 0; k < 3; ++k) p[k] -= 0.5 * (static_cast<double>(box.min[k]) + static_cast<double>(box.max[k]));
+      const double n = std::sqrt(dot(p, p));
+      d.push_back({p[0] / n, p[1] / n, p[2] / n});
+    }
+    return d;
+  };
+  auto edges = [](const TriMesh& m) {
+    std::set<std::pair<std::int32_t, std::int32_t>> e;
+    for (std::size_t f = 0; f < m.triangleCount(); ++f)
+      for (std::size_t k = 0; k < 3; ++k) {
+        const std::int32_t u = m.triangles[f * 3 + k], w = m.triangles[f * 3 + (k + 1) % 3];
+        e.insert({std::min(u, w), std::max(u, w)});
+      }
+    return e;
+  };
+  const auto da = directions(a), db = directions(b);
+  std::size_t crossings = 0;
+  for (const auto& [p, q] : edges(a)) {
+    const V3 n = cross(da[static_cast<std::size_t>(p)], da[static_cast<std::size_t>(q)]);
+    for (const auto& [r, s] : edges(b)) {
+      const V3& dr = db[static_cast<std::size_t>(r)];
+      const V3& ds = db[static_cast<std::size_t>(s)];
+      const double sr = dot(n, dr), ss = dot(n, ds);
+      if ((sr > 0) == (ss > 0)) continue;
+      // Where arc r-s meets the plane of p-q; on arc p-q?
+      const V3 y{dr[0] * std::abs(ss) + ds[0] * std::abs(sr), dr[1] * std::abs(ss) + ds[1] * std::abs(sr),
+                 dr[2] * std::abs(ss) + ds[2] * std::abs(sr)};
+      if (dot(cross(da[static_cast<std::size_t>(p)], y), n) > 0 &&
+          dot(cross(y, da[static_cast<std::size_t>(q)]), n) > 0)
+        ++crossings;
+    }
+  }
   const SphericalMorph morph(a, b);
-  EXPECT_GT(morph.vertexCount(), a.vertexCount() + b.vertexCount());
+  EXPECT_GT(crossings, a.vertexCount() + b.vertexCount());
+  EXPECT_EQ(morph.vertexCount(), a.vertexCount() + b.vertexCount() + crossings);
+  EXPECT_EQ(morph.triangles().size() / 3, 2 * morph.vertexCount() - 4);
 }
 
 TEST(SphericalMorph, NearlyIdenticalMeshes) {
