@@ -10,19 +10,22 @@
 // How it is built here:
 //  1. Each mesh is checked closed, genus 0 (Euler characteristic 2) and star-shaped about its own
 //     centre c (the bounding-box centre): every triangle's directions d = p - c have a positive
-//     determinant (it faces away from c), and the spherical triangles cover the sphere once (their
-//     areas, by Van Oosterom and Strackee's formula tan(E / 2) = det / (1 + a.b + b.c + c.a) for unit
-//     a, b, c, sum to 4 pi). Then the projection is a homeomorphism onto the sphere.
+//     determinant (it faces away from c), and the spherical triangles cover the sphere once: their
+//     areas sum to 4 pi (Van Oosterom and Strackee, "The solid angle of a plane triangle", IEEE
+//     Trans. Biomed. Eng. 30(2), 1983: tan(E / 2) = det / (1 + a.b + b.c + c.a) for unit a, b, c).
+//     Then the projection is a homeomorphism onto the sphere.
 //  2. Overlay: every face of the overlay of the two spherical triangulations is the intersection of a
 //     triangle a of A with a triangle b of B, a convex spherical polygon, found by clipping a against
-//     the three great-circle half-spaces of b (Sutherland-Hodgman). Candidate pairs come from bounding
-//     caps in a grid. The clipping is combinatorial: every polygon vertex is labelled (a vertex of a,
-//     a vertex of b, or the crossing of an edge of a with the great circle of an edge of b) and its
-//     side of each plane of b is the exact sign of one 3 x 3 determinant of input directions (see
-//     side() for the identities that reduce a crossing's side to one). With exact signs, the
-//     polygons of neighbouring pairs agree on every shared vertex, so welding by label gives a
-//     closed manifold mesh whatever the degeneracies (coincident vertices, a vertex on an edge,
-//     overlapping edges).
+//     the three great-circle half-spaces of b (Sutherland and Hodgman, "Reentrant polygon clipping",
+//     CACM 17(1), 1974). Candidate pairs come from bounding caps in a grid. The clipping is
+//     combinatorial: every polygon vertex is labelled (a vertex of a, a vertex of b, or the crossing
+//     of an edge of a with the great circle of an edge of b) and its side of each plane of b is the
+//     exact sign of one 3 x 3 determinant of input directions (see side() for the identities that
+//     reduce a crossing's side to one). With exact signs, the polygons of neighbouring pairs agree on
+//     every shared vertex, so welding by label gives a closed manifold mesh whatever the
+//     degeneracies (coincident vertices, a vertex on an edge, overlapping edges). Every vertex of a
+//     face is a strict corner of it (a corner of a or of b, or a crossing of their edges), so the
+//     fan has no flat triangle.
 //  3. Each overlay vertex is placed on A and on B: a vertex of A is itself on A and is found on B by
 //     casting the ray from B's centre in its direction onto the triangle b it lies in (barycentric
 //     weights det(d, e_j+1, e_j+2)); a crossing lies on an edge of A at the parameter where the edge's
