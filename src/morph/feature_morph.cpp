@@ -16,6 +16,7 @@
 // morph the lines are interpolated with t (endpoints, linearly), both images warped onto them and
 // cross-dissolved (Parent 4.10: "Feature line positions are interpolated based on the
 // interpolation parameter").
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <string>
@@ -39,6 +40,9 @@ std::string pointText(const Vector2d& p) {
 
 void validateLine(const FeatureLine& line, const std::string& where) {
   if (!line.p.allFinite() || !line.q.allFinite()) throw Error(where + ": an endpoint is not finite");
+  if (std::max(line.p.cwiseAbs().maxCoeff(), line.q.cwiseAbs().maxCoeff()) > kMaxMorphCoordinate)
+    throw Error(where + ": from " + pointText(line.p) + " to " + pointText(line.q) + " reaches farther than " +
+                detail::numberText(kMaxMorphCoordinate) + " pixels from the origin in x or y");
   if (!((line.q - line.p).norm() >= kMinFeatureLineLength))
     throw Error(where + ": has zero length (from " + pointText(line.p) + " to " + pointText(line.q) +
                 "); a feature line needs two endpoints at least " + detail::numberText(kMinFeatureLineLength) +

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "morph_2d_internal.h"
+#include "vdg/anim/curve.h"
 #include "vdg/geom/error.h"
 #include "vdg/morph/inbetween.h"
 
@@ -55,6 +56,10 @@ Inbetweener::Inbetweener(std::vector<KeyDrawing> keys, InbetweenCurve curve) : k
     if (k > 0 && !(key.time > keys_[k - 1].time))
       throw Error(where + ": time " + detail::numberText(key.time) + " is not after key " + std::to_string(k - 1) +
                   "'s time " + detail::numberText(keys_[k - 1].time) + " (key times must increase strictly)");
+    if (k > 0 && !anim::isUsableTimeSpan(key.time - keys_[k - 1].time))
+      throw Error(where + ": the span from key " + std::to_string(k - 1) + "'s time " +
+                  detail::numberText(keys_[k - 1].time) + " to " + detail::numberText(key.time) +
+                  " is too small or too large");
     if (key.strokes.size() != strokes)
       throw Error(where + ": has " + std::to_string(key.strokes.size()) + " strokes but key 0 has " +
                   std::to_string(strokes) + " (stroke i of every key corresponds)");

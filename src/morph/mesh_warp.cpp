@@ -55,6 +55,7 @@
 #include <vector>
 
 #include "morph_2d_internal.h"
+#include "vdg/anim/curve.h"
 #include "vdg/geom/error.h"
 #include "vdg/geom/parallel.h"
 #include "vdg/morph/image_morph.h"
@@ -118,9 +119,13 @@ KnotCurves gridCurves(const WarpGrid& g, bool columns) {
 // The (index, intercept) spline of one scanline: x = S(s) with S(c) = x_c, monotone (see the top).
 class IndexSpline {
  public:
+  static constexpr double kFar = 1e9;
   // x: n >= 2 intercepts, put in strictly increasing order here.
   void build(std::vector<double>& x) {
     const int n = static_cast<int>(x.size());
+    // Intercepts far outside any image are clamped (1e9 px keeps a 1e-6 px step representable) and
+    // put in strictly increasing order (curves of a wild grid may cross between control points).
+    for (int c = 0; c < n; ++c) x[c] = x[c] > -kFar ? std::min(x[c], kFar) : -kFar;
     for (int c = 1; c < n; ++c)
       if (!(x[c] > x[c - 1])) x[c] = x[c - 1] + 1e-6;
     x_ = x;
@@ -135,7 +140,7 @@ class IndexSpline {
   }
   double value(double s) const {
     const int n = static_cast<int>(x_.size());
-    if (s <= 0) return x_[0] + s * (x_[1] - x_[0]);
+    if (!(s > 0)) return x_[0] + s * (x_[1] - x_[0]);  // (NaN too: no cast below)
     if (s >= n - 1) return x_[n - 1] + (s - (n - 1)) * (x_[n - 1] - x_[n - 2]);
     const int k = std::min(static_cast<int>(s), n - 2);
     return hermite(k, s - k);
@@ -145,7 +150,7 @@ class IndexSpline {
     const int n = static_cast<int>(x_.size());
     if (x <= x_[0]) return (x - x_[0]) / (x_[1] - x_[0]);
     if (x >= x_[n - 1]) return (n - 1) + (x - x_[n - 1]) / (x_[n - 1] - x_[n - 2]);
-    const int k = static_cast<int>(std::upper_bound(x_.begin(), x_.end(), x) - x_.begin()) - 1;
+    const int k = std::clamp(static_cast<int>(std::upper_bound(x_.begin(), x_.end(), x) - x_.begin()) - 1, 0, n - 2);
     // Safeguarded Newton on the monotone cubic of segment k, bracketed in [lo, hi].
     double lo = 0, hi = 1;
     double u = (x - x_[k]) / (x_[k + 1] - x_[k]);
@@ -289,24 +294,30 @@ void validateGrid(const WarpGrid& grid, const std::string& what) {
     throw Error(what + ": a " + std::to_string(grid.rows) + " x " + std::to_string(grid.cols) + " grid needs " +
                 std::to_string(expected) + " points but has " + std::to_string(grid.points.size()));
   for (int r = 0; r < grid.rows; ++r)
-    for (int c = 0; c < grid.cols; ++c)
-      if (!grid.at(r, c).allFinite())
-        throw Error(what + ": the point at row " + std::to_string(r) + ", column " + std::to_string(c) +
-                    " is not finite");
+    for (int c = 0; c < grid.cols; ++c) {
+      const Vector2d& p = grid.at(r, c);
+      const std::string where = what + ": the point at row " + std::to_string(r) + ", column " + std::to_string(c);
+      if (!p.allFinite()) throw Error(where + " is not finite");
+      if (p.cwiseAbs().maxCoeff() > kMaxMorphCoordinate)
+        throw Error(where + " (" + numberText(p.x()) + ", " + numberText(p.y()) + ") is farther than " +
+                    numberText(kMaxMorphCoordinate) + " pixels from the origin in x or y");
+    }
   for (int r = 0; r < grid.rows; ++r)
     for (int c = 0; c + 1 < grid.cols; ++c)
-      if (!(grid.at(r, c + 1).x() > grid.at(r, c).x()))
+      if (!(grid.at(r, c + 1).x() - grid.at(r, c).x() >= kMinGridSpacing))
         throw Error(what + ": row " + std::to_string(r) + ": the point at column " + std::to_string(c + 1) +
                     " (x = " + numberText(grid.at(r, c + 1).x()) + ") is not right of column " + std::to_string(c) +
                     " (x = " + numberText(grid.at(r, c).x()) +
-                    "); grid lines must not cross or touch (x increases along a row)");
+                    "); grid lines must not cross or touch (x increases along a row by at least " +
+                    numberText(kMinGridSpacing) + ")");
   for (int c = 0; c < grid.cols; ++c)
     for (int r = 0; r + 1 < grid.rows; ++r)
-      if (!(grid.at(r + 1, c).y() > grid.at(r, c).y()))
+      if (!(grid.at(r + 1, c).y() - grid.at(r, c).y() >= kMinGridSpacing))
         throw Error(what + ": column " + std::to_string(c) + ": the point at row " + std::to_string(r + 1) +
                     " (y = " + numberText(grid.at(r + 1, c).y()) + ") is not below row " + std::to_string(r) +
                     " (y = " + numberText(grid.at(r, c).y()) +
-                    "); grid lines must not cross or touch (y increases down a column)");
+                    "); grid lines must not cross or touch (y increases down a column by at least " +
+                    numberText(kMinGridSpacing) + ")");
 }
 
 void requireSameShape(const WarpGrid& a, const WarpGrid& b, const std::string& what) {
@@ -339,6 +350,9 @@ WarpGrid gridAtTime(std::span<const GridKey> keys, double time) {
     if (k > 0 && !(keys[k].time > keys[k - 1].time))
       throw Error(where + ": time " + numberText(keys[k].time) + " is not after key " + std::to_string(k - 1) +
                   "'s time " + numberText(keys[k - 1].time) + " (key times must increase strictly)");
+    if (k > 0 && !anim::isUsableTimeSpan(keys[k].time - keys[k - 1].time))
+      throw Error(where + ": the span from key " + std::to_string(k - 1) + "'s time " + numberText(keys[k - 1].time) +
+                  " to " + numberText(keys[k].time) + " is too small or too large");
     validateGrid(keys[k].grid, where);
     requireSameShape(keys.front().grid, keys[k].grid, where);
     times.push_back(keys[k].time);

@@ -23,8 +23,9 @@ inline std::string numberText(double v) {
 // at (i + 0.5, j + 0.5)), positions clamped to the outermost pixel centres, so the border pixels
 // extend outwards. At a pixel centre it returns that pixel exactly. Writes 4 floats to `out`.
 inline void sampleBilinear(const Image& image, double x, double y, float* out) {
-  const double fx = std::clamp(x - 0.5, 0.0, static_cast<double>(image.width - 1));
-  const double fy = std::clamp(y - 0.5, 0.0, static_cast<double>(image.height - 1));
+  // NaN (possible only from overflowing inputs) samples the corner pixel rather than casting NaN.
+  const double fx = x - 0.5 > 0 ? std::min(x - 0.5, static_cast<double>(image.width - 1)) : 0.0;
+  const double fy = y - 0.5 > 0 ? std::min(y - 0.5, static_cast<double>(image.height - 1)) : 0.0;
   const int x0 = static_cast<int>(fx), y0 = static_cast<int>(fy);
   const int x1 = std::min(x0 + 1, image.width - 1), y1 = std::min(y0 + 1, image.height - 1);
   const double ax = fx - x0, ay = fy - y0;

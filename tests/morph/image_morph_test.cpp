@@ -122,12 +122,12 @@ TEST(MorphGrid, CrossingOrTouchingLinesAreNamedByRowAndColumn) {
   g.at(1, 2).x() = 5;  // left of column 1 (x = 10) on row 1: the column curves cross
   EXPECT_EQ(errorOf([&] { validateGrid(g, "a.json: grid"); }),
             "a.json: grid: row 1: the point at column 2 (x = 5) is not right of column 1 (x = 10); grid lines "
-            "must not cross or touch (x increases along a row)");
+            "must not cross or touch (x increases along a row by at least 1e-06)");
   g = identityGrid(3, 4, 30, 20);
   g.at(2, 3).y() = 10;  // touches row 1 in column 3
   EXPECT_EQ(errorOf([&] { validateGrid(g, "g"); }),
             "g: column 3: the point at row 2 (y = 10) is not below row 1 (y = 10); grid lines must not cross or "
-            "touch (y increases down a column)");
+            "touch (y increases down a column by at least 1e-06)");
   g = identityGrid(3, 4, 30, 20);
   g.at(0, 1).y() = std::nan("");
   EXPECT_EQ(errorOf([&] { validateGrid(g, "g"); }), "g: the point at row 0, column 1 is not finite");
@@ -137,6 +137,16 @@ TEST(MorphGrid, CrossingOrTouchingLinesAreNamedByRowAndColumn) {
             "g: a 2 x 2 grid needs 4 points but has 3");
   EXPECT_EQ(errorOf([] { requireSameShape(identityGrid(3, 3, 8, 8), identityGrid(4, 3, 8, 8), "morph"); }),
             "morph: the grids differ in shape (3 x 3 and 4 x 3 points)");
+}
+
+TEST(MorphGrid, PointsTooFarOrTooCloseAreRefused) {
+  WarpGrid g = identityGrid(2, 3, 30, 20);
+  g.at(1, 2).x() = 2e7;
+  EXPECT_EQ(errorOf([&] { validateGrid(g, "g"); }),
+            "g: the point at row 1, column 2 (20000000, 20) is farther than 10000000 pixels from the origin in x or y");
+  g = identityGrid(2, 3, 30, 20);
+  g.at(0, 1).x() = g.at(0, 0).x() + 1e-7;  // closer than kMinGridSpacing: touching
+  EXPECT_NE(errorOf([&] { validateGrid(g, "g"); }).find("g: row 0: the point at column 1"), std::string::npos);
 }
 
 TEST(MorphGrid, InterpolationIsExactAtItsEnds) {
@@ -293,13 +303,34 @@ TEST(MeshWarp, AStepMovedToAFractionalPositionIsAntiAliasedAndConserved) {
   }
 }
 
+// A valid but wild grid (cells 0.001 px next to cells of hundreds of px; column curves that bulge
+// into each other between control points) still gives a finite image in [0, 1].
+TEST(MeshWarp, AWildGridGivesAFiniteImage) {
+  const Image image = pattern(64, 48);
+  const WarpGrid from = identityGrid(4, 4, 64, 48);
+  WarpGrid to = from;
+  to.at(1, 1) = Vector2d(10, 16);
+  to.at(1, 2) = Vector2d(10.001, 17);
+  to.at(1, 3) = Vector2d(2000, 1e-3);
+  to.at(2, 1) = Vector2d(60, 31);
+  to.at(2, 2) = Vector2d(900, 32);
+  to.at(2, 3) = Vector2d(950, 32);
+  ASSERT_NO_THROW(validateGrid(to, "to"));
+  for (const Image& warped : {meshWarp(image, from, to), meshWarp(image, to, from)})
+    for (const float v : warped.rgba) {
+      ASSERT_TRUE(std::isfinite(v));
+      ASSERT_GE(v, -kRounding);
+      ASSERT_LE(v, 1 + kRounding);
+    }
+}
+
 TEST(MeshWarp, BadGridsAreRefusedWithOneLine) {
   const Image image = pattern(20, 20);
   WarpGrid crossing = identityGrid(3, 3, 20, 20);
   crossing.at(1, 1).x() = 25;  // right of column 2 (x = 20)
   EXPECT_EQ(errorOf([&] { meshWarp(image, identityGrid(3, 3, 20, 20), crossing); }),
             "mesh warp: destination grid: row 1: the point at column 2 (x = 20) is not right of column 1 (x = 25); "
-            "grid lines must not cross or touch (x increases along a row)");
+            "grid lines must not cross or touch (x increases along a row by at least 1e-06)");
   EXPECT_EQ(errorOf([&] { meshMorph(image, image, identityGrid(3, 3, 20, 20), identityGrid(3, 4, 20, 20), 0.5); }),
             "mesh morph: the grids differ in shape (3 x 3 and 3 x 4 points)");
   EXPECT_EQ(
@@ -405,6 +436,13 @@ TEST(FeatureMorph, BadLinesAndParametersAreRefusedWithOneLine) {
   EXPECT_EQ(errorOf([&] { featureWarp(image, good, good, {.p = 2}); }), "feature warp: p = 2 must lie in [0, 1]");
   EXPECT_EQ(errorOf([&] { featureWarp(image, good, good, {.b = -1}); }),
             "feature warp: b = -1 must be finite and >= 0");
+  const std::vector<FeatureLine> far{{{2, 2}, {3e7, 2}}};
+  EXPECT_EQ(errorOf([&] { featureWarp(image, good, far, {}); }),
+            "feature warp: destination line 0: from (2, 2) to (30000000, 2) reaches farther than 10000000 pixels from "
+            "the origin in x or y");
+  EXPECT_EQ(errorOf([&] { featureWarp(image, {}, good, {}); }),
+            "feature warp: 0 source lines but 1 destination lines (they come in pairs)");
+  EXPECT_EQ(maxDifference(featureWarp(image, {}, {}, {}), image), kExact);  // no lines: identity
 }
 
 }  // namespace

@@ -114,6 +114,10 @@ TEST(Inbetweener, BadKeysAreNamedByKeyAndStroke) {
             }),
             "inbetween: key 1: time 1 is not after key 0's time 1 (key times must increase strictly)");
   EXPECT_EQ(errorOf([&] {
+              Inbetweener({key(-1e308, {line}), key(1e308, {line})}, InbetweenCurve::kLinear);
+            }),
+            "inbetween: key 1: the span from key 0's time -1e+308 to 1e+308 is too small or too large");
+  EXPECT_EQ(errorOf([&] {
               Inbetweener({key(0, {line}), key(1, {line, line})}, InbetweenCurve::kLinear);
             }),
             "inbetween: key 1: has 2 strokes but key 0 has 1 (stroke i of every key corresponds)");

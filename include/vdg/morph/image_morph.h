@@ -44,9 +44,14 @@ struct WarpGrid {
 };
 // An evenly spaced grid of rows x cols points whose outer points lie on the image border.
 WarpGrid identityGrid(int rows, int cols, int width, int height);
+// Grid points and feature-line endpoints must lie within this many pixels of the origin (so that
+// no slope or weight overflows).
+inline constexpr double kMaxMorphCoordinate = 1e7;
+// Neighbouring grid points closer than this (pixels) along a row (x) or down a column (y) touch.
+inline constexpr double kMinGridSpacing = 1e-6;
 // Throws vdg::Error "WHAT: ..." (naming the row and column) for fewer than 2 x 2 points, a
-// non-finite point, or grid lines that cross or touch: along every row x must increase strictly,
-// down every column y must increase strictly.
+// non-finite point or one beyond kMaxMorphCoordinate, or grid lines that cross or touch: along
+// every row x must increase, down every column y must increase, by at least kMinGridSpacing.
 void validateGrid(const WarpGrid& grid, const std::string& what);
 // Throws vdg::Error "WHAT: ..." unless a and b have the same rows and cols.
 void requireSameShape(const WarpGrid& a, const WarpGrid& b, const std::string& what);
@@ -87,7 +92,8 @@ void validateFeatureParams(const FeatureParams& params, const std::string& what)
 // Lines shorter than this (pixels) count as zero-length.
 inline constexpr double kMinFeatureLineLength = 1e-6;
 // Throws vdg::Error "WHAT: source line I: ..." (or "destination line I") for a zero-length
-// (shorter than kMinFeatureLineLength) or non-finite line, or "WHAT: ..." for differing counts.
+// (shorter than kMinFeatureLineLength) or non-finite line or an endpoint beyond
+// kMaxMorphCoordinate, or "WHAT: ..." for differing counts.
 // No lines at all is allowed: the warp is then the identity.
 void validateFeatureLines(std::span<const FeatureLine> src, std::span<const FeatureLine> dst, const std::string& what);
 // Reverse-mapped warp: each output pixel X, with lines `to`, takes the colour at the weighted
