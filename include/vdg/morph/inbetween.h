@@ -19,15 +19,21 @@ struct KeyDrawing {
 enum class InbetweenCurve { kLinear, kCatmullRom };
 
 // `count` (>= 2) points evenly spaced by arc length along the polyline, first and last kept.
+// Throws vdg::Error for fewer than 2 points, count < 2 or a non-finite point. A polyline of one
+// repeated point gives `count` copies of it.
 Polyline resampleByArcLength(std::span<const Eigen::Vector2d> polyline, int count);
 
-// Builder: checks the keys (>= 1, strictly increasing times, the same stroke count, every stroke
-// >= 2 points; throws vdg::Error naming the key and stroke) and resamples every stroke to the
-// largest point count any key gives it.
+// Builder: checks the keys (>= 1, finite strictly increasing times whose spans anim::isUsableTimeSpan
+// accepts, the same stroke count, every stroke >= 2 finite points; throws vdg::Error "inbetween:
+// key K[, stroke S]: ...") and resamples every stroke to the largest point count any key gives it
+// (a key that already has that count keeps its points as drawn).
 class Inbetweener {
  public:
   Inbetweener(std::vector<KeyDrawing> keys, InbetweenCurve curve);
-  // The drawing at `time` (clamped to the keys' span); exact at each key's time.
+  // The drawing at `time` (clamped to the keys' span); exact at each key's time. Catmull-Rom is
+  // non-uniform in time (tangent (P_{i+1} - P_{i-1}) / (t_{i+1} - t_{i-1}), chord at the ends, as
+  // vdg/anim/curve.h's kCatmullRom); two keys give linear motion. Throws vdg::Error for a
+  // non-finite time.
   std::vector<Polyline> at(double time) const;
   const std::vector<KeyDrawing>& keys() const { return keys_; }
 
