@@ -185,6 +185,35 @@ TriMesh meshFromSoup(const std::vector<InexactPoint>& points, const std::vector<
   return out;
 }
 
+// The same mesh in a canonical order: vertices sorted by position, each triangle rotated to start
+// at its smallest index (its winding kept), the triangles sorted. CGAL's output order depends on
+// memory addresses, so without this two runs could number the same inbetween differently.
+void canonicalise(TriMesh& mesh) {
+  const std::size_t n = mesh.vertexCount();
+  std::vector<std::size_t> order(n);
+  for (std::size_t v = 0; v < n; ++v) order[v] = v;
+  const auto key = [&](std::size_t v) {
+    return std::array<float, 3>{mesh.positions[v * 3], mesh.positions[v * 3 + 1], mesh.positions[v * 3 + 2]};
+  };
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return key(x) < key(y); });
+  std::vector<float> positions(n * 3);
+  std::vector<std::int32_t> index(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    index[order[i]] = static_cast<std::int32_t>(i);
+    for (std::size_t k = 0; k < 3; ++k) positions[i * 3 + k] = mesh.positions[order[i] * 3 + k];
+  }
+  std::vector<std::array<std::int32_t, 3>> triangles(mesh.triangleCount());
+  for (std::size_t f = 0; f < triangles.size(); ++f) {
+    auto& t = triangles[f];
+    for (std::size_t k = 0; k < 3; ++k) t[k] = index[static_cast<std::size_t>(mesh.triangles[f * 3 + k])];
+    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+  }
+  std::sort(triangles.begin(), triangles.end());
+  mesh.positions = std::move(positions);
+  for (std::size_t f = 0; f < triangles.size(); ++f)
+    for (std::size_t k = 0; k < 3; ++k) mesh.triangles[f * 3 + k] = triangles[f][k];
+}
+
 // ---- the convex-hull path ----
 
 // The extreme points of the mesh, scaled by s (in double).
@@ -332,7 +361,9 @@ TriMesh minkowskiMorph(const TriMesh& a, const TriMesh& b, double t, const Minko
       break;
   }
   try {
-    return hull ? convexSum(a, b, t) : nefSum(oa, ob, t);
+    TriMesh sum = hull ? convexSum(a, b, t) : nefSum(oa, ob, t);
+    canonicalise(sum);
+    return sum;
   } catch (const CGAL::Failure_exception& e) {
     // A CGAL precondition or assertion that the checks above did not foresee.
     throw Error("Minkowski morph of " + what_a + " and " + what_b + ": CGAL failed: " + e.what());
