@@ -17,8 +17,9 @@
 //                the pairwise sums of their vertices. Each mesh is first cut down to its extreme
 //                points (CGAL::extreme_points_3), then the n_a * n_b sums are hulled
 //                (CGAL::convex_hull_3, exact predicates with inexact constructions: the sums are
-//                formed in double, the hull only chooses among them). Milliseconds for meshes of a
-//                few thousand vertices.
+//                formed in double, the hull only chooses among them). The sums grow as the product of
+//                the extreme-point counts: a sphere of 2000 vertices + a box takes 0.16 s, two
+//                spheres of 500 vertices 1.1 s.
 //   Nef          Otherwise CGAL::minkowski_sum_3 on Nef_polyhedron_3 over the exact kernel
 //                (Exact_predicates_exact_constructions_kernel): each mesh becomes a Surface_mesh of
 //                exact points scaled exactly by (1 - t) or t, then a Nef polyhedron; CGAL decomposes
