@@ -73,8 +73,7 @@ class DistanceMorph {
 // edge) of A it lies in, on B likewise. Unused vertices of A and B are left out.
 class SphericalMorph {
  public:
-  SphericalMorph(const TriMesh& a, const TriMesh& b, const std::string& what_a = "A",
-                 const std::string& what_b = "B");
+  SphericalMorph(const TriMesh& a, const TriMesh& b, const std::string& what_a = "A", const std::string& what_b = "B");
   // The common connectivity, posed at t (vertex positions (1 - t) pa + t pb). Exact A at t = 0
   // and B at t = 1 as surfaces (every original vertex of each is a vertex of the common mesh,
   // with its position unchanged; every other vertex lies on a triangle or edge of the mesh).
@@ -98,7 +97,31 @@ class SphericalMorph {
 // The Minkowski-sum inbetween (1 - t) A + t B, each scaled about its own centre (the bounding-box
 // centre) and the result centred at (1 - t) cA + t cB. A and B closed; t = 0 gives A, t = 1 gives
 // B exactly. Non-convex meshes work (CGAL Nef polyhedra) but are slow. Throws vdg::Error.
+// Contract (checked first, in this order): A closed, B closed (requireClosed, named what_a and
+// what_b), finite coordinates, t finite in [0, 1]; then, for 0 < t < 1, each mesh must enclose a
+// volume, and on the Nef path be a 2-manifold without self-intersections (vdg::Error naming it).
+// The result is a closed triangle mesh wound outward, positions only (no uvs, normals, materials).
 TriMesh minkowskiMorph(const TriMesh& a, const TriMesh& b, double t, const std::string& what_a = "A",
                        const std::string& what_b = "B");
+
+// How minkowskiMorph computes the sum (src/morph/minkowski_morph.cpp explains both paths).
+enum class MinkowskiPath {
+  automatic,    // the convex-hull path when both meshes are convex (isConvexMesh), else the Nef path
+  convex_hull,  // the hull of the pairwise vertex sums; a non-convex mesh is refused (vdg::Error)
+  nef,          // CGAL::minkowski_sum_3 on exact Nef polyhedra, whatever the meshes
+};
+struct MinkowskiOptions {
+  MinkowskiPath path = MinkowskiPath::automatic;
+  // A vertex may stand this far in front of a triangle's plane, as a fraction of the mesh's
+  // bounding-box diagonal, and the mesh still counts as convex (float meshes are rarely exactly so).
+  double convex_tolerance = 1e-6;
+};
+// As above, with the path chosen by `options` (convex_tolerance finite and >= 0, else vdg::Error).
+TriMesh minkowskiMorph(const TriMesh& a, const TriMesh& b, double t, const MinkowskiOptions& options,
+                       const std::string& what_a = "A", const std::string& what_b = "B");
+// True when no vertex of `mesh` stands more than relative_tolerance * (bounding-box diagonal) in
+// front of the plane of any of its non-degenerate triangles, taking the triangles outward by the
+// sign of the enclosed volume. O(V * F). The mesh should be closed (requireClosed).
+bool isConvexMesh(const TriMesh& mesh, double relative_tolerance = 1e-6);
 
 }  // namespace vdg::morph
