@@ -117,9 +117,15 @@ TEST(Skeleton, ARigidMotionOfTheWholeWireMovesTheMeshRigidly) {
     Eigen::Vector3d axis = Eigen::Vector3d(u(rng), u(rng), u(rng)).cross(d0).normalized();
     const double angle = 3.0 * u(rng);
     expectRigid(bent, Eigen::AngleAxisd(angle, axis).toRotationMatrix(), T, mesh);
-    // Any rotation of a straight wire (a roll about it is not expressible by joints: none is wanted).
+    // Any rotation of a straight wire moves the mesh rigidly too: by the minimal rotation taking the
+    // wire's direction to its new one (a roll about the wire is not expressible by joints, and
+    // none is invented), about the first joint, which goes to its new place.
     axis = Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized();
-    expectRigid({{-1, 0.2, 0}, {0, 0.1, 0}, {1.5, 0, 0}}, Eigen::AngleAxisd(angle, axis).toRotationMatrix(), T, mesh);
+    const Joints straight{{-1, 0.2, 0}, {0, 0.1, 0}, {1.5, -0.05, 0}};
+    const Eigen::Matrix3d R = Eigen::AngleAxisd(angle, axis).toRotationMatrix();
+    const Eigen::Vector3d d = (straight[1] - straight[0]).normalized();
+    const Eigen::Matrix3d minimal = Eigen::Quaterniond::FromTwoVectors(d, R * d).toRotationMatrix();
+    expectRigid(straight, minimal, R * straight[0] + T - minimal * straight[0], mesh);
   }
 }
 
@@ -396,9 +402,12 @@ TEST(SkeletonOp, BadInputNamesTheKeyAndIndex) {
   EXPECT_EQ(scriptError(R"({"op": "skeleton", "rest": [[0,0,0],[1,0,0],[2,0,0]], "posed": [[0,0,0],[1,0,0]]})"),
             "E.json: 'ops'[0] (skeleton).'posed': has 2 joints, 'rest' has 3 (each rest joint needs its posed "
             "position)");
+  // JSON holds no NaN or infinity: an overflowing number is refused by the parser, at its place.
   EXPECT_EQ(
-      scriptError(R"({"op": "skeleton", "rest": [[0,0,0],[1e999,0,0]], "posed": [[0,0,0],[1,0,0]]})").substr(0, 45),
-      "E.json: 'ops'[0] (skeleton).'rest'[1][0]: exp");
+      scriptError(R"({"op": "skeleton", "rest": [[0,0,0],[1e999,0,0]], "posed": [[0,0,0],[1,0,0]]})").substr(0, 41),
+      "E.json: not valid JSON: number overflow p");
+  EXPECT_EQ(scriptError(R"({"op": "skeleton", "rest": [[1e308,0,0],[-1e308,0,0]], "posed": [[0,0,0],[1,0,0]]})"),
+            "E.json: 'ops'[0] (skeleton).'rest'[1]: is too far from joint 0 (their distance overflows)");
   EXPECT_EQ(scriptError(R"({"op": "skeleton", "rest": [[0,0,0],[1,0,0]], "posed": [[0,0,0],[1,0,0]], "power": 2})"),
             "E.json: 'ops'[0] (skeleton).'power': only with 'radius' (the falloff's distance from the rest wire)");
   EXPECT_EQ(scriptError(R"({"op": "skeleton", "rest": [[0,0,0],[1,0,0]], "posed": [[0,0,0],[1,0,0]], "radius": 0})"),
