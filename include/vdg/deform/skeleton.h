@@ -38,8 +38,9 @@
 //   defined: none is added at segment 0, and each bend turns the frame by the bend alone. Joint
 //   positions cannot express a roll of the wire about itself; a rotation of the whole wire about an
 //   axis with a component along d_0 therefore moves a bent wire's mesh rigidly only up to a twist
-//   about the segments (translations, rotations about axes perpendicular to d_0, and any rotation
-//   of a straight wire move the mesh rigidly; tested).
+//   about the segments (translations and rotations about axes perpendicular to d_0 move the mesh
+//   by that very motion; any rotation of a straight wire moves it rigidly by the minimal rotation
+//   of the wire's direction; tested).
 // - Posed position: on the posed line J'_i + o' + t d'_i, A' and B' are its crossings with the
 //   posed planes i and i+1, and p' = A' + s (B' - A') (or the end plane's crossing plus the
 //   distance beyond it along d'). A vertex on the segment (o = 0) follows the segment exactly:
