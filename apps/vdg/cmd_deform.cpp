@@ -196,7 +196,7 @@ void runDeform(const DeformOptions& opt) {
 void addDeformCommand(CLI::App& app) {
   auto opt = std::make_shared<DeformOptions>();
   CLI::App* sub = app.add_subcommand(
-      "deform", "Deform a key of a model in its key camera (drag, push/pull, rotate, scale, displace, FFD)");
+      "deform", "Deform a key of a model in its key camera (drag, push/pull, rotate, scale, displace, FFD, skeleton)");
   sub->add_option("MODEL", opt->model, "Model manifest (*.vdg.json)")->required();
   sub->add_option("--key", opt->key, "Name of the key to edit (a new key starts from the base)")->required();
   sub->add_option("--ops", opt->ops, "Edit script EDITS.json (see docs/deform.md)");

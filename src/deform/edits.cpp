@@ -31,6 +31,8 @@ const char* editKindName(EditKind kind) {
       return "squash_stretch";
     case EditKind::kAffine:
       return "affine";
+    case EditKind::kSkeleton:
+      return "skeleton";
   }
   return "?";
 }
@@ -139,6 +141,27 @@ std::optional<EditOpProblem> checkFields(const AffineOp& o) {
   return checkCenter(o.center);
 }
 
+std::optional<EditOpProblem> wireProblem(const std::vector<Eigen::Vector3d>& joints, const char* field) {
+  const auto p = checkSkeletonWire(joints);
+  if (!p) return std::nullopt;
+  if (p->count) return problem(field, p->message);
+  return EditOpProblem{"'" + std::string(field) + "'[" + std::to_string(p->joint) + "]", p->message};
+}
+std::optional<EditOpProblem> checkFields(const SkeletonOp& o) {
+  if (auto p = wireProblem(o.rest, "rest")) return p;
+  if (o.posed.size() != o.rest.size())
+    return problem("posed", "has " + std::to_string(o.posed.size()) + " joints, 'rest' has " +
+                                std::to_string(o.rest.size()) + " (each rest joint needs its posed position)");
+  if (auto p = wireProblem(o.posed, "posed")) return p;
+  if (o.falloff) {
+    if (!(o.falloff->radius > 0) || !std::isfinite(o.falloff->radius))
+      return problem("radius", "must be > 0 and finite, got " + fmt(o.falloff->radius));
+    if (!(o.falloff->power >= 0) || !std::isfinite(o.falloff->power))
+      return problem("power", "must be >= 0 and finite, got " + fmt(o.falloff->power));
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
 std::optional<EditOpProblem> checkEditOp(const EditOp& op) {
@@ -244,6 +267,13 @@ std::vector<EditReport> applyEdits(const Camera& camera, std::span<const std::in
       case EditKind::kAffine: {
         const AffineOp& o = std::get<AffineOp>(op);
         applyAffine(positions, o.vertices, o.matrix, centroid(o.vertices, o.center), o.translation);
+        break;
+      }
+      case EditKind::kSkeleton: {
+        const SkeletonOp& o = std::get<SkeletonOp>(op);
+        const SkeletonBinding binding = bindSkeleton(o.rest, positions, o.vertices, o.falloff);
+        // checkEditOp (validateEdits above) has checked both wires, so the contract holds.
+        if (!binding.apply(o.posed, positions)) throw Error(at + ": the posed wire was refused");
         break;
       }
     }

@@ -30,7 +30,8 @@ constexpr std::pair<const char*, EditKind> kKinds[] = {{"drag", EditKind::kDrag}
                                                        {"displace", EditKind::kDisplace},
                                                        {"ffd", EditKind::kFfd},
                                                        {"squash_stretch", EditKind::kSquashStretch},
-                                                       {"affine", EditKind::kAffine}};
+                                                       {"affine", EditKind::kAffine},
+                                                       {"skeleton", EditKind::kSkeleton}};
 constexpr std::pair<const char*, DistanceMetric> kMetrics[] = {{"euclidean", DistanceMetric::kEuclidean},
                                                                {"edges", DistanceMetric::kEdges},
                                                                {"geodesic", DistanceMetric::kGeodesic}};
@@ -84,6 +85,21 @@ VertexPick readPick(const Json& j, const Ctx& ctx, double default_power) {
   p.falloff.shape = enumOr(j, "falloff", FalloffShape::kPower, ctx, kShapes);
   p.metric = enumOr(j, "distance", DistanceMetric::kEuclidean, ctx, kMetrics);
   return p;
+}
+
+// A wire's joints: an array of [x, y, z] (its length is checked by checkSkeletonWire; an array
+// longer than any wire is refused before it is read).
+std::vector<Eigen::Vector3d> jointList(const Json& j, const char* key, const Ctx& ctx) {
+  const Json& list = io::required(j, key, ctx);
+  const Ctx lctx = ctx.key(key);
+  if (!list.is_array()) lctx.fail("expected an array of joints [x, y, z], got " + io::describe(list));
+  if (list.size() > kMaxSkeletonJoints)
+    lctx.fail("a wire has at most " + std::to_string(kMaxSkeletonJoints) + " joints, got " +
+              std::to_string(list.size()));
+  std::vector<Eigen::Vector3d> out;
+  out.reserve(list.size());
+  for (std::size_t i = 0; i < list.size(); ++i) out.push_back(io::vector3(list[i], lctx.index(i)));
+  return out;
 }
 
 #define VDG_PICK_KEYS "op", "vertex", "radius", "power", "falloff", "distance"
@@ -193,6 +209,24 @@ EditOp readOpFields(const Json& j, EditKind kind, const Ctx& ctx) {
         o.matrix.row(static_cast<Eigen::Index>(row)) = io::vector3(m[row], mctx.index(row)).transpose();
       if (j.contains("translation")) o.translation = io::vector3(j.at("translation"), ctx.key("translation"));
       o.center = optionalVector3(j, "center", ctx);
+      return o;
+    }
+    case EditKind::kSkeleton: {
+      io::allowKeys(j, ctx, {"op", "vertices", "rest", "posed", "radius", "power", "falloff"});
+      SkeletonOp o;
+      o.vertices = vertexList(j, ctx);
+      o.rest = jointList(j, "rest", ctx);
+      o.posed = jointList(j, "posed", ctx);
+      if (j.contains("radius")) {
+        Falloff f;
+        f.radius = io::number(j.at("radius"), ctx.key("radius"));
+        f.power = io::numberOr(j, "power", 2.0, ctx);
+        f.shape = enumOr(j, "falloff", FalloffShape::kPower, ctx, kShapes);
+        o.falloff = f;
+      } else {
+        for (const char* key : {"power", "falloff"})
+          if (j.contains(key)) ctx.key(key).fail("only with 'radius' (the falloff's distance from the rest wire)");
+      }
       return o;
     }
   }
@@ -327,6 +361,20 @@ OJson writeOp(const EditOp& op, const std::string& at) {
       for (int row = 0; row < 3; ++row) j["matrix"].push_back(array(Eigen::Vector3d(o.matrix.row(row).transpose())));
       j["translation"] = array(o.translation);
       if (o.center) j["center"] = array(*o.center);
+      break;
+    }
+    case EditKind::kSkeleton: {
+      const auto& o = std::get<SkeletonOp>(op);
+      writeVertices(j, o.vertices);
+      for (const auto& [key, joints] : {std::pair{"rest", &o.rest}, std::pair{"posed", &o.posed}}) {
+        j[key] = OJson::array();
+        for (const Eigen::Vector3d& p : *joints) j[key].push_back(array(p));
+      }
+      if (o.falloff) {
+        j["radius"] = o.falloff->radius;
+        j["power"] = o.falloff->power;
+        j["falloff"] = nameOf(kShapes, o.falloff->shape);
+      }
       break;
     }
   }

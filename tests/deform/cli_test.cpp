@@ -13,6 +13,8 @@
 
 #include "test_meshes.h"
 #include "vdg/deform/edits.h"
+#include "vdg/deform/key_edit.h"
+#include "vdg/deform/skeleton.h"
 #include "vdg/io/camera_json.h"
 #include "vdg/io/edit_script.h"
 #include "vdg/io/manifest.h"
@@ -112,6 +114,12 @@ TEST_F(DeformCli, BadOperationsLeaveEveryFileUntouched) {
       {R"([{"op": "push_pull", "vertex": 3, "radius": -1, "amount": 0.1}])",
        "'ops'[0] (push_pull).'radius': must be > 0"},
       {R"([{"op": "twirl", "vertex": 3}])", "'ops'[0].'op': unknown value 'twirl'"},
+      {R"([{"op": "skeleton", "rest": [[0, 0, 0]], "posed": [[0, 0, 0]]}])",
+       "'ops'[0] (skeleton).'rest': a wire needs at least 2 joints, got 1"},
+      {R"([{"op": "skeleton", "rest": [[0, -1, 0], [0, 0, 0], [0, 1, 0]], "posed": [[0, -1, 0], [0, 0, 0]]}])",
+       "'ops'[0] (skeleton).'posed': has 2 joints, 'rest' has 3"},
+      {R"([{"op": "skeleton", "rest": [[0, -1, 0], [0, 0, 0], [0, 0, 0]], "posed": [[0, -1, 0], [0, 0, 0], [1, 0, 0]]}])",
+       "'ops'[0] (skeleton).'rest'[2]: is the same point as joint 1"},
   };
   for (const auto& c : cases) {
     spit(dir_ / "bad.json", std::string(R"({"ops": )") + c.ops + "}");
@@ -128,6 +136,26 @@ TEST_F(DeformCli, BadOperationsLeaveEveryFileUntouched) {
   EXPECT_NE(output_.find("give its camera or view"), std::string::npos) << output_;
   EXPECT_FALSE(fs::exists(dir_ / "side.obj"));
   EXPECT_EQ(slurp(dir_ / "m.vdg.json"), manifest);
+}
+
+// A skeleton op makes a key: the key mesh is the library's bound-and-posed base, and its edit log
+// replays to it.
+TEST_F(DeformCli, SkeletonOpBendsANewKey) {
+  const std::vector<Eigen::Vector3d> rest{{0, -1.2, 0}, {0, 0, 0}, {0, 1.2, 0}};
+  const std::vector<Eigen::Vector3d> posed{{0, -1.2, 0}, {0, 0, 0}, {0.8, 0.9, 0.1}};
+  spit(dir_ / "e.json", std::string("{") + kCamera + R"(, "ops": [{"op": "skeleton",
+       "rest": [[0, -1.2, 0], [0, 0, 0], [0, 1.2, 0]], "posed": [[0, -1.2, 0], [0, 0, 0], [0.8, 0.9, 0.1]]}]})");
+  ASSERT_EQ(vdg("deform " + path("m.vdg.json") + " --key bent --ops " + path("e.json")), 0) << output_;
+  std::vector<float> expected = base_.positions;
+  ASSERT_TRUE(bindSkeleton(rest, expected).apply(posed, expected));
+  const TriMesh bent = readObj((dir_ / "bent.obj").string());
+  ASSERT_EQ(bent.positions.size(), expected.size());
+  for (std::size_t i = 0; i < expected.size(); ++i) EXPECT_NEAR(bent.positions[i], expected[i], 1e-6) << i;
+  const EditLog log = readEditLog((dir_ / "bent.edits.json").string());
+  ASSERT_EQ(log.entries.size(), 1u);
+  ASSERT_EQ(log.entries[0].ops.size(), 1u);
+  EXPECT_EQ(editKind(log.entries[0].ops[0]), EditKind::kSkeleton);
+  EXPECT_EQ(replayEditLog(base_, log, "bent.edits.json"), expected);
 }
 
 // Every file of the model folder with its contents, to check that nothing changed at all.

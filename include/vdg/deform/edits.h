@@ -5,7 +5,8 @@
 //
 // Operations ("op"): drag, push_pull, rotate, scale (image-plane tools, Rademacher 99, 3.1.2),
 // displace (Parent 4.10 attenuated vertex displacement), ffd (Sederberg-Parry lattice),
-// squash_stretch and affine (Parent 4.10). Only positions change; the topology never does.
+// squash_stretch and affine (Parent 4.10), skeleton (Burtnyk and Wein's wire deformation, Parent
+// 4.10; vdg/deform/skeleton.h). Only positions change; the topology never does.
 #pragma once
 
 #include <array>
@@ -20,13 +21,14 @@
 
 #include "vdg/deform/falloff.h"
 #include "vdg/deform/image_plane.h"
+#include "vdg/deform/skeleton.h"
 #include "vdg/geom/camera.h"
 
 namespace vdg {
 
 inline constexpr int kEditsVersion = 1;
 
-enum class EditKind { kDrag, kPushPull, kRotate, kScale, kDisplace, kFfd, kSquashStretch, kAffine };
+enum class EditKind { kDrag, kPushPull, kRotate, kScale, kDisplace, kFfd, kSquashStretch, kAffine, kSkeleton };
 // "drag", "push_pull", ... : the "op" field of the JSON form.
 const char* editKindName(EditKind kind);
 
@@ -108,9 +110,21 @@ struct AffineOp {
   std::optional<Eigen::Vector3d> center;
 };
 
+// Skeleton (wire) deformation (Burtnyk and Wein, Parent 4.10; vdg/deform/skeleton.h): the wire
+// `rest` (model coordinates, drawn through the mesh as it is before this op) is moved to `posed`
+// (the same number of joints), and `vertices` (empty: all) follow it. With `falloff` the motion
+// fades out with the distance from the rest wire (falloff.radius in model units).
+struct SkeletonOp {
+  std::vector<std::int32_t> vertices;
+  std::vector<Eigen::Vector3d> rest;   // 2..kMaxSkeletonJoints joints, checkSkeletonWire
+  std::vector<Eigen::Vector3d> posed;  // rest.size() joints, checkSkeletonWire
+  std::optional<Falloff> falloff;
+};
+
 // One operation: plain data, built in C++ or read from JSON by vdg/io/edit_script.h, which holds
 // the one conversion to and from the JSON form. The alternatives are in EditKind's order.
-using EditOp = std::variant<DragOp, PushPullOp, RotateOp, ScaleOp, DisplaceOp, FfdOp, SquashStretchOp, AffineOp>;
+using EditOp =
+    std::variant<DragOp, PushPullOp, RotateOp, ScaleOp, DisplaceOp, FfdOp, SquashStretchOp, AffineOp, SkeletonOp>;
 
 inline EditKind editKind(const EditOp& op) { return static_cast<EditKind>(op.index()); }
 inline const char* editKindName(const EditOp& op) { return editKindName(editKind(op)); }
