@@ -17,13 +17,23 @@ namespace {
 constexpr double kMaxWeightA = 1e6;
 constexpr double kMaxWeightB = 16.0;
 
+// [x, y]: each coordinate named by its index in messages ("'dst'[3][1]: expected a number, ...").
 Eigen::Vector2d point(const io::Json& j, const io::Ctx& ctx) {
-  const Eigen::VectorXd v = io::vector(j, ctx, 2);
-  for (int i = 0; i < 2; ++i)
-    if (std::abs(v[i]) > kMaxCoordinate)
-      ctx.index(static_cast<std::size_t>(i))
-          .fail("expected a coordinate within +-" + std::to_string(static_cast<long>(kMaxCoordinate)) + " pixels");
-  return {v[0], v[1]};
+  if (!j.is_array() || j.size() != 2) ctx.fail("expected a point [x, y], got " + io::describe(j));
+  Eigen::Vector2d p;
+  for (std::size_t i = 0; i < 2; ++i) {
+    p[static_cast<Eigen::Index>(i)] = io::number(j[i], ctx.index(i));
+    if (std::abs(p[static_cast<Eigen::Index>(i)]) > kMaxCoordinate)
+      ctx.index(i).fail("expected a coordinate within +-10000000 pixels, got " + io::describe(j[i]));
+  }
+  return p;
+}
+
+// A time or frame in messages: "3", "0.5" (shortest text that reads back, as JSON writes it).
+std::string shownNumber(double v) {
+  std::string s = io::Json(v).dump();
+  if (s.size() > 2 && s.compare(s.size() - 2, 2, ".0") == 0) s.resize(s.size() - 2);
+  return s;
 }
 
 io::Json pointJson(const Eigen::Vector2d& p) { return io::Json::array({p.x(), p.y()}); }
@@ -80,8 +90,8 @@ MorphGridFile gridFileFrom(const io::Json& doc, const io::Ctx& top) {
       io::allowKeys(keys[k], c, {"frame", "src", "dst"});
       const double frame = io::numberIn(io::required(keys[k], "frame", c), c.key("frame"), 0.0, kMaxGridFrame);
       if (k > 0 && !(frame > file.src.back().time))
-        c.key("frame").fail("expected a frame after the previous key's (" + io::Json(file.src.back().time).dump() +
-                            "), got " + io::Json(frame).dump());
+        c.key("frame").fail("expected a frame after the previous key's (" + shownNumber(file.src.back().time) +
+                            "), got " + shownNumber(frame));
       file.src.push_back({frame, gridFrom(io::required(keys[k], "src", c), c.key("src"), file.rows, file.cols)});
       file.dst.push_back({frame, gridFrom(io::required(keys[k], "dst", c), c.key("dst"), file.rows, file.cols)});
     }
@@ -156,15 +166,15 @@ KeyDrawingsFile drawingsFileFrom(const io::Json& doc, const io::Ctx& top) {
     morph::KeyDrawing key;
     key.time = io::numberIn(io::required(keys[k], "time", c), c.key("time"), -kMaxGridFrame, kMaxGridFrame);
     if (k > 0 && !(key.time > file.keys.back().time))
-      c.key("time").fail("expected a time after the previous key's (" + io::Json(file.keys.back().time).dump() +
-                         "), got " + io::Json(key.time).dump());
+      c.key("time").fail("expected a time after the previous key's (" + shownNumber(file.keys.back().time) + "), got " +
+                         shownNumber(key.time));
     const io::Ctx sctx = c.key("strokes");
     const io::Json& strokes = io::required(keys[k], "strokes", c);
     if (!strokes.is_array() || strokes.empty())
       sctx.fail("expected a non-empty array of strokes (each an array of [x, y] points), got " + io::describe(strokes));
     if (k > 0 && strokes.size() != file.keys.front().strokes.size())
-      sctx.fail("expected " + std::to_string(file.keys.front().strokes.size()) + " strokes (as keys[0] has), got " +
-                std::to_string(strokes.size()));
+      sctx.fail("expected as many strokes as keys[0] has (" + std::to_string(file.keys.front().strokes.size()) +
+                "), got " + std::to_string(strokes.size()));
     for (std::size_t s = 0; s < strokes.size(); ++s) key.strokes.push_back(points(strokes[s], sctx.index(s), 0, 2));
     file.keys.push_back(std::move(key));
   }
