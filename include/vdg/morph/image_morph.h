@@ -20,12 +20,17 @@ struct Image {
   float* pixel(int x, int y) { return &rgba[(static_cast<std::size_t>(y) * width + x) * 4]; }
   const float* pixel(int x, int y) const { return &rgba[(static_cast<std::size_t>(y) * width + x) * 4]; }
 };
-Image imageFromRgba8(const TextureImage& image);  // 8-bit to [0, 1]
-TextureImage imageToRgba8(const Image& image);    // rounded, clamped to [0, 255]
+// Throws vdg::Error "WHAT: ..." unless the image is at least 1 x 1 and holds width * height * 4 floats.
+// Every function below that takes an Image checks it so.
+void validateImage(const Image& image, const std::string& what);
+Image imageFromRgba8(const TextureImage& image);  // 8-bit to [0, 1]; throws vdg::Error for a bad size
+TextureImage imageToRgba8(const Image& image);    // rounded, clamped to [0, 255] (NaN to 0)
 
 // (1 - t) a + t b per channel. Throws vdg::Error when the sizes differ.
 Image crossDissolve(const Image& a, const Image& b, double t);
-// Plain bilinear resample to width x height (the benchmark's baseline).
+// Plain bilinear resample to width x height (the benchmark's baseline): output pixel centre
+// (x + 0.5, y + 0.5) samples the source at (x + 0.5) W / width, (y + 0.5) H / height, clamped to
+// the outermost pixel centres. The same size gives an exact copy.
 Image resampleBilinear(const Image& image, int width, int height);
 
 // ---- Mesh warp (two-pass, Smythe) ----------------------------------------------------------
@@ -55,10 +60,13 @@ struct GridKey {
 };
 WarpGrid gridAtTime(std::span<const GridKey> keys, double time);
 // Two-pass warp of `image` so that the features under grid `from` move to grid `to` (same shape):
-// pass 1 moves pixels along scanlines (x) to the intermediate grid (x of `from`... see the .cpp),
-// pass 2 along columns (y); Catmull-Rom curves through the grid's columns and rows, pixel
-// boundaries mapped through the (index, intercept) splines, fractional coverage resampling.
-// Output has the input's size.
+// pass 1 moves pixels along scanlines (x) onto the intermediate grid (x of `to`, y of `from`; the
+// .cpp says why not the other way round), pass 2 along columns (y) onto `to`; Catmull-Rom curves
+// through the grid's columns and rows, pixel boundaries mapped through the (index, intercept)
+// splines, fractional coverage (box-filter) resampling. Outside the grid's outer curves the
+// outermost cells are extended (the .cpp documents how). Output has the input's size; from == to
+// returns the image unchanged. Throws vdg::Error for an invalid grid or image, or grids of
+// different shapes.
 Image meshWarp(const Image& image, const WarpGrid& from, const WarpGrid& to);
 // The inbetween at t: both images warped onto interpolateGrids(src_grid, dst_grid, t), then
 // cross-dissolved with t. t = 0 gives src, t = 1 gives dst. Images of one size.
@@ -74,13 +82,21 @@ struct FeatureParams {
   double b = 2.0;  // how fast the weight falls off with distance, >= 0
   double p = 0.5;  // how much longer lines count, in [0, 1]
 };
-// Throws vdg::Error "WHAT: line I: ..." for a zero-length or non-finite line, or differing counts.
+// Throws vdg::Error "WHAT: ..." naming the parameter unless a > 0, b >= 0, p in [0, 1], all finite.
+void validateFeatureParams(const FeatureParams& params, const std::string& what);
+// Lines shorter than this (pixels) count as zero-length.
+inline constexpr double kMinFeatureLineLength = 1e-6;
+// Throws vdg::Error "WHAT: source line I: ..." (or "destination line I") for a zero-length
+// (shorter than kMinFeatureLineLength) or non-finite line, or "WHAT: ..." for differing counts.
+// No lines at all is allowed: the warp is then the identity.
 void validateFeatureLines(std::span<const FeatureLine> src, std::span<const FeatureLine> dst, const std::string& what);
 // Reverse-mapped warp: each output pixel X, with lines `to`, takes the colour at the weighted
 // average of its positions X' relative to lines `from` (bilinear sampling, clamped at the border).
 Image featureWarp(const Image& image, std::span<const FeatureLine> from, std::span<const FeatureLine> to,
                   const FeatureParams& params);
 // Lines interpolated with t (endpoints linearly), both images warped onto them, cross-dissolved.
+// t = 0 gives src, t = 1 gives dst. Throws vdg::Error when an interpolated line collapses to a
+// point (a pair whose lines point in opposite directions), naming the line and t.
 Image featureMorph(const Image& src, const Image& dst, std::span<const FeatureLine> src_lines,
                    std::span<const FeatureLine> dst_lines, double t, const FeatureParams& params);
 
