@@ -167,8 +167,18 @@ class ImageMorph {
   int width() const { return src_.width; }
   int height() const { return src_.height; }
 
-  // The image at morph time t; `frame` picks a key-framed grid's grids.
+  // The image at morph time t; `frame` picks a key-framed grid's grids. What the morph library
+  // refuses (a line collapsing at this t) is reported under the features' file.
   morph::Image at(double t, double frame) const {
+    try {
+      return compute(t, frame);
+    } catch (const Error& e) {
+      throw Error((opt_.grid.empty() ? opt_.lines : opt_.grid) + ": " + e.what());
+    }
+  }
+
+ private:
+  morph::Image compute(double t, double frame) const {
     if (!opt_.grid.empty()) {
       const morph::WarpGrid from = grid_.srcAt(frame), to = grid_.dstAt(frame);
       if (opt_.warp) return morph::meshWarp(src_, from, morph::interpolateGrids(from, to, t));
@@ -183,7 +193,6 @@ class ImageMorph {
     return morph::featureMorph(src_, dst_, lines_.src, lines_.dst, t, lines_.params);
   }
 
- private:
   static std::string size(const TextureImage& image) {
     return std::to_string(image.width) + "x" + std::to_string(image.height);
   }

@@ -1,6 +1,7 @@
 // The grid, lines and key-drawings files of `vdg morph` (vdg/io/morph_files.h, docs/morph-files.md).
 #include "vdg/io/morph_files.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "json_reader.h"
@@ -132,7 +133,19 @@ MorphLinesFile linesFileFrom(const io::Json& doc, const io::Ctx& top) {
     file.src.push_back(lineFrom(io::required(lines[i], "src", c), c.key("src")));
     file.dst.push_back(lineFrom(io::required(lines[i], "dst", c), c.key("dst")));
   }
+  morph::validateFeatureParams(file.params, top.prefix());
   morph::validateFeatureLines(file.src, file.dst, lctx.prefix());
+  // A pair whose lines point in opposite directions collapses to a point at some t in (0, 1) (the
+  // interpolated line's direction is (1 - t) d_src + t d_dst): refused here, for every t at once.
+  for (std::size_t i = 0; i < file.src.size(); ++i) {
+    const Eigen::Vector2d d0 = file.src[i].q - file.src[i].p, d1 = file.dst[i].q - file.dst[i].p, dd = d1 - d0;
+    const double t = dd.squaredNorm() > 0 ? std::clamp(-d0.dot(dd) / dd.squaredNorm(), 0.0, 1.0) : 0.0;
+    if ((d0 + t * dd).norm() < morph::kMinFeatureLineLength)
+      lctx.index(i).fail(
+          "the source and destination lines point in opposite directions, so the line collapses to "
+          "a point at t = " +
+          shownNumber(t) + "; give the destination's endpoints the other way round");
+  }
   return file;
 }
 

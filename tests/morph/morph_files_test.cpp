@@ -186,6 +186,14 @@ TEST(MorphLinesFile, RefusesZeroLengthLineNamingTheFile) {
   EXPECT_EQ(e.find('\n'), std::string::npos) << e;
 }
 
+TEST(MorphLinesFile, RefusesAPairThatCollapsesInBetween) {
+  // Source from left to right, destination from right to left: the inbetween at t = 0.5 is a point.
+  EXPECT_EQ(linesError(R"({"version": 1, "lines": [{"src": [[0, 0], [1, 0]], "dst": [[0, 0], [0, 1]]},
+                                                   {"src": [[10, 5], [20, 5]], "dst": [[20, 5], [10, 5]]}]})"),
+            "lines.json: 'lines'[1]: the source and destination lines point in opposite directions, so the line "
+            "collapses to a point at t = 0.5; give the destination's endpoints the other way round");
+}
+
 // ---- key drawings --------------------------------------------------------------------------------
 
 constexpr const char* kDrawings =
