@@ -68,6 +68,8 @@ std::string shellQuote(const std::string& s) {
 
 // The usage rules that need several options together (exit status 2).
 void checkUsage(const MorphOptions& opt) {
+  if (opt.format != "svg" && opt.format != "png")
+    throw UsageError("--format: expected 'svg' or 'png', got " + shown(opt.format));
   const bool drawings = !opt.drawings.empty();
   if (drawings) {
     if (!opt.src.empty() || !opt.dst.empty()) throw UsageError("--drawings takes no SRC or DST images");
@@ -326,8 +328,7 @@ void addMorphCommand(CLI::App& app) {
                 "Only warp SRC onto the features interpolated with t (at t = 1 onto DST's); no cross-dissolve");
   sub->add_option("--drawings", opt->drawings,
                   "Key-drawings file: inbetween its keys into --frames N drawings instead of morphing images");
-  sub->add_option("--format", opt->format, "--drawings frames as 'svg' (default) or 'png'")
-      ->check(CLI::IsMember({"svg", "png"}));
+  sub->add_option("--format", opt->format, "--drawings frames as 'svg' (default) or 'png'");
   sub->add_option("--video", opt->video, "Also encode the PNG frames as OUT.mp4 or OUT.gif (needs ffmpeg)");
   sub->add_flag("-q,--quiet", opt->quiet, "No progress bar and no summary line");
   sub->callback([opt, sub] {

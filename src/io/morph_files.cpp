@@ -119,7 +119,7 @@ MorphLinesFile linesFileFrom(const io::Json& doc, const io::Ctx& top) {
   if (doc.contains("a")) {
     file.params.a = io::number(doc.at("a"), top.key("a"));
     if (!(file.params.a > 0.0 && file.params.a <= kMaxWeightA))
-      top.key("a").fail("expected a number above 0 and at most 1000000, got " + io::Json(file.params.a).dump());
+      top.key("a").fail("expected a number above 0 and at most 1000000, got " + shownNumber(file.params.a));
   }
   if (doc.contains("b")) file.params.b = io::numberIn(doc.at("b"), top.key("b"), 0.0, kMaxWeightB);
   if (doc.contains("p")) file.params.p = io::numberIn(doc.at("p"), top.key("p"), 0.0, 1.0);
