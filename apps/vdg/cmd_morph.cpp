@@ -321,7 +321,7 @@ void addMorphCommand(CLI::App& app) {
                   "with --drawings N >= 1, spanning the keys' times)")
       ->check(wholeNumber(1, kMaxFrames));
   sub->add_option("--frame", opt->frame,
-                  "With --t and a key-framed grid: the output frame whose grids to use (default: none, required)")
+                  "With --t and a key-framed grid (required then): the output frame whose grids to use")
       ->check(numberIn({0.0, End::kClosed, kMaxGridFrame, End::kClosed}));
   sub->add_option("-o,--output", opt->output, "OUT.png with --t; a folder with --frames")->required();
   sub->add_flag("--warp", opt->warp,

@@ -48,13 +48,6 @@ render::Image pattern(int w, int h, int square_x, int square_y, int shade) {
   return image;
 }
 
-std::string pointsJson(const morph::WarpGrid& g) {
-  std::string s = "[";
-  for (std::size_t i = 0; i < g.points.size(); ++i)
-    s += (i ? ", [" : "[") + std::to_string(g.points[i].x()) + ", " + std::to_string(g.points[i].y()) + "]";
-  return s + "]";
-}
-
 class MorphCli : public ::testing::Test {
  protected:
   void SetUp() override {
