@@ -116,9 +116,10 @@ std::string framePath(const std::string& dir, int i, const char* ext) {
   return (fs::path(dir) / name).string();
 }
 
-// Encodes DIR/frame_%04d.png into `video` with ffmpeg: to a temporary name beside the real file,
-// renamed over it only when the encoding succeeded.
-void encodeVideo(const std::string& dir, const std::string& video) {
+// Encodes DIR/frame_0000.png ... (the first `frames`; older frames beyond them are left out) into
+// `video` with ffmpeg: to a temporary name beside the real file, renamed over it only when the
+// encoding succeeded.
+void encodeVideo(const std::string& dir, const std::string& video, int frames) {
   const std::string real = resolveOutputPath(video);
   struct stat existing {};
   if (::stat(real.c_str(), &existing) == 0 && !S_ISREG(existing.st_mode))
@@ -129,8 +130,8 @@ void encodeVideo(const std::string& dir, const std::string& video) {
                                  ? "-vf 'split[a][b];[a]palettegen[p];[b][p]paletteuse'"
                                  : "-c:v libx264 -pix_fmt yuv420p -vf 'pad=ceil(iw/2)*2:ceil(ih/2)*2'";
   const std::string cmd = "ffmpeg -loglevel error -y -framerate 24 -i " +
-                          shellQuote((fs::path(dir) / "frame_%04d.png").string()) + " " + filter + " " +
-                          shellQuote(temp);
+                          shellQuote((fs::path(dir) / "frame_%04d.png").string()) + " -frames:v " +
+                          std::to_string(frames) + " " + filter + " " + shellQuote(temp);
   std::error_code ec;
   if (std::system(cmd.c_str()) != 0) {
     fs::remove(temp, ec);
@@ -223,7 +224,7 @@ void runImageMorph(const MorphOptions& opt) {
     progress.step(i + 1);
   }
   progress.finish();
-  if (!opt.video.empty()) encodeVideo(opt.output, opt.video);
+  if (!opt.video.empty()) encodeVideo(opt.output, opt.video, opt.frames);
   if (!opt.quiet)
     std::printf("wrote %d frames (%dx%d) to %s%s\n", opt.frames, morph.width(), morph.height(), opt.output.c_str(),
                 opt.video.empty() ? "" : (" and " + opt.video).c_str());
@@ -295,7 +296,7 @@ void runDrawings(const MorphOptions& opt) {
     progress.step(i + 1);
   }
   progress.finish();
-  if (!opt.video.empty()) encodeVideo(opt.output, opt.video);
+  if (!opt.video.empty()) encodeVideo(opt.output, opt.video, opt.frames);
   if (!opt.quiet)
     std::printf("wrote %d %s frames (%dx%d) to %s%s\n", opt.frames, png ? "PNG" : "SVG", file.width, file.height,
                 opt.output.c_str(), opt.video.empty() ? "" : (" and " + opt.video).c_str());

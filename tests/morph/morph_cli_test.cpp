@@ -270,6 +270,24 @@ TEST_F(MorphCli, BadUsageIsOneLineAndExitTwo) {
   EXPECT_FALSE(fs::exists(file("x.png")));
 }
 
+// A stand-in ffmpeg that writes its arguments into the file it is asked to make: the video is
+// encoded from the frames just written and renamed into place.
+TEST_F(MorphCli, VideoIsEncodedFromTheFramesByFfmpeg) {
+  fs::create_directories(file("bin"));
+  testing::writeText(file("bin/ffmpeg"), "#!/bin/sh\nfor a; do last=$a; done\necho \"$@\" > \"$last\"\n");
+  fs::permissions(file("bin/ffmpeg"), fs::perms::owner_all);
+  ASSERT_EQ(vdg("morph src.png dst.png --grid grid.json --frames 3 -o seq --video seq.gif -q",
+                "PATH=\"" + file("bin") + ":$PATH\""),
+            0)
+      << err_;
+  const std::string args = slurp(file("seq.gif"));
+  EXPECT_EQ(args.rfind("-loglevel error -y -framerate 24 -i seq/frame_%04d.png -frames:v 3 ", 0), 0u) << args;
+  EXPECT_NE(args.find("palettegen"), std::string::npos) << args;
+  EXPECT_TRUE(fs::exists(file("seq/frame_0002.png")));
+  for (const auto& e : fs::directory_iterator(dir_.path()))
+    EXPECT_NE(e.path().filename().string().rfind(".vdg-", 0), 0u) << "a temporary file was left: " << e.path();
+}
+
 TEST_F(MorphCli, VideoWithoutFfmpegIsOneLine) {
   expectRefused(
       "morph src.png dst.png --grid grid.json --frames 3 -o seq --video seq.mp4", 1,
