@@ -248,5 +248,27 @@ TEST(KeyDrawingsFile, RefusesBadKeysNamingFileAndKey) {
             "keys.json: 'keys'[0]: missing key 'time'");
 }
 
+// The example's files (examples/morph2d) are valid, and the grids cover the 200 x 200 faces: their
+// outer rows and columns lie on the image border.
+TEST(MorphFilesExample, Morph2dFilesReadAndCoverTheImages) {
+  const std::string dir = std::string(VDG_SOURCE_DIR) + "/examples/morph2d/";
+  const MorphGridFile grid = readMorphGrid(dir + "grid.json");
+  EXPECT_FALSE(grid.keyed);
+  for (const morph::WarpGrid& g : {grid.src[0].grid, grid.dst[0].grid}) {
+    for (int c = 0; c < g.cols; ++c) {
+      EXPECT_EQ(g.at(0, c).y(), 0.0);
+      EXPECT_EQ(g.at(g.rows - 1, c).y(), 200.0);
+    }
+    for (int r = 0; r < g.rows; ++r) {
+      EXPECT_EQ(g.at(r, 0).x(), 0.0);
+      EXPECT_EQ(g.at(r, g.cols - 1).x(), 200.0);
+    }
+  }
+  EXPECT_EQ(readMorphLines(dir + "lines.json").src.size(), 7u);
+  const KeyDrawingsFile drawings = readKeyDrawings(dir + "drawings.json");
+  EXPECT_EQ(drawings.keys.size(), 3u);
+  EXPECT_EQ(drawings.curve, morph::InbetweenCurve::kCatmullRom);
+}
+
 }  // namespace
 }  // namespace vdg
