@@ -1,6 +1,349 @@
-// vdg morph: placeholder until its branch lands.
+// vdg morph SRC.png DST.png (--grid FILE | --lines FILE) (--t T -o OUT.png | --frames N -o DIR) [--warp]
+// vdg morph --drawings KEYS.json --frames N -o DIR [--format svg|png]
+//
+// 2D metamorphosis (Parent 4.10): the two-pass mesh warp over the user's curvilinear grids, or the
+// feature-based morph of Beier and Neely over pairs of feature lines; both warp the source and the
+// destination onto the features interpolated with t and cross-dissolve them (--warp: only the
+// source, warped, no dissolve). A key-framed grid file animates the grids over the output frames
+// (Catmull-Rom between keys). --drawings inbetweens key drawings (Parent 4.5) into SVG or PNG
+// frames. The mathematics lives in the morph library (vdg/morph/image_morph.h, inbetween.h), the
+// files in vdg/io/morph_files.h; this file reads, checks, calls and writes (PNG atomically).
+// See docs/morph.md and docs/morph-files.md.
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
 #include "cli.h"
+#include "vdg/geom/error.h"
+#include "vdg/io/atomic_file.h"
+#include "vdg/io/image_file.h"
+#include "vdg/io/morph_files.h"
+#include "vdg/morph/image_morph.h"
+#include "vdg/morph/inbetween.h"
+#include "vdg/render/image.h"
 
 namespace vdg::cli {
-void addMorphCommand(CLI::App& app) { (void)app; }
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr int kMaxFrames = 100000;
+constexpr double kStrokeWidth = 2.0;  // pixels, the drawn inbetweens' line width
+
+struct MorphOptions {
+  std::string src, dst, grid, lines, drawings, output, video, format = "svg";
+  double t = 0.0, frame = 0.0;
+  int frames = 0;
+  bool t_given = false, frame_given = false, format_given = false, warp = false, quiet = false;
+};
+
+bool findOnPath(const std::string& program) {
+  const char* path = std::getenv("PATH");
+  if (!path) return false;
+  std::stringstream dirs(path);
+  for (std::string dir; std::getline(dirs, dir, ':');) {
+    std::error_code ec;
+    const fs::path candidate = fs::path(dir.empty() ? "." : dir) / program;
+    if (fs::is_regular_file(candidate, ec) && ::access(candidate.c_str(), X_OK) == 0) return true;
+  }
+  return false;
+}
+
+std::string shellQuote(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+// The usage rules that need several options together (exit status 2).
+void checkUsage(const MorphOptions& opt) {
+  if (opt.format != "svg" && opt.format != "png")
+    throw UsageError("--format: expected 'svg' or 'png', got " + shown(opt.format));
+  const bool drawings = !opt.drawings.empty();
+  if (drawings) {
+    if (!opt.src.empty() || !opt.dst.empty()) throw UsageError("--drawings takes no SRC or DST images");
+    if (!opt.grid.empty() || !opt.lines.empty()) throw UsageError("--drawings takes no --grid or --lines");
+    if (opt.warp) throw UsageError("--warp: only for image morphs (SRC DST with --grid or --lines)");
+    if (opt.t_given || opt.frame_given) throw UsageError("--drawings: give --frames N (frames span the keys' times)");
+    if (opt.frames == 0) throw UsageError("--drawings: give --frames N");
+  } else {
+    if (opt.dst.empty()) throw UsageError("give SRC and DST images (or --drawings KEYS.json)");
+    if (opt.grid.empty() == opt.lines.empty()) throw UsageError("give exactly one of --grid FILE or --lines FILE");
+    if (opt.t_given == (opt.frames > 0))
+      throw UsageError("give exactly one of --t T (one image) or --frames N (a sequence)");
+    if (opt.format_given) throw UsageError("--format: only for --drawings (image morphs write PNG)");
+    if (opt.frame_given && opt.grid.empty()) throw UsageError("--frame: only with a key-framed --grid file");
+    if (opt.frame_given && !opt.t_given)
+      throw UsageError("--frame: only with --t (with --frames N, frame i is output frame i)");
+  }
+  if (!opt.video.empty()) {
+    if (opt.frames == 0) throw UsageError("--video: needs --frames N");
+    if (!hasExtension(opt.video, ".mp4") && !hasExtension(opt.video, ".gif"))
+      throw UsageError("--video: expected a file name ending in .mp4 or .gif, got " + shown(opt.video));
+    if (drawings && opt.format != "png") throw UsageError("--video: needs --format png for --drawings");
+    if (!findOnPath("ffmpeg"))
+      throw Error("--video " + opt.video + ": writing a video needs the 'ffmpeg' program, which is not on PATH; " +
+                  "install it, or leave out --video (the frames go to -o DIR)");
+  }
+}
+
+render::Image toRenderImage(const morph::Image& image) {
+  const TextureImage bytes = morph::imageToRgba8(image);
+  return {bytes.width, bytes.height, bytes.rgba};
+}
+
+// The folder of --frames output; fails with one line when it cannot be made.
+void makeFolder(const std::string& dir) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec || !fs::is_directory(dir)) throw Error("-o " + dir + ": cannot create the folder");
+}
+
+std::string framePath(const std::string& dir, int i, const char* ext) {
+  char name[32];
+  std::snprintf(name, sizeof name, "frame_%04d.%s", i, ext);
+  return (fs::path(dir) / name).string();
+}
+
+// Encodes DIR/frame_0000.png ... (the first `frames`; older frames beyond them are left out) into
+// `video` with ffmpeg: to a temporary name beside the real file, renamed over it only when the
+// encoding succeeded.
+void encodeVideo(const std::string& dir, const std::string& video, int frames) {
+  const std::string real = resolveOutputPath(video);
+  struct stat existing {};
+  if (::stat(real.c_str(), &existing) == 0 && !S_ISREG(existing.st_mode))
+    throw Error("--video " + video + ": is not a regular file; a video is written only to a file");
+  const std::string ext = fs::path(video).extension().string();
+  const std::string temp = temporaryPathFor(real) + ext;
+  const std::string filter = hasExtension(video, ".gif")
+                                 ? "-vf 'split[a][b];[a]palettegen[p];[b][p]paletteuse'"
+                                 : "-c:v libx264 -pix_fmt yuv420p -vf 'pad=ceil(iw/2)*2:ceil(ih/2)*2'";
+  const std::string cmd = "ffmpeg -loglevel error -y -framerate 24 -i " +
+                          shellQuote((fs::path(dir) / "frame_%04d.png").string()) + " -frames:v " +
+                          std::to_string(frames) + " " + filter + " " + shellQuote(temp);
+  std::error_code ec;
+  if (std::system(cmd.c_str()) != 0) {
+    fs::remove(temp, ec);
+    throw Error("--video " + video + ": ffmpeg failed to encode the frames (they are in " + dir + ")");
+  }
+  if (::rename(temp.c_str(), real.c_str()) != 0) {
+    const int err = errno;
+    fs::remove(temp, ec);
+    throw Error("--video " + video + ": cannot write file: " + std::strerror(err));
+  }
+}
+
+// ---- image morphs --------------------------------------------------------------------------------
+
+// What one output image needs: both images and the correspondence.
+class ImageMorph {
+ public:
+  explicit ImageMorph(const MorphOptions& opt) : opt_(opt) {
+    if (!opt.grid.empty())
+      grid_ = readMorphGrid(opt.grid);
+    else
+      lines_ = readMorphLines(opt.lines);
+    if (grid_.keyed != opt.frame_given && opt.t_given && !opt.grid.empty())
+      throw UsageError(grid_.keyed ? "--t with a key-framed grid (" + opt.grid +
+                                         ") needs --frame F, the output frame whose grids to use"
+                                   : "--frame: " + opt.grid + " is a still grid, not a key-framed one");
+    const TextureImage src = readImageFile(opt.src, "image");
+    const TextureImage dst = readImageFile(opt.dst, "image");
+    if (src.width != dst.width || src.height != dst.height)
+      throw Error(opt.dst + ": is " + size(dst) + " pixels and " + opt.src + " is " + size(src) +
+                  "; the two images must have the same size");
+    src_ = morph::imageFromRgba8(src);
+    dst_ = morph::imageFromRgba8(dst);
+  }
+
+  int width() const { return src_.width; }
+  int height() const { return src_.height; }
+
+  // The image at morph time t; `frame` picks a key-framed grid's grids. What the morph library
+  // refuses (a line collapsing at this t) is reported under the features' file.
+  morph::Image at(double t, double frame) const {
+    try {
+      return compute(t, frame);
+    } catch (const Error& e) {
+      throw Error((opt_.grid.empty() ? opt_.lines : opt_.grid) + ": " + e.what());
+    }
+  }
+
+ private:
+  morph::Image compute(double t, double frame) const {
+    if (!opt_.grid.empty()) {
+      const morph::WarpGrid from = grid_.srcAt(frame), to = grid_.dstAt(frame);
+      if (opt_.warp) return morph::meshWarp(src_, from, morph::interpolateGrids(from, to, t));
+      return morph::meshMorph(src_, dst_, from, to, t);
+    }
+    if (opt_.warp) {
+      std::vector<morph::FeatureLine> to(lines_.src.size());
+      for (std::size_t i = 0; i < to.size(); ++i)
+        to[i] = {(1 - t) * lines_.src[i].p + t * lines_.dst[i].p, (1 - t) * lines_.src[i].q + t * lines_.dst[i].q};
+      return morph::featureWarp(src_, lines_.src, to, lines_.params);
+    }
+    return morph::featureMorph(src_, dst_, lines_.src, lines_.dst, t, lines_.params);
+  }
+
+  static std::string size(const TextureImage& image) {
+    return std::to_string(image.width) + "x" + std::to_string(image.height);
+  }
+
+  const MorphOptions& opt_;
+  MorphGridFile grid_;
+  MorphLinesFile lines_;
+  morph::Image src_, dst_;
+};
+
+void runImageMorph(const MorphOptions& opt) {
+  const ImageMorph morph(opt);
+  if (opt.t_given) {
+    const morph::Image image = morph.at(opt.t, opt.frame);
+    render::writePng(opt.output, toRenderImage(image));
+    if (!opt.quiet)
+      std::printf("wrote %s (%dx%d, t = %g%s)\n", opt.output.c_str(), image.width, image.height, opt.t,
+                  opt.warp ? ", source warped only" : "");
+    return;
+  }
+  makeFolder(opt.output);
+  Progress progress("morph", opt.frames, opt.quiet);
+  for (int i = 0; i < opt.frames; ++i) {
+    const double t = static_cast<double>(i) / (opt.frames - 1);
+    render::writePng(framePath(opt.output, i, "png"), toRenderImage(morph.at(t, i)));
+    progress.step(i + 1);
+  }
+  progress.finish();
+  if (!opt.video.empty()) encodeVideo(opt.output, opt.video, opt.frames);
+  if (!opt.quiet)
+    std::printf("wrote %d frames (%dx%d) to %s%s\n", opt.frames, morph.width(), morph.height(), opt.output.c_str(),
+                opt.video.empty() ? "" : (" and " + opt.video).c_str());
+}
+
+// ---- inbetweened drawings ------------------------------------------------------------------------
+
+std::string svgOf(const std::vector<morph::Polyline>& strokes, int width, int height) {
+  std::ostringstream out;
+  out.precision(9);
+  out << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "\" height=\"" << height
+      << "\" viewBox=\"0 0 " << width << " " << height << "\">\n"
+      << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+  for (const morph::Polyline& s : strokes) {
+    out << "<polyline fill=\"none\" stroke=\"black\" stroke-width=\"" << kStrokeWidth
+        << "\" stroke-linejoin=\"round\" stroke-linecap=\"round\" points=\"";
+    for (std::size_t i = 0; i < s.size(); ++i) out << (i ? " " : "") << s[i].x() << "," << s[i].y();
+    out << "\"/>\n";
+  }
+  out << "</svg>\n";
+  return out.str();
+}
+
+// Black strokes kStrokeWidth wide on white, anti-aliased by each pixel centre's distance to the
+// nearest segment (coverage falls from 1 to 0 over one pixel at the stroke's edge).
+render::Image pngOf(const std::vector<morph::Polyline>& strokes, int width, int height) {
+  std::vector<float> cover(static_cast<std::size_t>(width) * height, 0.0f);
+  const double half = kStrokeWidth / 2;
+  for (const morph::Polyline& s : strokes)
+    for (std::size_t i = 0; i + 1 < s.size(); ++i) {
+      const Eigen::Vector2d a = s[i], b = s[i + 1], ab = b - a;
+      const double len2 = ab.squaredNorm();
+      const int x0 = std::max(0, static_cast<int>(std::floor(std::min(a.x(), b.x()) - half - 1)));
+      const int x1 = std::min(width - 1, static_cast<int>(std::ceil(std::max(a.x(), b.x()) + half + 1)));
+      const int y0 = std::max(0, static_cast<int>(std::floor(std::min(a.y(), b.y()) - half - 1)));
+      const int y1 = std::min(height - 1, static_cast<int>(std::ceil(std::max(a.y(), b.y()) + half + 1)));
+      for (int y = y0; y <= y1; ++y)
+        for (int x = x0; x <= x1; ++x) {
+          const Eigen::Vector2d p(x + 0.5, y + 0.5);
+          const double u = len2 > 0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+          const double d = (p - (a + u * ab)).norm();
+          float& c = cover[static_cast<std::size_t>(y) * width + x];
+          c = std::max(c, static_cast<float>(std::clamp(half + 0.5 - d, 0.0, 1.0)));
+        }
+    }
+  render::Image image{width, height, std::vector<std::uint8_t>(cover.size() * 4)};
+  for (std::size_t i = 0; i < cover.size(); ++i) {
+    const auto v = static_cast<std::uint8_t>(std::lround(255.0 * (1.0 - cover[i])));
+    image.rgba[4 * i] = image.rgba[4 * i + 1] = image.rgba[4 * i + 2] = v;
+    image.rgba[4 * i + 3] = 255;
+  }
+  return image;
+}
+
+void runDrawings(const MorphOptions& opt) {
+  const KeyDrawingsFile file = readKeyDrawings(opt.drawings);
+  const morph::Inbetweener inbetweener(file.keys, file.curve);
+  const double t0 = file.keys.front().time, t1 = file.keys.back().time;
+  makeFolder(opt.output);
+  const bool png = opt.format == "png";
+  Progress progress("inbetween", opt.frames, opt.quiet);
+  for (int i = 0; i < opt.frames; ++i) {
+    const double time = opt.frames == 1 ? t0 : t0 + (t1 - t0) * i / (opt.frames - 1);
+    const std::vector<morph::Polyline> strokes = inbetweener.at(time);
+    if (png)
+      render::writePng(framePath(opt.output, i, "png"), pngOf(strokes, file.width, file.height));
+    else
+      writeFileAtomically(framePath(opt.output, i, "svg"), svgOf(strokes, file.width, file.height));
+    progress.step(i + 1);
+  }
+  progress.finish();
+  if (!opt.video.empty()) encodeVideo(opt.output, opt.video, opt.frames);
+  if (!opt.quiet)
+    std::printf("wrote %d %s frames (%dx%d) to %s%s\n", opt.frames, png ? "PNG" : "SVG", file.width, file.height,
+                opt.output.c_str(), opt.video.empty() ? "" : (" and " + opt.video).c_str());
+}
+
+}  // namespace
+
+void addMorphCommand(CLI::App& app) {
+  auto opt = std::make_shared<MorphOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "morph",
+      "Morph one image into another (two-pass mesh warp over grids, or feature lines), or inbetween key drawings");
+  sub->add_option("SRC", opt->src, "Source image (PNG or JPEG)");
+  sub->add_option("DST", opt->dst, "Destination image, the same size as SRC");
+  sub->add_option("--grid", opt->grid,
+                  "Grid file: the source's and destination's curvilinear grids, still or at key frames "
+                  "(docs/morph-files.md)");
+  sub->add_option("--lines", opt->lines, "Lines file: pairs of feature lines, source and destination (Beier-Neely)");
+  sub->add_option("--t", opt->t, "One image at morph time T in [0, 1] (0: SRC, 1: DST), written to -o OUT.png")
+      ->check(numberIn({0.0, End::kClosed, 1.0, End::kClosed}));
+  sub->add_option("--frames", opt->frames,
+                  "A sequence of N frames at t = i/(N-1), written to -o DIR as frame_0000.png ... (N >= 2; "
+                  "with --drawings N >= 1, spanning the keys' times)")
+      ->check(wholeNumber(1, kMaxFrames));
+  sub->add_option("--frame", opt->frame,
+                  "With --t and a key-framed grid (required then): the output frame whose grids to use")
+      ->check(numberIn({0.0, End::kClosed, kMaxGridFrame, End::kClosed}));
+  sub->add_option("-o,--output", opt->output, "OUT.png with --t; a folder with --frames")->required();
+  sub->add_flag("--warp", opt->warp,
+                "Only warp SRC onto the features interpolated with t (at t = 1 onto DST's); no cross-dissolve");
+  sub->add_option("--drawings", opt->drawings,
+                  "Key-drawings file: inbetween its keys into --frames N drawings instead of morphing images");
+  sub->add_option("--format", opt->format, "--drawings frames as 'svg' (default) or 'png'");
+  sub->add_option("--video", opt->video, "Also encode the PNG frames as OUT.mp4 or OUT.gif (needs ffmpeg)");
+  sub->add_flag("-q,--quiet", opt->quiet, "No progress bar and no summary line");
+  sub->callback([opt, sub] {
+    opt->t_given = sub->count("--t") > 0;
+    opt->frame_given = sub->count("--frame") > 0;
+    opt->format_given = sub->count("--format") > 0;
+    checkUsage(*opt);
+    if (!opt->drawings.empty()) {
+      runDrawings(*opt);
+    } else {
+      if (opt->frames == 1) throw UsageError("--frames: an image morph needs N >= 2 (frame 0 is SRC, frame N-1 DST)");
+      runImageMorph(*opt);
+    }
+  });
+}
+
 }  // namespace vdg::cli

@@ -1,0 +1,25 @@
+#!/bin/sh
+# The 2D morph example (docs/morph.md): a feature-based (Beier-Neely) and a two-pass mesh-warp morph
+# between the two faces of this folder, a warp-only sequence, and the inbetweened key drawings.
+#
+#   examples/morph2d/make.sh [OUT_DIR]       (default out/morph2d; VDG=path/to/vdg to choose the binary)
+#
+# Writes OUT_DIR/lines/, OUT_DIR/grid/, OUT_DIR/warp/ (frame_0000.png ... frame_0008.png, t = i/8)
+# and OUT_DIR/drawings/ (13 PNG frames spanning the keys' times). With ffmpeg on PATH it also
+# writes OUT_DIR/lines.gif and OUT_DIR/grid.gif. face_a.png, face_b.png and drawings.json are made
+# by make_faces.py (python3 make_faces.py rewrites them byte for byte).
+set -eu
+here=$(cd "$(dirname "$0")" && pwd)
+out=${1:-out/morph2d}
+vdg=${VDG:-vdg}
+video_lines="" video_grid=""
+if command -v ffmpeg >/dev/null 2>&1; then
+  video_lines="--video $out/lines.gif" video_grid="--video $out/grid.gif"
+fi
+mkdir -p "$out"
+# shellcheck disable=SC2086 # the --video options split on purpose
+"$vdg" morph "$here/face_a.png" "$here/face_b.png" --lines "$here/lines.json" --frames 9 -o "$out/lines" $video_lines
+# shellcheck disable=SC2086
+"$vdg" morph "$here/face_a.png" "$here/face_b.png" --grid "$here/grid.json" --frames 9 -o "$out/grid" $video_grid
+"$vdg" morph "$here/face_a.png" "$here/face_b.png" --grid "$here/grid.json" --warp --frames 9 -o "$out/warp"
+"$vdg" morph --drawings "$here/drawings.json" --frames 13 --format png -o "$out/drawings"
