@@ -42,6 +42,11 @@ struct NumberRange {
   bool whole = false;
 };
 
+// Whether an executable named `program` is in a folder of $PATH (ffmpeg for --video).
+bool findOnPath(const std::string& program);
+// `s` in single quotes for /bin/sh, with any single quote escaped.
+std::string shellQuote(const std::string& s);
+
 // "a finite number", "a number > 0", "a number in (0, 180)", "a whole number in [1, 64]".
 std::string describeRange(const NumberRange& range);
 // The value of `text` when it is a number inside `range` (the whole text, no spaces), else nullopt.

@@ -48,24 +48,6 @@ struct MorphOptions {
   bool t_given = false, frame_given = false, format_given = false, warp = false, quiet = false;
 };
 
-bool findOnPath(const std::string& program) {
-  const char* path = std::getenv("PATH");
-  if (!path) return false;
-  std::stringstream dirs(path);
-  for (std::string dir; std::getline(dirs, dir, ':');) {
-    std::error_code ec;
-    const fs::path candidate = fs::path(dir.empty() ? "." : dir) / program;
-    if (fs::is_regular_file(candidate, ec) && ::access(candidate.c_str(), X_OK) == 0) return true;
-  }
-  return false;
-}
-
-std::string shellQuote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
 // The usage rules that need several options together (exit status 2).
 void checkUsage(const MorphOptions& opt) {
   if (opt.format != "svg" && opt.format != "png")

@@ -167,24 +167,6 @@ class FrameCameras {
   std::optional<anim::CameraPath> path_;
 };
 
-bool findOnPath(const std::string& program) {
-  const char* path = std::getenv("PATH");
-  if (!path) return false;
-  std::stringstream dirs(path);
-  for (std::string dir; std::getline(dirs, dir, ':');) {
-    std::error_code ec;
-    const fs::path candidate = fs::path(dir.empty() ? "." : dir) / program;
-    if (fs::is_regular_file(candidate, ec) && ::access(candidate.c_str(), X_OK) == 0) return true;
-  }
-  return false;
-}
-
-std::string shellQuote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
 void run(const RenderOptions& opt) {
   // Numeric options were range-checked while parsing (addRenderCommand); what is left here needs
   // several options together, or the OpenGL driver.
