@@ -393,12 +393,12 @@ TriMesh polygonise(const BlobModel& model, const PolygoniseOptions& options, con
     mesh.positions.push_back(p.z());
   }
   const auto pos = [&](unsigned v) { return Eigen::Vector3f(points[v].x(), points[v].y(), points[v].z()); };
-  // OpenVDB winds its polygons clockwise seen from the outside (positive) side; vdg's meshes are
-  // counter-clockwise, so every polygon is reversed.
+  // OpenVDB's polygons wind counter-clockwise seen from the positive side (outside, F < T), as
+  // vdg's meshes do (the tests check the signed volume).
   const auto add = [&](unsigned a, unsigned b, unsigned c) {
     mesh.triangles.push_back(static_cast<std::int32_t>(a));
-    mesh.triangles.push_back(static_cast<std::int32_t>(c));
     mesh.triangles.push_back(static_cast<std::int32_t>(b));
+    mesh.triangles.push_back(static_cast<std::int32_t>(c));
   };
   mesh.triangles.reserve(tris.size() * 3 + quads.size() * 6);
   for (const openvdb::Vec3I& t : tris) add(t[0], t[1], t[2]);
