@@ -46,6 +46,13 @@ struct ImplicitOptions {
   bool frame_given = false, quiet = false;
 };
 
+// "%.6g" of a number, for messages ("0.5", "12").
+std::string g(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", v);
+  return text;
+}
+
 // "frame_0012.obj"
 std::string frameName(int frame) {
   char name[32];
@@ -107,13 +114,13 @@ void runImplicit(const ImplicitOptions& opt) {
   Eigen::AlignedBox3d all;
   morph::BlobModel model = animation.modelAt(frames.front());
   for (double f : frames) {
-    if (!animation.evaluate(f, model)) throw Error(opt.input + ": cannot evaluate frame " + std::to_string(f));
+    if (!animation.evaluate(f, model)) throw Error(opt.input + ": cannot evaluate frame " + g(f));
     all.extend(model.bounds());
   }
   const double h = opt.voxel > 0 ? opt.voxel : file.voxel_size > 0 ? file.voxel_size : morph::defaultVoxelSize(all);
   if (all.isEmpty()) throw Error(opt.input + ": no primitive adds to the field, so there is no surface");
   for (double f : frames) {
-    if (!animation.evaluate(f, model)) throw Error(opt.input + ": cannot evaluate frame " + std::to_string(f));
+    if (!animation.evaluate(f, model)) throw Error(opt.input + ": cannot evaluate frame " + g(f));
     if (!model.bounds().isEmpty())
       morph::checkVoxelBudget(
           model.bounds(), h, kMaxVoxels,
@@ -124,8 +131,8 @@ void runImplicit(const ImplicitOptions& opt) {
     if (!animation.evaluate(frames.front(), model)) throw Error(opt.input + ": cannot evaluate the frame");
     const TriMesh mesh = morph::polygonise(model, {.voxel_size = h, .max_voxels = kMaxVoxels}, opt.input);
     if (mesh.triangles.empty())
-      throw Error(opt.input + ": the field reaches the threshold " + std::to_string(animation.threshold()) +
-                  " nowhere at frame " + std::to_string(frames.front()) + ": no surface");
+      throw Error(opt.input + ": the field reaches the threshold " + g(animation.threshold()) + " nowhere at frame " +
+                  g(frames.front()) + ": no surface");
     writeObj(opt.output, mesh, header(opt, frames.front(), h));
     if (!opt.quiet)
       std::printf("wrote %s: %zu vertices, %zu triangles, %zu component%s (voxel %.6g)\n", opt.output.c_str(),
@@ -149,13 +156,12 @@ void runImplicit(const ImplicitOptions& opt) {
     nlohmann::json list = nlohmann::json::array();
     for (std::size_t i = 0; i < frames.size(); ++i) {
       const int f = static_cast<int>(frames[i]);
-      if (!animation.evaluate(frames[i], model))
-        throw Error(opt.input + ": cannot evaluate frame " + std::to_string(f));
+      if (!animation.evaluate(frames[i], model)) throw Error(opt.input + ": cannot evaluate frame " + g(f));
       const TriMesh mesh = morph::polygonise(model, {.voxel_size = h, .max_voxels = kMaxVoxels},
                                              opt.input + ": frame " + std::to_string(f));
       if (mesh.triangles.empty())
         throw Error(opt.input + ": frame " + std::to_string(f) + ": the field reaches the threshold " +
-                    std::to_string(animation.threshold()) + " nowhere: no surface");
+                    g(animation.threshold()) + " nowhere: no surface");
       drawn.extend(meshBox(mesh));
       staged.emplace_back((dir / frameName(f)).string(), formatObj(mesh, header(opt, frames[i], h)));
       list.push_back({{"frame", f},

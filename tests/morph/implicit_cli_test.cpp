@@ -141,8 +141,7 @@ TEST_F(ImplicitCli, BadInputWritesNothing) {
       dir_ / "weak.json",
       R"({"version": 1, "threshold": 0.5, "primitives": [{"kind": "wyvill", "center": [0, 0, 0], "radius": 1, "strength": 0.3}]})");
   EXPECT_EQ(vdg("implicit weak.json -o a.obj"), 1);
-  EXPECT_EQ(err_,
-            "vdg: error: weak.json: the field reaches the threshold 0.500000 nowhere at frame 0.000000: no surface\n");
+  EXPECT_EQ(err_, "vdg: error: weak.json: the field reaches the threshold 0.5 nowhere at frame 0: no surface\n");
   EXPECT_FALSE(fs::exists(dir_ / "a.obj"));
 }
 
