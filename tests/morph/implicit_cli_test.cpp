@@ -130,7 +130,7 @@ TEST_F(ImplicitCli, BadInputWritesNothing) {
   EXPECT_EQ(vdg("implicit two.json --frames 0-20 --voxel 0.001 -o seq"), 1);
   EXPECT_EQ(err_,
             // Frame 0: blobs of radius 1 at x = -1.5 and 1.5: (5000 + 5) x (2000 + 5)^2 voxels, 8 bytes each.
-            "vdg: error: two.json: frame 0: the grid needs 20120225125 voxels (about 153506 MiB) at voxel size 0.001; "
+            "vdg: error: two.json: frame 0: the grid needs 20120225125 voxels (about 153505 MiB) at voxel size 0.001; "
             "use a --voxel of at least 0.00537\n");
   EXPECT_EQ(listing(), before);
   spit(dir_ / "neg.json",
@@ -208,8 +208,9 @@ TEST(BlobFile, RefusesWithWholeMessages) {
   EXPECT_EQ(refusal(head + R"({"kind": "wyvill", "center": {"keys": [{"time": 0, "value": 1}]}, "radius": 1}]})"),
             "b.json: 'primitives'[0].'center': expected a track of 3 numbers, got a scalar track");
   EXPECT_EQ(refusal(R"({"version": 2, "threshold": 0.5, "primitives": []})"),
-            "b.json: 'version': this vdg reads blob files versions 1 to 1, got 2");
-  EXPECT_EQ(refusal(R"({"threshold": 0.5, "primitives": []})"), "b.json: missing key 'version'");
+            "b.json: 'version': this vdg reads blob files version 1, got 2");
+  EXPECT_EQ(refusal(R"({"threshold": 0.5, "primitives": []})"),
+            "b.json: missing 'version' (this vdg reads blob files version 1)");
   EXPECT_EQ(
       refusal(
           R"({"version": 1, "threshold": 0.5, "frames": [5, 2], "primitives": [{"kind": "wyvill", "center": [0, 0, 0], "radius": 1}]})"),
