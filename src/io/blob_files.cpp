@@ -156,6 +156,6 @@ BlobFile parseBlobFile(const std::string& text, const std::string& where) {
   return blobFileFrom(io::parseJson(text, where), where);
 }
 
-BlobFile readBlobFile(const std::string& path) { return blobFileFrom(io::readJsonFile(path, "blob file"), path); }
+BlobFile readBlobFile(const std::string& path) { return blobFileFrom(io::readJsonFile(path, "blob"), path); }
 
 }  // namespace vdg
