@@ -300,8 +300,19 @@ void checkVoxelBudget(const Eigen::AlignedBox3d& box, double h, std::size_t max_
   const double mib = count * static_cast<double>(kBytesPerVoxel) / (1024.0 * 1024.0);
   std::ostringstream msg;
   msg.precision(6);
-  msg << what << ": the grid needs " << std::llround(std::min(count, 9e18)) << " voxels (about "
-      << std::llround(std::min(mib, 9e18)) << " MiB) at voxel size " << h << "; use a --voxel of at least " << s;
+  // Whole numbers below 1e15 (exact in a double), else 3 significant digits ("8e+18").
+  const auto amount = [](double v) {
+    std::ostringstream t;
+    if (v < 1e15) {
+      t << std::llround(v);
+    } else {
+      t.precision(3);
+      t << v;
+    }
+    return t.str();
+  };
+  msg << what << ": the grid needs " << amount(count) << " voxels (about " << amount(mib) << " MiB) at voxel size " << h
+      << "; use a --voxel of at least " << s;
   throw Error(msg.str());
 }
 
