@@ -52,18 +52,42 @@ class DistanceMorph {
 // Builder: checks both meshes closed, genus 0 and star-shaped about their centres (the bounding-box
 // centre; every ray from it crosses the surface once), and builds the common connectivity (throws
 // vdg::Error naming the mesh and the first face that fails).
+//
+// The checks, in order, each a one-line vdg::Error naming `what_a` / `what_b`:
+//   validateMesh and requireClosed (vdg/morph/mesh_checks.h);
+//   "WHAT: is not a single genus-0 surface (Euler characteristic X, ...)";
+//   "WHAT: is not star-shaped about its centre (x, y, z): triangle F faces the centre or is seen
+//    edge-on from it" (the first triangle whose signed volume with the centre is not positive);
+//   "WHAT: is not star-shaped about its centre (x, y, z): seen from it, its triangles cover the
+//    sphere N times (triangles F and G overlap)".
+// The centre is the bounding-box centre of the vertices the triangles use (each mesh its own).
+//
+// The common connectivity (Kent's overlay): both meshes' vertices are projected onto the unit
+// sphere about their centres; every face of the overlay of the two spherical triangulations is the
+// intersection of one spherical triangle of A with one of B (a convex spherical polygon, fan-
+// triangulated). Its vertices are A's vertices, B's vertices (a B vertex in the same direction as
+// an A vertex is that A vertex) and the crossings of A's edges with B's edges. The combinatorics
+// use exact orientation predicates on the directions (double precision, exact fallback), so
+// coincident vertices, vertices on edges and overlapping edges give a closed manifold mesh with
+// no tolerance; a vertex is placed on A by casting the ray from A's centre onto the triangle (or
+// edge) of A it lies in, on B likewise. Unused vertices of A and B are left out.
 class SphericalMorph {
  public:
-  SphericalMorph(const TriMesh& a, const TriMesh& b, const std::string& what_a = "A",
-                 const std::string& what_b = "B");
+  SphericalMorph(const TriMesh& a, const TriMesh& b, const std::string& what_a = "A", const std::string& what_b = "B");
   // The common connectivity, posed at t (vertex positions (1 - t) pa + t pb). Exact A at t = 0
-  // and B at t = 1 as surfaces (every original vertex of each is a vertex of the common mesh).
+  // and B at t = 1 as surfaces (every original vertex of each is a vertex of the common mesh,
+  // with its position unchanged; every other vertex lies on a triangle or edge of the mesh).
+  // t outside [0, 1] extrapolates. Positions and triangles only (no texture coordinates, normals
+  // or materials). Throws vdg::Error when t is not finite.
   TriMesh at(double t) const;
   // Per-frame, allocation-free: writes vertexCount() * 3 floats. False (nothing written) when
   // `positions` has the wrong size or t is not finite.
   [[nodiscard]] bool evaluate(double t, std::span<float> positions) const;
   std::size_t vertexCount() const { return pos_a_.size() / 3; }
   std::span<const std::int32_t> triangles() const { return triangles_; }
+  // The common vertices placed on A (t = 0) and on B (t = 1): #V x 3 each.
+  std::span<const float> positionsOnA() const { return pos_a_; }
+  std::span<const float> positionsOnB() const { return pos_b_; }
 
  private:
   std::vector<float> pos_a_, pos_b_;  // the common vertices placed on A and on B
@@ -73,7 +97,31 @@ class SphericalMorph {
 // The Minkowski-sum inbetween (1 - t) A + t B, each scaled about its own centre (the bounding-box
 // centre) and the result centred at (1 - t) cA + t cB. A and B closed; t = 0 gives A, t = 1 gives
 // B exactly. Non-convex meshes work (CGAL Nef polyhedra) but are slow. Throws vdg::Error.
+// Contract (checked first, in this order): A closed, B closed (requireClosed, named what_a and
+// what_b), finite coordinates, t finite in [0, 1]; then, for 0 < t < 1, each mesh must enclose a
+// volume, and on the Nef path be a 2-manifold without self-intersections (vdg::Error naming it).
+// The result is a closed triangle mesh wound outward, positions only (no uvs, normals, materials).
 TriMesh minkowskiMorph(const TriMesh& a, const TriMesh& b, double t, const std::string& what_a = "A",
                        const std::string& what_b = "B");
+
+// How minkowskiMorph computes the sum (src/morph/minkowski_morph.cpp explains both paths).
+enum class MinkowskiPath {
+  automatic,    // the convex-hull path when both meshes are convex (isConvexMesh), else the Nef path
+  convex_hull,  // the hull of the pairwise vertex sums; a non-convex mesh is refused (vdg::Error)
+  nef,          // CGAL::minkowski_sum_3 on exact Nef polyhedra, whatever the meshes
+};
+struct MinkowskiOptions {
+  MinkowskiPath path = MinkowskiPath::automatic;
+  // A vertex may stand this far in front of a triangle's plane, as a fraction of the mesh's
+  // bounding-box diagonal, and the mesh still counts as convex (float meshes are rarely exactly so).
+  double convex_tolerance = 1e-6;
+};
+// As above, with the path chosen by `options` (convex_tolerance finite and >= 0, else vdg::Error).
+TriMesh minkowskiMorph(const TriMesh& a, const TriMesh& b, double t, const MinkowskiOptions& options,
+                       const std::string& what_a = "A", const std::string& what_b = "B");
+// True when no vertex of `mesh` stands more than relative_tolerance * (bounding-box diagonal) in
+// front of the plane of any of its non-degenerate triangles, taking the triangles outward by the
+// sign of the enclosed volume. O(V * F). The mesh should be closed (requireClosed).
+bool isConvexMesh(const TriMesh& mesh, double relative_tolerance = 1e-6);
 
 }  // namespace vdg::morph

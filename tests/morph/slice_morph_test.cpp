@@ -1,0 +1,169 @@
+// Chen's slices: the lofted mesh is closed and genus 0 with slices * samples + 2 vertices, lies on
+// A at t = 0 and on B at t = 1, interpolates linearly, and cuts that are not one closed contour are
+// refused with one clear message.
+#include "vdg/morph/slice_morph.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "support/error_of.h"
+#include "support/test_meshes.h"
+#include "vdg/morph/mesh_checks.h"
+
+namespace vdg::morph {
+namespace {
+
+using vdg::testing::closedBox;
+using vdg::testing::errorOf;
+using vdg::testing::torus;
+using vdg::testing::uvSphere;
+
+// A resampled point is computed in double and stored in float: within this of the surface.
+constexpr double kOnSurface = 1e-5;
+
+// The distance from q to the plane of the nearest triangle whose bounding box (grown by kOnSurface)
+// holds q: 0 when q lies on a triangle.
+double offSurface(const std::array<double, 3>& q, const TriMesh& m) {
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t f = 0; f < m.triangleCount(); ++f) {
+    std::array<std::array<double, 3>, 3> p{};
+    for (int c = 0; c < 3; ++c)
+      for (int k = 0; k < 3; ++k)
+        p[c][k] = m.positions[static_cast<std::size_t>(m.triangles[f * 3 + c]) * 3 + static_cast<std::size_t>(k)];
+    bool inside = true;
+    for (int k = 0; k < 3; ++k)
+      inside = inside && q[k] >= std::min({p[0][k], p[1][k], p[2][k]}) - kOnSurface &&
+               q[k] <= std::max({p[0][k], p[1][k], p[2][k]}) + kOnSurface;
+    if (!inside) continue;
+    const std::array<double, 3> e1{p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]};
+    const std::array<double, 3> e2{p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]};
+    std::array<double, 3> n{e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                            e1[0] * e2[1] - e1[1] * e2[0]};
+    const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    if (len == 0) continue;
+    best =
+        std::min(best, std::abs(((q[0] - p[0][0]) * n[0] + (q[1] - p[0][1]) * n[1] + (q[2] - p[0][2]) * n[2]) / len));
+  }
+  return best;
+}
+
+void expectOn(std::span<const float> posed, const TriMesh& original) {
+  for (std::size_t v = 0; v * 3 < posed.size(); ++v)
+    ASSERT_LE(offSurface({posed[v * 3], posed[v * 3 + 1], posed[v * 3 + 2]}, original), kOnSurface) << "vertex " << v;
+}
+
+TEST(SliceMorph, SphereToBoxIsClosedAndOnBothEnds) {
+  const TriMesh a = uvSphere(10, 16);
+  const TriMesh b = closedBox(3, -1, -2, 5, 2, 0);  // elsewhere, another size
+  const SliceMorphOptions options{.axis = 1, .slices = 12, .samples = 20};
+  const SliceMorph morph(a, b, options);
+  EXPECT_EQ(morph.vertexCount(), 12u * 20u + 2u);
+  for (const double t : {0.0, 0.3, 1.0}) {
+    const TriMesh m = morph.at(t);
+    EXPECT_EQ(errorOf([&] { requireClosed(m, "lofted"); }), "");
+    EXPECT_EQ(eulerCharacteristic(m), 2);
+  }
+  expectOn(morph.positionsOnA(), a);
+  expectOn(morph.positionsOnB(), b);
+  // Vertex to vertex, linearly.
+  const TriMesh m = morph.at(0.3);
+  for (std::size_t i = 0; i < m.positions.size(); ++i)
+    ASSERT_NEAR(m.positions[i], 0.7 * morph.positionsOnA()[i] + 0.3 * morph.positionsOnB()[i], 1e-5);
+}
+
+TEST(SliceMorph, EveryAxis) {
+  for (int axis = 0; axis < 3; ++axis) {
+    const SliceMorph morph(closedBox(-1, -2, -3, 1, 2, 3), uvSphere(), {.axis = axis, .slices = 5, .samples = 8});
+    const TriMesh m = morph.at(0.5);
+    EXPECT_EQ(errorOf([&] { requireClosed(m, "lofted"); }), "") << axis;
+    // Outward: the signed volume is positive.
+    double volume = 0;
+    for (std::size_t f = 0; f < m.triangleCount(); ++f) {
+      const float* p = &m.positions[static_cast<std::size_t>(m.triangles[f * 3]) * 3];
+      const float* q = &m.positions[static_cast<std::size_t>(m.triangles[f * 3 + 1]) * 3];
+      const float* r = &m.positions[static_cast<std::size_t>(m.triangles[f * 3 + 2]) * 3];
+      volume += (p[0] * (q[1] * r[2] - q[2] * r[1]) + p[1] * (q[2] * r[0] - q[0] * r[2]) +
+                 p[2] * (q[0] * r[1] - q[1] * r[0])) /
+                6.0;
+    }
+    EXPECT_GT(volume, 0.0) << axis;
+  }
+}
+
+TEST(SliceMorph, ConcentricSpheresMeetHalfway) {
+  // B is A scaled by 2 about the origin: every resampled point of B is twice A's.
+  const TriMesh a = uvSphere(8, 12);
+  TriMesh b = a;
+  for (float& x : b.positions) x *= 2.0f;
+  const SliceMorph morph(a, b);
+  const TriMesh mid = morph.at(0.5);
+  for (std::size_t i = 0; i < mid.positions.size(); ++i)
+    ASSERT_NEAR(mid.positions[i], 1.5 * morph.positionsOnA()[i], 1e-5) << i;
+}
+
+TEST(SliceMorph, RefusesCutsThatAreNotOneContour) {
+  // Cut across its axis, a torus gives rings (two contours).
+  EXPECT_EQ(errorOf([&] { SliceMorph(uvSphere(), torus(), {.axis = 1, .slices = 3, .samples = 8}, "s", "torus.obj"); }),
+            "torus.obj: the cut at y = -0.266667 is 2 contours; the slice morph needs one closed contour per cut");
+  TriMesh open = uvSphere();
+  open.triangles.resize(open.triangles.size() - 3);
+  EXPECT_EQ(errorOf([&] { SliceMorph(open, uvSphere()); }), errorOf([&] { requireClosed(open, "A"); }));
+  EXPECT_EQ(errorOf([&] { SliceMorph(uvSphere(), uvSphere(), {.axis = 3}); }), "slice morph: axis must be 0, 1 or 2");
+  EXPECT_EQ(errorOf([&] { SliceMorph(uvSphere(), uvSphere(), {.slices = 0}); }),
+            "slice morph: slices must be in [1, 100000]");
+  EXPECT_EQ(errorOf([&] { SliceMorph(uvSphere(), uvSphere(), {.samples = 2}); }),
+            "slice morph: samples must be in [3, 100000]");
+}
+
+TEST(SliceMorph, RefusesACutNotStarShapedAboutItsCentroid) {
+  // A thin C-shaped prism (cut across y it is a C whose centroid lies outside it).
+  TriMesh c;
+  const int k = 24;
+  for (int i = 0; i <= k; ++i) {
+    const double a = 0.2 + (2 * M_PI - 0.4) * i / k;
+    for (const double r : {1.0, 0.9})
+      for (const float y : {-1.0f, 1.0f})
+        c.positions.insert(c.positions.end(),
+                           {static_cast<float>(r * std::cos(a)), y, static_cast<float>(-r * std::sin(a))});
+  }
+  auto id = [](int i, int outer, int top) {
+    return static_cast<std::int32_t>(i * 4 + (outer ? 0 : 2) + (top ? 1 : 0));
+  };
+  auto quad = [&](std::int32_t p, std::int32_t q, std::int32_t r, std::int32_t s) {
+    c.triangles.insert(c.triangles.end(), {p, q, r, p, r, s});
+  };
+  for (int i = 0; i < k; ++i) {
+    quad(id(i, 1, 0), id(i + 1, 1, 0), id(i + 1, 1, 1), id(i, 1, 1));  // outer wall
+    quad(id(i + 1, 0, 0), id(i, 0, 0), id(i, 0, 1), id(i + 1, 0, 1));  // inner wall
+    quad(id(i, 1, 1), id(i + 1, 1, 1), id(i + 1, 0, 1), id(i, 0, 1));  // top
+    quad(id(i + 1, 1, 0), id(i, 1, 0), id(i, 0, 0), id(i + 1, 0, 0));  // bottom
+  }
+  quad(id(0, 0, 0), id(0, 1, 0), id(0, 1, 1), id(0, 0, 1));  // the C's two ends
+  quad(id(k, 1, 0), id(k, 0, 0), id(k, 0, 1), id(k, 1, 1));
+  ASSERT_EQ(errorOf([&] { requireClosed(c, "c"); }), "");
+  EXPECT_EQ(errorOf([&] { SliceMorph(c, uvSphere(), {.axis = 1, .slices = 2, .samples = 16}, "c.obj"); }),
+            "c.obj: the cut at y = -0.5 is not star-shaped about its centroid (a ray from it misses the contour)");
+}
+
+TEST(SliceMorph, EvaluateChecksItsContract) {
+  const SliceMorph morph(uvSphere(), closedBox(-1, -1, -1, 1, 1, 1), {.slices = 4, .samples = 6});
+  const std::size_t n = morph.vertexCount() * 3;
+  std::vector<float> buffer(n + 1, 7.0f);
+  const std::span<float> all(buffer);
+  EXPECT_FALSE(morph.evaluate(0.5, all.first(n - 1)));
+  EXPECT_FALSE(morph.evaluate(0.5, all));
+  EXPECT_FALSE(morph.evaluate(std::nan(""), all.first(n)));
+  EXPECT_FALSE(morph.evaluate(std::numeric_limits<double>::infinity(), all.first(n)));
+  EXPECT_TRUE(std::all_of(buffer.begin(), buffer.end(), [](float x) { return x == 7.0f; }));
+  ASSERT_TRUE(morph.evaluate(1.0, all.first(n)));
+  EXPECT_TRUE(std::equal(morph.positionsOnB().begin(), morph.positionsOnB().end(), buffer.begin()));
+  EXPECT_EQ(buffer[n], 7.0f);
+}
+
+}  // namespace
+}  // namespace vdg::morph
