@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -95,6 +96,44 @@ TEST_F(Morph3dCli, ASequenceThatVdgRenderShowsFrameByFrame) {
               0)
         << err_;
     EXPECT_GT(fs::file_size(dir_.file(std::string("png_") + frame + "/frame_0000.png")), 100u);
+  }
+}
+
+TEST_F(Morph3dCli, SphericalSequenceIsOneConnectivityThatVdgRenderPlaysAsAnAnimatedModel) {
+  writeObj(dir_.file("box.obj"), testing::closedBox(-1, -0.6f, -0.8f, 1, 0.6f, 0.8f));
+  ASSERT_EQ(vdg("morph3d small.obj box.obj --method spherical --frames 3 -o sph --quiet"), 0) << err_;
+  EXPECT_EQ(out_ + err_, "");
+  const TriMesh first = readObj(dir_.file("sph/frame_0000.obj")), last = readObj(dir_.file("sph/frame_0002.obj"));
+  EXPECT_EQ(first.triangles, last.triangles);
+  // t = 1 is the box: every vertex on its surface (one face coordinate at +-extent).
+  for (std::size_t v = 0; v < last.vertexCount(); ++v) {
+    const float x = last.positions[v * 3], y = last.positions[v * 3 + 1], z = last.positions[v * 3 + 2];
+    const float face = std::max({std::abs(x) / 1.0f, std::abs(y) / 0.6f, std::abs(z) / 0.8f});
+    ASSERT_NEAR(face, 1.0f, 1e-5f) << "vertex " << v;
+  }
+  ASSERT_TRUE(fs::exists(dir_.file("sph/morph.vdg.json")));
+  ASSERT_EQ(vdg("render sph/morph.vdg.json --camera sph/camera.json --count 3 --size 64x64 -o sph_png --quiet"), 0)
+      << err_;
+  for (const char* png : {"frame_0000.png", "frame_0001.png", "frame_0002.png"})
+    EXPECT_GT(fs::file_size(dir_.file(std::string("sph_png/") + png)), 100u) << png;
+  // A torus is not genus 0.
+  EXPECT_EQ(vdg("morph3d small.obj torus.obj --method spherical --t 0.5 -o x.obj"), 1);
+  EXPECT_EQ(err_.rfind("vdg: error: torus.obj: is not a single genus-0 surface", 0), 0u) << err_;
+}
+
+TEST_F(Morph3dCli, MinkowskiOfTwoBoxesIsTheBoxOfInterpolatedExtents) {
+  writeObj(dir_.file("a.obj"), testing::closedBox(0, 0, 0, 1, 1, 1));
+  writeObj(dir_.file("b.obj"), testing::closedBox(2, 0, 0, 5, 1, 2));
+  ASSERT_EQ(vdg("morph3d a.obj b.obj --method minkowski --t 0.5 -o m.obj"), 0) << err_;
+  EXPECT_EQ(out_.rfind("wrote m.obj (", 0), 0u) << out_;
+  const TriMesh m = readObj(dir_.file("m.obj"));
+  EXPECT_NO_THROW(morph::requireClosed(m, "m.obj"));
+  // Extents (1, 1, 1) and (3, 1, 2) -> (2, 1, 1.5), centred between (0.5, 0.5, 0.5) and (3.5, 0.5, 1).
+  const Bounds box = computeBounds(m.positions);
+  const float expected_min[3] = {1.0f, 0.0f, 0.0f}, expected_max[3] = {3.0f, 1.0f, 1.5f};
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(box.min[k], expected_min[k], 1e-5f) << k;
+    EXPECT_NEAR(box.max[k], expected_max[k], 1e-5f) << k;
   }
 }
 
