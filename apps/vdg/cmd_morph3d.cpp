@@ -39,7 +39,8 @@ constexpr double kCameraAzimuthDeg = 25.0, kCameraElevationDeg = 30.0, kCameraFo
 
 struct Morph3dOptions {
   std::string a, b, output, method = "distance";
-  double t = -1, voxel = 0, max_voxels = 0;
+  double t = -1, voxel = 0;
+  long long max_voxels = 0;
   long frames = 0;
   bool t_given = false, frames_given = false, voxel_given = false, max_voxels_given = false, quiet = false;
 };
@@ -196,7 +197,7 @@ void addMorph3dCommand(CLI::App& app) {
       "spherical: star-shaped genus-0 meshes, vertex to vertex on one connectivity; minkowski: closed meshes, best "
       "convex (slow otherwise). --frames N -o DIR writes DIR/frame_0000.obj ... at t = i/(N-1) and DIR/camera.json "
       "for 'vdg render FRAME.obj --camera DIR/camera.json'; a sequence of one connectivity also gets "
-      "DIR/morph.vdg.json for 'vdg render DIR/morph.vdg.json --camera DIR/camera.json --count N'.");
+      "DIR/morph.vdg.json for 'vdg render DIR/morph.vdg.json --camera DIR/camera.json --count N'.\n");
   sub->add_option("A", opt->a, "Source mesh at t = 0 (.obj, .gltf, .glb; closed)")->required();
   sub->add_option("B", opt->b, "Destination mesh at t = 1 (.obj, .gltf, .glb; closed)")->required();
   sub->add_option("-o,--output", opt->output, "OUT.obj with --t, a folder with --frames")->required();
