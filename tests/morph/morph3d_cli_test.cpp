@@ -1,0 +1,176 @@
+// End-to-end tests of `vdg morph3d` (docs/morph3d.md): run the built binary (VDG_BINARY) on meshes
+// written here, check what it writes, that `vdg render` shows the sequences it writes, and that
+// bad input and bad usage give one line, their exit status, and leave nothing behind.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+#include "support/test_meshes.h"
+#include "vdg/io/camera_json.h"
+#include "vdg/io/obj.h"
+#include "vdg/morph/mesh_checks.h"
+
+namespace vdg {
+namespace {
+namespace fs = std::filesystem;
+
+TriMesh scaled(TriMesh m, double s) {
+  for (float& p : m.positions) p = static_cast<float>(p * s);
+  return m;
+}
+
+class Morph3dCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    writeObj(dir_.file("small.obj"), testing::uvSphere(24, 48));
+    writeObj(dir_.file("large.obj"), scaled(testing::uvSphere(24, 48), 2.0));
+    writeObj(dir_.file("torus.obj"), testing::torus(1.0, 0.4, 48, 24));
+    TriMesh open = testing::uvSphere();
+    open.triangles.erase(open.triangles.begin(), open.triangles.begin() + 3);
+    writeObj(dir_.file("open.obj"), open);
+  }
+
+  // Runs vdg with `args` in the test's folder; the exit status, stdout in out_, stderr in err_.
+  int vdg(const std::string& args) {
+    const std::string cmd =
+        "cd \"" + dir_.path().string() + "\" && \"" + VDG_BINARY + "\" " + args + " > .stdout 2> .stderr";
+    const int status = std::system(cmd.c_str());
+    out_ = testing::readText(dir_.file(".stdout"));
+    err_ = testing::readText(dir_.file(".stderr"));
+    fs::remove(dir_.file(".stdout"));
+    fs::remove(dir_.file(".stderr"));
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  }
+  std::size_t entries() const {
+    std::size_t n = 0;
+    for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir_.path())) ++n;
+    return n;
+  }
+
+  testing::TempDir dir_;
+  std::string out_, err_;
+};
+
+TEST_F(Morph3dCli, OneInbetweenOfConcentricSpheres) {
+  ASSERT_EQ(vdg("morph3d small.obj large.obj --t 0.5 --voxel 0.05 -o half.obj"), 0) << err_;
+  EXPECT_EQ(err_, "");
+  EXPECT_EQ(out_.rfind("wrote half.obj (", 0), 0u) << out_;
+  EXPECT_NE(out_.find("; distance, voxel 0.05)"), std::string::npos) << out_;
+  const TriMesh half = readObj(dir_.file("half.obj"));
+  EXPECT_NO_THROW(morph::requireClosed(half, "half.obj"));
+  double worst = 0;
+  for (std::size_t v = 0; v < half.vertexCount(); ++v) {
+    const double r = std::hypot(half.positions[v * 3], half.positions[v * 3 + 1], half.positions[v * 3 + 2]);
+    worst = std::max(worst, std::abs(r - 1.5));
+  }
+  EXPECT_LE(worst, 0.05 + 0.01);  // one voxel, plus the UV sphere's chords (1 - cos(pi/48) of r = 2)
+  ASSERT_EQ(vdg("morph3d small.obj large.obj --t 0.5 --voxel 0.05 -o quiet.obj --quiet"), 0) << err_;
+  EXPECT_EQ(out_ + err_, "");
+}
+
+TEST_F(Morph3dCli, ASequenceThatVdgRenderShowsFrameByFrame) {
+  ASSERT_EQ(vdg("morph3d small.obj torus.obj --frames 3 -o seq"), 0) << err_;
+  // One progress line per frame on stderr, the summary on stdout.
+  EXPECT_EQ(err_, "vdg morph3d: frame 1/3 (t = 0): seq/frame_0000.obj, " +
+                      std::to_string(readObj(dir_.file("seq/frame_0000.obj")).triangleCount()) +
+                      " triangles\nvdg morph3d: frame 2/3 (t = 0.5): seq/frame_0001.obj, " +
+                      std::to_string(readObj(dir_.file("seq/frame_0001.obj")).triangleCount()) +
+                      " triangles\nvdg morph3d: frame 3/3 (t = 1): seq/frame_0002.obj, " +
+                      std::to_string(readObj(dir_.file("seq/frame_0002.obj")).triangleCount()) + " triangles\n");
+  EXPECT_EQ(out_.rfind("wrote 3 frames to seq (distance, voxel ", 0), 0u) << out_;
+  const TriMesh first = readObj(dir_.file("seq/frame_0000.obj")), last = readObj(dir_.file("seq/frame_0002.obj"));
+  EXPECT_EQ(morph::eulerCharacteristic(first), 2);
+  EXPECT_EQ(morph::eulerCharacteristic(last), 0);
+  // Different connectivity in every frame: no manifest, a camera for every frame.
+  EXPECT_FALSE(fs::exists(dir_.file("seq/morph.vdg.json")));
+  const Camera camera = readCameraFile(dir_.file("seq/camera.json"));
+  EXPECT_GT((camera.eye - camera.target).norm(), 2.0);
+  for (const char* frame : {"frame_0000", "frame_0002"}) {
+    ASSERT_EQ(vdg(std::string("render seq/") + frame + ".obj --camera seq/camera.json --size 64x64 -o png_" + frame +
+                  " --quiet"),
+              0)
+        << err_;
+    EXPECT_GT(fs::file_size(dir_.file(std::string("png_") + frame + "/frame_0000.png")), 100u);
+  }
+}
+
+TEST_F(Morph3dCli, SphericalSequenceIsOneConnectivityThatVdgRenderPlaysAsAnAnimatedModel) {
+  writeObj(dir_.file("box.obj"), testing::closedBox(-1, -0.6f, -0.8f, 1, 0.6f, 0.8f));
+  ASSERT_EQ(vdg("morph3d small.obj box.obj --method spherical --frames 3 -o sph --quiet"), 0) << err_;
+  EXPECT_EQ(out_ + err_, "");
+  const TriMesh first = readObj(dir_.file("sph/frame_0000.obj")), last = readObj(dir_.file("sph/frame_0002.obj"));
+  EXPECT_EQ(first.triangles, last.triangles);
+  // t = 1 is the box: every vertex on its surface (one face coordinate at +-extent).
+  for (std::size_t v = 0; v < last.vertexCount(); ++v) {
+    const float x = last.positions[v * 3], y = last.positions[v * 3 + 1], z = last.positions[v * 3 + 2];
+    const float face = std::max({std::abs(x) / 1.0f, std::abs(y) / 0.6f, std::abs(z) / 0.8f});
+    ASSERT_NEAR(face, 1.0f, 1e-5f) << "vertex " << v;
+  }
+  ASSERT_TRUE(fs::exists(dir_.file("sph/morph.vdg.json")));
+  ASSERT_EQ(vdg("render sph/morph.vdg.json --camera sph/camera.json --count 3 --size 64x64 -o sph_png --quiet"), 0)
+      << err_;
+  for (const char* png : {"frame_0000.png", "frame_0001.png", "frame_0002.png"})
+    EXPECT_GT(fs::file_size(dir_.file(std::string("sph_png/") + png)), 100u) << png;
+  // A torus is not genus 0.
+  EXPECT_EQ(vdg("morph3d small.obj torus.obj --method spherical --t 0.5 -o x.obj"), 1);
+  EXPECT_EQ(err_.rfind("vdg: error: torus.obj: is not a single genus-0 surface", 0), 0u) << err_;
+}
+
+TEST_F(Morph3dCli, MinkowskiOfTwoBoxesIsTheBoxOfInterpolatedExtents) {
+  writeObj(dir_.file("a.obj"), testing::closedBox(0, 0, 0, 1, 1, 1));
+  writeObj(dir_.file("b.obj"), testing::closedBox(2, 0, 0, 5, 1, 2));
+  ASSERT_EQ(vdg("morph3d a.obj b.obj --method minkowski --t 0.5 -o m.obj"), 0) << err_;
+  EXPECT_EQ(out_.rfind("wrote m.obj (", 0), 0u) << out_;
+  const TriMesh m = readObj(dir_.file("m.obj"));
+  EXPECT_NO_THROW(morph::requireClosed(m, "m.obj"));
+  // Extents (1, 1, 1) and (3, 1, 2) -> (2, 1, 1.5), centred between (0.5, 0.5, 0.5) and (3.5, 0.5, 1).
+  const Bounds box = computeBounds(m.positions);
+  const float expected_min[3] = {1.0f, 0.0f, 0.0f}, expected_max[3] = {3.0f, 1.0f, 1.5f};
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(box.min[k], expected_min[k], 1e-5f) << k;
+    EXPECT_NEAR(box.max[k], expected_max[k], 1e-5f) << k;
+  }
+}
+
+TEST_F(Morph3dCli, BadInputIsOneLineExitOneAndLeavesNothing) {
+  const std::size_t before = entries();
+  EXPECT_EQ(vdg("morph3d open.obj large.obj --t 0.5 -o x.obj"), 1);
+  EXPECT_EQ(err_, "vdg: error: open.obj: is not closed: edge (0, 2) borders a hole (one triangle only)\n");
+  EXPECT_EQ(vdg("morph3d small.obj open.obj --frames 4 -o seq"), 1);
+  EXPECT_EQ(err_, "vdg: error: open.obj: is not closed: edge (0, 2) borders a hole (one triangle only)\n");
+  EXPECT_EQ(vdg("morph3d small.obj missing.obj --t 0.5 -o x.obj"), 1);
+  EXPECT_EQ(err_.rfind("vdg: error: missing.obj: ", 0), 0u) << err_;
+  EXPECT_EQ(vdg("morph3d small.obj large.obj --t 0.5 --voxel 0.0001 -o x.obj"), 1);
+  EXPECT_EQ(err_.rfind("vdg: error: small.obj and large.obj: the distance volumes at voxel size 0.0001 need ", 0), 0u)
+      << err_;
+  EXPECT_NE(err_.find("; use a --voxel of at least "), std::string::npos) << err_;
+  EXPECT_EQ(entries(), before);
+}
+
+TEST_F(Morph3dCli, BadUsageIsExitTwo) {
+  const std::size_t before = entries();
+  for (const char* args :
+       {"morph3d small.obj large.obj --t 1.5 -o x.obj", "morph3d small.obj large.obj --t -0.1 -o x.obj",
+        "morph3d small.obj large.obj --t nan -o x.obj", "morph3d small.obj large.obj --t 0.5 --method cubes -o x.obj",
+        "morph3d small.obj large.obj --t 0.5 --frames 3 -o x", "morph3d small.obj large.obj -o x.obj",
+        "morph3d small.obj large.obj --frames 1 -o x", "morph3d small.obj large.obj --t 0.5 -o x.png",
+        "morph3d small.obj large.obj --t 0.5 --voxel 0 -o x.obj",
+        "morph3d small.obj large.obj --t 0.5 --method minkowski --voxel 0.1 -o x.obj"}) {
+    SCOPED_TRACE(args);
+    EXPECT_EQ(vdg(args), 2);
+    EXPECT_EQ(err_.find('\n'), err_.size() - 1) << err_;
+  }
+  EXPECT_EQ(vdg("morph3d small.obj large.obj --t 0.5 --frames 3 -o x"), 2);
+  EXPECT_EQ(err_, "vdg: morph3d: --t and --frames exclude each other: give one (see vdg morph3d --help)\n");
+  EXPECT_EQ(entries(), before);
+  ASSERT_EQ(vdg("morph3d --help"), 0);
+  EXPECT_NE(out_.find("--method"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace vdg
