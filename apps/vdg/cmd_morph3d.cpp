@@ -1,13 +1,13 @@
-// vdg morph3d A B (--t T -o OUT.obj | --frames N -o DIR) [--method distance|spherical|minkowski]
-//                 [--voxel S] [--max-voxels N] [--quiet]
+// vdg morph3d A B (--t T -o OUT.obj | --frames N -o DIR) [--method distance|spherical|minkowski|slices]
+//                 [--voxel S] [--max-voxels N] [--axis x|y|z] [--slices N] [--quiet]
 //
 // 3D shape interpolation (Parent 4.10, "Shape Interpolation, Metamorphosis") from mesh A (t = 0)
-// to mesh B (t = 1) by one of three methods (vdg/morph/shape_morph.h): blended signed distance
+// to mesh B (t = 1) by one of four methods (vdg/morph/shape_morph.h, slice_morph.h): blended signed distance
 // volumes ("Distance Fields", any closed meshes, the topology may change), Kent's spherical
-// projection (star-shaped genus-0 meshes, one common connectivity) or Minkowski sums (closed, best
-// convex). One mesh at --t, or a sequence DIR/frame_0000.obj ... at t = i / (N - 1) with a camera
+// projection (star-shaped genus-0 meshes, one common connectivity), Minkowski sums (closed, best
+// convex) or Chen's slices (every cut one contour, star-shaped about its centre; one connectivity). One mesh at --t, or a sequence DIR/frame_0000.obj ... at t = i / (N - 1) with a camera
 // file DIR/camera.json that frames every frame for `vdg render --camera`, and, when every frame
-// has the same connectivity (the spherical method), a manifest DIR/morph.vdg.json whose animated
+// has the same connectivity (the spherical and slice methods), a manifest DIR/morph.vdg.json whose animated
 // base is the sequence, so `vdg render DIR/morph.vdg.json` plays it. See docs/morph3d.md.
 #include <algorithm>
 #include <cmath>
@@ -25,6 +25,7 @@
 #include "vdg/io/camera_json.h"
 #include "vdg/io/obj.h"
 #include "vdg/morph/shape_morph.h"
+#include "vdg/morph/slice_morph.h"
 
 namespace vdg::cli {
 namespace {
@@ -38,11 +39,13 @@ constexpr long kMaxFrames = 100000;
 constexpr double kCameraAzimuthDeg = 25.0, kCameraElevationDeg = 30.0, kCameraFovDeg = 30.0, kCameraMargin = 1.15;
 
 struct Morph3dOptions {
-  std::string a, b, output, method = "distance";
+  std::string a, b, output, method = "distance", axis = "y";
   double t = -1, voxel = 0;
   long long max_voxels = 0;
   long frames = 0;
+  int slices = 32;
   bool t_given = false, frames_given = false, voxel_given = false, max_voxels_given = false, quiet = false;
+  bool axis_given = false, slices_given = false;
 };
 
 // One method, built once for a sequence (the distance volumes and the common connectivity are
@@ -57,6 +60,11 @@ class Interpolator {
       distance_.emplace(a, b, options, opt.a, opt.b);
     } else if (method_ == "spherical") {
       spherical_.emplace(a, b, opt.a, opt.b);
+    } else if (method_ == "slices") {
+      morph::SliceMorphOptions options;
+      options.axis = opt.axis == "x" ? 0 : opt.axis == "y" ? 1 : 2;
+      options.slices = opt.slices;
+      slices_.emplace(a, b, options, opt.a, opt.b);
     } else {
       what_a_ = opt.a;
       what_b_ = opt.b;
@@ -65,6 +73,7 @@ class Interpolator {
   TriMesh at(double t) const {
     if (distance_) return distance_->at(t);
     if (spherical_) return spherical_->at(t);
+    if (slices_) return slices_->at(t);
     return morph::minkowskiMorph(a_, b_, t, what_a_, what_b_);
   }
   std::string describe() const {
@@ -83,6 +92,7 @@ class Interpolator {
   std::string what_a_, what_b_;
   std::optional<morph::DistanceMorph> distance_;
   std::optional<morph::SphericalMorph> spherical_;
+  std::optional<morph::SliceMorph> slices_;
 };
 
 std::string frameName(long i) {
@@ -171,6 +181,9 @@ void run(const Morph3dOptions& opt) {
   if ((opt.voxel_given || opt.max_voxels_given) && opt.method != "distance")
     throw UsageError(std::string(opt.voxel_given ? "--voxel" : "--max-voxels") + ": only for --method distance, not " +
                      opt.method);
+  if ((opt.axis_given || opt.slices_given) && opt.method != "slices")
+    throw UsageError(std::string(opt.axis_given ? "--axis" : "--slices") + ": only for --method slices, not " +
+                     opt.method);
   if (opt.t_given && !hasExtension(opt.output, ".obj"))
     throw UsageError("-o: with --t, give an .obj file, got " + shown(opt.output));
   const TriMesh a = readMesh(opt.a), b = readMesh(opt.b);
@@ -191,11 +204,12 @@ void run(const Morph3dOptions& opt) {
 void addMorph3dCommand(CLI::App& app) {
   auto opt = std::make_shared<Morph3dOptions>();
   CLI::App* sub = app.add_subcommand(
-      "morph3d", "Interpolate between two closed meshes (distance fields, spherical projection, Minkowski sums)");
+      "morph3d", "Interpolate between two closed meshes (distance fields, spherical projection, Minkowski sums, slices)");
   sub->footer(
       "Methods (docs/morph3d.md): distance: any closed meshes, the topology may change (a sphere becomes a torus); "
       "spherical: star-shaped genus-0 meshes, vertex to vertex on one connectivity; minkowski: closed meshes, best "
-      "convex (slow otherwise). --frames N -o DIR writes DIR/frame_0000.obj ... at t = i/(N-1) and DIR/camera.json "
+      "convex (slow otherwise); slices: Chen's slices along --axis, every cut one contour star-shaped about its "
+      "centre. --frames N -o DIR writes DIR/frame_0000.obj ... at t = i/(N-1) and DIR/camera.json "
       "for 'vdg render FRAME.obj --camera DIR/camera.json'; a sequence of one connectivity also gets "
       "DIR/morph.vdg.json for 'vdg render DIR/morph.vdg.json --camera DIR/camera.json --count N'.\n");
   sub->add_option("A", opt->a, "Source mesh at t = 0 (.obj, .gltf, .glb; closed)")->required();
@@ -207,14 +221,20 @@ void addMorph3dCommand(CLI::App& app) {
   sub->add_option("--frames", opt->frames, "A sequence of N frames, t = i/(N-1)")
       ->check(wholeNumber(2, kMaxFrames))
       ->each([opt](const std::string&) { opt->frames_given = true; });
-  sub->add_option("--method", opt->method, "distance (default), spherical or minkowski")
-      ->check(CLI::IsMember({"distance", "spherical", "minkowski"}));
+  sub->add_option("--method", opt->method, "distance (default), spherical, minkowski or slices")
+      ->check(CLI::IsMember({"distance", "spherical", "minkowski", "slices"}));
   sub->add_option("--voxel", opt->voxel, "Distance method: voxel size in model units (default: diagonal / 96)")
       ->check(positiveNumber())
       ->each([opt](const std::string&) { opt->voxel_given = true; });
   sub->add_option("--max-voxels", opt->max_voxels, "Distance method: refuse volumes of more voxels (default 2^28)")
       ->check(wholeNumber(1000, 1L << 40))
       ->each([opt](const std::string&) { opt->max_voxels_given = true; });
+  sub->add_option("--axis", opt->axis, "Slices method: the axis the cutting planes are across (x, y or z; default y)")
+      ->check(CLI::IsMember({"x", "y", "z"}))
+      ->each([opt](const std::string&) { opt->axis_given = true; });
+  sub->add_option("--slices", opt->slices, "Slices method: how many cutting planes (default 32)")
+      ->check(wholeNumber(1, 4096))
+      ->each([opt](const std::string&) { opt->slices_given = true; });
   sub->add_flag("-q,--quiet", opt->quiet, "Print nothing on success (no progress lines)");
   sub->callback([opt] { run(*opt); });
 }

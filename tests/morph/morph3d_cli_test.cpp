@@ -137,6 +137,23 @@ TEST_F(Morph3dCli, MinkowskiOfTwoBoxesIsTheBoxOfInterpolatedExtents) {
   }
 }
 
+TEST_F(Morph3dCli, SlicesOfConcentricSpheresMeetHalfWayAndKeepOneConnectivity) {
+  ASSERT_EQ(vdg("morph3d small.obj large.obj --method slices --axis y --slices 24 --frames 3 -o sl --quiet"), 0) << err_;
+  const TriMesh first = readObj(dir_.file("sl/frame_0000.obj")), mid = readObj(dir_.file("sl/frame_0001.obj"));
+  EXPECT_EQ(first.triangles, mid.triangles);
+  EXPECT_NO_THROW(morph::requireClosed(mid, "mid"));
+  // Spheres of radius 1 and 2 about the origin: every lofted point at radius 1.5 half way, up to the
+  // chords of the 48-segment input spheres the contours are cut from.
+  constexpr double kChordTolerance = 0.01;
+  for (std::size_t v = 0; v < mid.vertexCount(); ++v) {
+    const double r = std::hypot(mid.positions[v * 3], mid.positions[v * 3 + 1], mid.positions[v * 3 + 2]);
+    ASSERT_NEAR(r, 1.5, 1.5 * kChordTolerance) << "vertex " << v;
+  }
+  EXPECT_TRUE(fs::exists(dir_.file("sl/morph.vdg.json")));
+  EXPECT_EQ(vdg("morph3d small.obj large.obj --t 0.5 --slices 8 -o x.obj"), 2);
+  EXPECT_EQ(err_, "vdg: morph3d: --slices: only for --method slices, not distance (see vdg morph3d --help)\n");
+}
+
 TEST_F(Morph3dCli, BadInputIsOneLineExitOneAndLeavesNothing) {
   const std::size_t before = entries();
   EXPECT_EQ(vdg("morph3d open.obj large.obj --t 0.5 -o x.obj"), 1);
