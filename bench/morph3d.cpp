@@ -17,6 +17,7 @@
 #include <cmath>
 #include <string>
 
+#include "support/test_meshes.h"
 #include "vdg/geom/tri_mesh.h"
 #include "vdg/morph/shape_morph.h"
 
@@ -24,50 +25,8 @@ namespace {
 
 constexpr std::array<int, 4> kVoxelsPerDiagonal = {24, 48, 96, 144};
 
-vdg::TriMesh sphere(int rings, int segments) {
-  vdg::TriMesh m;
-  m.positions.insert(m.positions.end(), {0.0f, 1.0f, 0.0f});
-  for (int r = 1; r < rings; ++r)
-    for (int s = 0; s < segments; ++s) {
-      const double theta = M_PI * r / rings, phi = 2.0 * M_PI * s / segments;
-      m.positions.insert(m.positions.end(),
-                         {static_cast<float>(std::sin(theta) * std::cos(phi)), static_cast<float>(std::cos(theta)),
-                          static_cast<float>(-std::sin(theta) * std::sin(phi))});
-    }
-  m.positions.insert(m.positions.end(), {0.0f, -1.0f, 0.0f});
-  const int south = 1 + (rings - 1) * segments;
-  auto ring = [&](int r, int s) { return 1 + (r - 1) * segments + (s % segments); };
-  for (int s = 0; s < segments; ++s) m.triangles.insert(m.triangles.end(), {0, ring(1, s), ring(1, s + 1)});
-  for (int r = 1; r + 1 < rings; ++r)
-    for (int s = 0; s < segments; ++s) {
-      m.triangles.insert(m.triangles.end(), {ring(r, s), ring(r + 1, s), ring(r + 1, s + 1)});
-      m.triangles.insert(m.triangles.end(), {ring(r, s), ring(r + 1, s + 1), ring(r, s + 1)});
-    }
-  for (int s = 0; s < segments; ++s)
-    m.triangles.insert(m.triangles.end(), {ring(rings - 1, s), south, ring(rings - 1, s + 1)});
-  return m;
-}
-
-vdg::TriMesh torus(double big, double small, int rings, int sides) {
-  vdg::TriMesh m;
-  for (int i = 0; i < rings; ++i)
-    for (int j = 0; j < sides; ++j) {
-      const double u = 2.0 * M_PI * i / rings, v = 2.0 * M_PI * j / sides, d = big + small * std::cos(v);
-      m.positions.insert(m.positions.end(),
-                         {static_cast<float>(d * std::cos(u)), static_cast<float>(small * std::sin(v)),
-                          static_cast<float>(-d * std::sin(u))});
-    }
-  auto at = [&](int i, int j) { return (i % rings) * sides + (j % sides); };
-  for (int i = 0; i < rings; ++i)
-    for (int j = 0; j < sides; ++j) {
-      m.triangles.insert(m.triangles.end(), {at(i, j), at(i + 1, j), at(i + 1, j + 1)});
-      m.triangles.insert(m.triangles.end(), {at(i, j), at(i + 1, j + 1), at(i, j + 1)});
-    }
-  return m;
-}
-
 void BM_DistanceMorphAgainstVoxelCount(benchmark::State& state) {
-  const vdg::TriMesh a = sphere(48, 96), b = torus(1.0, 0.4, 96, 48);
+  const vdg::TriMesh a = vdg::testing::uvSphere(48, 96), b = vdg::testing::torus(1.0, 0.4, 96, 48);
   const double diagonal =
       std::max(vdg::computeBounds(a.positions).diagonal(), vdg::computeBounds(b.positions).diagonal());
   using Clock = std::chrono::steady_clock;
