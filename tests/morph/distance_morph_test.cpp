@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <string>
 
@@ -166,10 +165,8 @@ TEST(DistanceMorph, OpenMeshesAreRefusedByName) {
 TEST(DistanceMorph, TooManyVoxelsAreRefusedBeforeAllocatingAndTheSuggestedVoxelWorks) {
   const TriMesh sphere = testing::uvSphere(), ring = testing::torus();
   // 1e-4 on meshes 2-3 units wide: about 1e13 voxels. Refused from the estimate (an allocation
-  // would take minutes and terabytes), in well under a second.
-  const auto start = std::chrono::steady_clock::now();
+  // would take minutes and terabytes; no time is asserted, since these machines are shared).
   const std::string message = testing::errorOf([&] { DistanceMorph(sphere, ring, {.voxel_size = 1e-4}); });
-  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 2.0);
   EXPECT_EQ(message.rfind("A and B: the distance volumes at voxel size 0.0001 need ", 0), 0u) << message;
   EXPECT_NE(message.find(" MiB), more than the limit of 2.68e+08; use a --voxel of at least "), std::string::npos)
       << message;
