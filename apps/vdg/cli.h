@@ -115,9 +115,9 @@ void addRenderCommand(CLI::App& app);
 void addExportCommand(CLI::App& app);
 void addBakeCommand(CLI::App& app);
 void addRunCommand(CLI::App& app);
-void addMorphCommand(CLI::App& app);    // 2D: image morphs and inbetweened drawings
-void addMorph3dCommand(CLI::App& app);  // 3D shape interpolation
+void addMorphCommand(CLI::App& app);     // 2D: image morphs and inbetweened drawings
+void addMorph3dCommand(CLI::App& app);   // 3D shape interpolation
 void addImplicitCommand(CLI::App& app);  // blobby objects polygonised
-void addStudioCommand(CLI::App& app);  // only in a build with GLFW and Dear ImGui (VDG_WITH_STUDIO)
+void addStudioCommand(CLI::App& app);    // only in a build with GLFW and Dear ImGui (VDG_WITH_STUDIO)
 
 }  // namespace vdg::cli

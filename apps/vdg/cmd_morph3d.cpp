@@ -5,10 +5,11 @@
 // to mesh B (t = 1) by one of four methods (vdg/morph/shape_morph.h, slice_morph.h): blended signed distance
 // volumes ("Distance Fields", any closed meshes, the topology may change), Kent's spherical
 // projection (star-shaped genus-0 meshes, one common connectivity), Minkowski sums (closed, best
-// convex) or Chen's slices (every cut one contour, star-shaped about its centre; one connectivity). One mesh at --t, or a sequence DIR/frame_0000.obj ... at t = i / (N - 1) with a camera
-// file DIR/camera.json that frames every frame for `vdg render --camera`, and, when every frame
-// has the same connectivity (the spherical and slice methods), a manifest DIR/morph.vdg.json whose animated
-// base is the sequence, so `vdg render DIR/morph.vdg.json` plays it. See docs/morph3d.md.
+// convex) or Chen's slices (every cut one contour, star-shaped about its centre; one connectivity). One mesh at --t, or
+// a sequence DIR/frame_0000.obj ... at t = i / (N - 1) with a camera file DIR/camera.json that frames every frame for
+// `vdg render --camera`, and, when every frame has the same connectivity (the spherical and slice methods), a manifest
+// DIR/morph.vdg.json whose animated base is the sequence, so `vdg render DIR/morph.vdg.json` plays it. See
+// docs/morph3d.md.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -204,7 +205,8 @@ void run(const Morph3dOptions& opt) {
 void addMorph3dCommand(CLI::App& app) {
   auto opt = std::make_shared<Morph3dOptions>();
   CLI::App* sub = app.add_subcommand(
-      "morph3d", "Interpolate between two closed meshes (distance fields, spherical projection, Minkowski sums, slices)");
+      "morph3d",
+      "Interpolate between two closed meshes (distance fields, spherical projection, Minkowski sums, slices)");
   sub->footer(
       "Methods (docs/morph3d.md): distance: any closed meshes, the topology may change (a sphere becomes a torus); "
       "spherical: star-shaped genus-0 meshes, vertex to vertex on one connectivity; minkowski: closed meshes, best "

@@ -19,8 +19,7 @@ std::vector<std::pair<std::int32_t, std::int32_t>> directedEdges(const TriMesh& 
   std::vector<std::pair<std::int32_t, std::int32_t>> edges;
   edges.reserve(mesh.triangles.size());
   for (std::size_t f = 0; f < mesh.triangleCount(); ++f)
-    for (int k = 0; k < 3; ++k)
-      edges.emplace_back(mesh.triangles[f * 3 + k], mesh.triangles[f * 3 + (k + 1) % 3]);
+    for (int k = 0; k < 3; ++k) edges.emplace_back(mesh.triangles[f * 3 + k], mesh.triangles[f * 3 + (k + 1) % 3]);
   std::sort(edges.begin(), edges.end());
   return edges;
 }
@@ -44,8 +43,7 @@ void requireClosed(const TriMesh& mesh, const std::string& what) {
     const auto [a, b] = edges[i];
     const std::string edge = "edge (" + std::to_string(a) + ", " + std::to_string(b) + ")";
     if (i + 1 < edges.size() && edges[i + 1] == edges[i])
-      throw Error(what + ": is not closed and consistently oriented: " + edge +
-                  " is used twice in the same direction");
+      throw Error(what + ": is not closed and consistently oriented: " + edge + " is used twice in the same direction");
     const auto twins = std::equal_range(edges.begin(), edges.end(), std::make_pair(b, a));
     if (twins.first == twins.second)
       throw Error(what + ": is not closed: " + edge + " borders a hole (one triangle only)");
