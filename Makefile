@@ -1,19 +1,28 @@
 # The two commands a newcomer needs (see README.md):
-#   make demo   install dependencies, build, run the main job on the shipped example -> out/demo/
-#   make test   install dependencies, build (warnings as errors) and run every test, then the
+#   make demo   install what the demo needs, build the vdg tool, run the main job on the shipped
+#               examples -> out/demo/
+#   make test   install every dependency, build (warnings as errors) and run every test, then the
 #               same tests again under AddressSanitizer + UndefinedBehaviorSanitizer, then a
-#               bounded run of every fuzz target (make fuzz)
-# Other targets: build, bench, fuzz (FUZZ_SECONDS per target, default 40), format, clean.
+#               bounded run of every fuzz target (make fuzz); ends with a table of its stages'
+#               times (also in build/test-stages.txt; CONTRIBUTING.md, "The time budget")
+# Other targets: build, bench, fuzz (FUZZ_SECONDS per target, FUZZ_JOBS at a time), format, clean.
 JOBS ?= 2
 BUILD := build/release
 ASAN_BUILD := build/asan
 FUZZ_BUILD := build/fuzz
-FUZZ_SECONDS ?= 40
+FUZZ_SECONDS ?= 25
+FUZZ_JOBS ?= $(JOBS)
+# make test's tests must not skip: it installs the glTF validator, Slurm + munge and Xvfb.
+REQUIRE := VDG_REQUIRE_GLTF_VALIDATOR=1 VDG_REQUIRE_SLURM=1 VDG_REQUIRE_XVFB=1
 
-.PHONY: deps build demo test test-release test-asan fuzz bench format clean
+.PHONY: deps demo-deps build demo test test-release test-asan fuzz bench format clean \
+        ci-build ci-ctest asan-build asan-ctest fuzz-build fuzz-run
 
 deps:
 	@scripts/install-deps
+
+demo-deps:
+	@scripts/install-deps --demo
 
 $(BUILD)/CMakeCache.txt:
 	cmake --preset release
@@ -21,29 +30,43 @@ $(BUILD)/CMakeCache.txt:
 build: deps $(BUILD)/CMakeCache.txt
 	cmake --build $(BUILD) -j $(JOBS)
 
-demo: build
+# The demo needs the tool alone: no tests, benchmarks or example generators are compiled for it.
+demo: demo-deps $(BUILD)/CMakeCache.txt
+	cmake --build $(BUILD) -j $(JOBS) --target vdg
 	scripts/demo $(BUILD)/bin/vdg out/demo
 
-# make test installs the glTF validator, Slurm + munge and Xvfb (scripts/install-deps), so their
-# tests (tests/tools, tests/farm, tests/studio's window test) must not skip here.
-test-release: deps
+# The stages of make test, each also a target of its own.
+ci-build:
 	cmake --preset ci
 	cmake --build build/ci -j $(JOBS)
-	VDG_REQUIRE_GLTF_VALIDATOR=1 VDG_REQUIRE_SLURM=1 VDG_REQUIRE_XVFB=1 ctest --test-dir build/ci --output-on-failure -j $(JOBS)
-
-test-asan: deps
+ci-ctest:
+	$(REQUIRE) ctest --test-dir build/ci --output-on-failure -j $(JOBS)
+asan-build:
 	cmake --preset asan
 	cmake --build $(ASAN_BUILD) -j $(JOBS)
-	VDG_REQUIRE_GLTF_VALIDATOR=1 VDG_REQUIRE_SLURM=1 VDG_REQUIRE_XVFB=1 ctest --test-dir $(ASAN_BUILD) --output-on-failure -j $(JOBS)
-
-# libFuzzer + ASan + UBSan (clang): each target FUZZ_SECONDS on a copy of fuzz/corpus in build/fuzz;
-# fails on any finding (see CONTRIBUTING.md, "Fuzzing").
-fuzz: deps
+asan-ctest:
+	$(REQUIRE) ctest --test-dir $(ASAN_BUILD) --output-on-failure -j $(JOBS)
+# libFuzzer + ASan + UBSan (clang): every target FUZZ_SECONDS on a copy of fuzz/corpus in
+# build/fuzz, FUZZ_JOBS at a time; fails on any finding (see CONTRIBUTING.md, "Fuzzing").
+fuzz-build:
 	cmake --preset fuzz
 	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target vdg_fuzzers
-	fuzz/run-fuzzers $(FUZZ_BUILD) $(FUZZ_SECONDS)
+fuzz-run:
+	fuzz/run-fuzzers -j $(FUZZ_JOBS) $(FUZZ_BUILD) $(FUZZ_SECONDS)
 
-test: test-release test-asan fuzz
+test-release: deps ci-build ci-ctest
+test-asan: deps asan-build asan-ctest
+fuzz: deps fuzz-build fuzz-run
+
+test:
+	@scripts/run-stages build/test-stages.txt \
+	  install-deps  "scripts/install-deps" \
+	  "build ci"    "$(MAKE) --no-print-directory ci-build" \
+	  "tests ci"    "$(MAKE) --no-print-directory ci-ctest" \
+	  "build asan"  "$(MAKE) --no-print-directory asan-build" \
+	  "tests asan"  "$(MAKE) --no-print-directory asan-ctest" \
+	  "build fuzz"  "$(MAKE) --no-print-directory fuzz-build" \
+	  "run fuzz"    "$(MAKE) --no-print-directory fuzz-run"
 
 bench: build
 	@for b in $(BUILD)/bench/vdg_bench_*; do echo "== $$b"; $$b; done

