@@ -31,6 +31,20 @@ endif()
 run("building the consumer" ${CMAKE_COMMAND} --build ${consumer_build})
 run("running the consumer (CMake package)" ${consumer_build}/vdg_consumer)
 message(STATUS "${run_output}")
+# The model reader alone (vdg::io_model): it runs, and its executable loads none of the 3D morphs'
+# libraries, which the consumer linking every module does load (so the check can see them).
+run("running the model consumer (vdg::io_model alone)" ${consumer_build}/vdg_model_consumer)
+message(STATUS "${run_output}")
+set(morph_libraries "libopenvdb|libgmp|libmpfr|libCGAL")
+run("ldd of the consumer" ldd ${consumer_build}/vdg_consumer)
+if(NOT run_output MATCHES "${morph_libraries}")
+  message(FATAL_ERROR "vdg_install: ldd shows none of the 3D morphs' libraries in vdg_consumer, so it cannot "
+                      "show their absence from vdg_model_consumer:\n${run_output}")
+endif()
+run("ldd of the model consumer" ldd ${consumer_build}/vdg_model_consumer)
+if(run_output MATCHES "${morph_libraries}")
+  message(FATAL_ERROR "vdg_install: vdg_model_consumer (vdg::io_model alone) loads a 3D morph library:\n${run_output}")
+endif()
 
 # 2. The same program through pkg-config alone.
 set(ENV{PKG_CONFIG_PATH} "")
