@@ -14,7 +14,6 @@
 #include "orbit_options.h"
 #include "vdg/geom/error.h"
 #include "vdg/io/gltf_export.h"
-#include "vdg/io/manifest.h"
 #include "vdg/io/model.h"
 #include "vdg/render/renderer.h"
 #include "vdg/viewdep/animated_model.h"

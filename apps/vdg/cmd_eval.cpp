@@ -7,8 +7,6 @@
 
 #include "cli.h"
 #include "vdg/geom/error.h"
-#include "vdg/io/gltf_export.h"
-#include "vdg/io/manifest.h"
 #include "vdg/io/model.h"
 #include "vdg/io/obj.h"
 #include "vdg/viewdep/animated_model.h"

@@ -12,7 +12,6 @@
 #include "cli.h"
 #include "vdg/geom/error.h"
 #include "vdg/io/gltf_export.h"
-#include "vdg/io/manifest.h"
 #include "vdg/io/model.h"
 
 namespace vdg::cli {

@@ -21,11 +21,8 @@
 #include "cli.h"
 #include "vdg/geom/error.h"
 #include "vdg/io/gltf.h"
-#include "vdg/io/gltf_export.h"
-#include "vdg/io/manifest.h"
 #include "vdg/io/mesh.h"
 #include "vdg/io/model.h"
-#include "vdg/io/obj.h"
 #include "vdg/viewdep/animated_model.h"
 #include "vdg/viewdep/model.h"
 
