@@ -15,7 +15,7 @@
 #include "vdg/geom/error.h"
 #include "vdg/io/camera_json.h"
 #include "vdg/io/manifest.h"
-#include "vdg/io/obj.h"
+#include "vdg/io/mesh.h"
 #include "vdg/io/point_pairs.h"
 #include "vdg/io/read_file.h"
 #include "vdg/viewdep/model.h"

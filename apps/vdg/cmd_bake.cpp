@@ -14,7 +14,7 @@
 #include "orbit_options.h"
 #include "vdg/geom/error.h"
 #include "vdg/io/gltf_export.h"
-#include "vdg/io/manifest.h"
+#include "vdg/io/model.h"
 #include "vdg/render/renderer.h"
 #include "vdg/viewdep/animated_model.h"
 
@@ -22,7 +22,7 @@ namespace vdg::cli {
 
 void writeGltfForCli(const std::string& output, const GltfExportInput& input, bool quiet);  // cmd_export.cpp
 void checkGltfOutput(const std::string& output);                                            // cmd_export.cpp
-GltfExportInput exportInputForCli(const RawViewDependentModel& raw);                        // cmd_export.cpp
+GltfExportInput exportInputForCli(const OpenedInput& input);                                // cmd_export.cpp
 
 namespace {
 
@@ -39,27 +39,29 @@ void run(const BakeOptions& opt) {
   checkGltfOutput(opt.output);
   const ImageSize size = parseImageSize(opt.size, 'x', render::kMaxImageSize, "--size");
   const FrameRange range = opt.camera.range();
-  const RawViewDependentModel raw = loadModel(opt.model);
+  const OpenedInput opened = openModel(opt.model);
   const double aspect = static_cast<double>(size.width) / size.height;
   // The whole orbit closes on itself: one more sample, frame 0 again, lets a looping viewer play it
   // without a seam.
   const bool whole_orbit = opt.camera.frames.empty() && opt.camera.orbit > 1;
-  GltfExportInput input = exportInputForCli(raw);
+  GltfExportInput input = exportInputForCli(opened);
   std::vector<Camera> cameras;
-  if (!raw.animated()) {
-    const ViewDependentModel model = ViewDependentModel::build(raw);
+  if (opened.model) {
+    const ViewDependentModel& model = *opened.model;
     // As vdg render: the distance fits the base and every key (ViewDependentModel::extentRadius()).
     const double distance = opt.camera.cameraDistance(model.extentRadius(), aspect);
     for (int f = range.first; f <= range.last; ++f) cameras.push_back(opt.camera.camera(f, model.center(), distance));
-    input.bake = bakeCameraPath(model, cameras, opt.fps, aspect, opt.sharpness, whole_orbit);
+    input.bake = gltfBakedAnimation(bakeCameraPath(model, cameras, opt.fps, aspect, opt.sharpness, whole_orbit), input);
   } else {
     // As vdg render: the camera distance holds every frame of the base and every view's pose on it;
     // output frame f shows animation frame f mod N (loop) or min(f, N - 1).
-    const AnimatedViewDependentModel model = AnimatedViewDependentModel::build(raw);
+    const AnimatedViewDependentModel& model = *opened.animated;
     const double distance = opt.camera.cameraDistance(model.extentRadius(), aspect);
     for (int f = range.first; f <= range.last; ++f) cameras.push_back(opt.camera.camera(f, model.center(), distance));
-    input.bake =
-        bakeAnimatedCameraPath(model, input, cameras, range.first, opt.fps, aspect, opt.sharpness, whole_orbit);
+    const bool frame_targets = input.base_animation->mode == GltfBaseMode::kFrames;
+    input.bake = gltfBakedAnimation(
+        bakeAnimatedCameraPath(model, cameras, range.first, opt.fps, aspect, opt.sharpness, whole_orbit, frame_targets),
+        input);
   }
   input.bake->step = opt.step;
   input.bake->description = "vdg bake: orbit " + std::to_string(opt.camera.orbit) + " frames " +

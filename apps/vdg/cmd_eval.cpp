@@ -7,8 +7,7 @@
 
 #include "cli.h"
 #include "vdg/geom/error.h"
-#include "vdg/io/gltf_export.h"
-#include "vdg/io/manifest.h"
+#include "vdg/io/model.h"
 #include "vdg/io/obj.h"
 #include "vdg/viewdep/animated_model.h"
 #include "view_options.h"
@@ -42,12 +41,12 @@ void addEvalCommand(CLI::App& app) {
   sub->callback([opt] {
     if (!hasExtension(opt->output, ".obj"))
       throw UsageError("-o: expected an .obj file name, got " + shown(opt->output));
-    const RawViewDependentModel raw = loadModel(opt->model);
+    const OpenedInput input = openModel(opt->model);
     TriMesh out;
     std::string header = "vdg eval " + opt->model;
     ViewWeights w;
-    if (raw.animated()) {
-      const AnimatedViewDependentModel model = AnimatedViewDependentModel::build(raw);
+    if (input.animated) {
+      const AnimatedViewDependentModel& model = *input.animated;
       const int n = model.frameCount();
       if (opt->frame < 0)
         throw UsageError("--frame: " + shown(opt->model) + " is animated (" + std::to_string(n) +
@@ -72,7 +71,7 @@ void addEvalCommand(CLI::App& app) {
       if (opt->frame >= 0)
         throw UsageError("--frame: " + shown(opt->model) +
                          " is not animated (no 'base_animation'); --frame applies to animated models only");
-      const ViewDependentModel model = ViewDependentModel::build(raw);
+      const ViewDependentModel& model = *input.model;
       const Eigen::Vector3d view = opt->view.resolve(model);
       out = model.base();
       // resolve() gives a unit view, the sharpness is checked positive and `out` has the base's size.

@@ -12,7 +12,7 @@
 #include "cli.h"
 #include "vdg/geom/error.h"
 #include "vdg/io/gltf_export.h"
-#include "vdg/io/manifest.h"
+#include "vdg/io/model.h"
 
 namespace vdg::cli {
 
@@ -26,12 +26,12 @@ void writeGltfForCli(const std::string& output, const GltfExportInput& input, bo
                 input.targets.size() == 1 ? "" : "s", report.sparse_targets, report.bytes);
 }
 
-GltfExportInput exportInputForCli(const RawViewDependentModel& raw) {
-  if (!raw.animated()) return gltfExportInput(ViewDependentModel::build(raw));
-  const AnimatedViewDependentModel model = AnimatedViewDependentModel::build(raw);
+GltfExportInput exportInputForCli(const OpenedInput& input) {
+  if (input.model) return gltfExportInput(*input.model);
+  const RawViewDependentModel& raw = input.raw;
   std::optional<RawRig> rig;
   if (!raw.base_animation->gltf.empty()) rig = readBaseRig(raw);
-  return gltfExportInput(model, raw, rig ? &*rig : nullptr);
+  return gltfExportInput(*input.animated, raw, rig ? &*rig : nullptr);
 }
 
 void checkGltfOutput(const std::string& output) {
@@ -53,7 +53,7 @@ void addExportCommand(CLI::App& app) {
   sub->add_flag("-q,--quiet", opt->quiet, "Print nothing on success");
   sub->callback([opt] {
     checkGltfOutput(opt->output);
-    writeGltfForCli(opt->output, exportInputForCli(loadModel(opt->model)), opt->quiet);
+    writeGltfForCli(opt->output, exportInputForCli(openModel(opt->model)), opt->quiet);
   });
 }
 

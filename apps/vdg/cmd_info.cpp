@@ -21,9 +21,8 @@
 #include "cli.h"
 #include "vdg/geom/error.h"
 #include "vdg/io/gltf.h"
-#include "vdg/io/gltf_export.h"
-#include "vdg/io/manifest.h"
-#include "vdg/io/obj.h"
+#include "vdg/io/mesh.h"
+#include "vdg/io/model.h"
 #include "vdg/viewdep/animated_model.h"
 #include "vdg/viewdep/model.h"
 
@@ -239,8 +238,8 @@ void printWithSphereFields(const ViewSphere& sphere, const std::vector<std::stri
 // "  (FILE)" after a key read from a mesh file; nothing for a key stored in a glTF model.
 std::string meshNote(const std::string& mesh_path) { return mesh_path.empty() ? "" : "  (" + mesh_path + ")"; }
 
-void describeAnimated(const std::string& path, const RawViewDependentModel& raw, bool json) {
-  const AnimatedViewDependentModel model = AnimatedViewDependentModel::build(raw);
+void describeAnimated(const std::string& path, const RawViewDependentModel& raw,
+                      const AnimatedViewDependentModel& model, bool json) {
   const BaseAnimationSpec& spec = *raw.base_animation;
   const bool gltf = !spec.gltf.empty();
   const ViewSphere& sphere = model.sphere();
@@ -315,14 +314,6 @@ void describeAnimated(const std::string& path, const RawViewDependentModel& raw,
   for (const auto& w : warnings) std::printf("warning: %s\n", w.c_str());
 }
 
-std::string lowerExtension(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return ext;
-}
-
-bool isGltf(const std::string& path) { return lowerExtension(path) == ".gltf" || lowerExtension(path) == ".glb"; }
-
 }  // namespace
 
 void addInfoCommand(CLI::App& app) {
@@ -341,40 +332,43 @@ void addInfoCommand(CLI::App& app) {
       ->required();
   sub->add_flag("--json", opt->json, "Print one JSON object instead of text");
   sub->callback([opt] {
-    if (lowerExtension(opt->model) == ".obj") {
+    if (isObjPath(opt->model)) {
       describeMesh(opt->model, opt->json);
       return;
     }
     // A glTF file vdg exported (mesh.extras.vdg) is described as a model too.
-    if (isGltf(opt->model)) {
-      if (opt->json) throw UsageError("--json: only for models, not for glTF files");
-      std::fputs(describeGltf(opt->model).c_str(), stdout);
-      // The default mesh's surface (a file without a mesh has none to describe).
-      std::optional<TriMesh> mesh;
-      std::vector<std::string> warnings;
-      try {
-        mesh = readMeshWarning(opt->model, warnings);
-      } catch (const Error&) {
-      }
-      if (mesh) {
-        std::printf("default mesh: %zu vertices, %zu triangles\n", mesh->vertexCount(), mesh->triangleCount());
-        printSurface(*mesh);
-      }
+    if (isGltfPath(opt->model)) {
       bool gltf_model = false;
       try {
-        gltf_model = gltfHasModel(opt->model);
+        gltf_model = inputType(opt->model).kind != InputKind::kMesh;
       } catch (const Error&) {
-        // describeGltf read it; a file it describes but that is no model stays a description.
+        // describeGltf reads it below; a file it describes but that is no model stays a description.
       }
-      if (!gltf_model) return;
-      std::printf("\nview-dependent model (mesh.extras.vdg):\n");
+      if (opt->json && !gltf_model) throw UsageError("--json: only for models, not for glTF files");
+      if (!opt->json) {
+        std::fputs(describeGltf(opt->model).c_str(), stdout);
+        // The default mesh's surface (a file without a mesh has none to describe).
+        std::optional<TriMesh> mesh;
+        std::vector<std::string> warnings;
+        try {
+          mesh = readMeshWarning(opt->model, warnings);
+        } catch (const Error&) {
+        }
+        if (mesh) {
+          std::printf("default mesh: %zu vertices, %zu triangles\n", mesh->vertexCount(), mesh->triangleCount());
+          printSurface(*mesh);
+        }
+        if (!gltf_model) return;
+        std::printf("\nview-dependent model (mesh.extras.vdg):\n");
+      }
     }
-    const RawViewDependentModel raw = loadModel(opt->model);
-    if (raw.animated()) {
-      describeAnimated(opt->model, raw, opt->json);
+    const OpenedInput input = openModel(opt->model);
+    const RawViewDependentModel& raw = input.raw;
+    if (input.animated) {
+      describeAnimated(opt->model, raw, *input.animated, opt->json);
       return;
     }
-    const ViewDependentModel model = ViewDependentModel::build(raw);
+    const ViewDependentModel& model = *input.model;
     const ViewSphere& sphere = model.sphere();
     const std::size_t dummies = sphere.points().size() - sphere.keyCount();
     const auto warnings = modelWarnings(model);

@@ -24,6 +24,7 @@
 #include "vdg/geom/error.h"
 #include "vdg/io/atomic_file.h"
 #include "vdg/io/camera_json.h"
+#include "vdg/io/mesh.h"
 #include "vdg/io/obj.h"
 #include "vdg/morph/shape_morph.h"
 #include "vdg/morph/slice_morph.h"

@@ -46,9 +46,8 @@
 #include "vdg/io/anim_json.h"
 #include "vdg/io/atomic_file.h"
 #include "vdg/io/camera_json.h"
-#include "vdg/io/gltf_export.h"
-#include "vdg/io/manifest.h"
-#include "vdg/io/obj.h"
+#include "vdg/io/mesh.h"
+#include "vdg/io/model.h"
 #include "vdg/io/read_file.h"
 #include "vdg/render/model_renderer.h"
 #include "vdg/viewdep/animated_model.h"
@@ -220,14 +219,9 @@ void run(const RenderOptions& opt) {
     cameras.load(opt.camera_file, opt.count);
   }
 
-  // The model: a manifest, or a plain mesh.
-  std::unique_ptr<ViewDependentModel> model;
-  std::unique_ptr<AnimatedViewDependentModel> animated;
+  // The model: a manifest or a glTF file vdg exported (mesh.extras.vdg), or a plain mesh (OBJ, glTF).
   std::unique_ptr<render::ModelRenderer> renderer;
-  // A glTF file is a model when vdg exported it (mesh.extras.vdg), else a plain mesh.
-  const bool gltf = hasExtension(opt.model, ".gltf") || hasExtension(opt.model, ".glb");
-  checkInputFile(opt.model, gltf || hasExtension(opt.model, ".obj") ? "mesh" : "model");
-  const bool plain = hasExtension(opt.model, ".obj") || (gltf && !gltfHasModel(opt.model));
+  checkInputFile(opt.model, isObjPath(opt.model) || isGltfPath(opt.model) ? "mesh" : "model");
   // Material and texture problems (of the mesh, or of a model's base): one "warning: ..." line
   // each, the surface falls back to its base colour (or --color); --strict makes them errors.
   // --no-materials opens no material library or texture.
@@ -236,17 +230,11 @@ void run(const RenderOptions& opt) {
   read.materials = !opt.no_materials;
   read.strict = opt.strict;
   read.warnings = &warnings;
-  TriMesh mesh;
-  if (plain) {
-    mesh = readMesh(opt.model, read);
-    fo.sphere = false;
-  } else {
-    const RawViewDependentModel raw = loadModel(opt.model, read);
-    if (raw.animated())
-      animated = std::make_unique<AnimatedViewDependentModel>(AnimatedViewDependentModel::build(raw));
-    else
-      model = std::make_unique<ViewDependentModel>(ViewDependentModel::build(raw));
-  }
+  const OpenedInput input = openInput(opt.model, read);
+  const ViewDependentModel* model = input.model.get();
+  const AnimatedViewDependentModel* animated = input.animated.get();
+  const TriMesh& mesh = input.mesh;
+  if (!input.isModel()) fo.sphere = false;
   for (const std::string& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   if (opt.hold_frame >= 0 && !animated)
     throw UsageError("--hold-frame: " + opt.model + " is not an animated model (no 'base_animation')");

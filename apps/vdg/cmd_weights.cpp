@@ -13,8 +13,7 @@
 
 #include "cli.h"
 #include "vdg/geom/error.h"
-#include "vdg/io/gltf_export.h"
-#include "vdg/io/manifest.h"
+#include "vdg/io/model.h"
 #include "vdg/viewdep/animated_model.h"
 #include "view_options.h"
 
@@ -82,12 +81,12 @@ void addWeightsCommand(CLI::App& app) {
   opt->view.add(*sub);
   sub->add_flag("--json", opt->json, "Print one JSON object {\"keys\": {name: w, ...}, \"base\": w}");
   sub->callback([opt] {
-    const RawViewDependentModel raw = loadModel(opt->model);
-    if (raw.animated()) {
-      animatedWeights(AnimatedViewDependentModel::build(raw), opt->view, opt->json);
+    const OpenedInput input = openModel(opt->model);
+    if (input.animated) {
+      animatedWeights(*input.animated, opt->view, opt->json);
       return;
     }
-    const ViewDependentModel model = ViewDependentModel::build(raw);
+    const ViewDependentModel& model = *input.model;
     const Eigen::Vector3d view = opt->view.resolve(model);
     ViewWeights w;
     if (!model.weights(view, opt->view.sharpness, w)) refused(view);  // a unit view; sharpness > 0

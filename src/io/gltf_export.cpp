@@ -19,12 +19,12 @@
 
 #include "camera_fields.h"
 #include "json_reader.h"
+#include "model_names.h"
 #include "vdg/geom/error.h"
 #include "vdg/geom/normalize.h"
 #include "vdg/io/atomic_file.h"
 #include "vdg/io/file_transaction.h"
 #include "vdg/io/gltf.h"
-#include "vdg/io/manifest.h"
 #include "vdg/io/read_file.h"
 #include "vdg/version.h"
 
@@ -46,9 +46,6 @@ constexpr std::uint32_t kChunkBin = 0x004E4942;   // "BIN\0"
 // A NORMAL accessor's vectors must be unit length (glTF 2.0 section 3.7.2.1); the validator allows
 // a small float error, this is looser than float rounding and far tighter than a wrong normal.
 constexpr double kUnitNormalTol = 1e-4;
-
-constexpr std::pair<const char*, Uncovered> kUncoveredNames[] = {
-    {"base", Uncovered::Base}, {"cosine", Uncovered::Cosine}, {"cosine2", Uncovered::Cosine2}};
 
 std::size_t pad4(std::size_t n) { return (n + 3) & ~std::size_t{3}; }
 
@@ -300,7 +297,7 @@ OJson vdgExtras(const GltfExportInput& in) {
                {"uncovered", uncoveredName(in.sphere.uncovered)},
                {"base_falloff_deg", in.sphere.base_falloff_deg},
                {"center", vec3Json(in.center)},
-               {"offsets", gltfOffsetModeName(in.offsets)}};
+               {"offsets", offsetSpaceName(in.offsets)}};
   if (in.base_animation) {
     OJson anim = {{"frame_count", in.base_animation->frame_count},
                   {"fps", in.base_animation->fps},
@@ -562,8 +559,6 @@ void appendU32(std::string& out, std::uint32_t x) {
 
 }  // namespace
 
-const char* gltfOffsetModeName(GltfOffsetMode mode) { return mode == GltfOffsetMode::kSkinned ? "skinned" : "world"; }
-
 GltfExportInput gltfExportInput(const ViewDependentModel& model) {
   GltfExportInput in;
   in.base = model.base();
@@ -644,7 +639,7 @@ GltfExportInput gltfExportInput(const AnimatedViewDependentModel& model, const R
   ba.loop = model.loop();
   if (model.offsetSpace() == OffsetSpace::kSkinned) {
     // Skinned offsets: the skin itself, morph targets in the bind pose (exact, see kSkin).
-    in.offsets = GltfOffsetMode::kSkinned;
+    in.offsets = OffsetSpace::kSkinned;
     if (!rig || !rig->skin)
       throw Error(where +
                   ": 'offsets': \"skinned\" is exported only for a skinned glTF base (glTF morphs before it "
@@ -704,142 +699,38 @@ GltfExportInput gltfExportInput(const AnimatedViewDependentModel& model, const R
   return in;
 }
 
-namespace {
-
-// The camera half of a bake, shared by static and animated models: times, the camera node's
-// translations and rotations, clip planes. `fill(s, camera, weights_row)` writes sample s's
-// weights (target_count floats, zeroed) for `camera`; it throws for a camera it cannot weigh.
-template <class Fill>
-GltfBakedAnimation bakeCameras(std::span<const Camera> cameras, double fps, double aspect, bool close_loop,
-                               const Eigen::Vector3d& center, double radius, std::size_t target_count, Fill fill) {
-  if (cameras.empty()) throw Error("bake: no cameras");
-  if (!std::isfinite(fps) || fps <= 0.0) throw Error("bake: the frame rate must be finite and > 0");
-  if (!std::isfinite(aspect) || aspect <= 0.0) throw Error("bake: the aspect ratio must be finite and > 0");
+GltfBakedAnimation gltfBakedAnimation(CameraPathBake samples, const GltfExportInput& input) {
+  const std::size_t targets = totalTargets(input);
+  if (samples.weights.size() != samples.times.size() * targets)
+    throw Error("bake: the samples' weights do not match the export input's " + std::to_string(targets) + " targets");
   GltfBakedAnimation bake;
-  const std::size_t samples = cameras.size() + (close_loop ? 1 : 0);
-  bake.times.resize(samples);
-  bake.weights.assign(samples * target_count, 0.0f);
-  bake.translations.resize(samples * 3);
-  bake.rotations.resize(samples * 4);
-  double near_distance = std::numeric_limits<double>::infinity(), far_distance = 0.0;
-  Eigen::Quaterniond previous = Eigen::Quaterniond::Identity();
-  for (std::size_t s = 0; s < samples; ++s) {
-    const std::size_t i = s % cameras.size();
-    const Camera& camera = cameras[i];
-    const std::string label = "bake: camera " + std::to_string(i);
-    if (camera.isOrtho()) throw Error(label + ": glTF bakes perspective cameras only");
-    if (camera.fov_deg != cameras[0].fov_deg) throw Error(label + ": every camera must have the same field of view");
-    fill(s, camera, bake.weights.data() + s * target_count);
-    const CameraFrame frame = cameraFrame(camera);  // throws for a degenerate camera
-    Eigen::Matrix3d rotation;
-    rotation << frame.right, frame.up, frame.back;
-    Eigen::Quaterniond q(rotation);
-    q.normalize();
-    if (s > 0 && q.dot(previous) < 0.0) q.coeffs() = -q.coeffs();
-    previous = q;
-    for (int c = 0; c < 3; ++c) bake.translations[s * 3 + c] = static_cast<float>(camera.eye[c]);
-    bake.rotations[s * 4 + 0] = static_cast<float>(q.x());
-    bake.rotations[s * 4 + 1] = static_cast<float>(q.y());
-    bake.rotations[s * 4 + 2] = static_cast<float>(q.z());
-    bake.rotations[s * 4 + 3] = static_cast<float>(q.w());
-    bake.times[s] = static_cast<float>(static_cast<double>(s) / fps);
-    const double d = (camera.eye - center).norm();
-    near_distance = std::min(near_distance, d);
-    far_distance = std::max(far_distance, d);
-  }
-  // The clip planes hold the model's bounding sphere from every camera (a camera inside it gets a
-  // near plane at a thousandth of its distance).
-  bake.znear = std::max(near_distance - 1.5 * radius, 1e-3 * near_distance);
-  bake.zfar = far_distance + 1.5 * radius;
-  if (!(bake.znear > 0.0)) bake.znear = 1e-6;
-  if (!(bake.zfar > bake.znear)) bake.zfar = 2.0 * bake.znear;
-  bake.yfov_rad = cameras[0].fov_deg * std::numbers::pi / 180.0;
-  bake.aspect = aspect;
-  return bake;
-}
-
-[[noreturn]] void noView(std::size_t camera) {
-  throw Error("bake: camera " + std::to_string(camera) +
-              ": no view direction (the eye is at the model centre, or the sharpness is not > 0)");
-}
-
-}  // namespace
-
-GltfBakedAnimation bakeCameraPath(const ViewDependentModel& model, std::span<const Camera> cameras, double fps,
-                                  double aspect, double sharpness, bool close_loop) {
-  const std::size_t keys = model.keyCount();
-  // The clip planes hold what the model draws: the base and every key (extentRadius()).
-  return bakeCameras(cameras, fps, aspect, close_loop, model.center(), model.extentRadius(), keys,
-                     [&](std::size_t s, const Camera& camera, float* weights) {
-                       const Eigen::Vector3d view = model.viewFromEye(camera.eye);
-                       ViewWeights w;
-                       if (view.isZero() || !model.weights(view, sharpness, w)) noView(s % cameras.size());
-                       for (int slot = 0; slot < 3; ++slot)
-                         if (w.key[slot] >= 0) weights[static_cast<std::size_t>(w.key[slot])] += w.weight[slot];
-                     });
-}
-
-GltfBakedAnimation bakeAnimatedCameraPath(const AnimatedViewDependentModel& model, const GltfExportInput& input,
-                                          std::span<const Camera> cameras, int first_frame, double fps, double aspect,
-                                          double sharpness, bool close_loop) {
-  if (!input.base_animation || input.base_animation->frame_count != model.frameCount() || input.targets.size() != [&] {
-        std::size_t n = 0;
-        for (std::size_t i = 0; i < model.viewCount(); ++i) n += model.keyFrames(i).size();
-        return n;
-      }())
-    throw Error("bake: the export input does not describe this animated model");
+  static_cast<CameraPathBake&>(bake) = std::move(samples);
+  if (!skinBase(input)) return bake;
   const GltfBaseAnimation& ba = *input.base_animation;
-  const int n = model.frameCount();
-  const auto animationFrame = [&](std::size_t s) {
-    const long f = static_cast<long>(first_frame) + static_cast<long>(s);
-    return model.loop() ? static_cast<int>(f % n) : static_cast<int>(std::min<long>(f, n - 1));
-  };
-  const double radius = model.extentRadius();  // every frame of the base and every view's pose on it
-  const std::size_t target_count = totalTargets(input);
-  std::vector<double> coefficients;
-  GltfBakedAnimation bake =
-      bakeCameras(cameras, fps, aspect, close_loop, model.center(), radius, target_count,
-                  [&](std::size_t s, const Camera& camera, float* weights) {
-                    const std::optional<Eigen::Vector3d> view = normalizedOrNone(camera.eye - model.center());
-                    ViewWeights w;
-                    if (!view || !model.weights(*view, sharpness, w)) noView(s % cameras.size());
-                    const int frame = animationFrame(s);
-                    for (int slot = 0; slot < 3; ++slot) {
-                      if (w.key[slot] < 0) continue;
-                      const auto v = static_cast<std::size_t>(w.key[slot]);
-                      coefficients.assign(model.keyFrames(v).size(), 0.0);
-                      if (!model.timeCoefficients(v, frame, coefficients))
-                        throw Error("bake: time coefficients (internal error)");
-                      for (std::size_t j = 0; j < coefficients.size(); ++j)
-                        weights[model.keyIndex(v, j)] += static_cast<float>(w.weight[slot] * coefficients[j]);
-                    }
-                    if (ba.mode == GltfBaseMode::kFrames && frame > 0)
-                      weights[input.targets.size() + static_cast<std::size_t>(frame) - 1] = 1.0f;
-                  });
-  if (ba.mode == GltfBaseMode::kSkin) {
-    // The skeleton at each sample's animation frame, re-sampled through vdg::Rig (LINEAR or STEP
-    // between samples like the weights; rotations kept in one hemisphere).
-    const Rig rig = Rig::build(*ba.rig);
-    const RigAnimation& anim = ba.rig->animations[static_cast<std::size_t>(ba.rig_animation)];
-    std::vector<double> pose(rig.nodeCount() * 10);
-    for (const RigChannel& ch : anim.channels)
-      if (ch.path != RigPath::kWeights) bake.node_tracks.push_back({ch.node, ch.path, {}});
-    for (std::size_t s = 0; s < bake.times.size(); ++s) {
-      if (!rig.nodePose(ba.rig_animation, animationFrame(s) / ba.fps, pose))
-        throw Error("bake: the base's skeleton could not be posed (internal error)");
-      for (GltfNodeTrack& track : bake.node_tracks) {
-        const double* p = pose.data() + static_cast<std::size_t>(track.node) * 10;
-        const int offset = track.path == RigPath::kTranslation ? 0 : track.path == RigPath::kRotation ? 3 : 7;
-        const int width = track.path == RigPath::kRotation ? 4 : 3;
-        double sign = 1.0;
-        if (track.path == RigPath::kRotation && s > 0) {
-          const float* prev = track.values.data() + (s - 1) * 4;
-          double dot = 0;
-          for (int c = 0; c < 4; ++c) dot += prev[c] * p[3 + c];
-          if (dot < 0) sign = -1.0;
-        }
-        for (int c = 0; c < width; ++c) track.values.push_back(static_cast<float>(sign * p[offset + c]));
+  if (bake.frames.size() != bake.times.size() || !ba.rig)
+    throw Error("bake: the export input does not describe this animated model");
+  // The skeleton at each sample's animation frame, re-sampled through vdg::Rig (LINEAR or STEP
+  // between samples like the weights; rotations kept in one hemisphere).
+  const Rig rig = Rig::build(*ba.rig);
+  const RigAnimation& anim = ba.rig->animations[static_cast<std::size_t>(ba.rig_animation)];
+  std::vector<double> pose(rig.nodeCount() * 10);
+  for (const RigChannel& ch : anim.channels)
+    if (ch.path != RigPath::kWeights) bake.node_tracks.push_back({ch.node, ch.path, {}});
+  for (std::size_t s = 0; s < bake.times.size(); ++s) {
+    if (!rig.nodePose(ba.rig_animation, bake.frames[s] / ba.fps, pose))
+      throw Error("bake: the base's skeleton could not be posed (internal error)");
+    for (GltfNodeTrack& track : bake.node_tracks) {
+      const double* p = pose.data() + static_cast<std::size_t>(track.node) * 10;
+      const int offset = track.path == RigPath::kTranslation ? 0 : track.path == RigPath::kRotation ? 3 : 7;
+      const int width = track.path == RigPath::kRotation ? 4 : 3;
+      double sign = 1.0;
+      if (track.path == RigPath::kRotation && s > 0) {
+        const float* prev = track.values.data() + (s - 1) * 4;
+        double dot = 0;
+        for (int c = 0; c < 4; ++c) dot += prev[c] * p[3 + c];
+        if (dot < 0) sign = -1.0;
       }
+      for (int c = 0; c < width; ++c) track.values.push_back(static_cast<float>(sign * p[offset + c]));
     }
   }
   return bake;
@@ -918,8 +809,6 @@ struct Described {
 
 constexpr std::pair<const char*, GltfBaseMode> kBaseModes[] = {{"skin", GltfBaseMode::kSkin},
                                                                {"frames", GltfBaseMode::kFrames}};
-constexpr std::pair<const char*, OffsetSpace> kOffsetNames[] = {{"world", OffsetSpace::kWorld},
-                                                                {"skinned", OffsetSpace::kSkinned}};
 
 Described describedModel(const io::Json& extras, std::size_t target_count, const std::string& where) {
   const io::Ctx top{where + ": mesh extras", ""};
@@ -936,10 +825,10 @@ Described describedModel(const io::Json& extras, std::size_t target_count, const
   RawViewDependentModel& raw = d.raw;
   raw.source = where;
   raw.sharpness = io::number(io::required(vdg, "sharpness", ctx), ctx.key("sharpness"));
-  raw.sphere.uncovered = io::enumValue(io::required(vdg, "uncovered", ctx), ctx.key("uncovered"), kUncoveredNames);
+  raw.sphere.uncovered = io::enumValue(io::required(vdg, "uncovered", ctx), ctx.key("uncovered"), io::kUncoveredNames);
   raw.sphere.base_falloff_deg = io::number(io::required(vdg, "base_falloff_deg", ctx), ctx.key("base_falloff_deg"));
   raw.center = io::vector3(io::required(vdg, "center", ctx), ctx.key("center"));
-  raw.offsets = io::enumValue(io::required(vdg, "offsets", ctx), ctx.key("offsets"), kOffsetNames);
+  raw.offsets = io::enumValue(io::required(vdg, "offsets", ctx), ctx.key("offsets"), io::kOffsetSpaceNames);
   if (vdg.contains("animation")) {
     const io::Json& anim = vdg.at("animation");
     const io::Ctx ac = ctx.key("animation");
@@ -1110,12 +999,6 @@ RawViewDependentModel loadGltfModel(const std::string& path, const MeshReadOptio
   return raw;
 }
 
-bool isGltfPath(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  return ext == ".gltf" || ext == ".glb";
-}
-
 bool gltfHasModel(const std::string& path) {
   const std::string bytes = readFileLimited(path, "glTF file", kMaxMeshFileBytes);
   const std::string folder = std::filesystem::path(path).parent_path().string();
@@ -1123,10 +1006,6 @@ bool gltfHasModel(const std::string& path) {
       parseGltfRig(bytes, path, folder.empty() ? "." : folder, {}, MeshReadOptions{false, false, nullptr});
   const io::Json extras = meshExtras(bytes, rig, path);
   return extras.is_object() && extras.contains("vdg");
-}
-
-RawViewDependentModel loadModel(const std::string& path, const MeshReadOptions& options) {
-  return isGltfPath(path) ? loadGltfModel(path, options) : loadManifest(path, options);
 }
 
 }  // namespace vdg

@@ -9,11 +9,12 @@
 
 #include "camera_fields.h"
 #include "json_reader.h"
+#include "model_names.h"
 #include "vdg/geom/error.h"
 #include "vdg/io/atomic_file.h"
 #include "vdg/io/gltf.h"
 #include "vdg/io/json_text.h"
-#include "vdg/io/obj.h"
+#include "vdg/io/mesh.h"
 #include "vdg/io/read_file.h"
 
 namespace vdg {
@@ -22,9 +23,6 @@ namespace {
 namespace fs = std::filesystem;
 using io::Ctx;
 using io::Json;
-
-constexpr std::pair<const char*, Uncovered> kUncoveredModes[] = {
-    {"base", Uncovered::Base}, {"cosine", Uncovered::Cosine}, {"cosine2", Uncovered::Cosine2}};
 
 // Key meshes and later frames of a sequence share the base's materials: only the base reads them.
 constexpr MeshReadOptions kGeometryOnly{false, false, nullptr};
@@ -38,9 +36,6 @@ TriMesh readReferencedMesh(const fs::path& folder, const std::string& relative, 
     throw Error(where + ": " + e.what());
   }
 }
-
-constexpr std::pair<const char*, OffsetSpace> kOffsetSpaces[] = {{"world", OffsetSpace::kWorld},
-                                                                 {"skinned", OffsetSpace::kSkinned}};
 
 // The frame numbers an OBJ sequence may use, and the most memory its frames may take together
 // (positions only; a frame of a million vertices may have about 178 frames).
@@ -231,14 +226,14 @@ RawViewDependentModel parseManifest(const std::string& text, const std::string& 
     model.base_animation = parseBaseAnimation(doc.at("base_animation"), top.key("base_animation"));
   }
   if (doc.contains("offsets")) {
-    model.offsets = io::enumValue(doc.at("offsets"), top.key("offsets"), kOffsetSpaces);
+    model.offsets = io::enumValue(doc.at("offsets"), top.key("offsets"), io::kOffsetSpaceNames);
     if (!has_animation && model.offsets == OffsetSpace::kSkinned)
       top.key("offsets").fail("'skinned' needs an animated, skinned base ('base_animation')");
   }
   if (doc.contains("comment")) model.comment = io::string(doc.at("comment"), top.key("comment"));
   if (doc.contains("sharpness")) model.sharpness = io::number(doc.at("sharpness"), top.key("sharpness"));
   if (doc.contains("uncovered"))
-    model.sphere.uncovered = io::enumValue(doc.at("uncovered"), top.key("uncovered"), kUncoveredModes);
+    model.sphere.uncovered = io::enumValue(doc.at("uncovered"), top.key("uncovered"), io::kUncoveredNames);
   if (doc.contains("base_falloff_deg"))
     model.sphere.base_falloff_deg = io::number(doc.at("base_falloff_deg"), top.key("base_falloff_deg"));
   if (doc.contains("center")) model.center = io::vector3(doc.at("center"), top.key("center"));

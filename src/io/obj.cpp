@@ -5,7 +5,6 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
-#include <filesystem>
 #include <limits>
 #include <map>
 #include <set>
@@ -16,7 +15,6 @@
 #include "material_files.h"
 #include "vdg/geom/error.h"
 #include "vdg/io/atomic_file.h"
-#include "vdg/io/gltf.h"
 #include "vdg/io/read_file.h"
 
 namespace vdg {
@@ -614,15 +612,6 @@ std::string formatObj(const TriMesh& mesh, const std::string& header) {
 
 void writeObj(const std::string& path, const TriMesh& mesh, const std::string& header) {
   writeFileAtomically(path, formatObj(mesh, header));
-}
-
-TriMesh readMesh(const std::string& path, const MeshReadOptions& options) {
-  const std::string ext = std::filesystem::path(path).extension().string();
-  std::string lower = ext;
-  for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  if (lower == ".obj") return readObj(path, options);
-  if (lower == ".gltf" || lower == ".glb") return readGltfMesh(path, {}, options);
-  throw Error(path + ": unsupported mesh format '" + ext + "' (expected .obj, .gltf or .glb)");
 }
 
 }  // namespace vdg

@@ -11,9 +11,7 @@
 
 #include "context.h"
 #include "vdg/anim/camera_path.h"
-#include "vdg/io/gltf_export.h"
-#include "vdg/io/manifest.h"
-#include "vdg/io/obj.h"
+#include "vdg/io/model.h"
 
 namespace vdg::script::detail {
 namespace {
@@ -36,13 +34,6 @@ struct Text {
 
 // ---- vdg.load ----
 
-bool endsWith(std::string_view s, std::string_view tail) {
-  if (s.size() < tail.size()) return false;
-  for (std::size_t i = 0; i < tail.size(); ++i)
-    if (std::tolower(static_cast<unsigned char>(s[s.size() - tail.size() + i])) != tail[i]) return false;
-  return true;
-}
-
 // vdg.load(path) -> object: a mesh (.obj, plain glTF), a view-dependent model (manifest, vdg
 // glTF) or an animated model; the same path gives the same object (instancing).
 int luaLoad(lua_State* L) {
@@ -64,26 +55,25 @@ int luaLoad(lua_State* L) {
         read.warnings = &warnings;
         ObjectRef ref;
         ref.path.assign(path.data, path.size);
-        const bool gltf = isGltfPath(full);
-        if (endsWith(full, ".obj") || (gltf && !gltfHasModel(full))) {
-          auto mesh = std::make_shared<TriMesh>(readMesh(full, read));
+        OpenedInput in = openInput(full, read);
+        if (in.kind == InputKind::kMesh) {
+          auto mesh = std::make_shared<TriMesh>(std::move(in.mesh));
           bytes = mesh->positions.size() * 4 + mesh->triangles.size() * 4;
           ref.kind = ObjectKind::kMesh;
           ref.index = static_cast<int>(ctx.scene.meshes.size());
           ctx.scene.meshes.push_back(std::move(mesh));
         } else {
-          const RawViewDependentModel raw = loadModel(full, read);
+          const RawViewDependentModel& raw = in.raw;
           bytes = raw.base.positions.size() * 4 * (raw.keys.size() + raw.base_frames.size() + 2) +
                   raw.base.triangles.size() * 4;
-          if (raw.animated()) {
+          if (in.animated) {
             ref.kind = ObjectKind::kAnimatedModel;
             ref.index = static_cast<int>(ctx.scene.animated_models.size());
-            ctx.scene.animated_models.push_back(
-                std::make_shared<const AnimatedViewDependentModel>(AnimatedViewDependentModel::build(raw)));
+            ctx.scene.animated_models.push_back(std::move(in.animated));
           } else {
             ref.kind = ObjectKind::kModel;
             ref.index = static_cast<int>(ctx.scene.models.size());
-            ctx.scene.models.push_back(std::make_shared<const ViewDependentModel>(ViewDependentModel::build(raw)));
+            ctx.scene.models.push_back(std::move(in.model));
           }
         }
         object = static_cast<int>(ctx.objects.size());

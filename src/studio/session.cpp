@@ -18,6 +18,7 @@
 #include "vdg/io/edit_script.h"
 #include "vdg/io/file_transaction.h"
 #include "vdg/io/manifest.h"
+#include "vdg/io/mesh.h"
 #include "vdg/io/obj.h"
 #include "vdg/io/studio_recovery.h"
 #include "vdg/studio/navigation.h"

@@ -187,6 +187,30 @@ TEST(GltfCli, ExportedGlbIsAModelForEvalInfoAndExport) {
   EXPECT_EQ(plain_info.out.find("view-dependent model"), std::string::npos) << plain_info.out;
 }
 
+// `vdg info --json` on a glTF model vdg exported: the model's description, as for its manifest.
+TEST(GltfCli, InfoJsonDescribesAnExportedModelAsItsManifestDoes) {
+  vdg::testing::TempDir dir;
+  for (const std::string& manifest : {kSpot, kWalk}) {
+    const std::string glb = dir.file("m.glb");
+    ASSERT_EQ(run("export " + manifest + " -q -o " + glb).code, 0);
+    const Result from_manifest = run("info --json " + manifest), from_gltf = run("info --json " + glb);
+    ASSERT_EQ(from_manifest.code, 0) << from_manifest.err;
+    ASSERT_EQ(from_gltf.code, 0) << from_gltf.err;
+    const auto a = nlohmann::json::parse(from_manifest.out), b = nlohmann::json::parse(from_gltf.out);
+    EXPECT_EQ(b.at("model"), glb);
+    for (const char* field : {"vertices", "triangles", "sharpness", "uncovered", "hull_triangles"})
+      EXPECT_EQ(a.at(field), b.at(field)) << manifest << ": " << field;
+    ASSERT_EQ(a.contains("keys"), b.contains("keys")) << manifest;
+    if (a.contains("keys")) {
+      ASSERT_EQ(a.at("keys").size(), b.at("keys").size()) << manifest;
+      for (std::size_t k = 0; k < a.at("keys").size(); ++k)
+        EXPECT_EQ(a.at("keys")[k].at("name"), b.at("keys")[k].at("name")) << manifest << " key " << k;
+    }
+  }
+  // A plain glTF mesh is no model: --json stays a usage error there.
+  EXPECT_EQ(run("info --json examples/walk/walker.glb").code, 2);
+}
+
 TEST(GltfCli, BadUsageAndBadInput) {
   vdg::testing::TempDir dir;
   EXPECT_EQ(run("export " + kSpot + " -o " + dir.file("x.obj")).code, 2);

@@ -31,6 +31,35 @@ endif()
 run("building the consumer" ${CMAKE_COMMAND} --build ${consumer_build})
 run("running the consumer (CMake package)" ${consumer_build}/vdg_consumer)
 message(STATUS "${run_output}")
+# The model reader alone (vdg::io_model): it runs, and its link line names none of the 3D morphs'
+# libraries, which the link line of the consumer of every module does name (so the check can see
+# them). The linker may drop unused shared libraries, so the link line is checked, not ldd.
+run("running the model consumer (vdg::io_model alone)" ${consumer_build}/vdg_model_consumer)
+message(STATUS "${run_output}")
+function(link_line target out)
+  if(EXISTS ${consumer_build}/CMakeFiles/${target}.dir/link.txt)  # Makefile generators
+    file(READ ${consumer_build}/CMakeFiles/${target}.dir/link.txt line)
+  else()  # Ninja: the LINK_LIBRARIES of the target's build statement
+    file(READ ${consumer_build}/build.ninja ninja)
+    string(FIND "${ninja}" "build ${target}:" at)
+    if(at LESS 0)
+      message(FATAL_ERROR "vdg_install: no link step for ${target} in ${consumer_build}/build.ninja")
+    endif()
+    string(SUBSTRING "${ninja}" ${at} -1 ninja)
+    string(REGEX MATCH "\n  LINK_LIBRARIES = [^\n]*" line "${ninja}")
+  endif()
+  set(${out} "${line}" PARENT_SCOPE)
+endfunction()
+set(morph_libraries "openvdb|gmp|mpfr|CGAL|vdg_morph")
+link_line(vdg_consumer all_link)
+if(NOT all_link MATCHES "${morph_libraries}")
+  message(FATAL_ERROR "vdg_install: the consumer of every module links none of the 3D morphs' libraries, so "
+                      "their absence from vdg_model_consumer shows nothing:\n${all_link}")
+endif()
+link_line(vdg_model_consumer model_link)
+if(model_link MATCHES "${morph_libraries}")
+  message(FATAL_ERROR "vdg_install: vdg_model_consumer (vdg::io_model alone) links a 3D morph library:\n${model_link}")
+endif()
 
 # 2. The same program through pkg-config alone.
 set(ENV{PKG_CONFIG_PATH} "")

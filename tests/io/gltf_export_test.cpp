@@ -275,7 +275,7 @@ TEST(GltfExport, BakedWeightsReproduceTheBlendAtEverySample) {
   const auto model = ViewDependentModel::build(sphereModel(Uncovered::Base, 1.5));
   const auto cams = orbit(model, 12);
   GltfExportInput input = gltfExportInput(model);
-  input.bake = bakeCameraPath(model, cams, 24.0, 1.5, 0.0, true);
+  input.bake = gltfBakedAnimation(bakeCameraPath(model, cams, 24.0, 1.5, 0.0, true), input);
   const DecodedGltf g = testing::decodeGlb(gltfToGlb(input, "t.glb"));
   const DecodedModel d = decodeModel(g);
   const auto& anim = g.doc.at("animations").at(0);
@@ -326,7 +326,7 @@ TEST(GltfExport, BakeOptions) {
   const auto model = ViewDependentModel::build(sphereModel());
   const auto cams = orbit(model, 5);
   GltfExportInput input = gltfExportInput(model);
-  input.bake = bakeCameraPath(model, cams, 10.0, 1.0, 7.0, false);
+  input.bake = gltfBakedAnimation(bakeCameraPath(model, cams, 10.0, 1.0, 7.0, false), input);
   input.bake->step = true;
   input.bake->translations.clear();
   const DecodedGltf g = testing::decodeGlb(gltfToGlb(input, "t.glb"));
@@ -352,25 +352,13 @@ TEST(GltfExport, NamesThatAreNotUtf8AreWrittenWithReplacementCharacters) {
   EXPECT_EQ(g.doc.at("meshes").at(0).at("extras").at("targetNames").at(0), "bad\xef\xbf\xbd");
 }
 
-TEST(GltfExport, BadBakeInputsAreRefused) {
+TEST(GltfExport, SamplesThatDoNotMatchTheTargetsAreRefused) {
   const auto model = ViewDependentModel::build(sphereModel());
-  auto cams = orbit(model, 3);
-  EXPECT_EQ(errorOf([&] { bakeCameraPath(model, {}, 24, 1, 0, false); }), "bake: no cameras");
-  EXPECT_EQ(errorOf([&] { bakeCameraPath(model, cams, 0, 1, 0, false); }),
-            "bake: the frame rate must be finite and > 0");
-  EXPECT_EQ(errorOf([&] { bakeCameraPath(model, cams, 24, -1, 0, false); }),
-            "bake: the aspect ratio must be finite and > 0");
-  cams[1].fov_deg = 50;
-  EXPECT_EQ(errorOf([&] { bakeCameraPath(model, cams, 24, 1, 0, false); }),
-            "bake: camera 1: every camera must have the same field of view");
-  cams[1].fov_deg = 30;
-  cams[2].ortho_height = 2;
-  EXPECT_EQ(errorOf([&] { bakeCameraPath(model, cams, 24, 1, 0, false); }),
-            "bake: camera 2: glTF bakes perspective cameras only");
-  cams[2].ortho_height = 0;
-  cams[0].eye = model.center();
-  EXPECT_EQ(errorOf([&] { bakeCameraPath(model, cams, 24, 1, 0, false); }),
-            "bake: camera 0: no view direction (the eye is at the model centre, or the sharpness is not > 0)");
+  GltfExportInput input = gltfExportInput(model);
+  CameraPathBake samples = bakeCameraPath(model, orbit(model, 3), 24, 1, 0, false);
+  samples.weights.pop_back();
+  EXPECT_EQ(errorOf([&] { (void)gltfBakedAnimation(samples, input); }),
+            "bake: the samples' weights do not match the export input's 3 targets");
 }
 
 TEST(GltfExport, BadInputsAreRefused) {
@@ -405,7 +393,7 @@ TEST(GltfExport, BadInputsAreRefused) {
             }),
             "out.glb: base animation: expected frame_count >= 1 and fps > 0");
   const auto cams = orbit(model, 3);
-  const GltfBakedAnimation bake = bakeCameraPath(model, cams, 24, 1, 0, false);
+  const GltfBakedAnimation bake = gltfBakedAnimation(bakeCameraPath(model, cams, 24, 1, 0, false), good);
   EXPECT_EQ(refused([&](auto& in) { in.bake = bake, in.bake->times.clear(); }), "out.glb: bake: no sample times");
   EXPECT_EQ(refused([&](auto& in) { in.bake = bake, in.bake->times[2] = in.bake->times[1]; }),
             "out.glb: bake: times are not strictly increasing at sample 2");

@@ -13,6 +13,7 @@
 #include "vdg/io/gltf.h"
 #include "vdg/io/gltf_export.h"
 #include "vdg/io/manifest.h"
+#include "vdg/io/model.h"
 #include "vdg/viewdep/animated_model.h"
 
 namespace vdg {
@@ -183,7 +184,9 @@ void expectBakeMatches(const std::string& manifest, int first, bool close_loop) 
     c.target = model.center();
     cameras.push_back(c);
   }
-  input.bake = bakeAnimatedCameraPath(model, input, cameras, first, kFps, 1.0, 0.0, close_loop);
+  const bool frame_targets = input.base_animation->mode == GltfBaseMode::kFrames;
+  input.bake = gltfBakedAnimation(
+      bakeAnimatedCameraPath(model, cameras, first, kFps, 1.0, 0.0, close_loop, frame_targets), input);
   writeGltfExport(dir.file("bake.glb"), input);
   const Rig rig = Rig::build(readGltfRig(dir.file("bake.glb")));
   std::vector<float> baked(rig.vertexCount() * 3), expected(baked.size());

@@ -19,6 +19,7 @@
 #include "support/test_meshes.h"
 #include "vdg/anim/rig.h"
 #include "vdg/io/gltf.h"
+#include "vdg/io/mesh.h"
 #include "vdg/io/obj.h"
 
 namespace vdg {

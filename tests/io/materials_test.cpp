@@ -18,6 +18,8 @@
 #include "vdg/io/gltf.h"
 #include "vdg/io/gltf_export.h"
 #include "vdg/io/image_file.h"
+#include "vdg/io/mesh.h"
+#include "vdg/io/model.h"
 #include "vdg/io/obj.h"
 
 namespace vdg {

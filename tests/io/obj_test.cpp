@@ -8,6 +8,7 @@
 #include "support/test_meshes.h"
 #include "vdg/geom/error.h"
 #include "vdg/io/atomic_file.h"
+#include "vdg/io/mesh.h"
 
 namespace vdg {
 namespace {

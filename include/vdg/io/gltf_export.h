@@ -32,6 +32,7 @@
 #include "vdg/geom/tri_mesh.h"
 #include "vdg/io/mesh_read_options.h"
 #include "vdg/viewdep/animated_model.h"
+#include "vdg/viewdep/camera_bake.h"
 #include "vdg/viewdep/model.h"
 #include "vdg/viewdep/view_sphere.h"
 
@@ -49,10 +50,6 @@ struct GltfTarget {
   std::vector<float> deltas;                       // #V x 3: key - base (positions)
   std::vector<float> normal_deltas;                // empty, or #V x 3: key normals - base normals
 };
-
-// How key offsets are carried (manifest "offsets"; only kWorld exists for static models).
-enum class GltfOffsetMode { kWorld, kSkinned };
-const char* gltfOffsetModeName(GltfOffsetMode mode);  // "world", "skinned"
 
 // How an animated base is written (mesh.extras.vdg.animation.base; docs/gltf-export.md):
 //  - kSkin: the base's skin (nodes, joints, inverse bind matrices, JOINTS_0 / WEIGHTS_0) and its
@@ -91,20 +88,12 @@ struct GltfNodeTrack {
   std::vector<float> values;             // times.size() x 3 (x 4 for rotations, unit, one hemisphere)
 };
 
-// A camera path baked into one glTF animation: the morph weights of each sample time (exactly the
-// view-dependent weights of that time's camera) and, optionally, the camera as an animated node.
-struct GltfBakedAnimation {
+// A camera path baked into one glTF animation (the samples of vdg/viewdep/camera_bake.h): the morph
+// weights of each sample time and, when `translations` is non-empty, the camera as an animated
+// node (a perspective camera looking down its node's -Z with +Y up, as glTF cameras do).
+struct GltfBakedAnimation : CameraPathBake {
   std::string name = "view-dependent";
-  bool step = false;           // sampler interpolation: STEP, or LINEAR (the default)
-  std::vector<float> times;    // seconds, strictly increasing, at least one
-  std::vector<float> weights;  // times.size() x #targets (row per time)
-  // The camera node (written when `translations` is non-empty): a perspective camera looking
-  // down its node's -Z with +Y up, as glTF cameras do.
-  std::vector<float> translations;    // empty, or times.size() x 3 (the eye)
-  std::vector<float> rotations;       // times.size() x 4, unit quaternions x y z w
-  double yfov_rad = 0.5;              // in (0, pi)
-  double aspect = 1.0;                // width / height, > 0
-  double znear = 0.01, zfar = 100.0;  // 0 < znear < zfar
+  bool step = false;  // sampler interpolation: STEP, or LINEAR (the default)
   // The base's skeleton, resampled at the bake times (kSkin bases; empty otherwise).
   std::vector<GltfNodeTrack> node_tracks;
   // Free description kept in the animation's extras.vdg (camera options, fps); may be empty.
@@ -120,7 +109,7 @@ struct GltfExportInput {
   double sharpness = 1.0;
   ViewSphereSettings sphere;
   Eigen::Vector3d center = Eigen::Vector3d::Zero();
-  GltfOffsetMode offsets = GltfOffsetMode::kWorld;
+  OffsetSpace offsets = OffsetSpace::kWorld;  // only kWorld for a static model
   std::optional<GltfBaseAnimation> base_animation;
   std::optional<GltfBakedAnimation> bake;
   std::string mesh_name = "vdg-model";
@@ -131,16 +120,6 @@ struct GltfExportInput {
 // per key in key order with deltas keyPositions - base and normal deltas, the model's sharpness,
 // sphere settings and centre. Throws vdg::Error when a key's positions cannot be read.
 GltfExportInput gltfExportInput(const ViewDependentModel& model);
-
-// Bakes a camera path: for each camera (all perspective; sample i at time i / fps, plus, when
-// `close_loop`, one more sample at cameras.size() / fps equal to sample 0, so a looping viewer
-// plays the cycle without a seam), the model's weights for the view from that camera's eye
-// (viewFromEye, `sharpness` <= 0: the model's own), and the camera's translation and rotation.
-// Consecutive rotations are given the same hemisphere (q or -q), so glTF's slerp never turns the
-// long way. `aspect` = width / height. Throws vdg::Error for no cameras, an orthographic camera, a
-// degenerate camera frame, an eye at the model centre, fps not finite or <= 0.
-GltfBakedAnimation bakeCameraPath(const ViewDependentModel& model, std::span<const Camera> cameras, double fps,
-                                  double aspect, double sharpness, bool close_loop);
 
 // The same for an animated model (Rademacher 99, section 4): one target per raw key (so per key
 // view and key frame, in raw key order) holding that key's offsets in offset space, normals for
@@ -158,17 +137,12 @@ GltfExportInput gltfExportInput(const AnimatedViewDependentModel& model, const R
 // that is not a glTF one.
 RawRig readBaseRig(const RawViewDependentModel& raw);
 
-// Bakes a camera path over an animated model: as bakeCameraPath, and output sample s (s = 0 ..
-// cameras.size() - 1, plus the closing sample) shows animation frame F = (first_frame + s) mod N
-// when the model loops, min(first_frame + s, N - 1) when not (what `vdg render` shows at output
-// frame first_frame + s). The weight of the target of (view i, key frame j) is w_i(view of the
-// camera) * c_ij(F) (timeCoefficients), so the morph formula gives exactly base(F) + sum_i w_i
-// o_i(F); a kFrames base also gets weight 1 on base frame F's target, a kSkin base the skeleton's
-// channels sampled at F / fps into node_tracks. `input` is the export input of the model (its
-// target layout and base). Throws as bakeCameraPath.
-GltfBakedAnimation bakeAnimatedCameraPath(const AnimatedViewDependentModel& model, const GltfExportInput& input,
-                                          std::span<const Camera> cameras, int first_frame, double fps, double aspect,
-                                          double sharpness, bool close_loop);
+// The glTF animation of a baked camera path (bakeCameraPath, bakeAnimatedCameraPath with
+// `base_frame_targets` when `input`'s base is written kFrames) over the model `input` describes: the
+// samples as they are and, for a kSkin base, the skeleton's channels sampled at each sample's frame
+// (frames[s] / fps) into node_tracks, rotations kept in one hemisphere. Throws vdg::Error "bake: ..."
+// when the samples' weights do not match input's targets, or a kSkin base's samples carry no frames.
+GltfBakedAnimation gltfBakedAnimation(CameraPathBake samples, const GltfExportInput& input);
 
 // What an export left out, for the command line to tell the user.
 struct GltfExportReport {
@@ -220,13 +194,8 @@ RawViewDependentModel rawModelFromGltfExtras(std::string_view mesh_extras_json, 
 // `options`: materials and textures of the file's mesh (vdg/io/mesh_read_options.h).
 RawViewDependentModel loadGltfModel(const std::string& path, const MeshReadOptions& options = {});
 
-// True when `path` names a .gltf or .glb file (any letter case).
-bool isGltfPath(const std::string& path);
 // True when `path` is a glTF file whose default mesh carries mesh.extras.vdg (a view-dependent
 // model); false for a plain glTF mesh. Throws vdg::Error for a file that does not load.
 bool gltfHasModel(const std::string& path);
-// A model from a manifest (*.vdg.json) or from a glTF file vdg exported (loadGltfModel).
-// `options` apply to the base mesh (see loadManifest and loadGltfModel).
-RawViewDependentModel loadModel(const std::string& path, const MeshReadOptions& options = {});
 
 }  // namespace vdg

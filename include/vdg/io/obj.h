@@ -65,9 +65,4 @@ std::string formatObj(const TriMesh& mesh, const std::string& header = {});
 // Writes `mesh` to `path` atomically. `header` (may be empty) becomes leading comment lines.
 void writeObj(const std::string& path, const TriMesh& mesh, const std::string& header = {});
 
-// Reads a mesh by its extension (any letter case): .obj (readObj), .gltf and .glb (readGltfMesh,
-// vdg/io/gltf.h: the static rest pose of the file's first mesh); other formats are refused with a
-// clear message. `options` as for readObj and readGltfMesh.
-TriMesh readMesh(const std::string& path, const MeshReadOptions& options = {});
-
 }  // namespace vdg
