@@ -56,8 +56,9 @@ void parseFrames(MorphOptions& opt, bool count_given) {
   if (isPlainCount(opt.frames_range) && !count_given) {
     noteDeprecated("--frames N", "--count N");
     const auto n = parseNumberIn(opt.frames_range, {1, End::kClosed, kMaxFrames, End::kClosed, true});
-    if (!n) throw UsageError("--frames: expected a count in [1, " + std::to_string(kMaxFrames) + "], got " +
-                             shown(opt.frames_range));
+    if (!n)
+      throw UsageError("--frames: expected a count in [1, " + std::to_string(kMaxFrames) + "], got " +
+                       shown(opt.frames_range));
     opt.frames = static_cast<int>(*n);
     return;
   }
@@ -233,8 +234,8 @@ void runImageMorph(const MorphOptions& opt) {
   progress.finish();
   if (!opt.video.empty()) encodeVideo(opt.output, opt.video, opt.frames);
   if (!opt.quiet)
-    std::printf("wrote %d frames (%dx%d) to %s%s\n", lastFrame(opt) - firstFrame(opt) + 1, morph.width(), morph.height(), opt.output.c_str(),
-                opt.video.empty() ? "" : (" and " + opt.video).c_str());
+    std::printf("wrote %d frames (%dx%d) to %s%s\n", lastFrame(opt) - firstFrame(opt) + 1, morph.width(),
+                morph.height(), opt.output.c_str(), opt.video.empty() ? "" : (" and " + opt.video).c_str());
 }
 
 // ---- inbetweened drawings ------------------------------------------------------------------------
@@ -305,8 +306,8 @@ void runDrawings(const MorphOptions& opt) {
   progress.finish();
   if (!opt.video.empty()) encodeVideo(opt.output, opt.video, opt.frames);
   if (!opt.quiet)
-    std::printf("wrote %d %s frames (%dx%d) to %s%s\n", lastFrame(opt) - firstFrame(opt) + 1, png ? "PNG" : "SVG", file.width, file.height,
-                opt.output.c_str(), opt.video.empty() ? "" : (" and " + opt.video).c_str());
+    std::printf("wrote %d %s frames (%dx%d) to %s%s\n", lastFrame(opt) - firstFrame(opt) + 1, png ? "PNG" : "SVG",
+                file.width, file.height, opt.output.c_str(), opt.video.empty() ? "" : (" and " + opt.video).c_str());
 }
 
 }  // namespace

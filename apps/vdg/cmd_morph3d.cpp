@@ -229,11 +229,14 @@ void addMorph3dCommand(CLI::App& app) {
                   "A-B is refused: the sequence's camera frames every frame, so it is written whole)")
       ->each([opt](const std::string& text) {
         if (!isPlainCount(text))
-          throw UsageError("--frames: morph3d writes the whole sequence (its camera.json frames every frame); give "
-                           "--count N, got " + shown(text));
+          throw UsageError(
+              "--frames: morph3d writes the whole sequence (its camera.json frames every frame); give "
+              "--count N, got " +
+              shown(text));
         noteDeprecated("--frames N", "--count N");
         const auto n = parseNumberIn(text, {2, End::kClosed, kMaxFrames, End::kClosed, true});
-        if (!n) throw UsageError("--frames: expected a count in [2, " + std::to_string(kMaxFrames) + "], got " + shown(text));
+        if (!n)
+          throw UsageError("--frames: expected a count in [2, " + std::to_string(kMaxFrames) + "], got " + shown(text));
         opt->frames = static_cast<long>(*n);
         opt->frames_given = true;
       });
