@@ -156,4 +156,21 @@ TEST(CliOptions, InfoOnAModelWithoutKeysNamesTheCommandThatAddsOne) {
   EXPECT_NE(doc.at("warnings").at(0).get<std::string>().find("vdg deform"), std::string::npos);
 }
 
+// vdg info names two key views nearly the same direction (the decision is viewdep's
+// nearlySameViewPairs, tested there; this is the message a user reads).
+TEST(CliOptions, InfoWarnsAboutKeyViewsNearlyTheSameDirection) {
+  vdg::testing::TempDir dir;
+  fs::copy_file(VDG_SOURCE_DIR "/tests/hostile/inputs/cube.obj", dir.file("cube.obj"));
+  fs::copy_file(VDG_SOURCE_DIR "/tests/hostile/inputs/front.obj", dir.file("front.obj"));
+  std::ofstream(dir.file("m.vdg.json")) << R"({"version": 2, "base": "cube.obj", "keys": [
+      {"name": "front", "mesh": "front.obj", "view": [0, 0, 1]},
+      {"name": "almost_front", "mesh": "front.obj", "view": [0.04, 0, 1]}]})";
+  const Result r = runVdg("info " + dir.file("m.vdg.json"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("warning: keys 'front' and 'almost_front' are only 2.29 degrees apart (a near-degenerate hull "
+                       "triangle): the weights flip between them"),
+            std::string::npos)
+      << r.out;
+}
+
 }  // namespace
