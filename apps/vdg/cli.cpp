@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -198,6 +199,29 @@ FrameRange parseFrameRange(const std::string& text, const std::string& option) {
     if (r.last < r.first) throw UsageError(option + ": expected A-B with A <= B, got " + shown(text));
   }
   return r;
+}
+
+void noteDeprecated(std::string_view old_spelling, std::string_view new_spelling) {
+  std::fprintf(stderr, "vdg: %.*s is deprecated (it will be removed in the next version): use %.*s\n",
+               static_cast<int>(old_spelling.size()), old_spelling.data(), static_cast<int>(new_spelling.size()),
+               new_spelling.data());
+}
+
+bool isPlainCount(std::string_view text) {
+  return !text.empty() && std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
+}
+
+CLI::Validator oldCommaSize() {
+  return CLI::Validator(
+      [](std::string& text) {
+        const auto comma = text.find(',');
+        if (comma != std::string::npos && text.find('x') == std::string::npos) {
+          noteDeprecated("--size W,H", "--size WxH");
+          text[comma] = 'x';
+        }
+        return std::string();
+      },
+      "");
 }
 
 Progress::Progress(std::string label, long total, bool quiet)

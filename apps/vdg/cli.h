@@ -60,7 +60,7 @@ CLI::Validator positiveNumber(double hi = 0.0);  // (0, hi], or (0, inf) when hi
 CLI::Validator openRange(double lo, double hi);  // (lo, hi)
 CLI::Validator wholeNumber(long lo, long hi);    // [lo, hi], integers only
 
-// Image sizes "W<sep>H" (render --size 512x512, align --size 640,480): both sides whole numbers in
+// Image sizes "W<sep>H" (render --size 512x512, align --size 640x480): both sides whole numbers in
 // [1, max_side]. Throws UsageError "OPTION: expected WIDTHxHEIGHT ..., got 'TEXT'".
 struct ImageSize {
   int width = 0, height = 0;
@@ -87,6 +87,15 @@ struct FrameRange {
   int first = 0, last = -1;  // last < first: the whole range
 };
 FrameRange parseFrameRange(const std::string& text, const std::string& option);
+
+// ---- Old spellings kept for one version --------------------------------------------------------
+// Each prints one line on stderr and the command goes on as if the new spelling had been given:
+//   "vdg: --frames N is deprecated (it will be removed in the next version): use --count N"
+void noteDeprecated(std::string_view old_spelling, std::string_view new_spelling);
+// True when `text` is a plain whole number (the old `--frames N` count of morph, morph3d, studio).
+bool isPlainCount(std::string_view text);
+// A transform for --size that accepts the old "W,H" by rewriting it to "WxH" with the note above.
+CLI::Validator oldCommaSize();
 
 // A one-line progress bar on stderr, drawn only when stderr is a terminal and not quiet.
 class Progress {

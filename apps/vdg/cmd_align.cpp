@@ -25,7 +25,7 @@ namespace {
 
 struct AlignCliOptions {
   std::string model, drawing, points, output, size, key;
-  bool ortho = false, json = false;
+  bool ortho = false, json = false, quiet = false;
 };
 
 // Drawings larger than this a side are refused (a scan at 600 dpi of an A0 sheet is about 28000).
@@ -45,12 +45,12 @@ ImageSize drawingSize(const std::string& path) {
 }
 
 void runAlign(const AlignCliOptions& opt) {
-  if (opt.drawing.empty() == opt.size.empty()) throw UsageError("give exactly one of --drawing IMG or --size W,H");
+  if (opt.drawing.empty() == opt.size.empty()) throw UsageError("give exactly one of --drawing IMG or --size WxH");
   if (opt.output.empty() && opt.key.empty()) throw UsageError("give -o CAMERA.json, --key NAME, or both");
   const bool is_obj = hasExtension(opt.model, ".obj");
   if (is_obj && !opt.key.empty()) throw UsageError("--key needs a model manifest, not a mesh");
   const ImageSize size =
-      opt.drawing.empty() ? parseImageSize(opt.size, ',', kMaxDrawingSide, "--size") : drawingSize(opt.drawing);
+      opt.drawing.empty() ? parseImageSize(opt.size, 'x', kMaxDrawingSide, "--size") : drawingSize(opt.drawing);
   const int width = size.width, height = size.height;
   RawViewDependentModel raw;
   if (is_obj)
@@ -102,7 +102,7 @@ void runAlign(const AlignCliOptions& opt) {
     out["pairs"] = points.size();
     out["image_size"] = {width, height};
     std::printf("%s\n", out.dump(2).c_str());
-  } else {
+  } else if (!opt.quiet) {
     std::printf("aligned %s camera from %zu pairs on a %dx%d drawing: RMS error %.4g px (max %.4g px; DLT %.4g px)\n",
                 r.camera.isOrtho() ? "parallel" : "perspective", points.size(), width, height, r.rms_px, r.max_px,
                 r.dlt_rms_px);
@@ -120,8 +120,11 @@ void addAlignCommand(CLI::App& app) {
   sub->add_option("MODEL", opt->model, "Model manifest (*.vdg.json; its base mesh is used) or a mesh (.obj)")
       ->required();
   sub->add_option("--drawing", opt->drawing, "The drawing (PNG, JPEG, ...), read for its pixel size");
-  sub->add_option("--size", opt->size, "Drawing size W,H in pixels instead of --drawing")
-      ->check(imageSize(',', kMaxDrawingSide));
+  sub->add_option("--size", opt->size,
+                  "Drawing size WxH in pixels instead of --drawing (the old W,H is accepted for this version, "
+                  "with a deprecation note)")
+      ->transform(oldCommaSize())
+      ->check(imageSize('x', kMaxDrawingSide));
   sub->add_option("--points", opt->points,
                   "Point pairs JSON: {\"pairs\": [{\"vertex\": I | \"point\": [x,y,z], \"pixel\": [x,y]}, ...]}")
       ->required();
@@ -129,6 +132,7 @@ void addAlignCommand(CLI::App& app) {
   sub->add_option("-o,--output", opt->output, "Camera JSON to write");
   sub->add_option("--key", opt->key, "Also store the camera in this key of the manifest (its view follows)");
   sub->add_flag("--json", opt->json, "Print the result as JSON");
+  sub->add_flag("-q,--quiet", opt->quiet, "Print nothing on success");
   sub->callback([opt] { runAlign(*opt); });
 }
 

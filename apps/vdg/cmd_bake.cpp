@@ -1,4 +1,5 @@
-// vdg bake MODEL -o OUT.glb|OUT.gltf [--orbit N] [--frames A-B] [--fps F] [camera options of render]
+// vdg bake MODEL -o OUT.glb|OUT.gltf [--orbit N | --camera FILE [--count N]] [--frames A-B] [--fps F]
+//          [camera options of render]
 //
 // The export of `vdg export` plus one animation for the camera path of `vdg render`: at the time
 // of output frame f (f / fps seconds, counted from the first frame baked) the morph weights are
@@ -10,6 +11,7 @@
 #include <memory>
 #include <vector>
 
+#include "camera_file.h"
 #include "cli.h"
 #include "orbit_options.h"
 #include "vdg/geom/error.h"
@@ -31,6 +33,10 @@ constexpr double kMaxFps = 1000.0;
 struct BakeOptions {
   std::string model, output, size = "512x512";
   OrbitOptions camera;
+  std::string camera_file;                       // --camera: a camera file or a camera path, as vdg render's
+  int count = 1;                                 // --count: frames along --camera
+  std::vector<std::string> orbit_options_given;  // orbit options given with --camera (bad usage)
+  bool count_given = false, camera_given = false;
   double fps = 24.0, sharpness = 0.0;
   bool step = false, quiet = false;
 };
@@ -38,35 +44,47 @@ struct BakeOptions {
 void run(const BakeOptions& opt) {
   checkGltfOutput(opt.output);
   const ImageSize size = parseImageSize(opt.size, 'x', render::kMaxImageSize, "--size");
-  const FrameRange range = opt.camera.range();
+  const FrameRange range = cameraFrameRange(opt.camera, opt.camera_file, opt.camera_given, opt.count, opt.count_given,
+                                            opt.orbit_options_given);
+  FrameCameras file_cameras;
+  if (!opt.camera_file.empty()) {
+    checkInputFile(opt.camera_file, "camera");
+    file_cameras.load(opt.camera_file, opt.count);
+  }
   const OpenedInput opened = openModel(opt.model);
   const double aspect = static_cast<double>(size.width) / size.height;
   // The whole orbit closes on itself: one more sample, frame 0 again, lets a looping viewer play it
   // without a seam.
-  const bool whole_orbit = opt.camera.frames.empty() && opt.camera.orbit > 1;
+  const bool whole_orbit = opt.camera_file.empty() && opt.camera.frames.empty() && opt.camera.orbit > 1;
+  // Frame f's camera: --camera FILE's, or the orbit's about the model's centre.
+  auto camera = [&](int f, const Eigen::Vector3d& center, double distance) {
+    return file_cameras.fromFile() ? file_cameras.at(f) : opt.camera.camera(f, center, distance);
+  };
   GltfExportInput input = exportInputForCli(opened);
   std::vector<Camera> cameras;
   if (opened.model) {
     const ViewDependentModel& model = *opened.model;
     // As vdg render: the distance fits the base and every key (ViewDependentModel::extentRadius()).
     const double distance = opt.camera.cameraDistance(model.extentRadius(), aspect);
-    for (int f = range.first; f <= range.last; ++f) cameras.push_back(opt.camera.camera(f, model.center(), distance));
+    for (int f = range.first; f <= range.last; ++f) cameras.push_back(camera(f, model.center(), distance));
     input.bake = gltfBakedAnimation(bakeCameraPath(model, cameras, opt.fps, aspect, opt.sharpness, whole_orbit), input);
   } else {
     // As vdg render: the camera distance holds every frame of the base and every view's pose on it;
     // output frame f shows animation frame f mod N (loop) or min(f, N - 1).
     const AnimatedViewDependentModel& model = *opened.animated;
     const double distance = opt.camera.cameraDistance(model.extentRadius(), aspect);
-    for (int f = range.first; f <= range.last; ++f) cameras.push_back(opt.camera.camera(f, model.center(), distance));
+    for (int f = range.first; f <= range.last; ++f) cameras.push_back(camera(f, model.center(), distance));
     const bool frame_targets = input.base_animation->mode == GltfBaseMode::kFrames;
     input.bake = gltfBakedAnimation(
         bakeAnimatedCameraPath(model, cameras, range.first, opt.fps, aspect, opt.sharpness, whole_orbit, frame_targets),
         input);
   }
   input.bake->step = opt.step;
-  input.bake->description = "vdg bake: orbit " + std::to_string(opt.camera.orbit) + " frames " +
-                            std::to_string(range.first) + "-" + std::to_string(range.last) + " at " +
-                            std::to_string(opt.fps) + " fps" + (whole_orbit ? ", closed loop" : "");
+  const std::string path =
+      opt.camera_file.empty() ? "orbit " + std::to_string(opt.camera.orbit) : "camera " + opt.camera_file;
+  input.bake->description = "vdg bake: " + path + " frames " + std::to_string(range.first) + "-" +
+                            std::to_string(range.last) + " at " + std::to_string(opt.fps) + " fps" +
+                            (whole_orbit ? ", closed loop" : "");
   writeGltfForCli(opt.output, input, opt.quiet);
 }
 
@@ -83,14 +101,28 @@ void addBakeCommand(CLI::App& app) {
   opt->camera.add(*sub);
   sub->add_option("--size", opt->size, "Image size WxH whose aspect ratio the camera gets (default 512x512)")
       ->check(imageSize('x', render::kMaxImageSize));
-  sub->add_option("--frames", opt->camera.frames, "Bake only frames A-B (or N) of the orbit, 0 <= A <= B < --orbit");
+  sub->add_option("--camera", opt->camera_file,
+                  "Camera file (one fixed camera) or camera path ({\"camera_path\": ...}, docs/anim.md) instead of "
+                  "the orbit, as vdg render --camera");
+  sub->add_option("--count", opt->count,
+                  "Frames along --camera: a camera path sampled evenly from its start to its end time (default 1)")
+      ->check(wholeNumber(1, OrbitOptions::kMaxOrbitFrames));
+  sub->add_option("--frames", opt->camera.frames,
+                  "Bake only frames A-B (or N) of the orbit (or of --count), 0 <= A <= B < --orbit");
   sub->add_option("--fps", opt->fps, "Frames per second of the animation (default 24)")->check(positiveNumber(kMaxFps));
   sub->add_option("--sharpness", opt->sharpness, "Blend sharpness alpha (default: the model's own)")
       ->check(positiveNumber());
   sub->add_flag("--step", opt->step,
                 "STEP interpolation: hold each frame's weights and camera (default LINEAR: blend between frames)");
   sub->add_flag("-q,--quiet", opt->quiet, "Print nothing on success");
-  sub->callback([opt] { run(*opt); });
+  sub->callback([opt, sub] {
+    opt->orbit_options_given.clear();
+    for (const char* name : {"--orbit", "--azimuth", "--elevation", "--distance", "--fov"})
+      if (sub->count(name) > 0) opt->orbit_options_given.push_back(name);
+    opt->count_given = sub->count("--count") > 0;
+    opt->camera_given = sub->count("--camera") > 0;
+    run(*opt);
+  });
 }
 
 }  // namespace vdg::cli

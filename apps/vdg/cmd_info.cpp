@@ -38,7 +38,6 @@ template <typename ViewName>
 std::vector<std::string> sphereWarnings(const ViewSphere& sphere, std::size_t count, const std::string& pair_prefix,
                                         ViewName name, const std::vector<std::string>& unmoved_keys) {
   std::vector<std::string> warnings;
-  constexpr double kCloseKeysDeg = 5.0;  // keys closer than this make abrupt transitions
   constexpr double kLowCoverage = 0.25;  // below this, most views show the plain base model
   constexpr std::size_t kMaxListed = 20;
   // Counting stops here: past a million close pairs the exact number says nothing more.
@@ -48,19 +47,15 @@ std::vector<std::string> sphereWarnings(const ViewSphere& sphere, std::size_t co
   if (unmoved_keys.size() > kMaxListed)
     warnings.push_back("... and " + std::to_string(unmoved_keys.size() - kMaxListed) +
                        " more keys that move no vertex");
-  // Close pairs through a grid on the sphere (O(n log n) plus the pairs counted), not all n^2 pairs.
-  const auto views = sphere.points().first(count);
-  std::size_t close = 0;
-  forEachCloseViewPair(views, kCloseKeysDeg * std::numbers::pi / 180.0,
-                       [&](std::size_t k, std::size_t j, double angle) {
-                         if (++close <= kMaxListed) {
-                           const double deg = angle * 180.0 / std::numbers::pi;
-                           warnings.push_back(pair_prefix + "'" + name(j) + "' and '" + name(k) + "' are only " +
-                                              std::to_string(deg).substr(0, 4) +
-                                              " degrees apart: the blend between them will be abrupt");
-                         }
-                         return close < kMaxCounted;
-                       });
+  // Nearly the same direction (viewdep decides: kNearlySameViewDeg), found through a grid on the
+  // sphere (O(n log n) plus the pairs counted), not all n^2 pairs.
+  std::vector<NearlySameViewPair> pairs;
+  const std::size_t close = nearlySameViewPairs(sphere.points().first(count), kMaxListed, kMaxCounted, pairs);
+  for (const NearlySameViewPair& p : pairs)
+    warnings.push_back(pair_prefix + "'" + name(p.j) + "' and '" + name(p.i) + "' are only " +
+                       std::to_string(p.angle_deg).substr(0, 4) +
+                       " degrees apart (a near-degenerate hull triangle): the weights flip between them, so the "
+                       "blend will be abrupt");
   if (close > kMaxListed)
     warnings.push_back("... and " + std::string(close >= kMaxCounted ? "at least " : "") +
                        std::to_string(close - kMaxListed) + " more close pairs of keys");
@@ -69,6 +64,29 @@ std::vector<std::string> sphereWarnings(const ViewSphere& sphere, std::size_t co
                        std::to_string(static_cast<int>(std::lround(100 * sphere.coveredFraction()))) +
                        "% of the viewing sphere; elsewhere the model blends towards the base");
   return warnings;
+}
+
+// A model just started (a manifest with no keys yet): its base, and the command that adds a key.
+void describeKeyless(const std::string& path, const RawViewDependentModel& raw, bool json) {
+  const std::string next = "add the first key with 'vdg deform " + path +
+                           " --key NAME --view X,Y,Z --ops EDITS.json' or in 'vdg studio " + path +
+                           "' (docs/tutorial.md)";
+  if (json) {
+    nlohmann::ordered_json out;
+    out["model"] = path;
+    out["base"] = raw.base_path;
+    out["vertices"] = raw.base.vertexCount();
+    out["triangles"] = raw.base.triangleCount();
+    out["keys"] = nlohmann::ordered_json::array();
+    out["warnings"] = {"the model has no keys: " + next};
+    std::printf("%s\n", out.dump(2).c_str());
+    return;
+  }
+  std::printf("model      %s\n", path.c_str());
+  std::printf("base       %s: %zu vertices, %zu triangles\n", raw.base_path.c_str(), raw.base.vertexCount(),
+              raw.base.triangleCount());
+  std::printf("keys       0\n");
+  std::printf("warning: the model has no keys (it shows its base from every view): %s\n", next.c_str());
 }
 
 std::vector<std::string> modelWarnings(const ViewDependentModel& model) {
@@ -361,6 +379,12 @@ void addInfoCommand(CLI::App& app) {
         if (!gltf_model) return;
         std::printf("\nview-dependent model (mesh.extras.vdg):\n");
       }
+    }
+    // A model without keys has nothing to build yet: say how to make its first key.
+    const RawViewDependentModel described = openModel(opt->model, {}, InputBuild::kRawOnly).raw;
+    if (described.keys.empty()) {
+      describeKeyless(opt->model, described, opt->json);
+      return;
     }
     const OpenedInput input = openModel(opt->model);
     const RawViewDependentModel& raw = input.raw;

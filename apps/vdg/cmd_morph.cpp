@@ -1,5 +1,5 @@
-// vdg morph SRC.png DST.png (--grid FILE | --lines FILE) (--t T -o OUT.png | --frames N -o DIR) [--warp]
-// vdg morph --drawings KEYS.json --frames N -o DIR [--format svg|png]
+// vdg morph SRC.png DST.png (--grid FILE | --lines FILE) (--t T -o OUT.png | --count N -o DIR) [--frames A-B] [--warp]
+// vdg morph --drawings KEYS.json --count N -o DIR [--frames A-B] [--format svg|png]
 //
 // 2D metamorphosis (Parent 4.10): the two-pass mesh warp over the user's curvilinear grids, or the
 // feature-based morph of Beier and Neely over pairs of feature lines; both warp the source and the
@@ -44,9 +44,30 @@ constexpr double kStrokeWidth = 2.0;  // pixels, the drawn inbetweens' line widt
 struct MorphOptions {
   std::string src, dst, grid, lines, drawings, output, video, format = "svg";
   double t = 0.0, frame = 0.0;
-  int frames = 0;
+  int frames = 0;            // --count N (the old `--frames N` too, with a deprecation note)
+  std::string frames_range;  // --frames A-B: write only these frames of the N
+  FrameRange range;          // parsed from frames_range; last < first: every frame
   bool t_given = false, frame_given = false, format_given = false, warp = false, quiet = false;
 };
+
+// --frames: a range A-B of the --count N frames, or (the old spelling) the count itself.
+void parseFrames(MorphOptions& opt, bool count_given) {
+  if (opt.frames_range.empty()) return;
+  if (isPlainCount(opt.frames_range) && !count_given) {
+    noteDeprecated("--frames N", "--count N");
+    const auto n = parseNumberIn(opt.frames_range, {1, End::kClosed, kMaxFrames, End::kClosed, true});
+    if (!n)
+      throw UsageError("--frames: expected a count in [1, " + std::to_string(kMaxFrames) + "], got " +
+                       shown(opt.frames_range));
+    opt.frames = static_cast<int>(*n);
+    return;
+  }
+  opt.range = parseFrameRange(opt.frames_range, "--frames");
+  if (opt.frames == 0) throw UsageError("--frames A-B: needs --count N (the frames are a share of N)");
+  if (opt.range.last >= opt.frames)
+    throw UsageError("--frames: expected frames within 0-" + std::to_string(opt.frames - 1) + " (--count " +
+                     std::to_string(opt.frames) + "), got " + shown(opt.frames_range));
+}
 
 // The usage rules that need several options together (exit status 2).
 void checkUsage(const MorphOptions& opt) {
@@ -57,20 +78,21 @@ void checkUsage(const MorphOptions& opt) {
     if (!opt.src.empty() || !opt.dst.empty()) throw UsageError("--drawings takes no SRC or DST images");
     if (!opt.grid.empty() || !opt.lines.empty()) throw UsageError("--drawings takes no --grid or --lines");
     if (opt.warp) throw UsageError("--warp: only for image morphs (SRC DST with --grid or --lines)");
-    if (opt.t_given || opt.frame_given) throw UsageError("--drawings: give --frames N (frames span the keys' times)");
-    if (opt.frames == 0) throw UsageError("--drawings: give --frames N");
+    if (opt.t_given || opt.frame_given) throw UsageError("--drawings: give --count N (frames span the keys' times)");
+    if (opt.frames == 0) throw UsageError("--drawings: give --count N");
   } else {
     if (opt.dst.empty()) throw UsageError("give SRC and DST images (or --drawings KEYS.json)");
     if (opt.grid.empty() == opt.lines.empty()) throw UsageError("give exactly one of --grid FILE or --lines FILE");
     if (opt.t_given == (opt.frames > 0))
-      throw UsageError("give exactly one of --t T (one image) or --frames N (a sequence)");
+      throw UsageError("give exactly one of --t T (one image) or --count N (a sequence)");
     if (opt.format_given) throw UsageError("--format: only for --drawings (image morphs write PNG)");
     if (opt.frame_given && opt.grid.empty()) throw UsageError("--frame: only with a key-framed --grid file");
     if (opt.frame_given && !opt.t_given)
-      throw UsageError("--frame: only with --t (with --frames N, frame i is output frame i)");
+      throw UsageError("--frame: only with --t (with --count N, frame i is output frame i)");
   }
   if (!opt.video.empty()) {
-    if (opt.frames == 0) throw UsageError("--video: needs --frames N");
+    if (opt.frames == 0) throw UsageError("--video: needs --count N");
+    if (opt.range.last >= opt.range.first) throw UsageError("--video: needs every frame (leave out --frames A-B)");
     if (!hasExtension(opt.video, ".mp4") && !hasExtension(opt.video, ".gif"))
       throw UsageError("--video: expected a file name ending in .mp4 or .gif, got " + shown(opt.video));
     if (drawings && opt.format != "png") throw UsageError("--video: needs --format png for --drawings");
@@ -80,12 +102,16 @@ void checkUsage(const MorphOptions& opt) {
   }
 }
 
+// The frames to write: --frames A-B of the --count N, or all of them.
+int firstFrame(const MorphOptions& opt) { return opt.range.last >= opt.range.first ? opt.range.first : 0; }
+int lastFrame(const MorphOptions& opt) { return opt.range.last >= opt.range.first ? opt.range.last : opt.frames - 1; }
+
 render::Image toRenderImage(const morph::Image& image) {
   const TextureImage bytes = morph::imageToRgba8(image);
   return {bytes.width, bytes.height, bytes.rgba};
 }
 
-// The folder of --frames output; fails with one line when it cannot be made.
+// The folder of --count output; fails with one line when it cannot be made.
 void makeFolder(const std::string& dir) {
   std::error_code ec;
   fs::create_directories(dir, ec);
@@ -200,7 +226,7 @@ void runImageMorph(const MorphOptions& opt) {
   }
   makeFolder(opt.output);
   Progress progress("morph", opt.frames, opt.quiet);
-  for (int i = 0; i < opt.frames; ++i) {
+  for (int i = firstFrame(opt); i <= lastFrame(opt); ++i) {
     const double t = static_cast<double>(i) / (opt.frames - 1);
     render::writePng(framePath(opt.output, i, "png"), toRenderImage(morph.at(t, i)));
     progress.step(i + 1);
@@ -208,8 +234,8 @@ void runImageMorph(const MorphOptions& opt) {
   progress.finish();
   if (!opt.video.empty()) encodeVideo(opt.output, opt.video, opt.frames);
   if (!opt.quiet)
-    std::printf("wrote %d frames (%dx%d) to %s%s\n", opt.frames, morph.width(), morph.height(), opt.output.c_str(),
-                opt.video.empty() ? "" : (" and " + opt.video).c_str());
+    std::printf("wrote %d frames (%dx%d) to %s%s\n", lastFrame(opt) - firstFrame(opt) + 1, morph.width(),
+                morph.height(), opt.output.c_str(), opt.video.empty() ? "" : (" and " + opt.video).c_str());
 }
 
 // ---- inbetweened drawings ------------------------------------------------------------------------
@@ -268,7 +294,7 @@ void runDrawings(const MorphOptions& opt) {
   makeFolder(opt.output);
   const bool png = opt.format == "png";
   Progress progress("inbetween", opt.frames, opt.quiet);
-  for (int i = 0; i < opt.frames; ++i) {
+  for (int i = firstFrame(opt); i <= lastFrame(opt); ++i) {
     const double time = opt.frames == 1 ? t0 : t0 + (t1 - t0) * i / (opt.frames - 1);
     const std::vector<morph::Polyline> strokes = inbetweener.at(time);
     if (png)
@@ -280,8 +306,8 @@ void runDrawings(const MorphOptions& opt) {
   progress.finish();
   if (!opt.video.empty()) encodeVideo(opt.output, opt.video, opt.frames);
   if (!opt.quiet)
-    std::printf("wrote %d %s frames (%dx%d) to %s%s\n", opt.frames, png ? "PNG" : "SVG", file.width, file.height,
-                opt.output.c_str(), opt.video.empty() ? "" : (" and " + opt.video).c_str());
+    std::printf("wrote %d %s frames (%dx%d) to %s%s\n", lastFrame(opt) - firstFrame(opt) + 1, png ? "PNG" : "SVG",
+                file.width, file.height, opt.output.c_str(), opt.video.empty() ? "" : (" and " + opt.video).c_str());
 }
 
 }  // namespace
@@ -299,10 +325,13 @@ void addMorphCommand(CLI::App& app) {
   sub->add_option("--lines", opt->lines, "Lines file: pairs of feature lines, source and destination (Beier-Neely)");
   sub->add_option("--t", opt->t, "One image at morph time T in [0, 1] (0: SRC, 1: DST), written to -o OUT.png")
       ->check(numberIn({0.0, End::kClosed, 1.0, End::kClosed}));
-  sub->add_option("--frames", opt->frames,
+  sub->add_option("--count", opt->frames,
                   "A sequence of N frames at t = i/(N-1), written to -o DIR as frame_0000.png ... (N >= 2; "
                   "with --drawings N >= 1, spanning the keys' times)")
       ->check(wholeNumber(1, kMaxFrames));
+  sub->add_option("--frames", opt->frames_range,
+                  "Write only frames A-B (or N) of the --count N (a farm node's share); the old '--frames N' for "
+                  "a count is still read as --count N in this version, with a deprecation note");
   sub->add_option("--frame", opt->frame,
                   "With --t and a key-framed grid (required then): the output frame whose grids to use")
       ->check(numberIn({0.0, End::kClosed, kMaxGridFrame, End::kClosed}));
@@ -318,11 +347,12 @@ void addMorphCommand(CLI::App& app) {
     opt->t_given = sub->count("--t") > 0;
     opt->frame_given = sub->count("--frame") > 0;
     opt->format_given = sub->count("--format") > 0;
+    parseFrames(*opt, sub->count("--count") > 0);
     checkUsage(*opt);
     if (!opt->drawings.empty()) {
       runDrawings(*opt);
     } else {
-      if (opt->frames == 1) throw UsageError("--frames: an image morph needs N >= 2 (frame 0 is SRC, frame N-1 DST)");
+      if (opt->frames == 1) throw UsageError("--count: an image morph needs N >= 2 (frame 0 is SRC, frame N-1 DST)");
       runImageMorph(*opt);
     }
   });

@@ -1,4 +1,4 @@
-// vdg morph3d A B (--t T -o OUT.obj | --frames N -o DIR) [--method distance|spherical|minkowski|slices]
+// vdg morph3d A B (--t T -o OUT.obj | --count N -o DIR) [--method distance|spherical|minkowski|slices]
 //                 [--voxel S] [--max-voxels N] [--axis x|y|z] [--slices N] [--quiet]
 //
 // 3D shape interpolation (Parent 4.10, "Shape Interpolation, Metamorphosis") from mesh A (t = 0)
@@ -44,7 +44,8 @@ struct Morph3dOptions {
   std::string a, b, output, method = "distance", axis = "y";
   double t = -1, voxel = 0;
   long long max_voxels = 0;
-  long frames = 0;
+  long frames = 0;  // --count N (the old `--frames N` too, with a deprecation note)
+  std::string frames_text;
   int slices = 32;
   bool t_given = false, frames_given = false, voxel_given = false, max_voxels_given = false, quiet = false;
   bool axis_given = false, slices_given = false;
@@ -179,7 +180,7 @@ void writeSequence(const Morph3dOptions& opt, const Interpolator& morph) {
 
 void run(const Morph3dOptions& opt) {
   if (opt.t_given == opt.frames_given)
-    throw UsageError(opt.t_given ? "--t and --frames exclude each other: give one" : "give --t T or --frames N");
+    throw UsageError(opt.t_given ? "--t and --count exclude each other: give one" : "give --t T or --count N");
   if ((opt.voxel_given || opt.max_voxels_given) && opt.method != "distance")
     throw UsageError(std::string(opt.voxel_given ? "--voxel" : "--max-voxels") + ": only for --method distance, not " +
                      opt.method);
@@ -212,18 +213,34 @@ void addMorph3dCommand(CLI::App& app) {
       "Methods (docs/morph3d.md): distance: any closed meshes, the topology may change (a sphere becomes a torus); "
       "spherical: star-shaped genus-0 meshes, vertex to vertex on one connectivity; minkowski: closed meshes, best "
       "convex (slow otherwise); slices: Chen's slices along --axis, every cut one contour star-shaped about its "
-      "centre. --frames N -o DIR writes DIR/frame_0000.obj ... at t = i/(N-1) and DIR/camera.json "
+      "centre. --count N -o DIR writes DIR/frame_0000.obj ... at t = i/(N-1) and DIR/camera.json "
       "for 'vdg render FRAME.obj --camera DIR/camera.json'; a sequence of one connectivity also gets "
       "DIR/morph.vdg.json for 'vdg render DIR/morph.vdg.json --camera DIR/camera.json --count N'.\n");
   sub->add_option("A", opt->a, "Source mesh at t = 0 (.obj, .gltf, .glb; closed)")->required();
   sub->add_option("B", opt->b, "Destination mesh at t = 1 (.obj, .gltf, .glb; closed)")->required();
-  sub->add_option("-o,--output", opt->output, "OUT.obj with --t, a folder with --frames")->required();
+  sub->add_option("-o,--output", opt->output, "OUT.obj with --t, a folder with --count")->required();
   sub->add_option("--t", opt->t, "One inbetween at T (0: A, 1: B)")
       ->check(numberIn({.lo = 0, .lo_end = End::kClosed, .hi = 1, .hi_end = End::kClosed}))
       ->each([opt](const std::string&) { opt->t_given = true; });
-  sub->add_option("--frames", opt->frames, "A sequence of N frames, t = i/(N-1)")
+  sub->add_option("--count", opt->frames, "A sequence of N frames, t = i/(N-1)")
       ->check(wholeNumber(2, kMaxFrames))
       ->each([opt](const std::string&) { opt->frames_given = true; });
+  sub->add_option("--frames", opt->frames_text,
+                  "The old spelling of --count N, read as such in this version with a deprecation note (a range "
+                  "A-B is refused: the sequence's camera frames every frame, so it is written whole)")
+      ->each([opt](const std::string& text) {
+        if (!isPlainCount(text))
+          throw UsageError(
+              "--frames: morph3d writes the whole sequence (its camera.json frames every frame); give "
+              "--count N, got " +
+              shown(text));
+        noteDeprecated("--frames N", "--count N");
+        const auto n = parseNumberIn(text, {2, End::kClosed, kMaxFrames, End::kClosed, true});
+        if (!n)
+          throw UsageError("--frames: expected a count in [2, " + std::to_string(kMaxFrames) + "], got " + shown(text));
+        opt->frames = static_cast<long>(*n);
+        opt->frames_given = true;
+      });
   sub->add_option("--method", opt->method, "distance (default), spherical, minkowski or slices")
       ->check(CLI::IsMember({"distance", "spherical", "minkowski", "slices"}));
   sub->add_option("--voxel", opt->voxel, "Distance method: voxel size in model units (default: diagonal / 96)")

@@ -122,7 +122,7 @@ void addRunCommand(CLI::App& app) {
   sub->add_flag("--gpu-blend", opt->gpu_blend,
                 "Blend the view-dependent models on the GPU, all instances of a model at once (needs OpenGL 4.3); "
                 "animated models and plain meshes stay on the CPU");
-  sub->add_flag("--quiet", opt->quiet, "No progress bar and no summary line");
+  sub->add_flag("-q,--quiet", opt->quiet, "No progress bar and no summary line");
   sub->callback([opt] { run(*opt); });
 }
 

@@ -1,5 +1,5 @@
 // vdg studio MODEL [--drawing IMG] [--replay EVENTS.json] [--record EVENTS.json]
-//                  [--screenshot OUT.png] [--frames N] [--size WxH] [--recover|--discard-recovery]
+//                  [--screenshot OUT.png] [--count N] [--size WxH] [--recover|--discard-recovery]
 //                  [--benchmark]
 //
 // The interactive editor (Rademacher 99, section 3.1: the authoring loop against a drawing): a
@@ -130,8 +130,12 @@ void addStudioCommand(CLI::App& app) {
                   "Replay recorded input (events file, docs/studio-files.md), ignoring live input");
   sub->add_option("--record", opt->record, "Record the live input into an events file on exit");
   sub->add_option("--screenshot", opt->screenshot, "Write the window as a PNG after the last frame");
-  sub->add_option("--frames", opt->frames, "Close after N frames (default: with --replay the last event's frame + 2)")
+  sub->add_option("--count", opt->frames, "Close after N frames (default: with --replay the last event's frame + 2)")
       ->check(wholeNumber(1, 10'000'000));
+  sub->add_option("--frames", opt->frames,
+                  "The old spelling of --count N, read as such in this version with a deprecation note")
+      ->check(wholeNumber(1, 10'000'000))
+      ->each([](const std::string&) { noteDeprecated("--frames N", "--count N"); });
   sub->add_option("--size", opt->size, "Window size WxH (default 1280x800, or the replayed file's)")
       ->check(imageSize('x', kMaxWindowSide));
   sub->add_flag("--recover", opt->recover, "Re-apply the strokes autosaved by a session that crashed, without asking");

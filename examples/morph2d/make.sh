@@ -18,8 +18,8 @@ if command -v ffmpeg >/dev/null 2>&1; then
 fi
 mkdir -p "$out"
 # shellcheck disable=SC2086 # the --video options split on purpose
-"$vdg" morph "$here/face_a.png" "$here/face_b.png" --lines "$here/lines.json" --frames 9 -o "$out/lines" $video_lines
+"$vdg" morph "$here/face_a.png" "$here/face_b.png" --lines "$here/lines.json" --count 9 -o "$out/lines" $video_lines
 # shellcheck disable=SC2086
-"$vdg" morph "$here/face_a.png" "$here/face_b.png" --grid "$here/grid.json" --frames 9 -o "$out/grid" $video_grid
-"$vdg" morph "$here/face_a.png" "$here/face_b.png" --grid "$here/grid.json" --warp --frames 9 -o "$out/warp"
-"$vdg" morph --drawings "$here/drawings.json" --frames 13 --format png -o "$out/drawings"
+"$vdg" morph "$here/face_a.png" "$here/face_b.png" --grid "$here/grid.json" --count 9 -o "$out/grid" $video_grid
+"$vdg" morph "$here/face_a.png" "$here/face_b.png" --grid "$here/grid.json" --warp --count 9 -o "$out/warp"
+"$vdg" morph --drawings "$here/drawings.json" --count 13 --format png -o "$out/drawings"

@@ -19,7 +19,7 @@ root=$(cd "$here/../.." && pwd)
 frames=9
 mkdir -p "$out/png"
 
-"$vdg" morph3d "$here/sphere.obj" "$here/torus.obj" --frames "$frames" -o "$out/frames"
+"$vdg" morph3d "$here/sphere.obj" "$here/torus.obj" --count "$frames" -o "$out/frames"
 # Every frame has its own connectivity (the hole opens on the way), so each is rendered as a mesh
 # of its own, all through the one camera that frames every frame.
 for ((i = 0; i < frames; i++)); do

@@ -1,5 +1,6 @@
 // Applying edit operations to key deformations (Rademacher 99, section 3.1.2; Parent 4.10).
 #include "vdg/deform/edits.h"
+#include "vdg/deform/pick.h"
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -85,7 +86,14 @@ std::optional<EditOpProblem> checkCenter(const std::optional<Eigen::Vector3d>& c
 }
 
 std::optional<EditOpProblem> checkPick(const VertexPick& p) {
-  if (p.vertex < 0) return problem("vertex", "must be >= 0, got " + std::to_string(p.vertex));
+  if (p.point && p.pixel) return problem("pixel", "give one of 'vertex', 'point' or 'pixel', not several");
+  if (p.point) {
+    if (auto f = finiteVector(*p.point, "point")) return f;
+  } else if (p.pixel) {
+    if (auto f = finiteVector(*p.pixel, "pixel")) return f;
+  } else if (p.vertex < 0) {
+    return problem("vertex", "must be >= 0, got " + std::to_string(p.vertex));
+  }
   if (!(p.falloff.radius > 0) || !std::isfinite(p.falloff.radius))
     return problem("radius", "must be > 0 and finite, got " + fmt(p.falloff.radius));
   if (!(p.falloff.power >= 0) || !std::isfinite(p.falloff.power))
@@ -162,6 +170,21 @@ std::optional<EditOpProblem> checkFields(const SkeletonOp& o) {
   return std::nullopt;
 }
 
+// The seed vertex of `pick`: its index, or the vertex its point or pixel names on `positions`.
+std::int32_t pickedVertex(const VertexPick& pick, const Camera& camera, std::span<const std::int32_t> triangles,
+                          std::span<const float> positions, const std::optional<std::array<int, 2>>& image_size,
+                          const std::string& at) {
+  if (pick.point) {
+    if (auto v = nearestVertex(positions, *pick.point)) return *v;
+    throw Error(at + ".'point': the mesh has no vertex");
+  }
+  if (!pick.pixel) return pick.vertex;
+  if (!image_size) throw Error(at + ".'pixel': needs the drawing's size: give \"image_size\": [w, h]");
+  if (auto v = vertexAtPixel(positions, triangles, camera, (*image_size)[0], (*image_size)[1], *pick.pixel)) return *v;
+  throw Error(at + ".'pixel': [" + fmt(pick.pixel->x()) + ", " + fmt(pick.pixel->y()) +
+              "] sees no front face of the mesh in the key camera (its ray misses the model)");
+}
+
 }  // namespace
 
 std::optional<EditOpProblem> checkEditOp(const EditOp& op) {
@@ -179,7 +202,7 @@ void validateEdits(std::span<const EditOp> ops, std::size_t vertex_count, const 
     const std::string at = source + ": 'ops'[" + std::to_string(i) + "] (" + editKindName(op) + ").";
     if (auto p = checkEditOp(op)) throw Error(at + p->field + ": " + p->message);
     const std::string range = " is out of range (the mesh has " + std::to_string(vertex_count) + " vertices)";
-    if (const VertexPick* pick = pickOf(op))
+    if (const VertexPick* pick = pickOf(op); pick && !pick->point && !pick->pixel)
       if (static_cast<std::size_t>(pick->vertex) >= vertex_count)
         throw Error(at + "'vertex': " + std::to_string(pick->vertex) + range);
     if (const auto* vertices = verticesOf(op))
@@ -205,7 +228,7 @@ std::vector<EditReport> applyEdits(const Camera& camera, std::span<const std::in
     std::vector<double> w;
     Eigen::Vector3d pivot = Eigen::Vector3d::Zero();
     if (const VertexPick* pick = pickOf(op)) {
-      const std::int32_t seed = pick->vertex;
+      const std::int32_t seed = pickedVertex(*pick, camera, triangles, positions, image_size, at);
       w = seedWeights(pick->metric, pick->falloff, positions, triangles, seed);
       pivot = Eigen::Vector3d(positions[3 * seed], positions[3 * seed + 1], positions[3 * seed + 2]);
     }

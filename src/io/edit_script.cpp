@@ -79,7 +79,19 @@ std::vector<std::int32_t> vertexList(const Json& j, const Ctx& ctx) {
 
 VertexPick readPick(const Json& j, const Ctx& ctx, double default_power) {
   VertexPick p;
-  p.vertex = static_cast<std::int32_t>(io::integer(io::required(j, "vertex", ctx), ctx.key("vertex"), 0, kMaxIndex));
+  // The seed: exactly one of an index, a model-space point or a pixel of the key view.
+  const int given = static_cast<int>(j.contains("vertex")) + static_cast<int>(j.contains("point")) +
+                    static_cast<int>(j.contains("pixel"));
+  if (given != 1)
+    ctx.fail(given == 0 ? "missing the picked vertex: give 'vertex' (an index), 'point' [x, y, z] (the nearest vertex) "
+                          "or 'pixel' [x, y] (the vertex seen there in the key view)"
+                        : "give one of 'vertex', 'point' or 'pixel', not several");
+  if (j.contains("point"))
+    p.point = io::vector3(j.at("point"), ctx.key("point"));
+  else if (j.contains("pixel"))
+    p.pixel = vector2(j.at("pixel"), ctx.key("pixel"));
+  else
+    p.vertex = static_cast<std::int32_t>(io::integer(j.at("vertex"), ctx.key("vertex"), 0, kMaxIndex));
   p.falloff.radius = io::number(io::required(j, "radius", ctx), ctx.key("radius"));
   p.falloff.power = io::numberOr(j, "power", default_power, ctx);
   p.falloff.shape = enumOr(j, "falloff", FalloffShape::kPower, ctx, kShapes);
@@ -102,7 +114,7 @@ std::vector<Eigen::Vector3d> jointList(const Json& j, const char* key, const Ctx
   return out;
 }
 
-#define VDG_PICK_KEYS "op", "vertex", "radius", "power", "falloff", "distance"
+#define VDG_PICK_KEYS "op", "vertex", "point", "pixel", "radius", "power", "falloff", "distance"
 
 EditOp readOpFields(const Json& j, EditKind kind, const Ctx& ctx) {
   switch (kind) {
@@ -269,7 +281,12 @@ OJson array(const Eigen::Vector2d& v) { return OJson::array({v.x(), v.y()}); }
 OJson array(const Eigen::Vector3d& v) { return OJson::array({v.x(), v.y(), v.z()}); }
 
 void writePick(OJson& j, const VertexPick& p) {
-  j["vertex"] = p.vertex;
+  if (p.point)
+    j["point"] = array(*p.point);
+  else if (p.pixel)
+    j["pixel"] = array(*p.pixel);
+  else
+    j["vertex"] = p.vertex;
   j["radius"] = p.falloff.radius;
   j["power"] = p.falloff.power;
   j["falloff"] = nameOf(kShapes, p.falloff.shape);

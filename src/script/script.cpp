@@ -157,7 +157,13 @@ Shot runScriptText(std::string_view text, const std::string& chunk_name, const s
   // Absolute first: weakly_canonical keeps a relative path relative while none of it exists, and
   // the checks compare it with the absolute paths of the folder once it does.
   const fs::path output = fs::absolute(options.output_dir.empty() ? "." : options.output_dir, ec);
-  if (!ec) ctx.output_dir = fs::weakly_canonical(output, ec).string();
+  if (!ec) {
+    // "shots/" that does not exist yet stays "/abs/shots/" through weakly_canonical (an existing one
+    // loses the slash); the sandbox compares paths with "folder/" prefixes, so the slash must go.
+    fs::path folder = fs::weakly_canonical(output, ec);
+    if (!folder.has_filename() && folder.has_relative_path()) folder = folder.parent_path();
+    ctx.output_dir = folder.string();
+  }
   if (ec) throw Error(chunk_name + ": output folder '" + options.output_dir + "': " + ec.message());
   ctx.budget = options.instruction_budget;
   ctx.hook_interval = static_cast<int>(std::min<std::int64_t>(options.instruction_budget, 1000));

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <limits>
 #include <numbers>
@@ -13,7 +14,9 @@
 #include "vdg/deform/falloff.h"
 #include "vdg/deform/image_plane.h"
 #include "vdg/deform/key_edit.h"
+#include "vdg/deform/pick.h"
 #include "vdg/geom/error.h"
+#include "vdg/geom/normalize.h"
 #include "vdg/io/atomic_file.h"
 #include "vdg/io/edit_script.h"
 #include "vdg/io/file_transaction.h"
@@ -22,6 +25,7 @@
 #include "vdg/io/obj.h"
 #include "vdg/io/studio_recovery.h"
 #include "vdg/studio/navigation.h"
+#include "vdg/viewdep/view_sphere.h"
 
 namespace vdg::studio {
 namespace fs = std::filesystem;
@@ -235,40 +239,30 @@ const std::string& Session::recoveryPath() const { return impl_->recovery_path; 
 std::size_t Session::recoverableStrokes() const { return impl_->recovery ? impl_->recovery_unsaved : 0; }
 
 std::optional<std::int32_t> Session::pick(const Eigen::Vector2d& pixel) const {
-  const Impl& m = *impl_;
-  const std::vector<float>& p = m.shown();
-  const std::vector<std::int32_t>& t = m.raw.base.triangles;
-  // The ray through the pixel: from view depth 0 (the eye, or the eye plane of a parallel camera).
-  const Eigen::Vector3d a = unproject(camera, image_width, image_height, pixel, 1.0);
-  const Eigen::Vector3d b = unproject(camera, image_width, image_height, pixel, 2.0);
-  const Eigen::Vector3d dir = b - a;
-  const Eigen::Vector3d origin = a - dir;
-  double best_t = std::numeric_limits<double>::infinity();
-  std::size_t best_face = t.size();
-  Eigen::Vector3d best_hit = Eigen::Vector3d::Zero();
-  for (std::size_t f = 0; f + 2 < t.size(); f += 3) {
-    // Moller-Trumbore ray-triangle intersection, front faces only (the picture shows those).
-    const Eigen::Vector3d v0 = vertexOf(p, t[f]), v1 = vertexOf(p, t[f + 1]), v2 = vertexOf(p, t[f + 2]);
-    const Eigen::Vector3d e1 = v1 - v0, e2 = v2 - v0;
-    const Eigen::Vector3d q = dir.cross(e2);
-    const double det = e1.dot(q);
-    if (!(det < 0 ? false : det > 0)) continue;  // back-facing or edge-on (a front face has det > 0)
-    const double inv = 1.0 / det;
-    const Eigen::Vector3d s = origin - v0;
-    const double u = s.dot(q) * inv;
-    if (u < 0 || u > 1) continue;
-    const Eigen::Vector3d r = s.cross(e1);
-    const double v = dir.dot(r) * inv;
-    if (v < 0 || u + v > 1) continue;
-    const double tt = e2.dot(r) * inv;
-    if (tt > 0 && tt < best_t) best_t = tt, best_face = f, best_hit = origin + tt * dir;
+  return vertexAtPixel(impl_->shown(), impl_->raw.base.triangles, camera, image_width, image_height, pixel);
+}
+
+std::vector<std::string> Session::keyViewWarnings() const {
+  constexpr std::size_t kMaxListed = 5;
+  constexpr std::size_t kMaxCounted = 1000000;
+  const RawViewDependentModel& raw = model();
+  const Eigen::Vector3d center = raw.resolvedCenter();
+  std::vector<Eigen::Vector3d> views;
+  views.reserve(raw.keys.size());
+  for (const RawKey& k : raw.keys)
+    views.push_back(normalizedOrNone(k.camera ? Eigen::Vector3d(k.camera->eye - center) : k.view)
+                        .value_or(Eigen::Vector3d::Zero()));
+  std::vector<NearlySameViewPair> close;
+  const std::size_t count = nearlySameViewPairs(views, kMaxListed, kMaxCounted, close);
+  std::vector<std::string> out;
+  for (const NearlySameViewPair& p : close) {
+    char angle[32];
+    std::snprintf(angle, sizeof angle, "%.1f", p.angle_deg);
+    out.push_back("keys '" + raw.keys[p.j].name + "' and '" + raw.keys[p.i].name + "' are only " + angle +
+                  " degrees apart: the weights flip between them (a near-degenerate hull triangle)");
   }
-  if (best_face == t.size()) return std::nullopt;
-  std::int32_t best = t[best_face];
-  for (int k = 1; k < 3; ++k)
-    if ((vertexOf(p, t[best_face + k]) - best_hit).squaredNorm() < (vertexOf(p, best) - best_hit).squaredNorm())
-      best = t[best_face + k];
-  return best;
+  if (count > close.size()) out.push_back("... and " + std::to_string(count - close.size()) + " more close pairs");
+  return out;
 }
 
 std::vector<double> Session::selectionWeights(std::int32_t vertex) const {
@@ -360,7 +354,7 @@ void Session::setKeyCamera(const Camera& key_camera) {
 namespace {
 
 EditOp strokeOp(const Session& s, Tool tool, std::int32_t vertex, const Eigen::Vector2d& motion, double diagonal) {
-  const VertexPick pick{vertex, s.metric, s.falloff};
+  const VertexPick pick{vertex, s.metric, s.falloff, std::nullopt, std::nullopt};
   switch (tool) {
     case Tool::kDrag: {
       DragOp op{pick, Eigen::Vector2d::Zero(), motion};

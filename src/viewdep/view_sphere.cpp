@@ -758,4 +758,17 @@ std::size_t forEachCloseViewPair(std::span<const Eigen::Vector3d> directions, do
   return visited;
 }
 
+std::size_t nearlySameViewPairs(std::span<const Eigen::Vector3d> unit_directions, std::size_t max_listed,
+                                std::size_t max_counted, std::vector<NearlySameViewPair>& listed) {
+  std::size_t count = 0;
+  if (max_counted == 0) return 0;
+  forEachCloseViewPair(unit_directions, kNearlySameViewDeg * std::numbers::pi / 180.0,
+                       [&](std::size_t i, std::size_t j, double angle) {
+                         if (angle <= ViewSphere::kSameViewRad) return true;  // one viewpoint (keys at frames)
+                         if (++count <= max_listed) listed.push_back({i, j, angle * 180.0 / std::numbers::pi});
+                         return count < max_counted;
+                       });
+  return count;
+}
+
 }  // namespace vdg

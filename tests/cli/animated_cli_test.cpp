@@ -155,7 +155,7 @@ TEST(AnimatedCli, WeightsArePerKeyView) {
 TEST(AnimatedCli, StaticOnlyCommandsRefuseAnimatedModels) {
   vdg::testing::TempDir dir;
   Result r =
-      run("align " + kWalker + " --size 100,100 --points tests/hostile/inputs/pairs.json -o " + dir.file("cam.json"));
+      run("align " + kWalker + " --size 100x100 --points tests/hostile/inputs/pairs.json -o " + dir.file("cam.json"));
   EXPECT_EQ(r.code, 1);
   EXPECT_EQ(r.err, "vdg: error: " + kWalker +
                        ": vdg align works on static models, and this one has an animated base ('base_animation'); "

@@ -285,7 +285,8 @@ TEST(GltfCli, EveryKindOfExportPassesTheKhronosValidator) {
       {"export " + kWalk, "walk-skin.glb"},                              // skin, joints, copied samplers
       {"export " + kWalkWorld, "walk-frames.gltf"},                      // base frames as targets
       {"bake " + kWalk + " --orbit 8", "walk-skin-bake.glb"},            // weights + skeleton + camera
-      {"bake " + kWalkWorld + " --orbit 6 --frames 2-5 --step", "walk-frames-bake.glb"}};
+      {"bake " + kWalkWorld + " --orbit 6 --frames 2-5 --step", "walk-frames-bake.glb"},
+      {"bake " + kSpot + " --camera examples/spot/swoop.camera.json --count 8", "swoop-bake.glb"}};  // a path
   std::string files;
   for (const auto& [args, name] : exports) {
     const Result r = run(args + " -q -o " + dir.file(name));

@@ -116,3 +116,15 @@ TEST(RunCli, TheExampleScriptsRun) {
 }
 
 }  // namespace
+
+// "-o shots/" names a folder that does not exist yet with a trailing slash (as the README writes
+// it): the output sandbox takes it for the same folder as "shots", not for a way out of it.
+TEST(RunCli, AnOutputFolderWithATrailingSlashThatDoesNotExistYetIsUsed) {
+  vdg::testing::TempDir dir;
+  const std::string script = dir.file("tetra.lua");
+  writeText(script, kTetraScene);
+  const Result r = runVdg("run '" + script + "' -o '" + dir.file("shots") + "/' --frames 0 -q");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.out, "");  // -q, like every subcommand's
+  EXPECT_TRUE(fs::exists(dir.file("shots/shot/frame_0000.png")));
+}

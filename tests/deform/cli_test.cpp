@@ -306,21 +306,21 @@ TEST_F(DeformCli, AlignRecoversCameraFromDrawing) {
   EXPECT_NEAR(got.fov_deg, truth.fov_deg, 1e-6 * truth.fov_deg);
 
   // --key stores the camera in the manifest; the key's view follows the camera.
-  ASSERT_EQ(vdg("align " + path("m.vdg.json") + " --size 320,240 --points " + path("pairs.json") + " --key front"), 0)
+  ASSERT_EQ(vdg("align " + path("m.vdg.json") + " --size 320x240 --points " + path("pairs.json") + " --key front"), 0)
       << output_;
   const RawViewDependentModel model = loadManifest((dir_ / "m.vdg.json").string());
   ASSERT_TRUE(model.keys[0].camera.has_value());
   EXPECT_LT((model.keys[0].camera->eye - truth.eye).norm(), 1e-6 * truth.eye.norm());
   EXPECT_LT((model.keys[0].view - (truth.eye - model.resolvedCenter()).normalized()).norm(), 1e-6);
   const std::string manifest = slurp((dir_ / "m.vdg.json").string());
-  EXPECT_EQ(vdg("align " + path("m.vdg.json") + " --size 320,240 --points " + path("pairs.json") + " --key nobody"), 1);
+  EXPECT_EQ(vdg("align " + path("m.vdg.json") + " --size 320x240 --points " + path("pairs.json") + " --key nobody"), 1);
   EXPECT_NE(output_.find("no key named 'nobody'"), std::string::npos) << output_;
-  EXPECT_EQ(vdg("align " + path("m.vdg.json") + " --size 320,240 --points " + path("pairs.json")), 2) << output_;
+  EXPECT_EQ(vdg("align " + path("m.vdg.json") + " --size 320x240 --points " + path("pairs.json")), 2) << output_;
   EXPECT_EQ(slurp((dir_ / "m.vdg.json").string()), manifest);
 
   spit(dir_ / "few.json", R"([{"vertex": 1, "pixel": [1, 2]}, {"vertex": 2, "pixel": [3, 4]}])");
   EXPECT_EQ(
-      vdg("align " + path("m.vdg.json") + " --size 320,240 --points " + path("few.json") + " -o " + path("cam2.json")),
+      vdg("align " + path("m.vdg.json") + " --size 320x240 --points " + path("few.json") + " -o " + path("cam2.json")),
       1);
   EXPECT_NE(output_.find("at least 6"), std::string::npos) << output_;
   EXPECT_FALSE(fs::exists(dir_ / "cam2.json"));

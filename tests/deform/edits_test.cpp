@@ -139,6 +139,63 @@ TEST(EditScript, PixelDeltaNeedsImageSize) {
   EXPECT_EQ(reports[0].moved, 5u);
 }
 
+// A pick's seed named by a point (the nearest vertex) or by a pixel of the key view (the vertex
+// seen there, vdg/deform/pick.h) moves exactly what the same seed named by its index moves.
+TEST(EditScript, PicksByPointAndByPixelMoveWhatTheIndexMoves) {
+  const TriMesh grid = test::grid(5, 0.25);
+  const std::array<int, 2> size{100, 100};
+  const Eigen::Vector2d px = project(frontCamera(), size[0], size[1], Eigen::Vector3d::Zero()).pixel;  // vertex 12
+  auto moved = [&](const std::string& seed) {
+    TriMesh m = grid;
+    const EditScript s =
+        parseEditScript(R"({"ops": [{"op": "drag", )" + seed + R"(, "radius": 0.3, "delta": [0.1, 0.05]},
+                    {"op": "rotate", )" +
+                            seed + R"(, "radius": 0.6, "angle_deg": 15}]})",
+                        "E.json");
+    applyEdits(frontCamera(), m.triangles, m.positions, s.ops, size);
+    return m.positions;
+  };
+  const auto by_index = moved(R"("vertex": 12)");
+  EXPECT_NE(by_index, grid.positions);
+  EXPECT_EQ(moved(R"("point": [0.02, -0.03, 0.1])"), by_index);
+  EXPECT_EQ(moved(R"("pixel": [)" + std::to_string(px.x() + 1) + ", " + std::to_string(px.y() - 1) + "]"), by_index);
+  // Round trip: the canonical form keeps the point or pixel (a log replays it to the same vertex).
+  const EditScript s =
+      parseEditScript(R"({"ops": [{"op": "drag", "pixel": [50, 50], "radius": 0.3, "delta": [0, 1]}]})", "E.json");
+  const EditOp back = parseEditOp(editOpToJson(s.ops[0]), "op");
+  EXPECT_EQ(std::get<DragOp>(back).pick.pixel, Eigen::Vector2d(50, 50));
+  EXPECT_EQ(editOpToJson(s.ops[0]).find("\"vertex\""), std::string::npos) << editOpToJson(s.ops[0]);
+}
+
+TEST(EditScript, BadPointsAndPixelsNameOpAndField) {
+  EXPECT_EQ(errorOf(R"({"ops": [{"op": "drag", "vertex": 1, "point": [0, 0, 0], "radius": 1, "delta": [0, 0]}]})"),
+            "E.json: 'ops'[0] (drag): give one of 'vertex', 'point' or 'pixel', not several");
+  EXPECT_EQ(errorOf(R"({"ops": [{"op": "drag", "radius": 1, "delta": [0, 0]}]})").substr(0, 50),
+            "E.json: 'ops'[0] (drag): missing the picked vertex");
+  EXPECT_NE(errorOf(R"({"ops": [{"op": "drag", "point": [0, 0], "radius": 1, "delta": [0, 0]}]})"), "");
+  EXPECT_NE(errorOf(R"({"ops": [{"op": "drag", "pixel": [0, "a"], "radius": 1, "delta": [0, 0]}]})"), "");
+  TriMesh m = test::grid(5, 0.25);
+  const EditScript no_size =
+      parseEditScript(R"({"ops": [{"op": "drag", "pixel": [50, 50], "radius": 0.3, "delta": [0, 1]}]})", "E.json");
+  try {
+    applyEdits(frontCamera(), m.triangles, m.positions, no_size.ops, std::nullopt, "E.json");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "E.json: 'ops'[0] (drag).'pixel': needs the drawing's size: give \"image_size\": [w, h]");
+  }
+  const EditScript miss =
+      parseEditScript(R"({"ops": [{"op": "push_pull", "pixel": [2, 2], "radius": 0.3, "amount": 1}]})", "E.json");
+  try {
+    applyEdits(frontCamera(), m.triangles, m.positions, miss.ops, std::array<int, 2>{100, 100}, "E.json");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "E.json: 'ops'[0] (push_pull).'pixel': [2, 2] sees no front face of the mesh in the key camera (its ray "
+              "misses the model)");
+  }
+}
+
 TEST(CameraJson, RoundTripAndErrors) {
   Camera c = frontCamera();
   c.eye = {0.1, 0.2, 4.3};

@@ -74,7 +74,7 @@ TEST_F(Morph3dCli, OneInbetweenOfConcentricSpheres) {
 }
 
 TEST_F(Morph3dCli, ASequenceThatVdgRenderShowsFrameByFrame) {
-  ASSERT_EQ(vdg("morph3d small.obj torus.obj --frames 3 -o seq"), 0) << err_;
+  ASSERT_EQ(vdg("morph3d small.obj torus.obj --count 3 -o seq"), 0) << err_;
   // One progress line per frame on stderr, the summary on stdout.
   EXPECT_EQ(err_, "vdg morph3d: frame 1/3 (t = 0): seq/frame_0000.obj, " +
                       std::to_string(readObj(dir_.file("seq/frame_0000.obj")).triangleCount()) +
@@ -101,7 +101,7 @@ TEST_F(Morph3dCli, ASequenceThatVdgRenderShowsFrameByFrame) {
 
 TEST_F(Morph3dCli, SphericalSequenceIsOneConnectivityThatVdgRenderPlaysAsAnAnimatedModel) {
   writeObj(dir_.file("box.obj"), testing::closedBox(-1, -0.6f, -0.8f, 1, 0.6f, 0.8f));
-  ASSERT_EQ(vdg("morph3d small.obj box.obj --method spherical --frames 3 -o sph --quiet"), 0) << err_;
+  ASSERT_EQ(vdg("morph3d small.obj box.obj --method spherical --count 3 -o sph --quiet"), 0) << err_;
   EXPECT_EQ(out_ + err_, "");
   const TriMesh first = readObj(dir_.file("sph/frame_0000.obj")), last = readObj(dir_.file("sph/frame_0002.obj"));
   EXPECT_EQ(first.triangles, last.triangles);
@@ -138,7 +138,7 @@ TEST_F(Morph3dCli, MinkowskiOfTwoBoxesIsTheBoxOfInterpolatedExtents) {
 }
 
 TEST_F(Morph3dCli, SlicesOfConcentricSpheresMeetHalfWayAndKeepOneConnectivity) {
-  ASSERT_EQ(vdg("morph3d small.obj large.obj --method slices --axis y --slices 24 --frames 3 -o sl --quiet"), 0)
+  ASSERT_EQ(vdg("morph3d small.obj large.obj --method slices --axis y --slices 24 --count 3 -o sl --quiet"), 0)
       << err_;
   const TriMesh first = readObj(dir_.file("sl/frame_0000.obj")), mid = readObj(dir_.file("sl/frame_0001.obj"));
   EXPECT_EQ(first.triangles, mid.triangles);
@@ -159,7 +159,7 @@ TEST_F(Morph3dCli, BadInputIsOneLineExitOneAndLeavesNothing) {
   const std::size_t before = entries();
   EXPECT_EQ(vdg("morph3d open.obj large.obj --t 0.5 -o x.obj"), 1);
   EXPECT_EQ(err_, "vdg: error: open.obj: is not closed: edge (0, 2) borders a hole (one triangle only)\n");
-  EXPECT_EQ(vdg("morph3d small.obj open.obj --frames 4 -o seq"), 1);
+  EXPECT_EQ(vdg("morph3d small.obj open.obj --count 4 -o seq"), 1);
   EXPECT_EQ(err_, "vdg: error: open.obj: is not closed: edge (0, 2) borders a hole (one triangle only)\n");
   EXPECT_EQ(vdg("morph3d small.obj missing.obj --t 0.5 -o x.obj"), 1);
   EXPECT_EQ(err_.rfind("vdg: error: missing.obj: ", 0), 0u) << err_;
@@ -175,16 +175,16 @@ TEST_F(Morph3dCli, BadUsageIsExitTwo) {
   for (const char* args :
        {"morph3d small.obj large.obj --t 1.5 -o x.obj", "morph3d small.obj large.obj --t -0.1 -o x.obj",
         "morph3d small.obj large.obj --t nan -o x.obj", "morph3d small.obj large.obj --t 0.5 --method cubes -o x.obj",
-        "morph3d small.obj large.obj --t 0.5 --frames 3 -o x", "morph3d small.obj large.obj -o x.obj",
-        "morph3d small.obj large.obj --frames 1 -o x", "morph3d small.obj large.obj --t 0.5 -o x.png",
+        "morph3d small.obj large.obj --t 0.5 --count 3 -o x", "morph3d small.obj large.obj -o x.obj",
+        "morph3d small.obj large.obj --count 1 -o x", "morph3d small.obj large.obj --t 0.5 -o x.png",
         "morph3d small.obj large.obj --t 0.5 --voxel 0 -o x.obj",
         "morph3d small.obj large.obj --t 0.5 --method minkowski --voxel 0.1 -o x.obj"}) {
     SCOPED_TRACE(args);
     EXPECT_EQ(vdg(args), 2);
     EXPECT_EQ(err_.find('\n'), err_.size() - 1) << err_;
   }
-  EXPECT_EQ(vdg("morph3d small.obj large.obj --t 0.5 --frames 3 -o x"), 2);
-  EXPECT_EQ(err_, "vdg: morph3d: --t and --frames exclude each other: give one (see vdg morph3d --help)\n");
+  EXPECT_EQ(vdg("morph3d small.obj large.obj --t 0.5 --count 3 -o x"), 2);
+  EXPECT_EQ(err_, "vdg: morph3d: --t and --count exclude each other: give one (see vdg morph3d --help)\n");
   EXPECT_EQ(entries(), before);
   ASSERT_EQ(vdg("morph3d --help"), 0);
   EXPECT_NE(out_.find("--method"), std::string::npos);

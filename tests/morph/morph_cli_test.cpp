@@ -163,7 +163,7 @@ TEST_F(MorphCli, WarpWithOneTranslatedLineTranslatesTheSource) {
 }
 
 TEST_F(MorphCli, FramesWritesTheSequenceFromSourceToDestination) {
-  ASSERT_EQ(vdg("morph src.png dst.png --grid grid.json --frames 5 -o seq"), 0) << err_;
+  ASSERT_EQ(vdg("morph src.png dst.png --grid grid.json --count 5 -o seq"), 0) << err_;
   EXPECT_EQ(out_, "wrote 5 frames (40x30) to seq\n");
   EXPECT_EQ(err_, "");  // the progress bar is drawn only on a terminal
   for (int i = 0; i < 5; ++i) EXPECT_TRUE(fs::exists(file("seq/frame_000" + std::to_string(i) + ".png"))) << i;
@@ -184,7 +184,7 @@ TEST_F(MorphCli, KeyFramedGridAnimatesTheGrids) {
   keyed.src = {{0, identity_}, {2, identity_}};
   keyed.dst = {{0, identity_}, {2, moved}};
   writeMorphGrid(file("keys.json"), keyed);
-  ASSERT_EQ(vdg("morph src.png dst.png --grid keys.json --frames 3 -o seq -q"), 0) << err_;
+  ASSERT_EQ(vdg("morph src.png dst.png --grid keys.json --count 3 -o seq -q"), 0) << err_;
   EXPECT_LE(maxDifference(read("seq/frame_0002.png"), dst_), kRounding);
   // Frame 1 uses the grids halfway between the keys; --t 0.5 --frame 1 is the same image.
   ASSERT_EQ(vdg("morph src.png dst.png --grid keys.json --t 0.5 --frame 1 -o one.png -q"), 0) << err_;
@@ -198,13 +198,13 @@ TEST_F(MorphCli, DrawingsAreInbetweenedIntoSvgOrPngFrames) {
   testing::writeText(file("draw.json"), R"({"version": 1, "width": 32, "height": 32, "keys": [
       {"time": 0, "strokes": [[[4, 4], [28, 4]]]},
       {"time": 2, "strokes": [[[4, 28], [16, 16], [28, 28]]]}]})");
-  ASSERT_EQ(vdg("morph --drawings draw.json --frames 3 -o svg"), 0) << err_;
+  ASSERT_EQ(vdg("morph --drawings draw.json --count 3 -o svg"), 0) << err_;
   EXPECT_EQ(out_, "wrote 3 SVG frames (32x32) to svg\n");
   const std::string first = slurp(file("svg/frame_0000.svg"));
   EXPECT_NE(first.find("<svg"), std::string::npos);
   EXPECT_NE(first.find("points=\"4,4 "), std::string::npos) << first;
   EXPECT_NE(slurp(file("svg/frame_0002.svg")).find(" 28,28\""), std::string::npos);
-  ASSERT_EQ(vdg("morph --drawings draw.json --frames 3 --format png -o png -q"), 0) << err_;
+  ASSERT_EQ(vdg("morph --drawings draw.json --count 3 --format png -o png -q"), 0) << err_;
   const render::Image last = read("png/frame_0002.png");
   ASSERT_EQ(last.width, 32);
   EXPECT_LT(last.pixel(16, 16)[0], 64);  // on the stroke: ink
@@ -239,9 +239,9 @@ TEST_F(MorphCli, BadInputIsOneLineAndExitOne) {
                 "vdg: error: small.png: is 20x30 pixels and src.png is 40x30; the two images must have the same size");
   expectRefused("morph missing.png dst.png --grid grid.json --t 0.5 -o x.png", 1,
                 "vdg: error: missing.png: no such file (image)");
-  expectRefused("morph src.png dst.png --grid nogrid.json --frames 3 -o seq", 1,
+  expectRefused("morph src.png dst.png --grid nogrid.json --count 3 -o seq", 1,
                 "vdg: error: nogrid.json: no such file (morph grid)");
-  expectRefused("morph --drawings nokeys.json --frames 3 -o seq", 1,
+  expectRefused("morph --drawings nokeys.json --count 3 -o seq", 1,
                 "vdg: error: nokeys.json: no such file (key drawings)");
 }
 
@@ -252,18 +252,18 @@ TEST_F(MorphCli, BadUsageIsOneLineAndExitTwo) {
   expectRefused("morph src.png dst.png --grid grid.json --lines lines.json --t 0.5 -o x.png", 2,
                 "vdg: morph: give exactly one of --grid FILE or --lines FILE" + see);
   expectRefused("morph src.png dst.png --grid grid.json -o x.png", 2,
-                "vdg: morph: give exactly one of --t T (one image) or --frames N (a sequence)" + see);
-  expectRefused("morph src.png dst.png --grid grid.json --t 0.5 --frames 3 -o x", 2,
-                "vdg: morph: give exactly one of --t T (one image) or --frames N (a sequence)" + see);
-  expectRefused("morph src.png dst.png --grid grid.json --frames 1 -o x", 2,
-                "vdg: morph: --frames: an image morph needs N >= 2 (frame 0 is SRC, frame N-1 DST)" + see);
+                "vdg: morph: give exactly one of --t T (one image) or --count N (a sequence)" + see);
+  expectRefused("morph src.png dst.png --grid grid.json --t 0.5 --count 3 -o x", 2,
+                "vdg: morph: give exactly one of --t T (one image) or --count N (a sequence)" + see);
+  expectRefused("morph src.png dst.png --grid grid.json --count 1 -o x", 2,
+                "vdg: morph: --count: an image morph needs N >= 2 (frame 0 is SRC, frame N-1 DST)" + see);
   expectRefused("morph src.png --grid grid.json --t 0.5 -o x.png", 2,
                 "vdg: morph: give SRC and DST images (or --drawings KEYS.json)" + see);
-  expectRefused("morph src.png dst.png --grid grid.json --frames 3 -o seq --video seq.avi", 2,
+  expectRefused("morph src.png dst.png --grid grid.json --count 3 -o seq --video seq.avi", 2,
                 "vdg: morph: --video: expected a file name ending in .mp4 or .gif, got 'seq.avi'" + see);
   expectRefused("morph src.png dst.png --grid grid.json --t 0.5 -o x.png --video x.mp4", 2,
-                "vdg: morph: --video: needs --frames N" + see);
-  expectRefused("morph --drawings d.json src.png -o x --frames 2", 2,
+                "vdg: morph: --video: needs --count N" + see);
+  expectRefused("morph --drawings d.json src.png -o x --count 2", 2,
                 "vdg: morph: --drawings takes no SRC or DST images" + see);
   EXPECT_EQ(vdg("morph src.png dst.png --grid grid.json --t 1.5 -o x.png"), 2);
   EXPECT_EQ(err_.rfind("vdg: morph: --t: ", 0), 0u) << err_;
@@ -276,7 +276,7 @@ TEST_F(MorphCli, VideoIsEncodedFromTheFramesByFfmpeg) {
   fs::create_directories(file("bin"));
   testing::writeText(file("bin/ffmpeg"), "#!/bin/sh\nfor a; do last=$a; done\necho \"$@\" > \"$last\"\n");
   fs::permissions(file("bin/ffmpeg"), fs::perms::owner_all);
-  ASSERT_EQ(vdg("morph src.png dst.png --grid grid.json --frames 3 -o seq --video seq.gif -q",
+  ASSERT_EQ(vdg("morph src.png dst.png --grid grid.json --count 3 -o seq --video seq.gif -q",
                 "PATH=\"" + file("bin") + ":$PATH\""),
             0)
       << err_;
@@ -290,7 +290,7 @@ TEST_F(MorphCli, VideoIsEncodedFromTheFramesByFfmpeg) {
 
 TEST_F(MorphCli, VideoWithoutFfmpegIsOneLine) {
   expectRefused(
-      "morph src.png dst.png --grid grid.json --frames 3 -o seq --video seq.mp4", 1,
+      "morph src.png dst.png --grid grid.json --count 3 -o seq --video seq.mp4", 1,
       "vdg: error: --video seq.mp4: writing a video needs the 'ffmpeg' program, which is not on PATH; install "
       "it, or leave out --video (the frames go to -o DIR)",
       "PATH=/nonexistent");

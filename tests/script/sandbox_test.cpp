@@ -156,6 +156,17 @@ TEST(ScriptSandbox, WritingOutsideTheOutputFolderIsRefused) {
             "hostile.lua:1: vdg.render: out 'link': the path leads outside its folder (through a symbolic link)");
 }
 
+// An output folder named with a trailing slash that does not exist yet ("shots/") is the folder
+// itself: render folders inside it are accepted, not taken for a way out through a link.
+TEST(ScriptSandbox, AnOutputFolderWithATrailingSlashThatDoesNotExistYetHoldsItsRenders) {
+  ScriptBench bench;
+  script::ScriptOptions options = bench.options();
+  options.output_dir = bench.dir.file("shots") + "/";
+  EXPECT_NO_THROW(script::runScriptText("vdg.render{out = 'frames'}", "ok.lua", bench.scripts, options));
+  options.output_dir = bench.dir.file("shots/deeper") + "/";
+  EXPECT_NO_THROW(script::runScriptText("vdg.render{out = 'frames'}", "ok.lua", bench.scripts, options));
+}
+
 TEST(ScriptSandbox, NoModulesNoDebugNoBinaryChunks) {
   ScriptBench bench;
   bench.run(

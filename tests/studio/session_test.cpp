@@ -80,6 +80,25 @@ TEST_F(Fixture, OpeningRefusesMissingFilesAndAnExistingManifest) {
   EXPECT_NE(errorOf([&] { Session::open(dir.file("bad.obj")); }), "");
 }
 
+// The editor warns about key views nearly the same direction (the decision is viewdep's:
+// kNearlySameViewDeg), and says nothing when the key views are well apart.
+TEST_F(Fixture, KeysNearlyTheSameDirectionAreWarnedAbout) {
+  const std::string manifest = dir.file("close.vdg.json");
+  vdg::testing::writeText(manifest, R"({"version": 2, "base": "ball.obj", "keys": [
+      {"name": "front", "mesh": "ball.obj", "view": [0, 0, 1]},
+      {"name": "almost_front", "mesh": "ball.obj", "view": [0.04, 0, 1]},
+      {"name": "side", "mesh": "ball.obj", "view": [1, 0, 0]}]})");
+  const std::vector<std::string> warnings = Session::open(manifest).keyViewWarnings();
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_EQ(warnings[0],
+            "keys 'front' and 'almost_front' are only 2.3 degrees apart: the weights flip between them (a "
+            "near-degenerate hull triangle)");
+  vdg::testing::writeText(manifest, R"({"version": 2, "base": "ball.obj", "keys": [
+      {"name": "front", "mesh": "ball.obj", "view": [0, 0, 1]},
+      {"name": "side", "mesh": "ball.obj", "view": [1, 0, 0]}]})");
+  EXPECT_TRUE(Session::open(manifest).keyViewWarnings().empty());
+}
+
 TEST_F(Fixture, PickFindsTheVertexUnderThePixel) {
   Session s = withKey();
   const auto& p = s.baseMesh().positions;
@@ -112,7 +131,7 @@ TEST_F(Fixture, ADragStrokeIsTheDragOpOfVdgDeform) {
   RawViewDependentModel raw = s.model();
   raw.keys[0].mesh.positions = raw.base.positions;
   EditLog log;
-  const DragOp op{{v, s.metric, s.falloff}, Eigen::Vector2d::Zero(), b - a};
+  const DragOp op{{v, s.metric, s.falloff, std::nullopt, std::nullopt}, Eigen::Vector2d::Zero(), b - a};
   deformKey(raw, 0, log, std::vector<EditOp>{op}, std::array<int, 2>{s.image_width, s.image_height}, "test");
   EXPECT_EQ(maxDiff(s.positions(), raw.keys[0].mesh.positions), 0.0);
   EXPECT_LT(maxDiff(live, raw.keys[0].mesh.positions), 1e-6);  // what was shown while dragging

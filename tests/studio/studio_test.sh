@@ -77,7 +77,7 @@ fi
 # y = 72. Its corners show the drawing at opacity 0.5 over the paper (0.97, 0.97, 0.95).
 $TOOL drawing "$TMP/drawing.png" 200 150
 building "$TMP/b"
-if studio "$TMP/b/building.vdg.json" --drawing "$TMP/drawing.png" --size 640x400 --frames 3 \
+if studio "$TMP/b/building.vdg.json" --drawing "$TMP/drawing.png" --size 640x400 --count 3 \
   --screenshot "$TMP/b.png" 2>"$TMP/b.err"; then
   $TOOL pixel "$TMP/b.png" 306 80 234 144 141 8 && pass "(b) red half of the drawing at opacity 0.5" ||
     fail "(b) drawing colour (red half)"
@@ -98,7 +98,7 @@ fi
 expect_error() {  # NAME EXPECTED_TEXT -- ARGS...
   local name=$1 text=$2
   shift 3
-  studio "$@" --frames 2 >/dev/null 2>"$TMP/c.err"
+  studio "$@" --count 2 >/dev/null 2>"$TMP/c.err"
   local rc=$?
   if [ $rc -eq 1 ] && grep -q -- "$text" "$TMP/c.err"; then pass "(c) $name: exit 1, '$(head -c 150 "$TMP/c.err")'"
   else fail "(c) $name: exit $rc, stderr '$(cat "$TMP/c.err")'"; fi
@@ -186,7 +186,7 @@ fi
 # ---- usage --------------------------------------------------------------------------------------------
 "$VDG" studio "$TMP/a/building.vdg.json" --recover --discard-recovery >/dev/null 2>&1
 [ $? -eq 2 ] && pass "usage: --recover with --discard-recovery is exit 2" || fail "usage: expected exit 2"
-env -u DISPLAY -u WAYLAND_DISPLAY "$VDG" studio "$TMP/a/building.vdg.json" --frames 1 >/dev/null 2>"$TMP/nodisp.err"
+env -u DISPLAY -u WAYLAND_DISPLAY "$VDG" studio "$TMP/a/building.vdg.json" --count 1 >/dev/null 2>"$TMP/nodisp.err"
 rc=$?
 [ $rc -eq 1 ] && [ "$(wc -l <"$TMP/nodisp.err")" = 1 ] && pass "no display: one line, exit 1" ||
   fail "no display: exit $rc, '$(cat "$TMP/nodisp.err")'"

@@ -224,6 +224,29 @@ TEST(SameView, CloseViewPairsMatchTheBruteForceSearchInOrder) {
   }
 }
 
+// Key views within kNearlySameViewDeg (but not one viewpoint) are the pairs vdg info and vdg studio
+// warn about: a near-degenerate hull triangle whose weights flip between its two close corners.
+TEST(SameView, NearlySameViewPairsAreTheCloseButDistinctOnes) {
+  constexpr double kDeg = std::numbers::pi / 180.0;
+  auto at = [&](double azimuth_deg) { return Vector3d(std::sin(azimuth_deg * kDeg), 0, std::cos(azimuth_deg * kDeg)); };
+  const std::vector<Vector3d> views = {at(0),   at(kNearlySameViewDeg - 0.1),
+                                       at(90),  at(90 + kNearlySameViewDeg + 0.1),
+                                       at(200), at(200)};  // the last two: one viewpoint (keys at two frames)
+  std::vector<NearlySameViewPair> listed;
+  EXPECT_EQ(nearlySameViewPairs(views, 10, 100, listed), 1u);
+  ASSERT_EQ(listed.size(), 1u);
+  EXPECT_EQ(listed[0].i, 1u);
+  EXPECT_EQ(listed[0].j, 0u);
+  EXPECT_NEAR(listed[0].angle_deg, kNearlySameViewDeg - 0.1, 1e-9);
+  // Listing and counting stop where asked.
+  const std::vector<Vector3d> cluster = {at(0), at(1), at(2), at(3)};  // 6 close pairs
+  listed.clear();
+  EXPECT_EQ(nearlySameViewPairs(cluster, 2, 100, listed), 6u);
+  EXPECT_EQ(listed.size(), 2u);
+  listed.clear();
+  EXPECT_EQ(nearlySameViewPairs(cluster, 2, 4, listed), 4u);
+}
+
 TEST(SameView, VisitingStopsWhenAskedTo) {
   const std::vector<Vector3d> views = randomViews(200, 5);
   int calls = 0;

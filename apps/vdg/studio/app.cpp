@@ -60,6 +60,8 @@ struct Studio::Impl {
   std::optional<TextureImage> drawing;
   std::vector<std::string> errors;  // shown in the window
   std::string status;
+  std::vector<std::string> key_view_warnings;  // Session::keyViewWarnings() at warnings_revision
+  std::uint64_t warnings_revision = ~std::uint64_t{0};
   bool failed = false;
   bool close = false;
 
@@ -543,6 +545,16 @@ struct Studio::Impl {
           if (ImGui::SmallButton("edit")) attempt("edit key", [&] { session->editKey(i); });
         }
         ImGui::PopID();
+      }
+      // Key views nearly the same direction (viewdep decides), recomputed when the keys change.
+      if (warnings_revision != session->revision()) {
+        key_view_warnings = session->keyViewWarnings();
+        warnings_revision = session->revision();
+      }
+      for (const std::string& w : key_view_warnings) {
+        ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.85f, 0.45f, 0.05f, 1.0f));
+        ImGui::TextWrapped("warning: %s", w.c_str());
+        ImGui::PopStyleColor();
       }
       if (!session->animated()) {
         ImGui::SetNextItemWidth(150);

@@ -34,10 +34,15 @@ const char* editKindName(EditKind kind);
 
 // The picked (seed) vertex of the image-plane tools and the region it drags along: vertices whose
 // distance (`metric`) from it is below `falloff.radius` move by falloffWeight() of the full edit.
+// Instead of an index, the seed may be named by a model-space `point` (the nearest vertex) or by a
+// `pixel` of the key camera's image of the script's image_size (the vertex seen there), both found
+// on the mesh as it is before the op (vdg/deform/pick.h); `vertex` is then ignored. At most one.
 struct VertexPick {
   std::int32_t vertex = 0;  // index into the mesh, < #V
   DistanceMetric metric = DistanceMetric::kEuclidean;
-  Falloff falloff;  // radius > 0 and finite; power >= 0 and finite
+  Falloff falloff;                       // radius > 0 and finite; power >= 0 and finite
+  std::optional<Eigen::Vector3d> point;  // model space: the nearest vertex
+  std::optional<Eigen::Vector2d> pixel;  // x right, y down: the vertex the pixel's ray hits first
 };
 
 // Image-plane drag (Rademacher 99, 3.1.2): the picked vertex moves by `delta` (world units along
@@ -58,13 +63,13 @@ struct PushPullOp {
 // Rotation by angle_deg (counter-clockwise in the image) about the view-axis line through the
 // picked vertex. A rigid group by default: pick.falloff.power = 0.
 struct RotateOp {
-  VertexPick pick{0, DistanceMetric::kEuclidean, Falloff{1.0, 0.0, FalloffShape::kPower}};
+  VertexPick pick{0, DistanceMetric::kEuclidean, Falloff{1.0, 0.0, FalloffShape::kPower}, std::nullopt, std::nullopt};
   double angle_deg = 0;
 };
 // Scaling by `factor` (> 0, along camera right and up) about the picked vertex, parallel to the
 // image plane. A rigid group by default.
 struct ScaleOp {
-  VertexPick pick{0, DistanceMetric::kEuclidean, Falloff{1.0, 0.0, FalloffShape::kPower}};
+  VertexPick pick{0, DistanceMetric::kEuclidean, Falloff{1.0, 0.0, FalloffShape::kPower}, std::nullopt, std::nullopt};
   Eigen::Vector2d factor = Eigen::Vector2d::Ones();
 };
 // Attenuated displacement (Parent 4.10): every vertex moves by w * offset (world units, in the
@@ -157,7 +162,9 @@ struct EditReport {
 };
 
 // Applies `ops` in order to `positions` (#V x 3, in place) with `camera` as the key camera;
-// `image_size` is required by ops with delta_px. Returns one report per op. Throws vdg::Error (and
+// `image_size` is required by ops with delta_px or a pick's pixel. A pick's point or pixel is
+// resolved to a vertex on the positions as they are before its op; a pixel that sees no front face
+// of the mesh is an error naming the op. Returns one report per op. Throws vdg::Error (and
 // leaves `positions` partly edited: callers edit a copy) for an invalid op.
 std::vector<EditReport> applyEdits(const Camera& camera, std::span<const std::int32_t> triangles,
                                    std::span<float> positions, std::span<const EditOp> ops,

@@ -87,6 +87,10 @@ class Session {
   // The vertex of the first front-facing triangle hit by the ray through `pixel` (image pixels, y
   // down) that is nearest to the hit point, or nothing when the ray misses the shape shown.
   std::optional<std::int32_t> pick(const Eigen::Vector2d& pixel) const;
+  // One line per pair of keys whose views are nearly the same direction (viewdep's
+  // nearlySameViewPairs: a near-degenerate hull triangle, the weights flip between them), at most
+  // a few listed and the rest counted; empty when the key views are well apart.
+  std::vector<std::string> keyViewWarnings() const;
   // Falloff weights (#V, in [0, 1]) of a stroke picked at `vertex` with the current settings.
   std::vector<double> selectionWeights(std::int32_t vertex) const;
 

@@ -200,4 +200,21 @@ class ViewSphere {
 std::size_t forEachCloseViewPair(std::span<const Eigen::Vector3d> unit_directions, double max_angle_rad,
                                  const std::function<bool(std::size_t i, std::size_t j, double angle_rad)>& visit);
 
+// Key views closer than this (degrees) but not the same view (ViewSphere::kSameViewRad) make a
+// near-degenerate hull triangle: across its short side the weights flip from one key to the other
+// over a small arc of views, so the blend looks abrupt (Rademacher 99, 3.2: the weights are
+// barycentric in the hull triangle). `vdg info` and `vdg studio` warn about such pairs.
+inline constexpr double kNearlySameViewDeg = 5.0;
+
+// Two key views nearly the same direction: indices into the directions (j < i) and their angle.
+struct NearlySameViewPair {
+  std::size_t i = 0, j = 0;
+  double angle_deg = 0.0;
+};
+// The pairs of `unit_directions` (expected unit) more than kSameViewRad and less than
+// kNearlySameViewDeg apart, in forEachCloseViewPair's order: the first `max_listed` are appended to
+// `listed`; returns how many pairs there are, counting no further than `max_counted`.
+std::size_t nearlySameViewPairs(std::span<const Eigen::Vector3d> unit_directions, std::size_t max_listed,
+                                std::size_t max_counted, std::vector<NearlySameViewPair>& listed);
+
 }  // namespace vdg
