@@ -52,6 +52,7 @@
 #include "vdg/io/read_file.h"
 #include "vdg/render/model_renderer.h"
 #include "vdg/viewdep/animated_model.h"
+#include "video.h"
 
 namespace vdg::cli {
 namespace {
@@ -85,18 +86,18 @@ void checkCanvas(const std::string& size_text, const render::FrameOptions& fo) {
   const std::string observer = fo.observer ? " (with --observer the canvas is twice as wide)" : "";
   if (canvas_width > render::kMaxImageSize)
     throw UsageError("--size: expected a width in [1, " + std::to_string(render::kMaxImageSize / 2) +
-                     "] with --observer (the canvas is twice as wide), got " + shown(size_text));
+                     "] with --observer (the canvas is twice as wide), got " + quotedText(size_text));
   if (std::max(canvas_width, fo.height) <= kDriverQuerySide) return;
   const int limit = render::maxImageSide();
   if (canvas_width > limit || fo.height > limit)
     throw UsageError("--size: this machine's OpenGL driver draws at most " + std::to_string(limit) + " pixels a side" +
-                     observer + ", got " + shown(size_text));
+                     observer + ", got " + quotedText(size_text));
 }
 
 render::Rgb parseColor(const std::string& text, const std::string& option) {
   const Eigen::Vector3d v = parseVec3(text, option);
   if (v.minCoeff() < 0.0 || v.maxCoeff() > 1.0)
-    throw UsageError(option + ": expected R,G,B with each channel in [0, 1], got " + shown(text));
+    throw UsageError(option + ": expected R,G,B with each channel in [0, 1], got " + quotedText(text));
   return {static_cast<float>(v.x()), static_cast<float>(v.y()), static_cast<float>(v.z())};
 }
 
@@ -203,16 +204,13 @@ void run(const RenderOptions& opt) {
       range = parseFrameRange(opt.camera.frames, "--frames");
       if (range.last >= opt.count)
         throw UsageError("--frames: expected frames within 0-" + std::to_string(opt.count - 1) + " (--count " +
-                         std::to_string(opt.count) + "), got " + shown(opt.camera.frames));
+                         std::to_string(opt.count) + "), got " + quotedText(opt.camera.frames));
     }
   }
   checkCanvas(opt.size, fo);
 
-  const bool video = hasExtension(opt.output, ".mp4") || hasExtension(opt.output, ".gif");
-  if (video && !findOnPath("ffmpeg"))
-    throw Error("-o " + opt.output +
-                ": writing a video needs the 'ffmpeg' program, which is not on PATH; "
-                "install it, or write PNG frames with -o DIR");
+  const bool video = isVideoPath(opt.output);
+  if (video) requireFfmpeg("-o " + opt.output, "write PNG frames with -o DIR");
 
   FrameCameras cameras;
   if (!opt.camera_file.empty()) {
@@ -300,36 +298,7 @@ void run(const RenderOptions& opt) {
   progress.finish();
 
   if (video) {
-    // ffmpeg writes a short temporary name beside the real file (links followed), renamed over it
-    // only when the encoding succeeded; it picks the format from the extension.
-    const std::string real = resolveOutputPath(opt.output);
-    struct stat existing {};
-    if (::stat(real.c_str(), &existing) == 0 && !S_ISREG(existing.st_mode))
-      throw Error("-o " + opt.output + ": is not a regular file; a video is written only to a file");
-    const std::string ext = fs::path(opt.output).extension().string();
-    std::string temp_name = (fs::path(real).parent_path() / (".vdg-XXXXXX" + ext)).string();
-    const int temp_fd = ::mkstemps(temp_name.data(), static_cast<int>(ext.size()));
-    if (temp_fd < 0) throw Error("-o " + opt.output + ": cannot write file: " + std::strerror(errno));
-    const mode_t mask = ::umask(0);  // single-threaded here: read the umask and put it back
-    ::umask(mask);
-    (void)::fchmod(temp_fd, ::stat(real.c_str(), &existing) == 0 ? existing.st_mode & 07777 : 0666 & ~mask);
-    ::close(temp_fd);
-    const std::string temp = temp_name;
-    const std::string filter = hasExtension(opt.output, ".gif")
-                                   ? "-vf 'split[a][b];[a]palettegen[p];[b][p]paletteuse'"
-                                   : "-c:v libx264 -pix_fmt yuv420p -vf 'pad=ceil(iw/2)*2:ceil(ih/2)*2'";
-    const std::string cmd = "ffmpeg -loglevel error -y -framerate 24 -start_number " + std::to_string(range.first) +
-                            " -i " + shellQuote((out_dir / "frame_%04d.png").string()) + " " + filter + " " +
-                            shellQuote(temp);
-    if (std::system(cmd.c_str()) != 0) {
-      fs::remove(temp, ec);
-      throw Error("-o " + opt.output + ": ffmpeg failed to encode the frames (they are in " + out_dir.string() + ")");
-    }
-    if (::rename(temp.c_str(), real.c_str()) != 0) {
-      const int err = errno;
-      fs::remove(temp, ec);
-      throw Error("-o " + opt.output + ": cannot write file: " + std::strerror(err));
-    }
+    encodeVideo("-o " + opt.output, opt.output, {out_dir.string(), range.first, range.last - range.first + 1});
     fs::remove_all(out_dir, ec);
   }
   if (!opt.quiet)
