@@ -170,7 +170,8 @@ FrameRange parseFrameRange(const std::string& text, const std::string& option) {
     int value = 0;
     auto [next, ec] = std::from_chars(s.data(), s.data() + s.size(), value);
     if (ec != std::errc() || next != s.data() + s.size() || value < 0)
-      throw UsageError(option + ": expected a frame range A-B or a frame N (whole numbers >= 0), got " + quotedText(text));
+      throw UsageError(option + ": expected a frame range A-B or a frame N (whole numbers >= 0), got " +
+                       quotedText(text));
     return value;
   };
   if (dash == std::string::npos) {

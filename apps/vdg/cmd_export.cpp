@@ -35,8 +35,7 @@ GltfExportInput exportInputForCli(const RawViewDependentModel& raw) {
 }
 
 void checkGltfOutput(const std::string& output) {
-  if (!hasGltfExtension(output))
-    throw UsageError("-o: expected a .glb or .gltf file name, got " + quotedText(output));
+  if (!hasGltfExtension(output)) throw UsageError("-o: expected a .glb or .gltf file name, got " + quotedText(output));
 }
 
 void addExportCommand(CLI::App& app) {

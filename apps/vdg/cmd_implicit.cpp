@@ -92,7 +92,8 @@ void runImplicit(const ImplicitOptions& opt) {
   if (sequence) {
     range = parseFrameRange(opt.frames, "--frames");
     if (static_cast<long>(range.last) - range.first + 1 > kMaxBlobFrames)
-      throw UsageError("--frames: at most " + std::to_string(kMaxBlobFrames) + " frames, got " + quotedText(opt.frames));
+      throw UsageError("--frames: at most " + std::to_string(kMaxBlobFrames) + " frames, got " +
+                       quotedText(opt.frames));
   }
 
   const BlobFile file = readBlobFile(opt.input);
