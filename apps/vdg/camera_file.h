@@ -37,9 +37,20 @@ inline FrameRange cameraFrameRange(const OrbitOptions& orbit, const std::string&
     range = parseFrameRange(orbit.frames, "--frames");
     if (range.last >= count)
       throw UsageError("--frames: expected frames within 0-" + std::to_string(count - 1) + " (--count " +
-                       std::to_string(count) + "), got " + shown(orbit.frames));
+                       std::to_string(count) + "), got " + quotedText(orbit.frames));
   }
   return range;
+}
+
+// After parsing, which of the orbit options, --count and --camera the command line gave (what
+// cameraFrameRange checks); `opt` is render's or bake's options.
+template <class Options>
+void noteCameraOptionsGiven(const CLI::App& sub, Options& opt) {
+  opt.orbit_options_given.clear();
+  for (const char* name : {"--orbit", "--azimuth", "--elevation", "--distance", "--fov"})
+    if (sub.count(name) > 0) opt.orbit_options_given.push_back(name);
+  opt.count_given = sub.count("--count") > 0;
+  opt.camera_given = sub.count("--camera") > 0;
 }
 
 // The camera of every output frame given by --camera FILE (the orbit is OrbitOptions).

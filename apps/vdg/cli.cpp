@@ -12,37 +12,9 @@
 
 #include "vdg/geom/error.h"
 #include "vdg/geom/normalize.h"
+#include "vdg/geom/text.h"
 
 namespace vdg::cli {
-namespace {
-
-// A range bound as people write it: whole values without a fraction or exponent ("1000000").
-std::string numberText(double v) {
-  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-  if (v == std::floor(v) && std::abs(v) < 1e15) return std::to_string(static_cast<long long>(v));
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%g", v);
-  return buffer;
-}
-
-}  // namespace
-
-std::string shown(std::string_view text) {
-  constexpr std::size_t kShown = 60;
-  std::string s = oneLineText(text.substr(0, kShown));
-  if (text.size() > kShown) s += "...";
-  return "'" + s + "'";
-}
-
-bool hasExtension(std::string_view path, std::string_view extension) {
-  if (path.size() < extension.size()) return false;
-  const std::string_view tail = path.substr(path.size() - extension.size());
-  for (std::size_t i = 0; i < tail.size(); ++i)
-    if (std::tolower(static_cast<unsigned char>(tail[i])) != std::tolower(static_cast<unsigned char>(extension[i])))
-      return false;
-  return true;
-}
-
 bool findOnPath(const std::string& program) {
   const char* path = std::getenv("PATH");
   if (!path) return false;
@@ -61,14 +33,24 @@ std::string shellQuote(const std::string& s) {
   return out + "'";
 }
 
+namespace {
+
+// A range bound as people write it: whole values without a fraction or exponent ("1000000").
+std::string boundText(double v) {
+  if (v == std::floor(v) && std::abs(v) < 1e15) return std::to_string(static_cast<long long>(v));
+  return numberText(v);
+}
+
+}  // namespace
+
 std::string describeRange(const NumberRange& r) {
   const std::string kind = r.whole ? "a whole number" : "a number";
   const bool lo = r.lo_end != End::kUnbounded, hi = r.hi_end != End::kUnbounded;
   if (lo && hi)
-    return kind + " in " + (r.lo_end == End::kOpen ? "(" : "[") + numberText(r.lo) + ", " + numberText(r.hi) +
+    return kind + " in " + (r.lo_end == End::kOpen ? "(" : "[") + boundText(r.lo) + ", " + boundText(r.hi) +
            (r.hi_end == End::kOpen ? ")" : "]");
-  if (lo) return kind + (r.lo_end == End::kOpen ? " > " : " >= ") + numberText(r.lo);
-  if (hi) return kind + (r.hi_end == End::kOpen ? " < " : " <= ") + numberText(r.hi);
+  if (lo) return kind + (r.lo_end == End::kOpen ? " > " : " >= ") + boundText(r.lo);
+  if (hi) return kind + (r.hi_end == End::kOpen ? " < " : " <= ") + boundText(r.hi);
   return r.whole ? kind : "a finite number";
 }
 
@@ -98,7 +80,7 @@ CLI::Validator numberIn(const NumberRange& range) {
   return CLI::Validator(
       [range](std::string& text) -> std::string {
         if (parseNumberIn(text, range)) return {};
-        return "expected " + describeRange(range) + ", got " + shown(text);
+        return "expected " + describeRange(range) + ", got " + quotedText(text);
       },
       help);
 }
@@ -129,7 +111,7 @@ std::string checkImageSize(const std::string& text, char separator, int max_side
   if (!w || !h) {
     const std::string form = separator == 'x' ? "WIDTHxHEIGHT" : std::string("WIDTH") + separator + "HEIGHT";
     return "expected " + form + " in pixels, each side a whole number in [1, " + std::to_string(max_side) + "], got " +
-           shown(text);
+           quotedText(text);
   }
   size = {static_cast<int>(*w), static_cast<int>(*h)};
   return {};
@@ -162,22 +144,23 @@ Eigen::Vector3d parseVec3(const std::string& text, const std::string& option) {
     double value = 0;
     auto [next, ec] = std::from_chars(p, end, value);
     if (ec != std::errc() || !std::isfinite(value))
-      throw UsageError(option + ": expected three finite numbers X,Y,Z, got " + shown(text));
+      throw UsageError(option + ": expected three finite numbers X,Y,Z, got " + quotedText(text));
     v[i] = value;
     p = next;
     while (p < end && *p == ' ') ++p;
     if (i < 2) {
-      if (p == end || *p != ',') throw UsageError(option + ": expected three finite numbers X,Y,Z, got " + shown(text));
+      if (p == end || *p != ',')
+        throw UsageError(option + ": expected three finite numbers X,Y,Z, got " + quotedText(text));
       ++p;
     }
   }
-  if (p != end) throw UsageError(option + ": expected three finite numbers X,Y,Z, got " + shown(text));
+  if (p != end) throw UsageError(option + ": expected three finite numbers X,Y,Z, got " + quotedText(text));
   return v;
 }
 
 Eigen::Vector3d parseDirection(const std::string& text, const std::string& option) {
   const std::optional<Eigen::Vector3d> unit = normalizedOrNone(parseVec3(text, option));  // 1e308 too
-  if (!unit) throw UsageError(option + ": the direction must not be zero, got " + shown(text));
+  if (!unit) throw UsageError(option + ": the direction must not be zero, got " + quotedText(text));
   return *unit;
 }
 
@@ -188,7 +171,8 @@ FrameRange parseFrameRange(const std::string& text, const std::string& option) {
     int value = 0;
     auto [next, ec] = std::from_chars(s.data(), s.data() + s.size(), value);
     if (ec != std::errc() || next != s.data() + s.size() || value < 0)
-      throw UsageError(option + ": expected a frame range A-B or a frame N (whole numbers >= 0), got " + shown(text));
+      throw UsageError(option + ": expected a frame range A-B or a frame N (whole numbers >= 0), got " +
+                       quotedText(text));
     return value;
   };
   if (dash == std::string::npos) {
@@ -196,7 +180,7 @@ FrameRange parseFrameRange(const std::string& text, const std::string& option) {
   } else {
     r.first = parse_int(text.substr(0, dash));
     r.last = parse_int(text.substr(dash + 1));
-    if (r.last < r.first) throw UsageError(option + ": expected A-B with A <= B, got " + shown(text));
+    if (r.last < r.first) throw UsageError(option + ": expected A-B with A <= B, got " + quotedText(text));
   }
   return r;
 }

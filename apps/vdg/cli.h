@@ -10,6 +10,8 @@
 #include <string>
 #include <string_view>
 
+#include "vdg/geom/text.h"  // quoted, numberText, hasExtension for every subcommand
+
 namespace vdg::cli {
 
 // Thrown by a subcommand to stop with an exit status without an error message of its own.
@@ -68,12 +70,6 @@ struct ImageSize {
 ImageSize parseImageSize(const std::string& text, char separator, int max_side, const std::string& option);
 // A validator for the same texts (so that bad sizes stop at parse time).
 CLI::Validator imageSize(char separator, int max_side);
-
-// `text` made safe to quote in a one-line message: control characters escaped, cut to 60 bytes.
-std::string shown(std::string_view text);
-
-// True when `path` ends with `extension` (".obj"), in any letter case ("X.OBJ" is an OBJ file).
-bool hasExtension(std::string_view path, std::string_view extension);
 
 // "X,Y,Z" -> vector; throws UsageError naming the option.
 Eigen::Vector3d parseVec3(const std::string& text, const std::string& option);

@@ -116,11 +116,7 @@ void addBakeCommand(CLI::App& app) {
                 "STEP interpolation: hold each frame's weights and camera (default LINEAR: blend between frames)");
   sub->add_flag("-q,--quiet", opt->quiet, "Print nothing on success");
   sub->callback([opt, sub] {
-    opt->orbit_options_given.clear();
-    for (const char* name : {"--orbit", "--azimuth", "--elevation", "--distance", "--fov"})
-      if (sub->count(name) > 0) opt->orbit_options_given.push_back(name);
-    opt->count_given = sub->count("--count") > 0;
-    opt->camera_given = sub->count("--camera") > 0;
+    noteCameraOptionsGiven(*sub, *opt);
     run(*opt);
   });
 }

@@ -134,7 +134,7 @@ void runDeform(const DeformOptions& opt) {
     // (parseDirection's check, written out: assigning its result here trips GCC 12's
     // -Wmaybe-uninitialized on the optionals at -O2.)
     const std::optional<Eigen::Vector3d> unit = normalizedOrNone(parseVec3(opt.view, "--view"));
-    if (!unit) throw UsageError("--view: the direction must not be zero, got " + shown(opt.view));
+    if (!unit) throw UsageError("--view: the direction must not be zero, got " + quotedText(opt.view));
     given_view = *unit;
   }
   if (!new_key) {

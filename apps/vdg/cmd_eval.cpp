@@ -40,7 +40,7 @@ void addEvalCommand(CLI::App& app) {
   sub->add_flag("-q,--quiet", opt->quiet, "Print nothing on success");
   sub->callback([opt] {
     if (!hasExtension(opt->output, ".obj"))
-      throw UsageError("-o: expected an .obj file name, got " + shown(opt->output));
+      throw UsageError("-o: expected an .obj file name, got " + quotedText(opt->output));
     const OpenedInput input = openModel(opt->model);
     TriMesh out;
     std::string header = "vdg eval " + opt->model;
@@ -49,7 +49,7 @@ void addEvalCommand(CLI::App& app) {
       const AnimatedViewDependentModel& model = *input.animated;
       const int n = model.frameCount();
       if (opt->frame < 0)
-        throw UsageError("--frame: " + shown(opt->model) + " is animated (" + std::to_string(n) +
+        throw UsageError("--frame: " + quotedText(opt->model) + " is animated (" + std::to_string(n) +
                          " frames); give --frame F with F in 0.." + std::to_string(n - 1));
       if (opt->frame >= n)
         throw UsageError("--frame: expected a frame in 0.." + std::to_string(n - 1) + " (the model has " +
@@ -69,7 +69,7 @@ void addEvalCommand(CLI::App& app) {
               " view of " + model.keyName(static_cast<std::size_t>(w.key[k]), 0) + "=" + std::to_string(w.weight[k]);
     } else {
       if (opt->frame >= 0)
-        throw UsageError("--frame: " + shown(opt->model) +
+        throw UsageError("--frame: " + quotedText(opt->model) +
                          " is not animated (no 'base_animation'); --frame applies to animated models only");
       const ViewDependentModel& model = *input.model;
       const Eigen::Vector3d view = opt->view.resolve(model);

@@ -35,8 +35,7 @@ GltfExportInput exportInputForCli(const OpenedInput& input) {
 }
 
 void checkGltfOutput(const std::string& output) {
-  if (!hasExtension(output, ".glb") && !hasExtension(output, ".gltf"))
-    throw UsageError("-o: expected a .glb or .gltf file name, got " + shown(output));
+  if (!hasGltfExtension(output)) throw UsageError("-o: expected a .glb or .gltf file name, got " + quotedText(output));
 }
 
 void addExportCommand(CLI::App& app) {

@@ -26,6 +26,7 @@
 #include "cli.h"
 #include "vdg/geom/camera.h"
 #include "vdg/geom/error.h"
+#include "vdg/geom/text.h"
 #include "vdg/io/atomic_file.h"
 #include "vdg/io/blob_files.h"
 #include "vdg/io/camera_json.h"
@@ -45,13 +46,6 @@ struct ImplicitOptions {
   double frame = 0, voxel = 0;
   bool frame_given = false, quiet = false;
 };
-
-// "%.6g" of a number, for messages ("0.5", "12").
-std::string g(double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.6g", v);
-  return text;
-}
 
 // "frame_0012.obj"
 std::string frameName(int frame) {
@@ -92,13 +86,14 @@ void runImplicit(const ImplicitOptions& opt) {
   const bool sequence = !opt.frames.empty();
   if (sequence && opt.frame_given) throw UsageError("--frame and --frames exclude each other");
   if (!sequence && !hasExtension(opt.output, ".obj"))
-    throw UsageError("-o: expected an OBJ file (.obj) for one frame, got " + shown(opt.output) +
+    throw UsageError("-o: expected an OBJ file (.obj) for one frame, got " + quotedText(opt.output) +
                      "; give --frames A-B to write a sequence into a folder");
   FrameRange range;
   if (sequence) {
     range = parseFrameRange(opt.frames, "--frames");
     if (static_cast<long>(range.last) - range.first + 1 > kMaxBlobFrames)
-      throw UsageError("--frames: at most " + std::to_string(kMaxBlobFrames) + " frames, got " + shown(opt.frames));
+      throw UsageError("--frames: at most " + std::to_string(kMaxBlobFrames) + " frames, got " +
+                       quotedText(opt.frames));
   }
 
   const BlobFile file = readBlobFile(opt.input);
@@ -114,13 +109,13 @@ void runImplicit(const ImplicitOptions& opt) {
   Eigen::AlignedBox3d all;
   morph::BlobModel model = animation.modelAt(frames.front());
   for (double f : frames) {
-    if (!animation.evaluate(f, model)) throw Error(opt.input + ": cannot evaluate frame " + g(f));
+    if (!animation.evaluate(f, model)) throw Error(opt.input + ": cannot evaluate frame " + numberText(f));
     all.extend(model.bounds());
   }
   const double h = opt.voxel > 0 ? opt.voxel : file.voxel_size > 0 ? file.voxel_size : morph::defaultVoxelSize(all);
   if (all.isEmpty()) throw Error(opt.input + ": no primitive adds to the field, so there is no surface");
   for (double f : frames) {
-    if (!animation.evaluate(f, model)) throw Error(opt.input + ": cannot evaluate frame " + g(f));
+    if (!animation.evaluate(f, model)) throw Error(opt.input + ": cannot evaluate frame " + numberText(f));
     if (!model.bounds().isEmpty())
       morph::checkVoxelBudget(
           model.bounds(), h, kMaxVoxels,
@@ -131,8 +126,8 @@ void runImplicit(const ImplicitOptions& opt) {
     if (!animation.evaluate(frames.front(), model)) throw Error(opt.input + ": cannot evaluate the frame");
     const TriMesh mesh = morph::polygonise(model, {.voxel_size = h, .max_voxels = kMaxVoxels}, opt.input);
     if (mesh.triangles.empty())
-      throw Error(opt.input + ": the field reaches the threshold " + g(animation.threshold()) + " nowhere at frame " +
-                  g(frames.front()) + ": no surface");
+      throw Error(opt.input + ": the field reaches the threshold " + numberText(animation.threshold()) +
+                  " nowhere at frame " + numberText(frames.front()) + ": no surface");
     writeObj(opt.output, mesh, header(opt, frames.front(), h));
     if (!opt.quiet)
       std::printf("wrote %s: %zu vertices, %zu triangles, %zu component%s (voxel %.6g)\n", opt.output.c_str(),
@@ -156,12 +151,12 @@ void runImplicit(const ImplicitOptions& opt) {
     nlohmann::json list = nlohmann::json::array();
     for (std::size_t i = 0; i < frames.size(); ++i) {
       const int f = static_cast<int>(frames[i]);
-      if (!animation.evaluate(frames[i], model)) throw Error(opt.input + ": cannot evaluate frame " + g(f));
+      if (!animation.evaluate(frames[i], model)) throw Error(opt.input + ": cannot evaluate frame " + numberText(f));
       const TriMesh mesh = morph::polygonise(model, {.voxel_size = h, .max_voxels = kMaxVoxels},
                                              opt.input + ": frame " + std::to_string(f));
       if (mesh.triangles.empty())
         throw Error(opt.input + ": frame " + std::to_string(f) + ": the field reaches the threshold " +
-                    g(animation.threshold()) + " nowhere: no surface");
+                    numberText(animation.threshold()) + " nowhere: no surface");
       drawn.extend(meshBox(mesh));
       staged.emplace_back((dir / frameName(f)).string(), formatObj(mesh, header(opt, frames[i], h)));
       list.push_back({{"frame", f},

@@ -9,15 +9,11 @@
 // frames. The mathematics lives in the morph library (vdg/morph/image_morph.h, inbetween.h), the
 // files in vdg/io/morph_files.h; this file reads, checks, calls and writes (PNG atomically).
 // See docs/morph.md and docs/morph-files.md.
-#include <sys/stat.h>
-#include <unistd.h>
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <filesystem>
 #include <memory>
 #include <sstream>
@@ -32,6 +28,7 @@
 #include "vdg/morph/image_morph.h"
 #include "vdg/morph/inbetween.h"
 #include "vdg/render/image.h"
+#include "video.h"
 
 namespace vdg::cli {
 namespace {
@@ -58,7 +55,7 @@ void parseFrames(MorphOptions& opt, bool count_given) {
     const auto n = parseNumberIn(opt.frames_range, {1, End::kClosed, kMaxFrames, End::kClosed, true});
     if (!n)
       throw UsageError("--frames: expected a count in [1, " + std::to_string(kMaxFrames) + "], got " +
-                       shown(opt.frames_range));
+                       quotedText(opt.frames_range));
     opt.frames = static_cast<int>(*n);
     return;
   }
@@ -66,13 +63,13 @@ void parseFrames(MorphOptions& opt, bool count_given) {
   if (opt.frames == 0) throw UsageError("--frames A-B: needs --count N (the frames are a share of N)");
   if (opt.range.last >= opt.frames)
     throw UsageError("--frames: expected frames within 0-" + std::to_string(opt.frames - 1) + " (--count " +
-                     std::to_string(opt.frames) + "), got " + shown(opt.frames_range));
+                     std::to_string(opt.frames) + "), got " + quotedText(opt.frames_range));
 }
 
 // The usage rules that need several options together (exit status 2).
 void checkUsage(const MorphOptions& opt) {
   if (opt.format != "svg" && opt.format != "png")
-    throw UsageError("--format: expected 'svg' or 'png', got " + shown(opt.format));
+    throw UsageError("--format: expected 'svg' or 'png', got " + quotedText(opt.format));
   const bool drawings = !opt.drawings.empty();
   if (drawings) {
     if (!opt.src.empty() || !opt.dst.empty()) throw UsageError("--drawings takes no SRC or DST images");
@@ -93,12 +90,10 @@ void checkUsage(const MorphOptions& opt) {
   if (!opt.video.empty()) {
     if (opt.frames == 0) throw UsageError("--video: needs --count N");
     if (opt.range.last >= opt.range.first) throw UsageError("--video: needs every frame (leave out --frames A-B)");
-    if (!hasExtension(opt.video, ".mp4") && !hasExtension(opt.video, ".gif"))
-      throw UsageError("--video: expected a file name ending in .mp4 or .gif, got " + shown(opt.video));
+    if (!isVideoPath(opt.video))
+      throw UsageError("--video: expected a file name ending in .mp4 or .gif, got " + quotedText(opt.video));
     if (drawings && opt.format != "png") throw UsageError("--video: needs --format png for --drawings");
-    if (!findOnPath("ffmpeg"))
-      throw Error("--video " + opt.video + ": writing a video needs the 'ffmpeg' program, which is not on PATH; " +
-                  "install it, or leave out --video (the frames go to -o DIR)");
+    requireFfmpeg("--video " + opt.video, "leave out --video (the frames go to -o DIR)");
   }
 }
 
@@ -122,34 +117,6 @@ std::string framePath(const std::string& dir, int i, const char* ext) {
   char name[32];
   std::snprintf(name, sizeof name, "frame_%04d.%s", i, ext);
   return (fs::path(dir) / name).string();
-}
-
-// Encodes DIR/frame_0000.png ... (the first `frames`; older frames beyond them are left out) into
-// `video` with ffmpeg: to a temporary name beside the real file, renamed over it only when the
-// encoding succeeded.
-void encodeVideo(const std::string& dir, const std::string& video, int frames) {
-  const std::string real = resolveOutputPath(video);
-  struct stat existing {};
-  if (::stat(real.c_str(), &existing) == 0 && !S_ISREG(existing.st_mode))
-    throw Error("--video " + video + ": is not a regular file; a video is written only to a file");
-  const std::string ext = fs::path(video).extension().string();
-  const std::string temp = temporaryPathFor(real) + ext;
-  const std::string filter = hasExtension(video, ".gif")
-                                 ? "-vf 'split[a][b];[a]palettegen[p];[b][p]paletteuse'"
-                                 : "-c:v libx264 -pix_fmt yuv420p -vf 'pad=ceil(iw/2)*2:ceil(ih/2)*2'";
-  const std::string cmd = "ffmpeg -loglevel error -y -framerate 24 -i " +
-                          shellQuote((fs::path(dir) / "frame_%04d.png").string()) + " -frames:v " +
-                          std::to_string(frames) + " " + filter + " " + shellQuote(temp);
-  std::error_code ec;
-  if (std::system(cmd.c_str()) != 0) {
-    fs::remove(temp, ec);
-    throw Error("--video " + video + ": ffmpeg failed to encode the frames (they are in " + dir + ")");
-  }
-  if (::rename(temp.c_str(), real.c_str()) != 0) {
-    const int err = errno;
-    fs::remove(temp, ec);
-    throw Error("--video " + video + ": cannot write file: " + std::strerror(err));
-  }
 }
 
 // ---- image morphs --------------------------------------------------------------------------------
@@ -232,7 +199,7 @@ void runImageMorph(const MorphOptions& opt) {
     progress.step(i + 1);
   }
   progress.finish();
-  if (!opt.video.empty()) encodeVideo(opt.output, opt.video, opt.frames);
+  if (!opt.video.empty()) encodeVideo("--video " + opt.video, opt.video, {opt.output, 0, opt.frames});
   if (!opt.quiet)
     std::printf("wrote %d frames (%dx%d) to %s%s\n", lastFrame(opt) - firstFrame(opt) + 1, morph.width(),
                 morph.height(), opt.output.c_str(), opt.video.empty() ? "" : (" and " + opt.video).c_str());
@@ -304,7 +271,7 @@ void runDrawings(const MorphOptions& opt) {
     progress.step(i + 1);
   }
   progress.finish();
-  if (!opt.video.empty()) encodeVideo(opt.output, opt.video, opt.frames);
+  if (!opt.video.empty()) encodeVideo("--video " + opt.video, opt.video, {opt.output, 0, opt.frames});
   if (!opt.quiet)
     std::printf("wrote %d %s frames (%dx%d) to %s%s\n", lastFrame(opt) - firstFrame(opt) + 1, png ? "PNG" : "SVG",
                 file.width, file.height, opt.output.c_str(), opt.video.empty() ? "" : (" and " + opt.video).c_str());

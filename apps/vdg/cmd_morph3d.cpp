@@ -62,12 +62,12 @@ class Interpolator {
       if (opt.max_voxels_given) options.max_voxels = static_cast<std::size_t>(opt.max_voxels);
       distance_.emplace(a, b, options, opt.a, opt.b);
     } else if (method_ == "spherical") {
-      spherical_.emplace(a, b, opt.a, opt.b);
+      common_.emplace(morph::sphericalMorph(a, b, opt.a, opt.b));
     } else if (method_ == "slices") {
       morph::SliceMorphOptions options;
       options.axis = opt.axis == "x" ? 0 : opt.axis == "y" ? 1 : 2;
       options.slices = opt.slices;
-      slices_.emplace(a, b, options, opt.a, opt.b);
+      common_.emplace(morph::sliceMorph(a, b, options, opt.a, opt.b));
     } else {
       what_a_ = opt.a;
       what_b_ = opt.b;
@@ -75,8 +75,7 @@ class Interpolator {
   }
   TriMesh at(double t) const {
     if (distance_) return distance_->at(t);
-    if (spherical_) return spherical_->at(t);
-    if (slices_) return slices_->at(t);
+    if (common_) return common_->at(t);
     return morph::minkowskiMorph(a_, b_, t, what_a_, what_b_);
   }
   std::string describe() const {
@@ -94,8 +93,7 @@ class Interpolator {
   const TriMesh& b_;
   std::string what_a_, what_b_;
   std::optional<morph::DistanceMorph> distance_;
-  std::optional<morph::SphericalMorph> spherical_;
-  std::optional<morph::SliceMorph> slices_;
+  std::optional<morph::VertexMorph> common_;  // spherical or slices: one connectivity for A and B
 };
 
 std::string frameName(long i) {
@@ -188,7 +186,7 @@ void run(const Morph3dOptions& opt) {
     throw UsageError(std::string(opt.axis_given ? "--axis" : "--slices") + ": only for --method slices, not " +
                      opt.method);
   if (opt.t_given && !hasExtension(opt.output, ".obj"))
-    throw UsageError("-o: with --t, give an .obj file, got " + shown(opt.output));
+    throw UsageError("-o: with --t, give an .obj file, got " + quotedText(opt.output));
   const TriMesh a = readMesh(opt.a), b = readMesh(opt.b);
   const Interpolator morph(opt, a, b);
   if (opt.frames_given) {
@@ -233,11 +231,12 @@ void addMorph3dCommand(CLI::App& app) {
           throw UsageError(
               "--frames: morph3d writes the whole sequence (its camera.json frames every frame); give "
               "--count N, got " +
-              shown(text));
+              quotedText(text));
         noteDeprecated("--frames N", "--count N");
         const auto n = parseNumberIn(text, {2, End::kClosed, kMaxFrames, End::kClosed, true});
         if (!n)
-          throw UsageError("--frames: expected a count in [2, " + std::to_string(kMaxFrames) + "], got " + shown(text));
+          throw UsageError("--frames: expected a count in [2, " + std::to_string(kMaxFrames) + "], got " +
+                           quotedText(text));
         opt->frames = static_cast<long>(*n);
         opt->frames_given = true;
       });

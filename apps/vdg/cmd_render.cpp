@@ -52,6 +52,7 @@
 #include "vdg/io/read_file.h"
 #include "vdg/render/model_renderer.h"
 #include "vdg/viewdep/animated_model.h"
+#include "video.h"
 
 namespace vdg::cli {
 namespace {
@@ -85,24 +86,24 @@ void checkCanvas(const std::string& size_text, const render::FrameOptions& fo) {
   const std::string observer = fo.observer ? " (with --observer the canvas is twice as wide)" : "";
   if (canvas_width > render::kMaxImageSize)
     throw UsageError("--size: expected a width in [1, " + std::to_string(render::kMaxImageSize / 2) +
-                     "] with --observer (the canvas is twice as wide), got " + shown(size_text));
+                     "] with --observer (the canvas is twice as wide), got " + quotedText(size_text));
   if (std::max(canvas_width, fo.height) <= kDriverQuerySide) return;
   const int limit = render::maxImageSide();
   if (canvas_width > limit || fo.height > limit)
     throw UsageError("--size: this machine's OpenGL driver draws at most " + std::to_string(limit) + " pixels a side" +
-                     observer + ", got " + shown(size_text));
+                     observer + ", got " + quotedText(size_text));
 }
 
 render::Rgb parseColor(const std::string& text, const std::string& option) {
   const Eigen::Vector3d v = parseVec3(text, option);
   if (v.minCoeff() < 0.0 || v.maxCoeff() > 1.0)
-    throw UsageError(option + ": expected R,G,B with each channel in [0, 1], got " + shown(text));
+    throw UsageError(option + ": expected R,G,B with each channel in [0, 1], got " + quotedText(text));
   return {static_cast<float>(v.x()), static_cast<float>(v.y()), static_cast<float>(v.z())};
 }
 
-void run(const RenderOptions& opt) {
-  // Numeric options were range-checked while parsing (addRenderCommand); what is left here needs
-  // several options together, or the OpenGL driver.
+// The renderer's settings from the command line. Numeric options were range-checked while parsing
+// (addRenderCommand); what is left here needs several options together, or the OpenGL driver.
+render::FrameOptions frameOptions(const RenderOptions& opt) {
   render::FrameOptions fo;
   const ImageSize size = parseImageSize(opt.size, 'x', render::kMaxImageSize, "--size");
   fo.width = size.width;
@@ -120,32 +121,61 @@ void run(const RenderOptions& opt) {
   fo.gpu_blend = opt.gpu_blend;
   if (!opt.color.empty()) fo.color = parseColor(opt.color, "--color");
   if (!opt.background.empty()) fo.background = parseColor(opt.background, "--background");
+  return fo;
+}
 
-  // --camera replaces the orbit: its options and --count do not mix with the other's.
-  if (opt.camera_given && opt.camera_file.empty()) throw UsageError("--camera: expected a file name, got ''");
-  if (!opt.camera_file.empty() && !opt.orbit_options_given.empty())
-    throw UsageError("--camera and " + opt.orbit_options_given.front() +
-                     " exclude each other (the camera file sets the camera)");
-  if (opt.camera_file.empty() && opt.count_given)
-    throw UsageError("--count: needs --camera FILE (an orbit's frames are --orbit N)");
-  FrameRange range{0, opt.count - 1};
-  if (opt.camera_file.empty()) {
-    range = opt.camera.range();
-  } else {
-    if (!opt.camera.frames.empty()) {
-      range = parseFrameRange(opt.camera.frames, "--frames");
-      if (range.last >= opt.count)
-        throw UsageError("--frames: expected frames within 0-" + std::to_string(opt.count - 1) + " (--count " +
-                         std::to_string(opt.count) + "), got " + shown(opt.camera.frames));
-    }
-  }
+// The model, a manifest or a glTF file vdg exported (mesh.extras.vdg), or a plain mesh (OBJ, glTF).
+// Material and texture problems (of the mesh, or of a model's base): one "warning: ..." line each,
+// the surface falls back to its base colour (or --color); --strict makes them errors.
+// --no-materials opens no material library or texture.
+OpenedInput openRendered(const RenderOptions& opt) {
+  checkInputFile(opt.model, isObjPath(opt.model) || isGltfPath(opt.model) ? "mesh" : "model");
+  std::vector<std::string> warnings;
+  MeshReadOptions read;
+  read.materials = !opt.no_materials;
+  read.strict = opt.strict;
+  read.warnings = &warnings;
+  OpenedInput input = openInput(opt.model, read);
+  for (const std::string& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  const AnimatedViewDependentModel* animated = input.animated.get();
+  if (opt.hold_frame >= 0 && !animated)
+    throw UsageError("--hold-frame: " + opt.model + " is not an animated model (no 'base_animation')");
+  if (animated && opt.hold_frame >= animated->frameCount())
+    throw UsageError("--hold-frame: expected a frame in [0, " + std::to_string(animated->frameCount() - 1) + "] (" +
+                     opt.model + " has " + std::to_string(animated->frameCount()) + " frames), got " +
+                     std::to_string(opt.hold_frame));
+  if (opt.gpu_blend && !input.model)
+    throw UsageError("--gpu-blend: " + opt.model + " is " +
+                     (animated ? "an animated model (base_animation), which is blended on the CPU"
+                               : "a plain mesh, with no keys to blend") +
+                     "; the GPU blend takes static view-dependent models");
+  return input;
+}
+
+// Where the orbit turns and how far it must stay: the centre, and the radius of the sphere about it
+// holding what will be drawn (the base and every key; of an animated model, at every frame), so
+// that a key that raises the top stays in the frame.
+struct Framing {
+  Eigen::Vector3d center;
+  double radius = 0.0;
+};
+
+Framing framing(const OpenedInput& input) {
+  if (input.model) return {input.model->center(), input.model->extentRadius()};
+  if (input.animated) return {input.animated->center(), input.animated->extentRadius()};
+  const auto bc = computeBounds(input.mesh.positions).center();
+  const Eigen::Vector3d center(bc[0], bc[1], bc[2]);
+  return {center, OrbitOptions::radiusAbout(input.mesh.positions, center)};
+}
+
+void run(const RenderOptions& opt) {
+  render::FrameOptions fo = frameOptions(opt);
+  const FrameRange range = cameraFrameRange(opt.camera, opt.camera_file, opt.camera_given, opt.count, opt.count_given,
+                                            opt.orbit_options_given);
   checkCanvas(opt.size, fo);
 
-  const bool video = hasExtension(opt.output, ".mp4") || hasExtension(opt.output, ".gif");
-  if (video && !findOnPath("ffmpeg"))
-    throw Error("-o " + opt.output +
-                ": writing a video needs the 'ffmpeg' program, which is not on PATH; "
-                "install it, or write PNG frames with -o DIR");
+  const bool video = isVideoPath(opt.output);
+  if (video) requireFfmpeg("-o " + opt.output, "write PNG frames with -o DIR");
 
   FrameCameras cameras;
   if (!opt.camera_file.empty()) {
@@ -153,52 +183,18 @@ void run(const RenderOptions& opt) {
     cameras.load(opt.camera_file, opt.count);
   }
 
-  // The model: a manifest or a glTF file vdg exported (mesh.extras.vdg), or a plain mesh (OBJ, glTF).
-  std::unique_ptr<render::ModelRenderer> renderer;
-  checkInputFile(opt.model, isObjPath(opt.model) || isGltfPath(opt.model) ? "mesh" : "model");
-  // Material and texture problems (of the mesh, or of a model's base): one "warning: ..." line
-  // each, the surface falls back to its base colour (or --color); --strict makes them errors.
-  // --no-materials opens no material library or texture.
-  std::vector<std::string> warnings;
-  MeshReadOptions read;
-  read.materials = !opt.no_materials;
-  read.strict = opt.strict;
-  read.warnings = &warnings;
-  const OpenedInput input = openInput(opt.model, read);
-  const ViewDependentModel* model = input.model.get();
+  const OpenedInput input = openRendered(opt);
   const AnimatedViewDependentModel* animated = input.animated.get();
-  const TriMesh& mesh = input.mesh;
   if (!input.isModel()) fo.sphere = false;
-  for (const std::string& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
-  if (opt.hold_frame >= 0 && !animated)
-    throw UsageError("--hold-frame: " + opt.model + " is not an animated model (no 'base_animation')");
-  if (animated && opt.hold_frame >= animated->frameCount())
-    throw UsageError("--hold-frame: expected a frame in [0, " + std::to_string(animated->frameCount() - 1) + "] (" +
-                     opt.model + " has " + std::to_string(animated->frameCount()) + " frames), got " +
-                     std::to_string(opt.hold_frame));
-  if (opt.gpu_blend && !model)
-    throw UsageError("--gpu-blend: " + opt.model + " is " +
-                     (animated ? "an animated model (base_animation), which is blended on the CPU"
-                               : "a plain mesh, with no keys to blend") +
-                     "; the GPU blend takes static view-dependent models");
-  const TriMesh& base = model ? model->base() : animated ? animated->base() : mesh;
-  const Bounds bounds = computeBounds(base.positions);
-  const auto bc = bounds.center();
-  const Eigen::Vector3d center = model      ? model->center()
-                                 : animated ? animated->center()
-                                            : Eigen::Vector3d(bc[0], bc[1], bc[2]);
-  // The sphere about the centre holding what will be drawn: the base and every key (of an
-  // animated model, at every frame), so a key that raises the top stays in the frame.
-  const double radius = model      ? model->extentRadius()
-                        : animated ? animated->extentRadius()
-                                   : OrbitOptions::radiusAbout(base.positions, center);
+  const Framing frame = framing(input);
   const double aspect = static_cast<double>(fo.width) / fo.height;
-  const double distance = opt.camera.cameraDistance(radius, aspect);
-  fo.observer_camera = render::orbitCamera(center, render::fitDistance(radius, opt.camera.fov, aspect),
+  const double distance = opt.camera.cameraDistance(frame.radius, aspect);
+  fo.observer_camera = render::orbitCamera(frame.center, render::fitDistance(frame.radius, opt.camera.fov, aspect),
                                            opt.camera.azimuth + 35.0, 25.0, opt.camera.fov);
-  renderer = model      ? std::make_unique<render::ModelRenderer>(*model, fo)
-             : animated ? std::make_unique<render::ModelRenderer>(*animated, fo)
-                        : std::make_unique<render::ModelRenderer>(mesh, fo);
+  const std::unique_ptr<render::ModelRenderer> renderer =
+      input.model ? std::make_unique<render::ModelRenderer>(*input.model, fo)
+      : animated  ? std::make_unique<render::ModelRenderer>(*animated, fo)
+                  : std::make_unique<render::ModelRenderer>(input.mesh, fo);
 
   // Frames go to DIR, or for a video to a scratch folder beside it.
   const fs::path out_dir = video ? fs::path(opt.output + ".frames") : fs::path(opt.output);
@@ -214,7 +210,7 @@ void run(const RenderOptions& opt) {
       const int count = animated->frameCount();
       renderer->setFrame(opt.hold_frame >= 0 ? opt.hold_frame : animated->loop() ? f % count : std::min(f, count - 1));
     }
-    renderer->render(cameras.fromFile() ? cameras.at(f) : opt.camera.camera(f, center, distance), image);
+    renderer->render(cameras.fromFile() ? cameras.at(f) : opt.camera.camera(f, frame.center, distance), image);
     std::snprintf(name, sizeof name, "frame_%04d.png", f);
     render::writePng((out_dir / name).string(), image);
     progress.step(f - range.first + 1);
@@ -222,36 +218,7 @@ void run(const RenderOptions& opt) {
   progress.finish();
 
   if (video) {
-    // ffmpeg writes a short temporary name beside the real file (links followed), renamed over it
-    // only when the encoding succeeded; it picks the format from the extension.
-    const std::string real = resolveOutputPath(opt.output);
-    struct stat existing {};
-    if (::stat(real.c_str(), &existing) == 0 && !S_ISREG(existing.st_mode))
-      throw Error("-o " + opt.output + ": is not a regular file; a video is written only to a file");
-    const std::string ext = fs::path(opt.output).extension().string();
-    std::string temp_name = (fs::path(real).parent_path() / (".vdg-XXXXXX" + ext)).string();
-    const int temp_fd = ::mkstemps(temp_name.data(), static_cast<int>(ext.size()));
-    if (temp_fd < 0) throw Error("-o " + opt.output + ": cannot write file: " + std::strerror(errno));
-    const mode_t mask = ::umask(0);  // single-threaded here: read the umask and put it back
-    ::umask(mask);
-    (void)::fchmod(temp_fd, ::stat(real.c_str(), &existing) == 0 ? existing.st_mode & 07777 : 0666 & ~mask);
-    ::close(temp_fd);
-    const std::string temp = temp_name;
-    const std::string filter = hasExtension(opt.output, ".gif")
-                                   ? "-vf 'split[a][b];[a]palettegen[p];[b][p]paletteuse'"
-                                   : "-c:v libx264 -pix_fmt yuv420p -vf 'pad=ceil(iw/2)*2:ceil(ih/2)*2'";
-    const std::string cmd = "ffmpeg -loglevel error -y -framerate 24 -start_number " + std::to_string(range.first) +
-                            " -i " + shellQuote((out_dir / "frame_%04d.png").string()) + " " + filter + " " +
-                            shellQuote(temp);
-    if (std::system(cmd.c_str()) != 0) {
-      fs::remove(temp, ec);
-      throw Error("-o " + opt.output + ": ffmpeg failed to encode the frames (they are in " + out_dir.string() + ")");
-    }
-    if (::rename(temp.c_str(), real.c_str()) != 0) {
-      const int err = errno;
-      fs::remove(temp, ec);
-      throw Error("-o " + opt.output + ": cannot write file: " + std::strerror(err));
-    }
+    encodeVideo("-o " + opt.output, opt.output, {out_dir.string(), range.first, range.last - range.first + 1});
     fs::remove_all(out_dir, ec);
   }
   if (!opt.quiet)
@@ -319,11 +286,7 @@ void addRenderCommand(CLI::App& app) {
       ->check(wholeNumber(1, kMaxSamples));
   sub->add_flag("-q,--quiet", opt->quiet, "No progress bar and no summary line");
   sub->callback([opt, sub] {
-    opt->orbit_options_given.clear();
-    for (const char* name : {"--orbit", "--azimuth", "--elevation", "--distance", "--fov"})
-      if (sub->count(name) > 0) opt->orbit_options_given.push_back(name);
-    opt->count_given = sub->count("--count") > 0;
-    opt->camera_given = sub->count("--camera") > 0;
+    noteCameraOptionsGiven(*sub, *opt);
     run(*opt);
   });
 }

@@ -60,7 +60,7 @@ void run(const RunOptions& opt) {
     std::string asked;
     for (const auto& r : shot.renders)
       asked += (asked.empty() ? "" : ", ") + std::to_string(r.first_frame) + "-" + std::to_string(r.last_frame);
-    throw UsageError("--frames " + shown(opt.frames) + ": the script renders frames " + asked +
+    throw UsageError("--frames " + quotedText(opt.frames) + ": the script renders frames " + asked +
                      ", none of them in the range");
   }
 

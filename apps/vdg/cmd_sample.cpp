@@ -40,7 +40,7 @@ std::vector<double> parseList(const std::string& text) {
     double v = 0;
     auto [end, ec] = std::from_chars(item.data(), item.data() + item.size(), v);
     if (item.empty() || ec != std::errc() || end != item.data() + item.size() || !std::isfinite(v)) {
-      throw UsageError("--at: expected finite numbers separated by commas, got " + shown(text));
+      throw UsageError("--at: expected finite numbers separated by commas, got " + quotedText(text));
     }
     out.push_back(v);
     pos = comma + 1;

@@ -75,7 +75,7 @@ int main(int argc, char** argv) {
       for (const CLI::App* sub : app.get_subcommands({})) names += (names.empty() ? "" : ", ") + sub->get_name();
       if (argc < 2) return usage(app, "give a subcommand: one of " + names);
       if (argv[1][0] != '-')
-        return usage(app, "unknown subcommand " + vdg::cli::shown(argv[1]) + " (expected one of " + names + ")");
+        return usage(app, "unknown subcommand " + vdg::quotedText(argv[1]) + " (expected one of " + names + ")");
     }
     return usage(app, e.what());
   } catch (const vdg::cli::UsageError& e) {

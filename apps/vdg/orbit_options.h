@@ -48,7 +48,7 @@ struct OrbitOptions {
       r = parseFrameRange(frames, "--frames");
       if (r.last >= orbit)
         throw UsageError("--frames: expected frames within 0-" + std::to_string(orbit - 1) + " (--orbit " +
-                         std::to_string(orbit) + "), got " + shown(frames));
+                         std::to_string(orbit) + "), got " + quotedText(frames));
     }
     return r;
   }

@@ -34,7 +34,7 @@ struct ViewOptions {
     // view = normalize(eye - centre), as ViewDependentModel::viewFromEye, without overflow for a
     // far eye (1e300).
     const Eigen::Vector3d d = parseVec3(eye_text, "--eye") - center;
-    if (!d.allFinite()) throw UsageError("--eye: too far from the model centre, got " + shown(eye_text));
+    if (!d.allFinite()) throw UsageError("--eye: too far from the model centre, got " + quotedText(eye_text));
     const std::optional<Eigen::Vector3d> unit = normalizedOrNone(d);
     if (!unit) throw UsageError("--eye: the eye is at the model centre, so there is no view direction");
     return *unit;

@@ -9,6 +9,7 @@
 #include <limits>
 #include <sstream>
 #include <string>
+#include <utility>
 
 #include "vdg/geom/error.h"
 
@@ -26,6 +27,73 @@ int keyCount(const RawCurve& raw) {
 Vec parabolaDerivative(double x0, const Vec& y0, double x1, const Vec& y1, double x2, const Vec& y2, double x) {
   return y0 * ((2 * x - x1 - x2) / ((x0 - x1) * (x0 - x2))) + y1 * ((2 * x - x0 - x2) / ((x1 - x0) * (x1 - x2))) +
          y2 * ((2 * x - x0 - x1) / ((x2 - x0) * (x2 - x1)));
+}
+
+// Natural cubic spline (global, C2): the second derivatives M_i at the keys from the tridiagonal
+// system h_{i-1} M_{i-1} + 2 (h_{i-1} + h_i) M_i + h_i M_{i+1} = 6 (slope_i - slope_{i-1}), natural
+// end conditions M_0 = M_{n-1} = 0; solved by the Thomas algorithm.
+std::vector<Vec> naturalSecondDerivatives(const std::vector<double>& T, const std::vector<Vec>& P) {
+  const int keys = static_cast<int>(P.size());
+  const auto dim = P[0].size();
+  std::vector<Vec> M(keys, Vec::Zero(dim));
+  const int inner = keys - 2;
+  if (inner > 0) {
+    std::vector<double> diag(inner), upper(inner);
+    std::vector<Vec> rhs(inner);
+    for (int j = 0; j < inner; ++j) {
+      const int i = j + 1;
+      const double h0 = T[i] - T[i - 1], h1 = T[i + 1] - T[i];
+      diag[j] = 2 * (h0 + h1);
+      upper[j] = h1;
+      rhs[j] = 6 * ((P[i + 1] - P[i]) / h1 - (P[i] - P[i - 1]) / h0);
+    }
+    for (int j = 1; j < inner; ++j) {
+      const double lower = T[j + 1] - T[j];  // h_{i-1} for row j (i = j + 1)
+      const double w = lower / diag[j - 1];
+      diag[j] -= w * upper[j - 1];
+      rhs[j] -= w * rhs[j - 1];
+    }
+    M[inner] = rhs[inner - 1] / diag[inner - 1];
+    for (int j = inner - 2; j >= 0; --j) M[j + 1] = (rhs[j] - upper[j] * M[j + 2]) / diag[j];
+  }
+  return M;
+}
+
+// Centripetal Catmull-Rom tangents of segment s (keys s and s + 1, not coincident), with respect to
+// the knot parameter (spacing sqrt(chord)) and scaled to the segment's knot interval; missing or
+// coincident neighbours are replaced by reflections.
+std::pair<Vec, Vec> centripetalTangents(const std::vector<Vec>& P, int s) {
+  const int keys = static_cast<int>(P.size());
+  const Vec& p1 = P[s];
+  const Vec& p2 = P[s + 1];
+  const double d12 = std::sqrt((p2 - p1).norm());
+  Vec p0 = s > 0 ? P[s - 1] : Vec(2 * p1 - p2);
+  Vec p3 = s + 2 < keys ? P[s + 2] : Vec(2 * p2 - p1);
+  double d01 = std::sqrt((p1 - p0).norm());
+  double d23 = std::sqrt((p3 - p2).norm());
+  if (d01 <= 0.0) {
+    p0 = 2 * p1 - p2;
+    d01 = d12;
+  }
+  if (d23 <= 0.0) {
+    p3 = 2 * p2 - p1;
+    d23 = d12;
+  }
+  return {((p1 - p0) / d01 - (p2 - p0) / (d01 + d12) + (p2 - p1) / d12) * d12,
+          ((p2 - p1) / d12 - (p3 - p1) / (d12 + d23) + (p3 - p2) / d23) * d12};
+}
+
+// Finite keys can still give infinite slopes (1e308 then -1e308, or a tiny time span): reject
+// them here rather than evaluate to inf or NaN later.
+void checkFiniteControls(const std::vector<double>& controls, int dim, const std::string& where) {
+  for (std::size_t i = 0; i < controls.size(); ++i) {
+    if (!std::isfinite(controls[i])) {
+      std::ostringstream out;
+      out << where << ": 'points': segment " << i / (4 * static_cast<std::size_t>(dim))
+          << " overflows: its coordinates or slopes are too large for doubles";
+      throw Error(out.str());
+    }
+  }
 }
 
 }  // namespace
@@ -170,21 +238,7 @@ Curve Curve::build(const RawCurve& raw, const std::string& where) {
           set(s, 3, p2);
           continue;
         }
-        Vec p0 = s > 0 ? P[s - 1] : Vec(2 * p1 - p2);
-        Vec p3 = s + 2 < keys ? P[s + 2] : Vec(2 * p2 - p1);
-        double d01 = std::sqrt((p1 - p0).norm());
-        double d23 = std::sqrt((p3 - p2).norm());
-        if (d01 <= 0.0) {
-          p0 = 2 * p1 - p2;
-          d01 = d12;
-        }
-        if (d23 <= 0.0) {
-          p3 = 2 * p2 - p1;
-          d23 = d12;
-        }
-        // Tangents with respect to the knot parameter, scaled to the segment's knot interval d12.
-        const Vec m1 = ((p1 - p0) / d01 - (p2 - p0) / (d01 + d12) + (p2 - p1) / d12) * d12;
-        const Vec m2 = ((p2 - p1) / d12 - (p3 - p1) / (d12 + d23) + (p3 - p2) / d23) * d12;
+        const auto [m1, m2] = centripetalTangents(P, s);
         set(s, 0, p1);
         set(s, 1, p1 + m1 / 3.0);
         set(s, 2, p2 - m2 / 3.0);
@@ -193,30 +247,8 @@ Curve Curve::build(const RawCurve& raw, const std::string& where) {
       break;
     }
     case CurveKind::kNaturalCubic: {
-      // Natural cubic spline (global, C2): second derivatives M_i from the tridiagonal system
-      // h_{i-1} M_{i-1} + 2 (h_{i-1} + h_i) M_i + h_i M_{i+1} = 6 (slope_i - slope_{i-1}),
-      // natural end conditions M_0 = M_{n-1} = 0; solved by the Thomas algorithm.
-      std::vector<Vec> M(keys, Vec::Zero(dim));
-      const int inner = keys - 2;
-      if (inner > 0) {
-        std::vector<double> diag(inner), upper(inner);
-        std::vector<Vec> rhs(inner);
-        for (int j = 0; j < inner; ++j) {
-          const int i = j + 1;
-          const double h0 = T[i] - T[i - 1], h1 = T[i + 1] - T[i];
-          diag[j] = 2 * (h0 + h1);
-          upper[j] = h1;
-          rhs[j] = 6 * ((P[i + 1] - P[i]) / h1 - (P[i] - P[i - 1]) / h0);
-        }
-        for (int j = 1; j < inner; ++j) {
-          const double lower = T[j + 1] - T[j];  // h_{i-1} for row j (i = j + 1)
-          const double w = lower / diag[j - 1];
-          diag[j] -= w * upper[j - 1];
-          rhs[j] -= w * rhs[j - 1];
-        }
-        M[inner] = rhs[inner - 1] / diag[inner - 1];
-        for (int j = inner - 2; j >= 0; --j) M[j + 1] = (rhs[j] - upper[j] * M[j + 2]) / diag[j];
-      }
+      // Natural cubic spline (global, C2; see naturalSecondDerivatives).
+      const std::vector<Vec> M = naturalSecondDerivatives(T, P);
       for (int s = 0; s < segments; ++s) {
         const double h = T[s + 1] - T[s];
         const Vec slope = (P[s + 1] - P[s]) / h;
@@ -249,16 +281,7 @@ Curve Curve::build(const RawCurve& raw, const std::string& where) {
       }
       break;
   }
-  // Finite keys can still give infinite slopes (1e308 then -1e308, or a tiny time span): reject
-  // them here rather than evaluate to inf or NaN later.
-  for (std::size_t i = 0; i < c.controls_.size(); ++i) {
-    if (!std::isfinite(c.controls_[i])) {
-      std::ostringstream out;
-      out << where << ": 'points': segment " << i / (4 * static_cast<std::size_t>(dim))
-          << " overflows: its coordinates or slopes are too large for doubles";
-      throw Error(out.str());
-    }
-  }
+  checkFiniteControls(c.controls_, dim, where);
   return c;
 }
 

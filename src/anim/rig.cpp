@@ -92,14 +92,21 @@ const char* rigInterpolationName(RigInterpolation mode) {
   return "?";
 }
 
-void RawRig::validate() const {
-  const std::string p = prefix(*this);
-  auto fail = [&](const std::string& what) { throw Error(p + what); };
-  const std::size_t n = nodes.size();
+namespace {
+
+// Throws vdg::Error with the rig's prefix ("FILE: ") before `what`.
+struct RigFail {
+  std::string prefix;
+  [[noreturn]] void operator()(const std::string& what) const { throw Error(prefix + what); }
+};
+
+// The node hierarchy: parents in range, no cycle, transforms finite; the mesh node in range.
+void checkRigNodes(const RawRig& r, const RigFail& fail) {
+  const std::size_t n = r.nodes.size();
   if (n > kMaxRigNodes)
     fail("nodes: " + std::to_string(n) + " nodes, more than the limit of " + std::to_string(kMaxRigNodes));
   for (std::size_t i = 0; i < n; ++i) {
-    const RigNode& node = nodes[i];
+    const RigNode& node = r.nodes[i];
     const std::string e = "nodes[" + std::to_string(i) + "]: ";
     if (node.parent < -1 || node.parent >= static_cast<long>(n))
       fail(e + "parent " + std::to_string(node.parent) + " out of range (the rig has " + std::to_string(n) + " nodes)");
@@ -120,96 +127,112 @@ void RawRig::validate() const {
     std::size_t j = i;
     while (state[j] == 0) {
       state[j] = 1;
-      if (nodes[j].parent < 0) break;
-      j = static_cast<std::size_t>(nodes[j].parent);
+      if (r.nodes[j].parent < 0) break;
+      j = static_cast<std::size_t>(r.nodes[j].parent);
       if (state[j] == 1) fail("nodes[" + std::to_string(j) + "]: is its own ancestor (the node hierarchy has a cycle)");
     }
     for (std::size_t k = i; state[k] == 1;) {
       state[k] = 2;
-      if (nodes[k].parent < 0) break;
-      k = static_cast<std::size_t>(nodes[k].parent);
+      if (r.nodes[k].parent < 0) break;
+      k = static_cast<std::size_t>(r.nodes[k].parent);
     }
   }
-  if (mesh_node < -1 || mesh_node >= static_cast<long>(n))
-    fail("mesh node " + std::to_string(mesh_node) + " out of range (the rig has " + std::to_string(n) + " nodes)");
+  if (r.mesh_node < -1 || r.mesh_node >= static_cast<long>(n))
+    fail("mesh node " + std::to_string(r.mesh_node) + " out of range (the rig has " + std::to_string(n) + " nodes)");
+}
 
-  if (mesh.triangles.empty()) fail("mesh: has no triangles");
-  validateMesh(mesh, p.empty() ? std::string("mesh") : p + "mesh");
-  const std::size_t nv = mesh.vertexCount();
-  if (!mesh.uvs.empty() && (mesh.uvs.size() != 2 * nv || mesh.uv_triangles != mesh.triangles))
+// The mesh, its normals and texture coordinates, and its morph targets.
+void checkRigMesh(const RawRig& r, const RigFail& fail) {
+  const std::string& p = fail.prefix;
+  if (r.mesh.triangles.empty()) fail("mesh: has no triangles");
+  validateMesh(r.mesh, p.empty() ? std::string("mesh") : p + "mesh");
+  const std::size_t nv = r.mesh.vertexCount();
+  if (!r.mesh.uvs.empty() && (r.mesh.uvs.size() != 2 * nv || r.mesh.uv_triangles != r.mesh.triangles))
     fail("mesh: TEXCOORD_0 must have one coordinate pair per vertex");
-  if (!allFinite(mesh.uvs)) fail("mesh: TEXCOORD_0 has a non-finite value");
-  if (!normals.empty() && normals.size() != 3 * nv)
-    fail("mesh: NORMAL has " + std::to_string(normals.size() / 3) + " entries for " + std::to_string(nv) + " vertices");
-  if (!allFinite(normals)) fail("mesh: NORMAL has a non-finite value");
+  if (!allFinite(r.mesh.uvs)) fail("mesh: TEXCOORD_0 has a non-finite value");
+  if (!r.normals.empty() && r.normals.size() != 3 * nv)
+    fail("mesh: NORMAL has " + std::to_string(r.normals.size() / 3) + " entries for " + std::to_string(nv) +
+         " vertices");
+  if (!allFinite(r.normals)) fail("mesh: NORMAL has a non-finite value");
 
-  const std::size_t nt = target_positions.size();
+  const std::size_t nt = r.target_positions.size();
   if (nt > kMaxMorphTargets)
     fail("mesh: " + std::to_string(nt) + " morph targets, more than the limit of " + std::to_string(kMaxMorphTargets));
-  if (target_normals.size() != nt)
-    fail("mesh: target normals given for " + std::to_string(target_normals.size()) + " of " + std::to_string(nt) +
+  if (r.target_normals.size() != nt)
+    fail("mesh: target normals given for " + std::to_string(r.target_normals.size()) + " of " + std::to_string(nt) +
          " targets");
-  if (!target_names.empty() && target_names.size() != nt)
-    fail("mesh: " + std::to_string(target_names.size()) + " target names for " + std::to_string(nt) + " targets");
-  if (default_weights.size() != nt)
-    fail("mesh: " + std::to_string(default_weights.size()) + " default weights for " + std::to_string(nt) + " targets");
+  if (!r.target_names.empty() && r.target_names.size() != nt)
+    fail("mesh: " + std::to_string(r.target_names.size()) + " target names for " + std::to_string(nt) + " targets");
+  if (r.default_weights.size() != nt)
+    fail("mesh: " + std::to_string(r.default_weights.size()) + " default weights for " + std::to_string(nt) +
+         " targets");
   for (std::size_t t = 0; t < nt; ++t) {
     const std::string e = "mesh: targets[" + std::to_string(t) + "]: ";
-    if (target_positions[t].size() != 3 * nv)
-      fail(e + "POSITION has " + std::to_string(target_positions[t].size() / 3) + " entries for " + std::to_string(nv) +
-           " vertices");
-    if (!allFinite(target_positions[t])) fail(e + "POSITION has a non-finite value");
-    if (!target_normals[t].empty() && (normals.empty() || target_normals[t].size() != 3 * nv))
+    if (r.target_positions[t].size() != 3 * nv)
+      fail(e + "POSITION has " + std::to_string(r.target_positions[t].size() / 3) + " entries for " +
+           std::to_string(nv) + " vertices");
+    if (!allFinite(r.target_positions[t])) fail(e + "POSITION has a non-finite value");
+    if (!r.target_normals[t].empty() && (r.normals.empty() || r.target_normals[t].size() != 3 * nv))
       fail(e + "NORMAL must have one entry per vertex, and the mesh must have normals");
-    if (!allFinite(target_normals[t])) fail(e + "NORMAL has a non-finite value");
-    if (!std::isfinite(default_weights[t])) fail(e + "default weight is not finite");
+    if (!allFinite(r.target_normals[t])) fail(e + "NORMAL has a non-finite value");
+    if (!std::isfinite(r.default_weights[t])) fail(e + "default weight is not finite");
   }
+}
 
-  if (!skin) {
-    if (!joints.empty() || !weights.empty()) fail("mesh: JOINTS_0 / WEIGHTS_0 without a skin");
+// The skin (when there is one) and the vertices' joints and weights.
+void checkRigSkin(const RawRig& r, const RigFail& fail) {
+  const std::size_t n = r.nodes.size();
+  const std::size_t nv = r.mesh.vertexCount();
+  if (!r.skin) {
+    if (!r.joints.empty() || !r.weights.empty()) fail("mesh: JOINTS_0 / WEIGHTS_0 without a skin");
   } else {
-    const std::size_t nj = skin->joints.size();
+    const std::size_t nj = r.skin->joints.size();
     if (nj == 0) fail("skin: has no joints");
     if (nj > kMaxRigJoints)
       fail("skin: " + std::to_string(nj) + " joints, more than the limit of " + std::to_string(kMaxRigJoints));
     for (std::size_t j = 0; j < nj; ++j)
-      if (skin->joints[j] < 0 || skin->joints[j] >= static_cast<long>(n))
-        fail("skin: joints[" + std::to_string(j) + "]: node " + std::to_string(skin->joints[j]) +
+      if (r.skin->joints[j] < 0 || r.skin->joints[j] >= static_cast<long>(n))
+        fail("skin: joints[" + std::to_string(j) + "]: node " + std::to_string(r.skin->joints[j]) +
              " out of range (the rig has " + std::to_string(n) + " nodes)");
-    if (skin->inverse_bind.size() != nj)
-      fail("skin: " + std::to_string(skin->inverse_bind.size()) + " inverse bind matrices for " + std::to_string(nj) +
+    if (r.skin->inverse_bind.size() != nj)
+      fail("skin: " + std::to_string(r.skin->inverse_bind.size()) + " inverse bind matrices for " + std::to_string(nj) +
            " joints");
     for (std::size_t j = 0; j < nj; ++j)
-      if (!allFinite(skin->inverse_bind[j]))
+      if (!allFinite(r.skin->inverse_bind[j]))
         fail("skin: inverseBindMatrices[" + std::to_string(j) + "] has a non-finite element");
-    if (joints.size() != 4 * nv)
-      fail("mesh: JOINTS_0 has " + std::to_string(joints.size() / 4) + " entries for " + std::to_string(nv) +
+    if (r.joints.size() != 4 * nv)
+      fail("mesh: JOINTS_0 has " + std::to_string(r.joints.size() / 4) + " entries for " + std::to_string(nv) +
            " vertices");
-    if (weights.size() != 4 * nv)
-      fail("mesh: WEIGHTS_0 has " + std::to_string(weights.size() / 4) + " entries for " + std::to_string(nv) +
+    if (r.weights.size() != 4 * nv)
+      fail("mesh: WEIGHTS_0 has " + std::to_string(r.weights.size() / 4) + " entries for " + std::to_string(nv) +
            " vertices");
     for (std::size_t v = 0; v < nv; ++v) {
       double sum = 0;
       for (std::size_t k = 0; k < 4; ++k) {
-        const float w = weights[4 * v + k];
+        const float w = r.weights[4 * v + k];
         if (!std::isfinite(w) || w < 0)
           fail("mesh: vertex " + std::to_string(v) + ": skin weight " + std::to_string(w) +
                " is negative or not finite");
-        if (w > 0 && joints[4 * v + k] >= nj)
-          fail("mesh: vertex " + std::to_string(v) + ": joint " + std::to_string(joints[4 * v + k]) +
+        if (w > 0 && r.joints[4 * v + k] >= nj)
+          fail("mesh: vertex " + std::to_string(v) + ": joint " + std::to_string(r.joints[4 * v + k]) +
                " out of range (the skin has " + std::to_string(nj) + " joints)");
         sum += w;
       }
       if (!(sum > 0)) fail("mesh: vertex " + std::to_string(v) + ": skin weights sum to 0");
     }
   }
+}
 
-  if (animations.size() > kMaxRigAnimations)
-    fail("animations: " + std::to_string(animations.size()) + " animations, more than the limit of " +
+// The animations: channels (node, sampler, path) and samplers (times, output sizes).
+void checkRigAnimations(const RawRig& r, const RigFail& fail) {
+  const std::size_t n = r.nodes.size();
+  const std::size_t nt = r.target_positions.size();
+  if (r.animations.size() > kMaxRigAnimations)
+    fail("animations: " + std::to_string(r.animations.size()) + " animations, more than the limit of " +
          std::to_string(kMaxRigAnimations));
   std::size_t keyframes = 0;
-  for (std::size_t a = 0; a < animations.size(); ++a) {
-    const RigAnimation& anim = animations[a];
+  for (std::size_t a = 0; a < r.animations.size(); ++a) {
+    const RigAnimation& anim = r.animations[a];
     const std::string ea = "animations[" + std::to_string(a) + "]: ";
     std::vector<int> width(anim.samplers.size(), -1);  // -1: not used by a channel
     for (std::size_t c = 0; c < anim.channels.size(); ++c) {
@@ -221,9 +244,9 @@ void RawRig::validate() const {
         fail(e + "sampler " + std::to_string(ch.sampler) + " out of range (the animation has " +
              std::to_string(anim.samplers.size()) + ")");
       if (ch.path == RigPath::kWeights) {
-        if (ch.node != mesh_node) fail(e + "weights of node " + std::to_string(ch.node) + ", not the mesh's node");
+        if (ch.node != r.mesh_node) fail(e + "weights of node " + std::to_string(ch.node) + ", not the mesh's node");
         if (nt == 0) fail(e + "weights of a mesh without morph targets");
-      } else if (nodes[static_cast<std::size_t>(ch.node)].matrix) {
+      } else if (r.nodes[static_cast<std::size_t>(ch.node)].matrix) {
         fail(e + std::string(rigPathName(ch.path)) + " of node " + std::to_string(ch.node) +
              ", which is given by a matrix");
       }
@@ -256,6 +279,16 @@ void RawRig::validate() const {
              std::to_string(sampler.input.size()) + " keyframes x " + std::to_string(per_key));
     }
   }
+}
+
+}  // namespace
+
+void RawRig::validate() const {
+  const RigFail fail{prefix(*this)};
+  checkRigNodes(*this, fail);
+  checkRigMesh(*this, fail);
+  checkRigSkin(*this, fail);
+  checkRigAnimations(*this, fail);
 }
 
 Rig Rig::build(const RawRig& raw) {

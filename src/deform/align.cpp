@@ -164,6 +164,93 @@ std::vector<double> reprojectionErrors(const Camera& camera, std::span<const Eig
   return e;
 }
 
+namespace {
+
+// The starting projective camera: the DLT in normalised coordinates (T3, T2), decomposed into
+// intrinsics and pose. Throws vdg::Error when it has no solution or the points are behind it.
+Params projectiveStart(const std::vector<Eigen::Vector3d>& X, const std::vector<Eigen::Vector2d>& x,
+                       const Eigen::Matrix4d& T3, const Eigen::Matrix3d& T2) {
+  const std::size_t n = X.size();
+  // DLT for the 3x4 projective camera (H&Z 7.1 / 6.1).
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(2 * static_cast<Eigen::Index>(n), 12);
+  for (std::size_t k = 0; k < n; ++k) {
+    const Eigen::Vector4d Xh = T3 * X[k].homogeneous();
+    const Eigen::Vector3d xh = T2 * x[k].homogeneous();
+    const auto r = 2 * static_cast<Eigen::Index>(k);
+    A.block<1, 4>(r, 0) = Xh.transpose();
+    A.block<1, 4>(r, 8) = -xh.x() * Xh.transpose();
+    A.block<1, 4>(r + 1, 4) = Xh.transpose();
+    A.block<1, 4>(r + 1, 8) = -xh.y() * Xh.transpose();
+  }
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(A, Eigen::ComputeFullV);
+  const Eigen::VectorXd h = svd.matrixV().col(11);
+  Eigen::Matrix<double, 3, 4> Pn;
+  Pn << h.segment<4>(0).transpose(), h.segment<4>(4).transpose(), h.segment<4>(8).transpose();
+  Eigen::Matrix<double, 3, 4> P = T2.inverse() * Pn * T3;
+  Eigen::Matrix3d M = P.leftCols<3>();
+  if (M.determinant() < 0) {
+    P = -P;
+    M = -M;
+  }
+  if (!(std::abs(M.determinant()) > 0)) throw Error("align: degenerate correspondences: the DLT has no solution");
+  // Cheirality: the points must be in front (H&Z 6.2.3).
+  int behind = 0;
+  for (const auto& p : X) behind += (P * p.homogeneous()).z() <= 0;
+  if (2 * behind > static_cast<int>(n)) throw Error("align: the solved camera has the points behind it");
+  // RQ of M = K R via QR of (J M)^T, J the row reversal.
+  Eigen::Matrix3d J = Eigen::Matrix3d::Zero();
+  J(0, 2) = J(1, 1) = J(2, 0) = 1;
+  Eigen::HouseholderQR<Eigen::Matrix3d> qr((J * M).transpose());
+  const Eigen::Matrix3d Q = qr.householderQ();
+  const Eigen::Matrix3d U = qr.matrixQR().triangularView<Eigen::Upper>();
+  Eigen::Matrix3d K = J * U.transpose() * J;
+  Eigen::Matrix3d R = J * Q.transpose();
+  for (int i = 0; i < 3; ++i)
+    if (K(i, i) < 0) {
+      K.col(i) *= -1;
+      R.row(i) *= -1;
+    }
+  if (R.determinant() < 0) R = -R;  // numerically impossible with det M > 0; keep R proper anyway
+  K /= K(2, 2);
+  Params p0;
+  p0.R = R;
+  p0.eye = -M.inverse() * P.col(3);
+  p0.log_scale = std::log(0.5 * (K(0, 0) + K(1, 1)));
+  return p0;
+}
+
+// The starting parallel camera: an affine fit made orthonormal. Throws vdg::Error when the pixels
+// do not spread.
+Params affineStart(const std::vector<Eigen::Vector3d>& X, const std::vector<Eigen::Vector2d>& x,
+                   const Eigen::Matrix4d& T3, int width, int height) {
+  const std::size_t n = X.size();
+  // Affine camera (H&Z 7.3): two independent linear least-squares fits of u and v.
+  Eigen::MatrixXd A(static_cast<Eigen::Index>(n), 4);
+  Eigen::MatrixXd b(static_cast<Eigen::Index>(n), 2);
+  for (std::size_t k = 0; k < n; ++k) {
+    const auto r = static_cast<Eigen::Index>(k);
+    A.row(r) << (T3 * X[k].homogeneous()).transpose();
+    b.row(r) = x[k].transpose();
+  }
+  const Eigen::Matrix<double, 4, 2> sol = A.colPivHouseholderQr().solve(b);
+  const Eigen::Matrix<double, 2, 4> Pa = sol.transpose() * T3;
+  const Eigen::Matrix<double, 2, 3> Ma = Pa.leftCols<3>();
+  // Nearest scaled orthonormal rows (polar decomposition).
+  Eigen::JacobiSVD<Eigen::Matrix<double, 2, 3>> svd(Ma, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  const Eigen::Matrix<double, 2, 3> rows = svd.matrixU() * svd.matrixV().leftCols<2>().transpose();
+  const double s = 0.5 * (svd.singularValues()[0] + svd.singularValues()[1]);
+  if (!(s > 0)) throw Error("align: degenerate correspondences: the pixels do not spread");
+  Params p0;
+  p0.R.row(0) = rows.row(0);
+  p0.R.row(1) = rows.row(1);
+  p0.R.row(2) = rows.row(0).cross(rows.row(1));
+  p0.log_scale = std::log(s);
+  p0.eye = Eigen::Vector3d((0.5 * width - Pa(0, 3)) / s, -(0.5 * height - Pa(1, 3)) / s, 0);
+  return p0;
+}
+
+}  // namespace
+
 AlignResult alignCamera(std::span<const Eigen::Vector3d> points, std::span<const Eigen::Vector2d> pixels, int width,
                         int height, const AlignOptions& options) {
   if (points.size() != pixels.size())
@@ -198,75 +285,7 @@ AlignResult alignCamera(std::span<const Eigen::Vector3d> points, std::span<const
 
   const Eigen::Matrix4d T3 = normalising<3>(X);
   const Eigen::Matrix3d T2 = normalising<2>(x);
-  Params p0;
-  if (!options.ortho) {
-    // DLT for the 3x4 projective camera (H&Z 7.1 / 6.1).
-    Eigen::MatrixXd A = Eigen::MatrixXd::Zero(2 * static_cast<Eigen::Index>(n), 12);
-    for (std::size_t k = 0; k < n; ++k) {
-      const Eigen::Vector4d Xh = T3 * X[k].homogeneous();
-      const Eigen::Vector3d xh = T2 * x[k].homogeneous();
-      const auto r = 2 * static_cast<Eigen::Index>(k);
-      A.block<1, 4>(r, 0) = Xh.transpose();
-      A.block<1, 4>(r, 8) = -xh.x() * Xh.transpose();
-      A.block<1, 4>(r + 1, 4) = Xh.transpose();
-      A.block<1, 4>(r + 1, 8) = -xh.y() * Xh.transpose();
-    }
-    Eigen::JacobiSVD<Eigen::MatrixXd> svd(A, Eigen::ComputeFullV);
-    const Eigen::VectorXd h = svd.matrixV().col(11);
-    Eigen::Matrix<double, 3, 4> Pn;
-    Pn << h.segment<4>(0).transpose(), h.segment<4>(4).transpose(), h.segment<4>(8).transpose();
-    Eigen::Matrix<double, 3, 4> P = T2.inverse() * Pn * T3;
-    Eigen::Matrix3d M = P.leftCols<3>();
-    if (M.determinant() < 0) {
-      P = -P;
-      M = -M;
-    }
-    if (!(std::abs(M.determinant()) > 0)) throw Error("align: degenerate correspondences: the DLT has no solution");
-    // Cheirality: the points must be in front (H&Z 6.2.3).
-    int behind = 0;
-    for (const auto& p : X) behind += (P * p.homogeneous()).z() <= 0;
-    if (2 * behind > static_cast<int>(n)) throw Error("align: the solved camera has the points behind it");
-    // RQ of M = K R via QR of (J M)^T, J the row reversal.
-    Eigen::Matrix3d J = Eigen::Matrix3d::Zero();
-    J(0, 2) = J(1, 1) = J(2, 0) = 1;
-    Eigen::HouseholderQR<Eigen::Matrix3d> qr((J * M).transpose());
-    const Eigen::Matrix3d Q = qr.householderQ();
-    const Eigen::Matrix3d U = qr.matrixQR().triangularView<Eigen::Upper>();
-    Eigen::Matrix3d K = J * U.transpose() * J;
-    Eigen::Matrix3d R = J * Q.transpose();
-    for (int i = 0; i < 3; ++i)
-      if (K(i, i) < 0) {
-        K.col(i) *= -1;
-        R.row(i) *= -1;
-      }
-    if (R.determinant() < 0) R = -R;  // numerically impossible with det M > 0; keep R proper anyway
-    K /= K(2, 2);
-    p0.R = R;
-    p0.eye = -M.inverse() * P.col(3);
-    p0.log_scale = std::log(0.5 * (K(0, 0) + K(1, 1)));
-  } else {
-    // Affine camera (H&Z 7.3): two independent linear least-squares fits of u and v.
-    Eigen::MatrixXd A(static_cast<Eigen::Index>(n), 4);
-    Eigen::MatrixXd b(static_cast<Eigen::Index>(n), 2);
-    for (std::size_t k = 0; k < n; ++k) {
-      const auto r = static_cast<Eigen::Index>(k);
-      A.row(r) << (T3 * X[k].homogeneous()).transpose();
-      b.row(r) = x[k].transpose();
-    }
-    const Eigen::Matrix<double, 4, 2> sol = A.colPivHouseholderQr().solve(b);
-    const Eigen::Matrix<double, 2, 4> Pa = sol.transpose() * T3;
-    const Eigen::Matrix<double, 2, 3> Ma = Pa.leftCols<3>();
-    // Nearest scaled orthonormal rows (polar decomposition).
-    Eigen::JacobiSVD<Eigen::Matrix<double, 2, 3>> svd(Ma, Eigen::ComputeFullU | Eigen::ComputeFullV);
-    const Eigen::Matrix<double, 2, 3> rows = svd.matrixU() * svd.matrixV().leftCols<2>().transpose();
-    const double s = 0.5 * (svd.singularValues()[0] + svd.singularValues()[1]);
-    if (!(s > 0)) throw Error("align: degenerate correspondences: the pixels do not spread");
-    p0.R.row(0) = rows.row(0);
-    p0.R.row(1) = rows.row(1);
-    p0.R.row(2) = rows.row(0).cross(rows.row(1));
-    p0.log_scale = std::log(s);
-    p0.eye = Eigen::Vector3d((0.5 * width - Pa(0, 3)) / s, -(0.5 * height - Pa(1, 3)) / s, 0);
-  }
+  const Params p0 = options.ortho ? affineStart(X, x, T3, width, height) : projectiveStart(X, x, T3, T2);
 
   AlignResult result;
   {

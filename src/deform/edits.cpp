@@ -11,6 +11,7 @@
 
 #include "vdg/deform/ffd.h"
 #include "vdg/geom/error.h"
+#include "vdg/geom/text.h"
 
 namespace vdg {
 
@@ -39,13 +40,6 @@ const char* editKindName(EditKind kind) {
 }
 
 namespace {
-
-std::string fmt(double v) {
-  std::ostringstream s;
-  s.precision(10);
-  s << v;
-  return s.str();
-}
 
 // The picked vertex shared by the image-plane tools, or nullptr for whole-mesh tools.
 const VertexPick* pickOf(const EditOp& op) {
@@ -95,9 +89,9 @@ std::optional<EditOpProblem> checkPick(const VertexPick& p) {
     return problem("vertex", "must be >= 0, got " + std::to_string(p.vertex));
   }
   if (!(p.falloff.radius > 0) || !std::isfinite(p.falloff.radius))
-    return problem("radius", "must be > 0 and finite, got " + fmt(p.falloff.radius));
+    return problem("radius", "must be > 0 and finite, got " + numberText(p.falloff.radius, 10));
   if (!(p.falloff.power >= 0) || !std::isfinite(p.falloff.power))
-    return problem("power", "must be >= 0 and finite, got " + fmt(p.falloff.power));
+    return problem("power", "must be >= 0 and finite, got " + numberText(p.falloff.power, 10));
   return std::nullopt;
 }
 
@@ -115,7 +109,8 @@ std::optional<EditOpProblem> checkFields(const RotateOp& o) {
 }
 std::optional<EditOpProblem> checkFields(const ScaleOp& o) {
   if (!o.factor.allFinite() || !(o.factor.minCoeff() > 0))
-    return problem("factor", "must be > 0 and finite, got [" + fmt(o.factor.x()) + ", " + fmt(o.factor.y()) + "]");
+    return problem("factor", "must be > 0 and finite, got [" + numberText(o.factor.x(), 10) + ", " +
+                                 numberText(o.factor.y(), 10) + "]");
   return std::nullopt;
 }
 std::optional<EditOpProblem> checkFields(const DisplaceOp& o) { return finiteVector(o.offset, "offset"); }
@@ -125,7 +120,8 @@ std::optional<EditOpProblem> checkFields(const FfdOp& o) {
       return problem("degree", "must hold three integers from 1 to " + std::to_string(kMaxFfdDegree) + ", got " +
                                    std::to_string(o.degree[a]));
   if (!(o.padding >= 0) || !(o.padding <= kMaxFfdPadding))
-    return problem("padding", "must be from 0 to " + fmt(kMaxFfdPadding) + ", got " + fmt(o.padding));
+    return problem("padding",
+                   "must be from 0 to " + numberText(kMaxFfdPadding, 10) + ", got " + numberText(o.padding, 10));
   for (std::size_t m = 0; m < o.moves.size(); ++m) {
     const std::string at = "'moves'[" + std::to_string(m) + "]";
     for (int a = 0; a < 3; ++a)
@@ -140,7 +136,7 @@ std::optional<EditOpProblem> checkFields(const FfdOp& o) {
 std::optional<EditOpProblem> checkFields(const SquashStretchOp& o) {
   if (!o.axis.allFinite() || !(o.axis.norm() > 0)) return problem("axis", "must be a finite, non-zero vector");
   if (!(o.factor > 0) || !std::isfinite(o.factor))
-    return problem("factor", "must be > 0 and finite, got " + fmt(o.factor));
+    return problem("factor", "must be > 0 and finite, got " + numberText(o.factor, 10));
   return checkCenter(o.center);
 }
 std::optional<EditOpProblem> checkFields(const AffineOp& o) {
@@ -163,9 +159,9 @@ std::optional<EditOpProblem> checkFields(const SkeletonOp& o) {
   if (auto p = wireProblem(o.posed, "posed")) return p;
   if (o.falloff) {
     if (!(o.falloff->radius > 0) || !std::isfinite(o.falloff->radius))
-      return problem("radius", "must be > 0 and finite, got " + fmt(o.falloff->radius));
+      return problem("radius", "must be > 0 and finite, got " + numberText(o.falloff->radius, 10));
     if (!(o.falloff->power >= 0) || !std::isfinite(o.falloff->power))
-      return problem("power", "must be >= 0 and finite, got " + fmt(o.falloff->power));
+      return problem("power", "must be >= 0 and finite, got " + numberText(o.falloff->power, 10));
   }
   return std::nullopt;
 }
@@ -181,7 +177,7 @@ std::int32_t pickedVertex(const VertexPick& pick, const Camera& camera, std::spa
   if (!pick.pixel) return pick.vertex;
   if (!image_size) throw Error(at + ".'pixel': needs the drawing's size: give \"image_size\": [w, h]");
   if (auto v = vertexAtPixel(positions, triangles, camera, (*image_size)[0], (*image_size)[1], *pick.pixel)) return *v;
-  throw Error(at + ".'pixel': [" + fmt(pick.pixel->x()) + ", " + fmt(pick.pixel->y()) +
+  throw Error(at + ".'pixel': [" + numberText(pick.pixel->x(), 10) + ", " + numberText(pick.pixel->y(), 10) +
               "] sees no front face of the mesh in the key camera (its ray misses the model)");
 }
 

@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "vdg/geom/error.h"
+#include "vdg/geom/text.h"
 
 namespace vdg {
 namespace {
@@ -95,9 +96,8 @@ void checkKeyMeshPath(std::string_view mesh_path) {
   const std::filesystem::path normal = p.lexically_normal();
   if (normal.empty() || *normal.begin() == ".." || normal == ".")
     throw Error(at + "must stay inside the manifest's folder (no '..' leading out of it)");
-  std::string ext = normal.extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  if (ext != ".obj" || normal.stem().empty()) throw Error(at + "a key mesh must be an OBJ file (NAME.obj)");
+  if (!hasExtension(normal.extension().string(), ".obj") || normal.stem().empty())
+    throw Error(at + "a key mesh must be an OBJ file (NAME.obj)");
 }
 
 std::size_t addKey(RawViewDependentModel& model, const NewKey& key) {

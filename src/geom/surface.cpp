@@ -74,14 +74,51 @@ std::int32_t findRoot(std::vector<std::int32_t>& parent, std::int32_t i) {
   return i;
 }
 
-}  // namespace
+// The edges of the welded surface (welded triangles #F x 3): each edge's two welded vertices
+// (lower first) and its first two faces (-1 for a border edge, which is counted), in order of the
+// vertex pair.
+void weldedEdges(const std::vector<std::int32_t>& welded, std::vector<std::int32_t>& edge_vertices,
+                 std::vector<std::int32_t>& edge_faces, std::size_t& border_edges) {
+  struct HalfEdge {
+    std::uint64_t key;
+    std::int32_t face;
+  };
+  std::vector<HalfEdge> half;
+  half.reserve(welded.size());
+  for (std::size_t f = 0; f < welded.size() / 3; ++f)
+    for (int c = 0; c < 3; ++c) {
+      auto a = static_cast<std::uint32_t>(welded[f * 3 + static_cast<std::size_t>(c)]);
+      auto b = static_cast<std::uint32_t>(welded[f * 3 + static_cast<std::size_t>((c + 1) % 3)]);
+      if (a == b) continue;
+      if (a > b) std::swap(a, b);
+      half.push_back({(std::uint64_t{a} << 32) | b, static_cast<std::int32_t>(f)});
+    }
+  std::sort(half.begin(), half.end(),
+            [](const HalfEdge& x, const HalfEdge& y) { return x.key != y.key ? x.key < y.key : x.face < y.face; });
+  for (std::size_t i = 0; i < half.size();) {
+    std::size_t j = i + 1;
+    while (j < half.size() && half[j].key == half[i].key) ++j;
+    edge_vertices.push_back(static_cast<std::int32_t>(half[i].key >> 32));
+    edge_vertices.push_back(static_cast<std::int32_t>(half[i].key & 0xffffffffu));
+    edge_faces.push_back(half[i].face);
+    edge_faces.push_back(j - i >= 2 ? half[i + 1].face : -1);
+    if (j - i == 1) ++border_edges;
+    i = j;
+  }
+}
 
-SurfaceTopology SurfaceTopology::build(const TriMesh& mesh, const SurfaceOptions& options) {
-  validateMesh(mesh, "surface");
+void checkOptions(const SurfaceOptions& options) {
   if (!std::isfinite(options.weld_tolerance) || options.weld_tolerance < 0.0)
     throw Error("surface: weld tolerance must be a finite number >= 0");
   if (!std::isfinite(options.hard_angle_deg) || options.hard_angle_deg < 0.0 || options.hard_angle_deg > 180.0)
     throw Error("surface: hard-edge angle must be in [0, 180] degrees");
+}
+
+}  // namespace
+
+SurfaceTopology SurfaceTopology::build(const TriMesh& mesh, const SurfaceOptions& options) {
+  validateMesh(mesh, "surface");
+  checkOptions(options);
   SurfaceTopology t;
   const std::size_t nv = mesh.vertexCount();
   const std::size_t corners = mesh.triangles.size();
@@ -176,33 +213,7 @@ SurfaceTopology SurfaceTopology::build(const TriMesh& mesh, const SurfaceOptions
     }
   }
 
-  // Edges of the welded surface.
-  struct HalfEdge {
-    std::uint64_t key;
-    std::int32_t face;
-  };
-  std::vector<HalfEdge> half;
-  half.reserve(corners);
-  for (std::size_t f = 0; f < corners / 3; ++f)
-    for (int c = 0; c < 3; ++c) {
-      auto a = static_cast<std::uint32_t>(t.welded_triangles_[f * 3 + static_cast<std::size_t>(c)]);
-      auto b = static_cast<std::uint32_t>(t.welded_triangles_[f * 3 + static_cast<std::size_t>((c + 1) % 3)]);
-      if (a == b) continue;
-      if (a > b) std::swap(a, b);
-      half.push_back({(std::uint64_t{a} << 32) | b, static_cast<std::int32_t>(f)});
-    }
-  std::sort(half.begin(), half.end(),
-            [](const HalfEdge& x, const HalfEdge& y) { return x.key != y.key ? x.key < y.key : x.face < y.face; });
-  for (std::size_t i = 0; i < half.size();) {
-    std::size_t j = i + 1;
-    while (j < half.size() && half[j].key == half[i].key) ++j;
-    t.edge_vertices_.push_back(static_cast<std::int32_t>(half[i].key >> 32));
-    t.edge_vertices_.push_back(static_cast<std::int32_t>(half[i].key & 0xffffffffu));
-    t.edge_faces_.push_back(half[i].face);
-    t.edge_faces_.push_back(j - i >= 2 ? half[i + 1].face : -1);
-    if (j - i == 1) ++t.border_edges_;
-    i = j;
-  }
+  weldedEdges(t.welded_triangles_, t.edge_vertices_, t.edge_faces_, t.border_edges_);
 
   // Render vertices: distinct (group, uv) pairs, numbered in order of first use.
   const bool with_uvs = !mesh.uv_triangles.empty();

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "json_reader.h"
+#include "vdg/geom/text.h"
 #include "vdg/io/anim_json.h"
 
 namespace vdg {
@@ -24,18 +25,12 @@ constexpr std::pair<const char*, FieldKind> kKinds[] = {
 
 constexpr int kLastFileFrame = 999999;
 
-std::string num(double v) {
-  std::ostringstream s;
-  s.precision(6);
-  s << v;
-  return s.str();
-}
-
 // A number in [lo, hi] (the bounds of vdg/morph/implicit.h); "expected a number > 0" when lo > 0
 // and the number is not.
 void checkIn(double v, const Ctx& ctx, double lo, double hi) {
-  if (lo > 0 && !(v > 0)) ctx.fail("expected a number > 0, got " + num(v));
-  if (!(v >= lo && v <= hi)) ctx.fail("expected a number in [" + num(lo) + ", " + num(hi) + "], got " + num(v));
+  if (lo > 0 && !(v > 0)) ctx.fail("expected a number > 0, got " + numberText(v));
+  if (!(v >= lo && v <= hi))
+    ctx.fail("expected a number in [" + numberText(lo) + ", " + numberText(hi) + "], got " + numberText(v));
 }
 double boundedNumber(const Json& j, const Ctx& ctx, double lo, double hi) {
   const double v = io::number(j, ctx);

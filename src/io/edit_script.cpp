@@ -114,6 +114,37 @@ std::vector<Eigen::Vector3d> jointList(const Json& j, const char* key, const Ctx
   return out;
 }
 
+// An FFD op: the vertices, the lattice's degree and padding, and the control points moved.
+FfdOp readFfd(const Json& j, const Ctx& ctx) {
+  io::allowKeys(j, ctx, {"op", "vertices", "frame", "degree", "padding", "moves"});
+  FfdOp o;
+  o.vertices = vertexList(j, ctx);
+  o.camera_frame = enumOr(j, "frame", true, ctx, kFrames);
+  if (j.contains("degree")) {
+    const Json& d = j.at("degree");
+    const Ctx dctx = ctx.key("degree");
+    if (!d.is_array() || d.size() != 3) dctx.fail("expected 3 integers, got " + io::describe(d));
+    for (std::size_t a = 0; a < 3; ++a)
+      o.degree[a] = static_cast<int>(io::integer(d[a], dctx.index(a), 1, kMaxFfdDegree));
+  }
+  o.padding = io::numberOr(j, "padding", o.padding, ctx);
+  const Json& moves = io::required(j, "moves", ctx);
+  const Ctx mctx = ctx.key("moves");
+  if (!moves.is_array()) mctx.fail("expected an array of {\"index\": [i,j,k], \"offset\": [x,y,z]}");
+  for (std::size_t m = 0; m < moves.size(); ++m) {
+    const Ctx c = mctx.index(m);
+    io::allowKeys(moves[m], c, {"index", "offset"});
+    FfdMove move;
+    const Json& idx = io::required(moves[m], "index", c);
+    if (!idx.is_array() || idx.size() != 3) c.key("index").fail("expected 3 integers, got " + io::describe(idx));
+    for (std::size_t a = 0; a < 3; ++a)
+      move.index[a] = static_cast<int>(io::integer(idx[a], c.key("index").index(a), 0, kMaxFfdDegree));
+    move.offset = io::vector3(io::required(moves[m], "offset", c), c.key("offset"));
+    o.moves.push_back(move);
+  }
+  return o;
+}
+
 #define VDG_PICK_KEYS "op", "vertex", "point", "pixel", "radius", "power", "falloff", "distance"
 
 EditOp readOpFields(const Json& j, EditKind kind, const Ctx& ctx) {
@@ -162,35 +193,8 @@ EditOp readOpFields(const Json& j, EditKind kind, const Ctx& ctx) {
       o.camera_frame = enumOr(j, "frame", false, ctx, kFrames);
       return o;
     }
-    case EditKind::kFfd: {
-      io::allowKeys(j, ctx, {"op", "vertices", "frame", "degree", "padding", "moves"});
-      FfdOp o;
-      o.vertices = vertexList(j, ctx);
-      o.camera_frame = enumOr(j, "frame", true, ctx, kFrames);
-      if (j.contains("degree")) {
-        const Json& d = j.at("degree");
-        const Ctx dctx = ctx.key("degree");
-        if (!d.is_array() || d.size() != 3) dctx.fail("expected 3 integers, got " + io::describe(d));
-        for (std::size_t a = 0; a < 3; ++a)
-          o.degree[a] = static_cast<int>(io::integer(d[a], dctx.index(a), 1, kMaxFfdDegree));
-      }
-      o.padding = io::numberOr(j, "padding", o.padding, ctx);
-      const Json& moves = io::required(j, "moves", ctx);
-      const Ctx mctx = ctx.key("moves");
-      if (!moves.is_array()) mctx.fail("expected an array of {\"index\": [i,j,k], \"offset\": [x,y,z]}");
-      for (std::size_t m = 0; m < moves.size(); ++m) {
-        const Ctx c = mctx.index(m);
-        io::allowKeys(moves[m], c, {"index", "offset"});
-        FfdMove move;
-        const Json& idx = io::required(moves[m], "index", c);
-        if (!idx.is_array() || idx.size() != 3) c.key("index").fail("expected 3 integers, got " + io::describe(idx));
-        for (std::size_t a = 0; a < 3; ++a)
-          move.index[a] = static_cast<int>(io::integer(idx[a], c.key("index").index(a), 0, kMaxFfdDegree));
-        move.offset = io::vector3(io::required(moves[m], "offset", c), c.key("offset"));
-        o.moves.push_back(move);
-      }
-      return o;
-    }
+    case EditKind::kFfd:
+      return readFfd(j, ctx);
     case EditKind::kSquashStretch: {
       io::allowKeys(j, ctx, {"op", "vertices", "axis", "frame", "factor", "preserve_volume", "center"});
       SquashStretchOp o;

@@ -688,10 +688,10 @@ class MaterialReader {
   std::set<std::size_t> warned_images_;
 };
 
-RawRig buildRig(const Gltf& g, const GltfSelect& want, const MeshReadOptions& options) {
+// The node hierarchy: every node, and each child's parent (a node with two parents, or its own
+// child, is refused).
+void readNodeHierarchy(const Gltf& g, RawRig& raw) {
   const tg::Model& m = g.model();
-  RawRig raw;
-  raw.source = g.source();
   if (m.nodes.size() > kMaxRigNodes)
     g.fail("nodes", std::to_string(m.nodes.size()) + " nodes, more than the limit of " + std::to_string(kMaxRigNodes));
   raw.nodes.reserve(m.nodes.size());
@@ -709,265 +709,324 @@ RawRig buildRig(const Gltf& g, const GltfSelect& want, const MeshReadOptions& op
       child.parent = static_cast<int>(i);
     }
   }
-  const Selection sel = select(g, want);
-  g.checkIndex(sel.node >= 0 ? idx("nodes", static_cast<std::size_t>(sel.node)) : std::string("file"), "mesh", sel.mesh,
-               m.meshes.size());
-  raw.mesh_node = sel.node;
-  const tg::Mesh& mesh = m.meshes[static_cast<std::size_t>(sel.mesh)];
-  const std::string em = idx("meshes", static_cast<std::size_t>(sel.mesh));
-  const int skin_index = sel.node >= 0 ? m.nodes[static_cast<std::size_t>(sel.node)].skin : -1;
+}
 
-  // Primitives: the triangle ones, concatenated.
-  std::vector<std::size_t> prims;
-  for (std::size_t p = 0; p < mesh.primitives.size(); ++p)
-    if (mesh.primitives[p].mode == TINYGLTF_MODE_TRIANGLES || mesh.primitives[p].mode == -1) prims.push_back(p);
-  if (prims.empty()) g.fail(em, "has no triangle primitives");
-  auto attribute = [](const tg::Primitive& p, const char* name) {
-    const auto it = p.attributes.find(name);
-    return it == p.attributes.end() ? -1 : it->second;
-  };
+int attributeOf(const tg::Primitive& p, const char* name) {
+  const auto it = p.attributes.find(name);
+  return it == p.attributes.end() ? -1 : it->second;
+}
+
+// The selected mesh's triangle primitives and what all of them carry.
+struct MeshLayout {
+  std::string where;               // "meshes[i]"
+  std::vector<std::size_t> prims;  // the triangle primitives, concatenated in this order
   bool with_normals = true, with_uvs = true;
-  const std::size_t targets = mesh.primitives[prims[0]].targets.size();
-  for (std::size_t p : prims) {
+  std::size_t targets = 0;
+  std::vector<bool> target_has_normals;
+};
+
+MeshLayout meshLayout(const Gltf& g, const tg::Mesh& mesh, const std::string& where, bool skinned) {
+  MeshLayout l;
+  l.where = where;
+  for (std::size_t p = 0; p < mesh.primitives.size(); ++p)
+    if (mesh.primitives[p].mode == TINYGLTF_MODE_TRIANGLES || mesh.primitives[p].mode == -1) l.prims.push_back(p);
+  if (l.prims.empty()) g.fail(where, "has no triangle primitives");
+  l.targets = mesh.primitives[l.prims[0]].targets.size();
+  for (std::size_t p : l.prims) {
     const tg::Primitive& prim = mesh.primitives[p];
-    const std::string ep = em + ": " + idx("primitives", p);
-    if (attribute(prim, "POSITION") < 0) g.fail(ep, "has no POSITION");
-    with_normals = with_normals && attribute(prim, "NORMAL") >= 0;
-    with_uvs = with_uvs && attribute(prim, "TEXCOORD_0") >= 0;
-    if (prim.targets.size() != targets)
+    const std::string ep = where + ": " + idx("primitives", p);
+    if (attributeOf(prim, "POSITION") < 0) g.fail(ep, "has no POSITION");
+    l.with_normals = l.with_normals && attributeOf(prim, "NORMAL") >= 0;
+    l.with_uvs = l.with_uvs && attributeOf(prim, "TEXCOORD_0") >= 0;
+    if (prim.targets.size() != l.targets)
       g.fail(ep, "has " + std::to_string(prim.targets.size()) + " morph targets, primitives[" +
-                     std::to_string(prims[0]) + "] has " + std::to_string(targets));
-    if (skin_index >= 0 && (attribute(prim, "JOINTS_0") < 0 || attribute(prim, "WEIGHTS_0") < 0))
+                     std::to_string(l.prims[0]) + "] has " + std::to_string(l.targets));
+    if (skinned && (attributeOf(prim, "JOINTS_0") < 0 || attributeOf(prim, "WEIGHTS_0") < 0))
       g.fail(ep, "is skinned but lacks JOINTS_0 or WEIGHTS_0");
   }
-  if (targets > kMaxMorphTargets)
-    g.fail(em, std::to_string(targets) + " morph targets, more than the limit of " + std::to_string(kMaxMorphTargets));
-  raw.target_positions.assign(targets, {});
-  raw.target_normals.assign(targets, {});
-  std::vector<bool> target_has_normals(targets, false);
-  for (std::size_t p : prims)
-    for (std::size_t t = 0; t < targets; ++t)
-      if (mesh.primitives[p].targets[t].count("NORMAL")) target_has_normals[t] = true;
+  if (l.targets > kMaxMorphTargets)
+    g.fail(where,
+           std::to_string(l.targets) + " morph targets, more than the limit of " + std::to_string(kMaxMorphTargets));
+  l.target_has_normals.assign(l.targets, false);
+  for (std::size_t p : l.prims)
+    for (std::size_t t = 0; t < l.targets; ++t)
+      if (mesh.primitives[p].targets[t].count("NORMAL")) l.target_has_normals[t] = true;
+  return l;
+}
 
+// Appends primitive `p` (its vertices numbered from `base`) to raw's mesh, normals, skin weights and
+// morph targets; returns its vertex count.
+std::size_t appendPrimitive(const Gltf& g, const tg::Primitive& prim, std::size_t p, const MeshLayout& l, bool skinned,
+                            std::size_t base, RawRig& raw) {
+  const std::string ep = l.where + ": " + idx("primitives", p);
+  const int pos = attributeOf(prim, "POSITION");
+  const std::vector<double> positions = g.read(pos, kFloatVec3, ep + ": POSITION");
+  const std::size_t nv = g.count(pos);
+  if (base + nv > kMaxGltfElements)
+    g.fail(l.where, "more than " + std::to_string(kMaxGltfElements) + " vertices in all primitives");
+  auto sameCount = [&](int accessor, const char* name) {
+    if (g.count(accessor) != nv)
+      g.fail(ep, std::string(name) + " has " + std::to_string(g.count(accessor)) + " elements, POSITION has " +
+                     std::to_string(nv));
+  };
+  raw.mesh.positions.insert(raw.mesh.positions.end(), positions.begin(), positions.end());
+  if (l.with_normals) {
+    const int a = attributeOf(prim, "NORMAL");
+    const auto normals = g.read(a, kFloatVec3, ep + ": NORMAL");
+    sameCount(a, "NORMAL");
+    raw.normals.insert(raw.normals.end(), normals.begin(), normals.end());
+  }
+  if (l.with_uvs) {
+    const int a = attributeOf(prim, "TEXCOORD_0");
+    auto uvs = g.read(a, kTexcoord, ep + ": TEXCOORD_0");
+    sameCount(a, "TEXCOORD_0");
+    for (std::size_t i = 1; i < uvs.size(); i += 2) uvs[i] = 1.0 - uvs[i];  // top-left origin to bottom-left
+    raw.mesh.uvs.insert(raw.mesh.uvs.end(), uvs.begin(), uvs.end());
+  }
+  if (skinned) {
+    const int ja = attributeOf(prim, "JOINTS_0");
+    const int wa = attributeOf(prim, "WEIGHTS_0");
+    const auto joints = g.read(ja, kJoints, ep + ": JOINTS_0");
+    const auto weights = g.read(wa, kWeights, ep + ": WEIGHTS_0");
+    sameCount(ja, "JOINTS_0");
+    sameCount(wa, "WEIGHTS_0");
+    for (double j : joints) raw.joints.push_back(static_cast<std::uint16_t>(j));
+    raw.weights.insert(raw.weights.end(), weights.begin(), weights.end());
+  }
+  for (std::size_t t = 0; t < l.targets; ++t) {
+    const auto& target = prim.targets[t];
+    const std::string et = ep + ": " + idx("targets", t);
+    const auto pit = target.find("POSITION");
+    if (pit != target.end()) {
+      const auto d = g.read(pit->second, kFloatVec3, et + ": POSITION");
+      sameCount(pit->second, "a target's POSITION");
+      raw.target_positions[t].insert(raw.target_positions[t].end(), d.begin(), d.end());
+    } else {
+      raw.target_positions[t].resize(raw.target_positions[t].size() + 3 * nv, 0.0f);
+    }
+    if (l.with_normals && l.target_has_normals[t]) {
+      const auto nit = target.find("NORMAL");
+      if (nit != target.end()) {
+        const auto d = g.read(nit->second, kFloatVec3, et + ": NORMAL");
+        sameCount(nit->second, "a target's NORMAL");
+        raw.target_normals[t].insert(raw.target_normals[t].end(), d.begin(), d.end());
+      } else {
+        raw.target_normals[t].resize(raw.target_normals[t].size() + 3 * nv, 0.0f);
+      }
+    }
+  }
+  // Triangles: the indices, or 0..n-1 without them.
+  if (prim.indices >= 0) {
+    const auto indices = g.read(prim.indices, kIndices, ep + ": indices");
+    if (indices.size() % 3 != 0)
+      g.fail(ep, "indices: " + std::to_string(indices.size()) + " indices, not a multiple of 3");
+    for (std::size_t k = 0; k < indices.size(); ++k) {
+      if (indices[k] >= static_cast<double>(nv))
+        g.fail(ep, "indices[" + std::to_string(k) + "] = " + std::to_string(static_cast<std::uint64_t>(indices[k])) +
+                       " out of range (the primitive has " + std::to_string(nv) + " vertices)");
+      raw.mesh.triangles.push_back(static_cast<std::int32_t>(base + static_cast<std::size_t>(indices[k])));
+    }
+  } else {
+    if (nv % 3 != 0) g.fail(ep, std::to_string(nv) + " vertices without indices, not a multiple of 3");
+    for (std::size_t k = 0; k < nv; ++k) raw.mesh.triangles.push_back(static_cast<std::int32_t>(base + k));
+  }
+  return nv;
+}
+
+// Materials in the order of first use; a primitive without one (or with a material index out of
+// range, a warning) has none. `face_material` and `face_primitive` give each triangle's glTF
+// material (-1: none) and primitive.
+void readMeshMaterials(const Gltf& g, const MeshReadOptions& options, const MeshLayout& l,
+                       const std::vector<int>& face_material, const std::vector<std::size_t>& face_primitive,
+                       RawRig& raw) {
+  const tg::Model& m = g.model();
+  MaterialReader reader(g, options);
+  std::map<int, int> mesh_index;
+  std::set<std::size_t> warned_primitives;
+  raw.mesh.face_materials.assign(face_material.size(), -1);
+  for (std::size_t f = 0; f < face_material.size(); ++f) {
+    const int k = face_material[f];
+    if (k < 0) continue;
+    if (static_cast<std::size_t>(k) >= m.materials.size()) {
+      if (warned_primitives.insert(face_primitive[f]).second)
+        reader.warn(g.source() + ": " + l.where + ": " + idx("primitives", face_primitive[f]) + ": material " +
+                    std::to_string(k) + " out of range (the file has " + std::to_string(m.materials.size()) +
+                    "); the primitive has no material");
+      continue;
+    }
+    auto it = mesh_index.find(k);
+    if (it == mesh_index.end()) {
+      it = mesh_index.emplace(k, static_cast<int>(raw.mesh.materials.size())).first;
+      raw.mesh.materials.push_back(reader.read(static_cast<std::size_t>(k), l.with_uvs));
+    }
+    raw.mesh.face_materials[f] = it->second;
+  }
+  if (raw.mesh.materials.empty()) raw.mesh.face_materials.clear();
+}
+
+// The mesh: its triangle primitives concatenated, with normals, texture coordinates, skin weights,
+// morph targets and materials where all primitives have them.
+void readRigMesh(const Gltf& g, const tg::Mesh& mesh, const MeshLayout& l, bool skinned, const MeshReadOptions& options,
+                 RawRig& raw) {
+  raw.target_positions.assign(l.targets, {});
+  raw.target_normals.assign(l.targets, {});
   std::size_t base = 0;
   std::vector<int> face_material;           // per triangle: the primitive's glTF material (-1: none)
   std::vector<std::size_t> face_primitive;  // per triangle: its primitive
-  for (std::size_t p : prims) {
+  for (std::size_t p : l.prims) {
     const tg::Primitive& prim = mesh.primitives[p];
-    const std::string ep = em + ": " + idx("primitives", p);
-    const int pos = attribute(prim, "POSITION");
-    const std::vector<double> positions = g.read(pos, kFloatVec3, ep + ": POSITION");
-    const std::size_t nv = g.count(pos);
-    if (base + nv > kMaxGltfElements)
-      g.fail(em, "more than " + std::to_string(kMaxGltfElements) + " vertices in all primitives");
-    auto sameCount = [&](int accessor, const char* name) {
-      if (g.count(accessor) != nv)
-        g.fail(ep, std::string(name) + " has " + std::to_string(g.count(accessor)) + " elements, POSITION has " +
-                       std::to_string(nv));
-    };
-    raw.mesh.positions.insert(raw.mesh.positions.end(), positions.begin(), positions.end());
-    if (with_normals) {
-      const int a = attribute(prim, "NORMAL");
-      const auto normals = g.read(a, kFloatVec3, ep + ": NORMAL");
-      sameCount(a, "NORMAL");
-      raw.normals.insert(raw.normals.end(), normals.begin(), normals.end());
-    }
-    if (with_uvs) {
-      const int a = attribute(prim, "TEXCOORD_0");
-      auto uvs = g.read(a, kTexcoord, ep + ": TEXCOORD_0");
-      sameCount(a, "TEXCOORD_0");
-      for (std::size_t i = 1; i < uvs.size(); i += 2) uvs[i] = 1.0 - uvs[i];  // top-left origin to bottom-left
-      raw.mesh.uvs.insert(raw.mesh.uvs.end(), uvs.begin(), uvs.end());
-    }
-    if (skin_index >= 0) {
-      const int ja = attribute(prim, "JOINTS_0");
-      const int wa = attribute(prim, "WEIGHTS_0");
-      const auto joints = g.read(ja, kJoints, ep + ": JOINTS_0");
-      const auto weights = g.read(wa, kWeights, ep + ": WEIGHTS_0");
-      sameCount(ja, "JOINTS_0");
-      sameCount(wa, "WEIGHTS_0");
-      for (double j : joints) raw.joints.push_back(static_cast<std::uint16_t>(j));
-      raw.weights.insert(raw.weights.end(), weights.begin(), weights.end());
-    }
-    for (std::size_t t = 0; t < targets; ++t) {
-      const auto& target = prim.targets[t];
-      const std::string et = ep + ": " + idx("targets", t);
-      const auto pit = target.find("POSITION");
-      if (pit != target.end()) {
-        const auto d = g.read(pit->second, kFloatVec3, et + ": POSITION");
-        sameCount(pit->second, "a target's POSITION");
-        raw.target_positions[t].insert(raw.target_positions[t].end(), d.begin(), d.end());
-      } else {
-        raw.target_positions[t].resize(raw.target_positions[t].size() + 3 * nv, 0.0f);
-      }
-      if (with_normals && target_has_normals[t]) {
-        const auto nit = target.find("NORMAL");
-        if (nit != target.end()) {
-          const auto d = g.read(nit->second, kFloatVec3, et + ": NORMAL");
-          sameCount(nit->second, "a target's NORMAL");
-          raw.target_normals[t].insert(raw.target_normals[t].end(), d.begin(), d.end());
-        } else {
-          raw.target_normals[t].resize(raw.target_normals[t].size() + 3 * nv, 0.0f);
-        }
-      }
-    }
-    // Triangles: the indices, or 0..n-1 without them.
     const std::size_t triangles_before = raw.mesh.triangles.size() / 3;
-    if (prim.indices >= 0) {
-      const auto indices = g.read(prim.indices, kIndices, ep + ": indices");
-      if (indices.size() % 3 != 0)
-        g.fail(ep, "indices: " + std::to_string(indices.size()) + " indices, not a multiple of 3");
-      for (std::size_t k = 0; k < indices.size(); ++k) {
-        if (indices[k] >= static_cast<double>(nv))
-          g.fail(ep, "indices[" + std::to_string(k) + "] = " + std::to_string(static_cast<std::uint64_t>(indices[k])) +
-                         " out of range (the primitive has " + std::to_string(nv) + " vertices)");
-        raw.mesh.triangles.push_back(static_cast<std::int32_t>(base + static_cast<std::size_t>(indices[k])));
-      }
-    } else {
-      if (nv % 3 != 0) g.fail(ep, std::to_string(nv) + " vertices without indices, not a multiple of 3");
-      for (std::size_t k = 0; k < nv; ++k) raw.mesh.triangles.push_back(static_cast<std::int32_t>(base + k));
-    }
+    base += appendPrimitive(g, prim, p, l, skinned, base, raw);
     face_material.insert(face_material.end(), raw.mesh.triangles.size() / 3 - triangles_before, prim.material);
     face_primitive.insert(face_primitive.end(), raw.mesh.triangles.size() / 3 - triangles_before, p);
-    base += nv;
   }
-  if (with_uvs) raw.mesh.uv_triangles = raw.mesh.triangles;
-  if (with_normals) {
+  if (l.with_uvs) raw.mesh.uv_triangles = raw.mesh.triangles;
+  if (l.with_normals) {
     raw.mesh.normals = raw.normals;
     raw.mesh.normal_triangles = raw.mesh.triangles;
   }
-  if (options.materials) {
-    // Materials in the order of first use; a primitive without one (or with a material index out
-    // of range, a warning) has none.
-    MaterialReader reader(g, options);
-    std::map<int, int> mesh_index;
-    std::set<std::size_t> warned_primitives;
-    raw.mesh.face_materials.assign(face_material.size(), -1);
-    for (std::size_t f = 0; f < face_material.size(); ++f) {
-      const int k = face_material[f];
-      if (k < 0) continue;
-      if (static_cast<std::size_t>(k) >= m.materials.size()) {
-        if (warned_primitives.insert(face_primitive[f]).second)
-          reader.warn(g.source() + ": " + em + ": " + idx("primitives", face_primitive[f]) + ": material " +
-                      std::to_string(k) + " out of range (the file has " + std::to_string(m.materials.size()) +
-                      "); the primitive has no material");
-        continue;
-      }
-      auto it = mesh_index.find(k);
-      if (it == mesh_index.end()) {
-        it = mesh_index.emplace(k, static_cast<int>(raw.mesh.materials.size())).first;
-        raw.mesh.materials.push_back(reader.read(static_cast<std::size_t>(k), with_uvs));
-      }
-      raw.mesh.face_materials[f] = it->second;
-    }
-    if (raw.mesh.materials.empty()) raw.mesh.face_materials.clear();
-  }
+  if (options.materials) readMeshMaterials(g, options, l, face_material, face_primitive, raw);
+}
 
-  // Morph target names and default weights (the node's weights override the mesh's).
-  raw.target_names = targetNames(mesh, targets);
+// Morph target names and default weights (the node's weights override the mesh's).
+void readTargetWeights(const Gltf& g, const tg::Mesh& mesh, const MeshLayout& l, int node, RawRig& raw) {
+  const tg::Model& m = g.model();
+  raw.target_names = targetNames(mesh, l.targets);
   const std::vector<double>* weights = &mesh.weights;
-  if (sel.node >= 0 && !m.nodes[static_cast<std::size_t>(sel.node)].weights.empty())
-    weights = &m.nodes[static_cast<std::size_t>(sel.node)].weights;
+  if (node >= 0 && !m.nodes[static_cast<std::size_t>(node)].weights.empty())
+    weights = &m.nodes[static_cast<std::size_t>(node)].weights;
   if (weights->empty()) {
-    raw.default_weights.assign(targets, 0.0);
+    raw.default_weights.assign(l.targets, 0.0);
   } else {
-    if (weights->size() != targets)
-      g.fail(weights == &mesh.weights ? em : idx("nodes", static_cast<std::size_t>(sel.node)),
-             "weights has " + std::to_string(weights->size()) + " numbers for " + std::to_string(targets) +
+    if (weights->size() != l.targets)
+      g.fail(weights == &mesh.weights ? l.where : idx("nodes", static_cast<std::size_t>(node)),
+             "weights has " + std::to_string(weights->size()) + " numbers for " + std::to_string(l.targets) +
                  " morph targets");
     raw.default_weights = *weights;
   }
+}
 
-  // Skin.
-  if (skin_index >= 0) {
-    const std::string en = idx("nodes", static_cast<std::size_t>(sel.node));
-    g.checkIndex(en, "skin", skin_index, m.skins.size());
-    const tg::Skin& skin = m.skins[static_cast<std::size_t>(skin_index)];
-    const std::string es = idx("skins", static_cast<std::size_t>(skin_index));
-    RigSkin rs;
-    if (skin.joints.size() > kMaxRigJoints)
-      g.fail(es,
-             std::to_string(skin.joints.size()) + " joints, more than the limit of " + std::to_string(kMaxRigJoints));
-    for (std::size_t j = 0; j < skin.joints.size(); ++j) {
-      g.checkIndex(es + ": " + idx("joints", j), "node", skin.joints[j], m.nodes.size());
-      rs.joints.push_back(skin.joints[j]);
-    }
-    if (skin.inverseBindMatrices >= 0) {
-      const auto mats = g.read(skin.inverseBindMatrices, kMat4, es + ": inverseBindMatrices");
-      if (g.count(skin.inverseBindMatrices) < skin.joints.size())
-        g.fail(es, "inverseBindMatrices has " + std::to_string(g.count(skin.inverseBindMatrices)) + " matrices for " +
-                       std::to_string(skin.joints.size()) + " joints");
-      for (std::size_t j = 0; j < skin.joints.size(); ++j) {
-        Eigen::Matrix4d mat;
-        for (int k = 0; k < 16; ++k) mat(k % 4, k / 4) = mats[16 * j + static_cast<std::size_t>(k)];
-        rs.inverse_bind.push_back(mat);
-      }
-    } else {
-      rs.inverse_bind.assign(skin.joints.size(), Eigen::Matrix4d::Identity());
-    }
-    raw.skin = std::move(rs);
+// The skin of the mesh's node.
+RigSkin readSkin(const Gltf& g, int node, int skin_index) {
+  const tg::Model& m = g.model();
+  const std::string en = idx("nodes", static_cast<std::size_t>(node));
+  g.checkIndex(en, "skin", skin_index, m.skins.size());
+  const tg::Skin& skin = m.skins[static_cast<std::size_t>(skin_index)];
+  const std::string es = idx("skins", static_cast<std::size_t>(skin_index));
+  RigSkin rs;
+  if (skin.joints.size() > kMaxRigJoints)
+    g.fail(es, std::to_string(skin.joints.size()) + " joints, more than the limit of " + std::to_string(kMaxRigJoints));
+  for (std::size_t j = 0; j < skin.joints.size(); ++j) {
+    g.checkIndex(es + ": " + idx("joints", j), "node", skin.joints[j], m.nodes.size());
+    rs.joints.push_back(skin.joints[j]);
   }
+  if (skin.inverseBindMatrices >= 0) {
+    const auto mats = g.read(skin.inverseBindMatrices, kMat4, es + ": inverseBindMatrices");
+    if (g.count(skin.inverseBindMatrices) < skin.joints.size())
+      g.fail(es, "inverseBindMatrices has " + std::to_string(g.count(skin.inverseBindMatrices)) + " matrices for " +
+                     std::to_string(skin.joints.size()) + " joints");
+    for (std::size_t j = 0; j < skin.joints.size(); ++j) {
+      Eigen::Matrix4d mat;
+      for (int k = 0; k < 16; ++k) mat(k % 4, k / 4) = mats[16 * j + static_cast<std::size_t>(k)];
+      rs.inverse_bind.push_back(mat);
+    }
+  } else {
+    rs.inverse_bind.assign(skin.joints.size(), Eigen::Matrix4d::Identity());
+  }
+  return rs;
+}
 
-  // Animations: every one; weights channels of other nodes do not move this mesh and are left out.
+// The channels of animation `a`; `output_want` gets, per sampler, the output its channel needs.
+// Weights channels of nodes other than `mesh_node` do not move the mesh and are left out.
+std::vector<RigChannel> readChannels(const Gltf& g, std::size_t a, int mesh_node,
+                                     std::vector<const Want*>& output_want) {
+  const tg::Model& m = g.model();
+  const tg::Animation& anim = m.animations[a];
+  std::vector<RigChannel> channels;
+  for (std::size_t c = 0; c < anim.channels.size(); ++c) {
+    const tg::AnimationChannel& ch = anim.channels[c];
+    const std::string ec = idx("animations", a) + ": " + idx("channels", c);
+    g.checkIndex(ec, "sampler", ch.sampler, anim.samplers.size());
+    if (ch.target_node < 0) continue;  // no target node: defined by an extension vdg does not read
+    g.checkIndex(ec, "target node", ch.target_node, m.nodes.size());
+    RigChannel rc;
+    rc.node = ch.target_node;
+    rc.sampler = ch.sampler;
+    static const Want kVec3 = kFloatVec3;
+    const Want* w = nullptr;
+    if (ch.target_path == "translation") {
+      rc.path = RigPath::kTranslation, w = &kVec3;
+    } else if (ch.target_path == "rotation") {
+      rc.path = RigPath::kRotation, w = &kRotation;
+    } else if (ch.target_path == "scale") {
+      rc.path = RigPath::kScale, w = &kVec3;
+    } else if (ch.target_path == "weights") {
+      rc.path = RigPath::kWeights, w = &kMorphWeights;
+      if (ch.target_node != mesh_node) continue;
+    } else {
+      g.fail(ec, "target path '" + ch.target_path + "' is not translation, rotation, scale or weights");
+    }
+    output_want[static_cast<std::size_t>(ch.sampler)] = w;
+    channels.push_back(rc);
+  }
+  return channels;
+}
+
+RigSampler readSampler(const Gltf& g, const tg::AnimationSampler& sampler, const std::string& es, const Want* want) {
+  RigSampler rs;
+  if (sampler.interpolation == "LINEAR" || sampler.interpolation.empty())
+    rs.interpolation = RigInterpolation::kLinear;
+  else if (sampler.interpolation == "STEP")
+    rs.interpolation = RigInterpolation::kStep;
+  else if (sampler.interpolation == "CUBICSPLINE")
+    rs.interpolation = RigInterpolation::kCubicSpline;
+  else
+    g.fail(es, "interpolation '" + sampler.interpolation + "' is not LINEAR, STEP or CUBICSPLINE");
+  const auto input = g.read(sampler.input, kTimes, es + ": input");
+  rs.input.assign(input.begin(), input.end());
+  static const Want kAnyOutput{{TINYGLTF_TYPE_SCALAR, TINYGLTF_TYPE_VEC3, TINYGLTF_TYPE_VEC4},
+                               kFloatOrNormalized,
+                               "FLOAT or normalized integers"};
+  const auto output = g.read(sampler.output, want ? *want : kAnyOutput, es + ": output");
+  rs.output.assign(output.begin(), output.end());
+  return rs;
+}
+
+// Every animation of the file.
+void readAnimations(const Gltf& g, int mesh_node, RawRig& raw) {
+  const tg::Model& m = g.model();
   if (m.animations.size() > kMaxRigAnimations)
     g.fail("animations", std::to_string(m.animations.size()) + " animations, more than the limit of " +
                              std::to_string(kMaxRigAnimations));
   for (std::size_t a = 0; a < m.animations.size(); ++a) {
     const tg::Animation& anim = m.animations[a];
-    const std::string ea = idx("animations", a);
     RigAnimation ra;
     ra.name = anim.name;
     std::vector<const Want*> output_want(anim.samplers.size(), nullptr);
-    for (std::size_t c = 0; c < anim.channels.size(); ++c) {
-      const tg::AnimationChannel& ch = anim.channels[c];
-      const std::string ec = ea + ": " + idx("channels", c);
-      g.checkIndex(ec, "sampler", ch.sampler, anim.samplers.size());
-      if (ch.target_node < 0) continue;  // no target node: defined by an extension vdg does not read
-      g.checkIndex(ec, "target node", ch.target_node, m.nodes.size());
-      RigChannel rc;
-      rc.node = ch.target_node;
-      rc.sampler = ch.sampler;
-      static const Want kVec3 = kFloatVec3;
-      const Want* w = nullptr;
-      if (ch.target_path == "translation") {
-        rc.path = RigPath::kTranslation, w = &kVec3;
-      } else if (ch.target_path == "rotation") {
-        rc.path = RigPath::kRotation, w = &kRotation;
-      } else if (ch.target_path == "scale") {
-        rc.path = RigPath::kScale, w = &kVec3;
-      } else if (ch.target_path == "weights") {
-        rc.path = RigPath::kWeights, w = &kMorphWeights;
-        if (ch.target_node != sel.node) continue;
-      } else {
-        g.fail(ec, "target path '" + ch.target_path + "' is not translation, rotation, scale or weights");
-      }
-      output_want[static_cast<std::size_t>(ch.sampler)] = w;
-      ra.channels.push_back(rc);
-    }
-    for (std::size_t s = 0; s < anim.samplers.size(); ++s) {
-      const tg::AnimationSampler& sampler = anim.samplers[s];
-      const std::string es = ea + ": " + idx("samplers", s);
-      RigSampler rs;
-      if (sampler.interpolation == "LINEAR" || sampler.interpolation.empty())
-        rs.interpolation = RigInterpolation::kLinear;
-      else if (sampler.interpolation == "STEP")
-        rs.interpolation = RigInterpolation::kStep;
-      else if (sampler.interpolation == "CUBICSPLINE")
-        rs.interpolation = RigInterpolation::kCubicSpline;
-      else
-        g.fail(es, "interpolation '" + sampler.interpolation + "' is not LINEAR, STEP or CUBICSPLINE");
-      const auto input = g.read(sampler.input, kTimes, es + ": input");
-      rs.input.assign(input.begin(), input.end());
-      static const Want kAnyOutput{{TINYGLTF_TYPE_SCALAR, TINYGLTF_TYPE_VEC3, TINYGLTF_TYPE_VEC4},
-                                   kFloatOrNormalized,
-                                   "FLOAT or normalized integers"};
-      const Want& w = output_want[s] ? *output_want[s] : kAnyOutput;
-      const auto output = g.read(sampler.output, w, es + ": output");
-      rs.output.assign(output.begin(), output.end());
-      ra.samplers.push_back(std::move(rs));
-    }
+    ra.channels = readChannels(g, a, mesh_node, output_want);
+    for (std::size_t s = 0; s < anim.samplers.size(); ++s)
+      ra.samplers.push_back(
+          readSampler(g, anim.samplers[s], idx("animations", a) + ": " + idx("samplers", s), output_want[s]));
     raw.animations.push_back(std::move(ra));
   }
+}
+
+RawRig buildRig(const Gltf& g, const GltfSelect& want, const MeshReadOptions& options) {
+  const tg::Model& m = g.model();
+  RawRig raw;
+  raw.source = g.source();
+  readNodeHierarchy(g, raw);
+  const Selection sel = select(g, want);
+  g.checkIndex(sel.node >= 0 ? idx("nodes", static_cast<std::size_t>(sel.node)) : std::string("file"), "mesh", sel.mesh,
+               m.meshes.size());
+  raw.mesh_node = sel.node;
+  const tg::Mesh& mesh = m.meshes[static_cast<std::size_t>(sel.mesh)];
+  const int skin_index = sel.node >= 0 ? m.nodes[static_cast<std::size_t>(sel.node)].skin : -1;
+  const MeshLayout layout = meshLayout(g, mesh, idx("meshes", static_cast<std::size_t>(sel.mesh)), skin_index >= 0);
+  readRigMesh(g, mesh, layout, skin_index >= 0, options, raw);
+  readTargetWeights(g, mesh, layout, sel.node, raw);
+  if (skin_index >= 0) raw.skin = readSkin(g, sel.node, skin_index);
+  readAnimations(g, sel.node, raw);
   raw.validate();
   return raw;
 }

@@ -22,6 +22,7 @@
 #include "model_names.h"
 #include "vdg/geom/error.h"
 #include "vdg/geom/normalize.h"
+#include "vdg/geom/text.h"
 #include "vdg/io/atomic_file.h"
 #include "vdg/io/file_transaction.h"
 #include "vdg/io/gltf.h"
@@ -344,6 +345,155 @@ struct Built {
   std::string bin;
 };
 
+// The triangle indices: unsigned short when every index fits below 65535 (the largest value of
+// the type is the primitive restart value, which glTF forbids), else unsigned int.
+int addIndices(BufferBuilder& b, const TriMesh& base) {
+  if (base.vertexCount() <= 65535) {
+    std::vector<std::uint16_t> idx(base.triangles.begin(), base.triangles.end());
+    const int view = b.addView(idx.data(), idx.size() * 2, kElementArrayBuffer);
+    return b.addAccessor(
+        {{"bufferView", view}, {"componentType", kUnsignedShort}, {"count", idx.size()}, {"type", "SCALAR"}});
+  } else {
+    std::vector<std::uint32_t> idx(base.triangles.begin(), base.triangles.end());
+    const int view = b.addView(idx.data(), idx.size() * 4, kElementArrayBuffer);
+    return b.addAccessor(
+        {{"bufferView", view}, {"componentType", kUnsignedInt}, {"count", idx.size()}, {"type", "SCALAR"}});
+  }
+}
+
+// Skin attributes of a kSkin base: JOINTS_0 as unsigned shorts, WEIGHTS_0 normalised to sum 1 (the
+// validator requires it; vdg::Rig normalises the same way, so the pose is unchanged).
+void addSkinAttributes(BufferBuilder& b, const RawRig& rig, std::size_t v_count, OJson& attributes) {
+  const int joints_view = b.addView(rig.joints.data(), rig.joints.size() * sizeof(std::uint16_t), kArrayBuffer);
+  attributes["JOINTS_0"] = b.addAccessor(
+      {{"bufferView", joints_view}, {"componentType", kUnsignedShort}, {"count", v_count}, {"type", "VEC4"}});
+  std::vector<float> weights(rig.weights.size());
+  for (std::size_t v = 0; v < v_count; ++v) {
+    double sum = 0;
+    for (int k = 0; k < 4; ++k) sum += rig.weights[v * 4 + k];
+    for (int k = 0; k < 4; ++k) weights[v * 4 + k] = static_cast<float>(rig.weights[v * 4 + k] / sum);
+  }
+  attributes["WEIGHTS_0"] = b.addFloats(weights, 4, kArrayBuffer, false);
+}
+
+// The rig of a kSkin base: its nodes after the mesh node (rig node i is glTF node i + 1), and its
+// skin.
+void addRigNodes(BufferBuilder& b, const RawRig& rig, OJson& nodes, OJson& scene_nodes, OJson& doc) {
+  nodes[0]["skin"] = 0;
+  std::vector<std::vector<int>> children(rig.nodes.size());
+  for (std::size_t i = 0; i < rig.nodes.size(); ++i) {
+    if (rig.nodes[i].parent >= 0)
+      children[static_cast<std::size_t>(rig.nodes[i].parent)].push_back(static_cast<int>(i) + 1);
+    else
+      scene_nodes.push_back(static_cast<int>(i) + 1);
+  }
+  for (std::size_t i = 0; i < rig.nodes.size(); ++i) {
+    const RigNode& n = rig.nodes[i];
+    OJson node = OJson::object();
+    if (!n.name.empty()) node["name"] = n.name;
+    if (!children[i].empty()) node["children"] = children[i];
+    if (n.matrix) {
+      node["matrix"] = OJson::array();
+      for (int c = 0; c < 16; ++c) node["matrix"].push_back((*n.matrix)(c % 4, c / 4));
+    } else {
+      if (!n.translation.isZero()) node["translation"] = vec3Json(n.translation);
+      const Eigen::Quaterniond q = n.rotation.normalized();
+      if (!q.coeffs().isApprox(Eigen::Quaterniond::Identity().coeffs()))
+        node["rotation"] = {q.x(), q.y(), q.z(), q.w()};
+      if (n.scale != Eigen::Vector3d::Ones()) node["scale"] = vec3Json(n.scale);
+    }
+    nodes.push_back(std::move(node));
+  }
+  std::vector<float> ibm;
+  for (const Eigen::Matrix4d& m : rig.skin->inverse_bind)
+    for (int c = 0; c < 16; ++c) ibm.push_back(static_cast<float>(m(c % 4, c / 4)));
+  const int ibm_view = b.addView(ibm.data(), ibm.size() * sizeof(float), 0);
+  const int ibm_acc = b.addAccessor(
+      {{"bufferView", ibm_view}, {"componentType", kFloat}, {"count", rig.skin->joints.size()}, {"type", "MAT4"}});
+  OJson joints = OJson::array();
+  for (int j : rig.skin->joints) joints.push_back(j + 1);
+  doc["skins"] = OJson::array({OJson{{"inverseBindMatrices", ibm_acc}, {"joints", joints}}});
+}
+
+// The baked animation: the mesh's weights, the camera's node (added to `nodes`, with its camera in
+// `doc`) when the bake has one, and the rig nodes' tracks.
+OJson bakedAnimation(BufferBuilder& b, const GltfBakedAnimation& bake, OJson& nodes, OJson& scene_nodes, OJson& doc) {
+  const char* interpolation = bake.step ? "STEP" : "LINEAR";
+  const int times = b.addFloats(bake.times, 1, 0, true);
+  const int weights = b.addFloats(bake.weights, 1, 0, false);
+  OJson samplers = OJson::array({OJson{{"input", times}, {"interpolation", interpolation}, {"output", weights}}});
+  OJson channels = OJson::array({OJson{{"sampler", 0}, {"target", {{"node", 0}, {"path", "weights"}}}}});
+  if (!bake.translations.empty()) {
+    const int camera_node = static_cast<int>(nodes.size());
+    OJson node = {{"name", "camera"}, {"camera", 0}};
+    node["translation"] = {bake.translations[0], bake.translations[1], bake.translations[2]};
+    node["rotation"] = {bake.rotations[0], bake.rotations[1], bake.rotations[2], bake.rotations[3]};
+    nodes.push_back(std::move(node));
+    scene_nodes.push_back(camera_node);
+    doc["cameras"] = OJson::array(
+        {OJson{{"name", "camera"},
+               {"type", "perspective"},
+               {"perspective",
+                {{"yfov", bake.yfov_rad}, {"aspectRatio", bake.aspect}, {"znear", bake.znear}, {"zfar", bake.zfar}}}}});
+    const int translations = b.addFloats(bake.translations, 3, 0, false);
+    const int rotations = b.addFloats(bake.rotations, 4, 0, false);
+    samplers.push_back({{"input", times}, {"interpolation", interpolation}, {"output", translations}});
+    samplers.push_back({{"input", times}, {"interpolation", interpolation}, {"output", rotations}});
+    channels.push_back({{"sampler", 1}, {"target", {{"node", camera_node}, {"path", "translation"}}}});
+    channels.push_back({{"sampler", 2}, {"target", {{"node", camera_node}, {"path", "rotation"}}}});
+  }
+  for (const GltfNodeTrack& track : bake.node_tracks) {
+    const int output = b.addFloats(track.values, track.path == RigPath::kRotation ? 4 : 3, 0, false);
+    channels.push_back(
+        {{"sampler", samplers.size()}, {"target", {{"node", track.node + 1}, {"path", rigPathName(track.path)}}}});
+    samplers.push_back({{"input", times}, {"interpolation", interpolation}, {"output", output}});
+  }
+  OJson animation = {{"name", bake.name}, {"channels", channels}, {"samplers", samplers}};
+  if (!bake.description.empty()) animation["extras"] = {{"vdg", {{"bake", bake.description}}}};
+  return animation;
+}
+
+// The base animation: the rig's channels (kSkin), or one weight channel stepping through the base
+// frames' targets (kFrames).
+void addBaseAnimation(BufferBuilder& b, const GltfExportInput& in, std::size_t target_count, OJson& animations) {
+  const GltfBaseAnimation& ba = *in.base_animation;
+  OJson samplers = OJson::array(), channels = OJson::array();
+  if (ba.mode == GltfBaseMode::kSkin) {
+    const RigAnimation& anim = ba.rig->animations[static_cast<std::size_t>(ba.rig_animation)];
+    std::vector<int> copied(anim.samplers.size(), -1);
+    for (const RigChannel& ch : anim.channels) {
+      if (ch.path == RigPath::kWeights) continue;
+      const auto si = static_cast<std::size_t>(ch.sampler);
+      if (copied[si] < 0) {
+        const RigSampler& rs = anim.samplers[si];
+        const std::size_t width = ch.path == RigPath::kRotation ? 4 : 3;
+        const int input = b.addFloats(rs.input, 1, 0, true);
+        const int output = b.addFloats(rs.output, static_cast<int>(width), 0, false);
+        copied[si] = static_cast<int>(samplers.size());
+        samplers.push_back(
+            {{"input", input}, {"interpolation", rigInterpolationName(rs.interpolation)}, {"output", output}});
+      }
+      channels.push_back(
+          {{"sampler", copied[si]}, {"target", {{"node", ch.node + 1}, {"path", rigPathName(ch.path)}}}});
+    }
+  } else if (ba.frame_count > 1) {
+    // Frame i at time i / fps: weight 1 on base frame i's target (frame 0 is POSITION); a loop
+    // ends with frame 0 again at N / fps so that a looping viewer has no seam.
+    const std::size_t n = static_cast<std::size_t>(ba.frame_count) + (ba.loop ? 1 : 0);
+    std::vector<float> times(n), weights(n * target_count, 0.0f);
+    for (std::size_t i = 0; i < n; ++i) {
+      times[i] = static_cast<float>(static_cast<double>(i) / ba.fps);
+      const std::size_t frame = i % static_cast<std::size_t>(ba.frame_count);
+      if (frame > 0) weights[i * target_count + in.targets.size() + frame - 1] = 1.0f;
+    }
+    const int input = b.addFloats(times, 1, 0, true);
+    const int output = b.addFloats(weights, 1, 0, false);
+    samplers.push_back({{"input", input}, {"interpolation", "LINEAR"}, {"output", output}});
+    channels.push_back({{"sampler", 0}, {"target", {{"node", 0}, {"path", "weights"}}}});
+  }
+  if (!channels.empty()) animations.push_back({{"name", "base"}, {"channels", channels}, {"samplers", samplers}});
+}
+
 Built build(const GltfExportInput& in, const std::string& where, GltfExportReport* report) {
   validateInput(in, where);
   GltfExportReport rep;
@@ -357,36 +507,9 @@ Built build(const GltfExportInput& in, const std::string& where, GltfExportRepor
     attributes["TEXCOORD_0"] = b.addFloats(*uvs, 2, kArrayBuffer, false);
     rep.uvs_written = true;
   }
-  // Indices: unsigned short when every index fits below 65535 (the largest value of the type is
-  // the primitive restart value, which glTF forbids), else unsigned int.
-  int indices = -1;
-  if (v_count <= 65535) {
-    std::vector<std::uint16_t> idx(in.base.triangles.begin(), in.base.triangles.end());
-    const int view = b.addView(idx.data(), idx.size() * 2, kElementArrayBuffer);
-    indices = b.addAccessor(
-        {{"bufferView", view}, {"componentType", kUnsignedShort}, {"count", idx.size()}, {"type", "SCALAR"}});
-  } else {
-    std::vector<std::uint32_t> idx(in.base.triangles.begin(), in.base.triangles.end());
-    const int view = b.addView(idx.data(), idx.size() * 4, kElementArrayBuffer);
-    indices = b.addAccessor(
-        {{"bufferView", view}, {"componentType", kUnsignedInt}, {"count", idx.size()}, {"type", "SCALAR"}});
-  }
+  const int indices = addIndices(b, in.base);
 
-  // Skin attributes (kSkin base): JOINTS_0 as unsigned shorts, WEIGHTS_0 normalised to sum 1 (the
-  // validator requires it; vdg::Rig normalises the same way, so the pose is unchanged).
-  if (skinBase(in)) {
-    const RawRig& rig = *in.base_animation->rig;
-    const int joints_view = b.addView(rig.joints.data(), rig.joints.size() * sizeof(std::uint16_t), kArrayBuffer);
-    attributes["JOINTS_0"] = b.addAccessor(
-        {{"bufferView", joints_view}, {"componentType", kUnsignedShort}, {"count", v_count}, {"type", "VEC4"}});
-    std::vector<float> weights(rig.weights.size());
-    for (std::size_t v = 0; v < v_count; ++v) {
-      double sum = 0;
-      for (int k = 0; k < 4; ++k) sum += rig.weights[v * 4 + k];
-      for (int k = 0; k < 4; ++k) weights[v * 4 + k] = static_cast<float>(rig.weights[v * 4 + k] / sum);
-    }
-    attributes["WEIGHTS_0"] = b.addFloats(weights, 4, kArrayBuffer, false);
-  }
+  if (skinBase(in)) addSkinAttributes(b, *in.base_animation->rig, v_count, attributes);
 
   OJson targets = OJson::array(), names = OJson::array();
   const auto addTarget = [&](const std::string& name, std::span<const float> deltas,
@@ -424,121 +547,13 @@ Built build(const GltfExportInput& in, const std::string& where, GltfExportRepor
   OJson scene_nodes = OJson::array({0});
   OJson animations = OJson::array();
 
-  // The rig of a kSkin base: its nodes after the mesh node (rig node i is glTF node i + 1).
-  if (skinBase(in)) {
-    const RawRig& rig = *in.base_animation->rig;
-    nodes[0]["skin"] = 0;
-    std::vector<std::vector<int>> children(rig.nodes.size());
-    for (std::size_t i = 0; i < rig.nodes.size(); ++i) {
-      if (rig.nodes[i].parent >= 0)
-        children[static_cast<std::size_t>(rig.nodes[i].parent)].push_back(static_cast<int>(i) + 1);
-      else
-        scene_nodes.push_back(static_cast<int>(i) + 1);
-    }
-    for (std::size_t i = 0; i < rig.nodes.size(); ++i) {
-      const RigNode& n = rig.nodes[i];
-      OJson node = OJson::object();
-      if (!n.name.empty()) node["name"] = n.name;
-      if (!children[i].empty()) node["children"] = children[i];
-      if (n.matrix) {
-        node["matrix"] = OJson::array();
-        for (int c = 0; c < 16; ++c) node["matrix"].push_back((*n.matrix)(c % 4, c / 4));
-      } else {
-        if (!n.translation.isZero()) node["translation"] = vec3Json(n.translation);
-        const Eigen::Quaterniond q = n.rotation.normalized();
-        if (!q.coeffs().isApprox(Eigen::Quaterniond::Identity().coeffs()))
-          node["rotation"] = {q.x(), q.y(), q.z(), q.w()};
-        if (n.scale != Eigen::Vector3d::Ones()) node["scale"] = vec3Json(n.scale);
-      }
-      nodes.push_back(std::move(node));
-    }
-    std::vector<float> ibm;
-    for (const Eigen::Matrix4d& m : rig.skin->inverse_bind)
-      for (int c = 0; c < 16; ++c) ibm.push_back(static_cast<float>(m(c % 4, c / 4)));
-    const int ibm_view = b.addView(ibm.data(), ibm.size() * sizeof(float), 0);
-    const int ibm_acc = b.addAccessor(
-        {{"bufferView", ibm_view}, {"componentType", kFloat}, {"count", rig.skin->joints.size()}, {"type", "MAT4"}});
-    OJson joints = OJson::array();
-    for (int j : rig.skin->joints) joints.push_back(j + 1);
-    doc["skins"] = OJson::array({OJson{{"inverseBindMatrices", ibm_acc}, {"joints", joints}}});
-  }
+  if (skinBase(in)) addRigNodes(b, *in.base_animation->rig, nodes, scene_nodes, doc);
 
-  if (in.bake) {
-    const GltfBakedAnimation& bake = *in.bake;
-    const char* interpolation = bake.step ? "STEP" : "LINEAR";
-    const int times = b.addFloats(bake.times, 1, 0, true);
-    const int weights = b.addFloats(bake.weights, 1, 0, false);
-    OJson samplers = OJson::array({OJson{{"input", times}, {"interpolation", interpolation}, {"output", weights}}});
-    OJson channels = OJson::array({OJson{{"sampler", 0}, {"target", {{"node", 0}, {"path", "weights"}}}}});
-    if (!bake.translations.empty()) {
-      const int camera_node = static_cast<int>(nodes.size());
-      OJson node = {{"name", "camera"}, {"camera", 0}};
-      node["translation"] = {bake.translations[0], bake.translations[1], bake.translations[2]};
-      node["rotation"] = {bake.rotations[0], bake.rotations[1], bake.rotations[2], bake.rotations[3]};
-      nodes.push_back(std::move(node));
-      scene_nodes.push_back(camera_node);
-      doc["cameras"] = OJson::array({OJson{
-          {"name", "camera"},
-          {"type", "perspective"},
-          {"perspective",
-           {{"yfov", bake.yfov_rad}, {"aspectRatio", bake.aspect}, {"znear", bake.znear}, {"zfar", bake.zfar}}}}});
-      const int translations = b.addFloats(bake.translations, 3, 0, false);
-      const int rotations = b.addFloats(bake.rotations, 4, 0, false);
-      samplers.push_back({{"input", times}, {"interpolation", interpolation}, {"output", translations}});
-      samplers.push_back({{"input", times}, {"interpolation", interpolation}, {"output", rotations}});
-      channels.push_back({{"sampler", 1}, {"target", {{"node", camera_node}, {"path", "translation"}}}});
-      channels.push_back({{"sampler", 2}, {"target", {{"node", camera_node}, {"path", "rotation"}}}});
-    }
-    for (const GltfNodeTrack& track : bake.node_tracks) {
-      const int output = b.addFloats(track.values, track.path == RigPath::kRotation ? 4 : 3, 0, false);
-      channels.push_back(
-          {{"sampler", samplers.size()}, {"target", {{"node", track.node + 1}, {"path", rigPathName(track.path)}}}});
-      samplers.push_back({{"input", times}, {"interpolation", interpolation}, {"output", output}});
-    }
-    OJson animation = {{"name", bake.name}, {"channels", channels}, {"samplers", samplers}};
-    if (!bake.description.empty()) animation["extras"] = {{"vdg", {{"bake", bake.description}}}};
-    animations.push_back(std::move(animation));
-  }
+  if (in.bake) animations.push_back(bakedAnimation(b, *in.bake, nodes, scene_nodes, doc));
 
   // The base animation (after the bake's, which a viewer plays first).
-  if (in.base_animation) {
-    const GltfBaseAnimation& ba = *in.base_animation;
-    OJson samplers = OJson::array(), channels = OJson::array();
-    if (ba.mode == GltfBaseMode::kSkin) {
-      const RigAnimation& anim = ba.rig->animations[static_cast<std::size_t>(ba.rig_animation)];
-      std::vector<int> copied(anim.samplers.size(), -1);
-      for (const RigChannel& ch : anim.channels) {
-        if (ch.path == RigPath::kWeights) continue;
-        const auto si = static_cast<std::size_t>(ch.sampler);
-        if (copied[si] < 0) {
-          const RigSampler& rs = anim.samplers[si];
-          const std::size_t width = ch.path == RigPath::kRotation ? 4 : 3;
-          const int input = b.addFloats(rs.input, 1, 0, true);
-          const int output = b.addFloats(rs.output, static_cast<int>(width), 0, false);
-          copied[si] = static_cast<int>(samplers.size());
-          samplers.push_back(
-              {{"input", input}, {"interpolation", rigInterpolationName(rs.interpolation)}, {"output", output}});
-        }
-        channels.push_back(
-            {{"sampler", copied[si]}, {"target", {{"node", ch.node + 1}, {"path", rigPathName(ch.path)}}}});
-      }
-    } else if (ba.frame_count > 1) {
-      // Frame i at time i / fps: weight 1 on base frame i's target (frame 0 is POSITION); a loop
-      // ends with frame 0 again at N / fps so that a looping viewer has no seam.
-      const std::size_t n = static_cast<std::size_t>(ba.frame_count) + (ba.loop ? 1 : 0);
-      std::vector<float> times(n), weights(n * target_count, 0.0f);
-      for (std::size_t i = 0; i < n; ++i) {
-        times[i] = static_cast<float>(static_cast<double>(i) / ba.fps);
-        const std::size_t frame = i % static_cast<std::size_t>(ba.frame_count);
-        if (frame > 0) weights[i * target_count + in.targets.size() + frame - 1] = 1.0f;
-      }
-      const int input = b.addFloats(times, 1, 0, true);
-      const int output = b.addFloats(weights, 1, 0, false);
-      samplers.push_back({{"input", input}, {"interpolation", "LINEAR"}, {"output", output}});
-      channels.push_back({{"sampler", 0}, {"target", {{"node", 0}, {"path", "weights"}}}});
-    }
-    if (!channels.empty()) animations.push_back({{"name", "base"}, {"channels", channels}, {"samplers", samplers}});
-  }
+  if (in.base_animation) addBaseAnimation(b, in, target_count, animations);
+
   if (!animations.empty()) doc["animations"] = std::move(animations);
   doc["scenes"] = OJson::array({OJson{{"nodes", scene_nodes}}});
   doc["nodes"] = std::move(nodes);
@@ -773,14 +788,13 @@ std::string gltfToJson(const GltfExportInput& input, const std::string& where, c
 GltfExportReport writeGltfExport(const std::string& path, const GltfExportInput& input) {
   namespace fs = std::filesystem;
   const fs::path p(path);
-  std::string ext = p.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  const std::string ext = p.extension().string();
   GltfExportReport report;
-  if (ext == ".glb") {
+  if (hasExtension(ext, ".glb")) {
     writeFileAtomically(path, gltfToGlb(input, path, &report));
     return report;
   }
-  if (ext != ".gltf") throw Error(path + ": expected a .glb or .gltf file name");
+  if (!hasExtension(ext, ".gltf")) throw Error(path + ": expected a .glb or .gltf file name");
   // The buffer's URI is a file name only, so the pair can be moved together.
   const std::string bin_name = p.stem().string() + ".bin";
   std::string bin;

@@ -3,26 +3,15 @@
 #include <filesystem>
 
 #include "vdg/geom/error.h"
+#include "vdg/geom/text.h"
 #include "vdg/io/gltf.h"
 #include "vdg/io/obj.h"
 
 namespace vdg {
-namespace {
 
-std::string lowerExtension(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return ext;
-}
+bool isObjPath(const std::string& path) { return hasExtension(path, ".obj"); }
 
-}  // namespace
-
-bool isObjPath(const std::string& path) { return lowerExtension(path) == ".obj"; }
-
-bool isGltfPath(const std::string& path) {
-  const std::string ext = lowerExtension(path);
-  return ext == ".gltf" || ext == ".glb";
-}
+bool isGltfPath(const std::string& path) { return hasGltfExtension(path); }
 
 TriMesh readMesh(const std::string& path, const MeshReadOptions& options) {
   if (isObjPath(path)) return readObj(path, options);

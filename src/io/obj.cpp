@@ -14,6 +14,7 @@
 
 #include "material_files.h"
 #include "vdg/geom/error.h"
+#include "vdg/geom/text.h"
 #include "vdg/io/atomic_file.h"
 #include "vdg/io/read_file.h"
 
@@ -34,11 +35,7 @@ std::string oneLine(std::string text) {
   return text;
 }
 
-std::string shown(std::string_view token) {
-  std::string s(token.substr(0, 32));
-  if (token.size() > 32) s += "...";
-  return s;
-}
+constexpr std::size_t kShownToken = 32;  // bytes of a token or name a message shows
 
 std::vector<std::string_view> tokens(std::string_view line) {
   std::vector<std::string_view> out;
@@ -69,10 +66,11 @@ std::string shortestNumber(std::string_view token, std::string& out, double* par
   if (!t.empty() && t.front() == '+') t.remove_prefix(1);
   double value = 0;
   const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), value);
-  if (ec == std::errc::result_out_of_range) return "'" + shown(token) + "' is out of range";
-  if (ec != std::errc() || end != t.data() + t.size()) return "'" + shown(token) + "' is not a number";
-  if (!std::isfinite(value)) return "'" + shown(token) + "' is not a finite number";
-  if (std::abs(value) > std::numeric_limits<float>::max()) return "'" + shown(token) + "' is too large for a float";
+  if (ec == std::errc::result_out_of_range) return quotedText(token, kShownToken) + " is out of range";
+  if (ec != std::errc() || end != t.data() + t.size()) return quotedText(token, kShownToken) + " is not a number";
+  if (!std::isfinite(value)) return quotedText(token, kShownToken) + " is not a finite number";
+  if (std::abs(value) > std::numeric_limits<float>::max())
+    return quotedText(token, kShownToken) + " is too large for a float";
   char buffer[32];
   const auto written = std::to_chars(buffer, buffer + sizeof(buffer), value);
   out += ' ';
@@ -160,9 +158,9 @@ class ObjChecker {
     const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), value);
     if (ec == std::errc::result_out_of_range ||
         (ec == std::errc() && end == t.data() + t.size() && (value > kMaxIndex || value < -kMaxIndex)))
-      fail(line, std::string("face: ") + noun + " index '" + shown(token) + "' is out of range");
+      fail(line, std::string("face: ") + noun + " index " + quotedText(token, kShownToken) + " is out of range");
     if (ec != std::errc() || end != t.data() + t.size())
-      fail(line, std::string("face: ") + noun + " index '" + shown(token) + "' is not a whole number");
+      fail(line, std::string("face: ") + noun + " index " + quotedText(token, kShownToken) + " is not a whole number");
     if (value == 0) fail(line, std::string("face: ") + noun + " index 0 (OBJ indices start at 1)");
     if (value < 0) {
       const std::int64_t resolved = counts_[kind] + value + 1;
@@ -238,7 +236,7 @@ class ObjChecker {
         if (s2 != std::string_view::npos) {
           const std::string_view vn = rest.substr(s2 + 1);
           if (vn.empty() || vn.find('/') != std::string_view::npos)
-            fail(line_no, "face: corner '" + shown(corner) + "' is not v, v/vt, v//vn or v/vt/vn");
+            fail(line_no, "face: corner " + quotedText(corner, kShownToken) + " is not v, v/vt, v//vn or v/vt/vn");
           const std::int64_t ni = index(vn, line_no, 2, "normal");
           if (ni > max_vn_) max_vn_ = ni, max_vn_line_ = line_no;
         }
@@ -408,14 +406,14 @@ void attachMaterials(TriMesh& mesh, const std::vector<int>& face_names, const Ob
   for (const LibraryRef& ref : checker.libraries()) {
     if (!seen.insert(ref.name).second) continue;
     if (seen.size() > kMaxMaterialLibraries) {
-      sink.warn(at(ref.line) + "mtllib '" + shown(ref.name) + "': more than " + std::to_string(kMaxMaterialLibraries) +
-                " material libraries; it and later ones are not read");
+      sink.warn(at(ref.line) + "mtllib " + quotedText(ref.name, kShownToken) + ": more than " +
+                std::to_string(kMaxMaterialLibraries) + " material libraries; it and later ones are not read");
       all_read = false;
       break;
     }
     const std::string problem = io::relativePathProblem(ref.name);
     if (!problem.empty()) {
-      sink.warn(at(ref.line) + "mtllib '" + shown(ref.name) + "' " + problem +
+      sink.warn(at(ref.line) + "mtllib " + quotedText(ref.name, kShownToken) + " " + problem +
                 " (material libraries must lie in the OBJ file's folder or below); not read");
       all_read = false;
       continue;
@@ -453,12 +451,12 @@ void attachMaterials(TriMesh& mesh, const std::vector<int>& face_names, const Ob
       const std::string path = io::inFolder(io::folderOf(d.library), m.texture_path);
       std::string why;
       if (!problem.empty())
-        why = where + " '" + shown(m.texture_path) + "' " + problem +
+        why = where + " " + quotedText(m.texture_path, kShownToken) + " " + problem +
               " (textures must lie in the material library's folder or below)";
       else if (!(m.texture = textures.file(path, &why)))
         why = where + ": " + why;
       if (!why.empty() && warned.insert(problem.empty() ? path : why).second)
-        sink.warn(why + "; material '" + shown(m.name) + "' shows its colour alone");
+        sink.warn(why + "; material " + quotedText(m.name, kShownToken) + " shows its colour alone");
     }
     final_index[k] = static_cast<int>(mesh.materials.size());
     mesh.materials.push_back(m);
@@ -468,10 +466,10 @@ void attachMaterials(TriMesh& mesh, const std::vector<int>& face_names, const Ob
     const std::string more =
         undefined.size() > 1 ? " (and " + std::to_string(undefined.size() - 1) + " more names)" : std::string();
     if (checker.libraries().empty())
-      sink.warn(at(checker.materialLines()[k]) + "usemtl '" + shown(names[k]) + "'" + more +
+      sink.warn(at(checker.materialLines()[k]) + "usemtl " + quotedText(names[k], kShownToken) + more +
                 " without a material library (mtllib); those faces have no material");
     else
-      sink.warn(at(checker.materialLines()[k]) + "usemtl '" + shown(names[k]) + "'" + more +
+      sink.warn(at(checker.materialLines()[k]) + "usemtl " + quotedText(names[k], kShownToken) + more +
                 " is defined in no material library; those faces have no material");
   }
   if (mesh.materials.empty()) return;

@@ -25,6 +25,7 @@
 #include "morph_2d_internal.h"
 #include "vdg/geom/error.h"
 #include "vdg/geom/parallel.h"
+#include "vdg/geom/text.h"
 #include "vdg/morph/image_morph.h"
 
 namespace vdg::morph {
@@ -34,18 +35,16 @@ using Eigen::Vector2d;
 
 Vector2d perp(const Vector2d& d) { return {-d.y(), d.x()}; }
 
-std::string pointText(const Vector2d& p) {
-  return "(" + detail::numberText(p.x()) + ", " + detail::numberText(p.y()) + ")";
-}
+std::string pointText(const Vector2d& p) { return "(" + numberText(p.x(), 10) + ", " + numberText(p.y(), 10) + ")"; }
 
 void validateLine(const FeatureLine& line, const std::string& where) {
   if (!line.p.allFinite() || !line.q.allFinite()) throw Error(where + ": an endpoint is not finite");
   if (std::max(line.p.cwiseAbs().maxCoeff(), line.q.cwiseAbs().maxCoeff()) > kMaxMorphCoordinate)
     throw Error(where + ": from " + pointText(line.p) + " to " + pointText(line.q) + " reaches farther than " +
-                detail::numberText(kMaxMorphCoordinate) + " pixels from the origin in x or y");
+                numberText(kMaxMorphCoordinate, 10) + " pixels from the origin in x or y");
   if (!((line.q - line.p).norm() >= kMinFeatureLineLength))
     throw Error(where + ": has zero length (from " + pointText(line.p) + " to " + pointText(line.q) +
-                "); a feature line needs two endpoints at least " + detail::numberText(kMinFeatureLineLength) +
+                "); a feature line needs two endpoints at least " + numberText(kMinFeatureLineLength, 10) +
                 " pixels apart");
 }
 
@@ -69,12 +68,12 @@ double power(double w, double b) {
 }  // namespace
 
 void validateFeatureParams(const FeatureParams& params, const std::string& what) {
-  using detail::numberText;
   if (!(std::isfinite(params.a) && params.a > 0))
-    throw Error(what + ": a = " + numberText(params.a) + " must be finite and > 0 (pixels)");
+    throw Error(what + ": a = " + numberText(params.a, 10) + " must be finite and > 0 (pixels)");
   if (!(std::isfinite(params.b) && params.b >= 0))
-    throw Error(what + ": b = " + numberText(params.b) + " must be finite and >= 0");
-  if (!(params.p >= 0 && params.p <= 1)) throw Error(what + ": p = " + numberText(params.p) + " must lie in [0, 1]");
+    throw Error(what + ": b = " + numberText(params.b, 10) + " must be finite and >= 0");
+  if (!(params.p >= 0 && params.p <= 1))
+    throw Error(what + ": p = " + numberText(params.p, 10) + " must lie in [0, 1]");
 }
 
 void validateFeatureLines(std::span<const FeatureLine> src, std::span<const FeatureLine> dst, const std::string& what) {
@@ -155,7 +154,7 @@ Image featureMorph(const Image& src, const Image& dst, std::span<const FeatureLi
     lines[i].p = (1 - t) * src_lines[i].p + t * dst_lines[i].p;
     lines[i].q = (1 - t) * src_lines[i].q + t * dst_lines[i].q;
     if (!((lines[i].q - lines[i].p).norm() >= kMinFeatureLineLength))
-      throw Error("feature morph: line " + std::to_string(i) + " collapses to a point at t = " + detail::numberText(t) +
+      throw Error("feature morph: line " + std::to_string(i) + " collapses to a point at t = " + numberText(t, 10) +
                   " (its source and destination lines point in opposite directions)");
   }
   // An image whose dissolve weight is 0 is not warped (t = 0 gives src, t = 1 dst, exactly).

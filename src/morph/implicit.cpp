@@ -16,26 +16,19 @@
 
 #include "vdg/geom/error.h"
 #include "vdg/geom/parallel.h"
+#include "vdg/geom/text.h"
 #include "vdg/morph/mesh_checks.h"
 
 namespace vdg::morph {
 namespace {
-
-// "%.6g" of a double.
-std::string num(double v) {
-  std::ostringstream s;
-  s.precision(6);
-  s << v;
-  return s.str();
-}
 
 bool finite3(const Eigen::Vector3d& v) { return v.allFinite() && v.cwiseAbs().maxCoeff() <= kMaxBlobValue; }
 
 // "" when v is in [lo, hi]; else what is wrong ("must be > 0, got -1", "must be in [...], got X").
 std::string outside(double v, double lo, double hi) {
   if (v >= lo && v <= hi) return "";
-  if (!(v > 0) && lo > 0) return "must be > 0, got " + num(v);
-  return "must be in [" + num(lo) + ", " + num(hi) + "], got " + num(v);
+  if (!(v > 0) && lo > 0) return "must be > 0, got " + numberText(v);
+  return "must be in [" + numberText(lo) + ", " + numberText(hi) + "], got " + numberText(v);
 }
 
 // Blinn's a = B / R^2 (section comment of the header).
@@ -233,12 +226,12 @@ BlobAnimation BlobAnimation::build(const RawBlobAnimation& raw, const std::strin
 }
 
 BlobModel BlobAnimation::modelAt(double frame) const {
-  if (!std::isfinite(frame)) throw Error("blob animation: frame " + num(frame) + " is not finite");
+  if (!std::isfinite(frame)) throw Error("blob animation: frame " + numberText(frame) + " is not finite");
   BlobModel m;
   m.threshold_ = threshold_;
   m.primitives_.resize(kinds_.size());
   m.active_.assign(kinds_.size(), 1);
-  if (!evaluate(frame, m)) throw Error("blob animation: cannot evaluate frame " + num(frame));
+  if (!evaluate(frame, m)) throw Error("blob animation: cannot evaluate frame " + numberText(frame));
   return m;
 }
 
@@ -318,12 +311,12 @@ void checkVoxelBudget(const Eigen::AlignedBox3d& box, double h, std::size_t max_
 
 TriMesh polygonise(const BlobModel& model, const PolygoniseOptions& options, const std::string& what) {
   if (!std::isfinite(options.voxel_size) || options.voxel_size < 0)
-    throw Error(what + ": voxel size must be a finite number >= 0, got " + num(options.voxel_size));
+    throw Error(what + ": voxel size must be a finite number >= 0, got " + numberText(options.voxel_size));
   const Eigen::AlignedBox3d box = model.bounds();
   if (box.isEmpty()) return {};
   const double h = options.voxel_size > 0 ? options.voxel_size : defaultVoxelSize(box);
   if (!(h > 0) || !std::isfinite(gridVoxelCount(box, h)))
-    throw Error(what + ": voxel size " + num(h) + " does not fit the blobs' extent");
+    throw Error(what + ": voxel size " + numberText(h) + " does not fit the blobs' extent");
   checkVoxelBudget(box, h, options.max_voxels, what);
 
   const Eigen::Vector3d dims = gridDims(box, h);

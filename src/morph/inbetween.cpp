@@ -14,6 +14,7 @@
 #include "morph_2d_internal.h"
 #include "vdg/anim/curve.h"
 #include "vdg/geom/error.h"
+#include "vdg/geom/text.h"
 #include "vdg/morph/inbetween.h"
 
 namespace vdg::morph {
@@ -54,12 +55,11 @@ Inbetweener::Inbetweener(std::vector<KeyDrawing> keys, InbetweenCurve curve) : k
     const std::string where = "inbetween: key " + std::to_string(k);
     if (!std::isfinite(key.time)) throw Error(where + ": the time is not finite");
     if (k > 0 && !(key.time > keys_[k - 1].time))
-      throw Error(where + ": time " + detail::numberText(key.time) + " is not after key " + std::to_string(k - 1) +
-                  "'s time " + detail::numberText(keys_[k - 1].time) + " (key times must increase strictly)");
+      throw Error(where + ": time " + numberText(key.time, 10) + " is not after key " + std::to_string(k - 1) +
+                  "'s time " + numberText(keys_[k - 1].time, 10) + " (key times must increase strictly)");
     if (k > 0 && !anim::isUsableTimeSpan(key.time - keys_[k - 1].time))
       throw Error(where + ": the span from key " + std::to_string(k - 1) + "'s time " +
-                  detail::numberText(keys_[k - 1].time) + " to " + detail::numberText(key.time) +
-                  " is too small or too large");
+                  numberText(keys_[k - 1].time, 10) + " to " + numberText(key.time, 10) + " is too small or too large");
     if (key.strokes.size() != strokes)
       throw Error(where + ": has " + std::to_string(key.strokes.size()) + " strokes but key 0 has " +
                   std::to_string(strokes) + " (stroke i of every key corresponds)");
@@ -84,7 +84,7 @@ Inbetweener::Inbetweener(std::vector<KeyDrawing> keys, InbetweenCurve curve) : k
 }
 
 std::vector<Polyline> Inbetweener::at(double time) const {
-  if (!std::isfinite(time)) throw Error("inbetween: time " + detail::numberText(time) + " is not finite");
+  if (!std::isfinite(time)) throw Error("inbetween: time " + numberText(time, 10) + " is not finite");
   std::vector<double> times;
   times.reserve(keys_.size());
   for (const KeyDrawing& key : keys_) times.push_back(key.time);

@@ -58,6 +58,7 @@
 #include "vdg/anim/curve.h"
 #include "vdg/geom/error.h"
 #include "vdg/geom/parallel.h"
+#include "vdg/geom/text.h"
 #include "vdg/morph/image_morph.h"
 
 namespace vdg::morph {
@@ -285,7 +286,6 @@ WarpGrid identityGrid(int rows, int cols, int width, int height) {
 }
 
 void validateGrid(const WarpGrid& grid, const std::string& what) {
-  using detail::numberText;
   if (grid.rows < 2 || grid.cols < 2)
     throw Error(what + ": the grid is " + std::to_string(grid.rows) + " x " + std::to_string(grid.cols) +
                 " points; it needs at least 2 x 2");
@@ -299,25 +299,25 @@ void validateGrid(const WarpGrid& grid, const std::string& what) {
       const std::string where = what + ": the point at row " + std::to_string(r) + ", column " + std::to_string(c);
       if (!p.allFinite()) throw Error(where + " is not finite");
       if (p.cwiseAbs().maxCoeff() > kMaxMorphCoordinate)
-        throw Error(where + " (" + numberText(p.x()) + ", " + numberText(p.y()) + ") is farther than " +
-                    numberText(kMaxMorphCoordinate) + " pixels from the origin in x or y");
+        throw Error(where + " (" + numberText(p.x(), 10) + ", " + numberText(p.y(), 10) + ") is farther than " +
+                    numberText(kMaxMorphCoordinate, 10) + " pixels from the origin in x or y");
     }
   for (int r = 0; r < grid.rows; ++r)
     for (int c = 0; c + 1 < grid.cols; ++c)
       if (!(grid.at(r, c + 1).x() - grid.at(r, c).x() >= kMinGridSpacing))
         throw Error(what + ": row " + std::to_string(r) + ": the point at column " + std::to_string(c + 1) +
-                    " (x = " + numberText(grid.at(r, c + 1).x()) + ") is not right of column " + std::to_string(c) +
-                    " (x = " + numberText(grid.at(r, c).x()) +
+                    " (x = " + numberText(grid.at(r, c + 1).x(), 10) + ") is not right of column " + std::to_string(c) +
+                    " (x = " + numberText(grid.at(r, c).x(), 10) +
                     "); grid lines must not cross or touch (x increases along a row by at least " +
-                    numberText(kMinGridSpacing) + ")");
+                    numberText(kMinGridSpacing, 10) + ")");
   for (int c = 0; c < grid.cols; ++c)
     for (int r = 0; r + 1 < grid.rows; ++r)
       if (!(grid.at(r + 1, c).y() - grid.at(r, c).y() >= kMinGridSpacing))
         throw Error(what + ": column " + std::to_string(c) + ": the point at row " + std::to_string(r + 1) +
-                    " (y = " + numberText(grid.at(r + 1, c).y()) + ") is not below row " + std::to_string(r) +
-                    " (y = " + numberText(grid.at(r, c).y()) +
+                    " (y = " + numberText(grid.at(r + 1, c).y(), 10) + ") is not below row " + std::to_string(r) +
+                    " (y = " + numberText(grid.at(r, c).y(), 10) +
                     "); grid lines must not cross or touch (y increases down a column by at least " +
-                    numberText(kMinGridSpacing) + ")");
+                    numberText(kMinGridSpacing, 10) + ")");
 }
 
 void requireSameShape(const WarpGrid& a, const WarpGrid& b, const std::string& what) {
@@ -340,19 +340,19 @@ WarpGrid interpolateGrids(const WarpGrid& a, const WarpGrid& b, double t) {
 }
 
 WarpGrid gridAtTime(std::span<const GridKey> keys, double time) {
-  using detail::numberText;
   if (keys.empty()) throw Error("grid keys: none given (at least one is needed)");
-  if (!std::isfinite(time)) throw Error("grid keys: time " + numberText(time) + " is not finite");
+  if (!std::isfinite(time)) throw Error("grid keys: time " + numberText(time, 10) + " is not finite");
   std::vector<double> times;
   for (std::size_t k = 0; k < keys.size(); ++k) {
     const std::string where = "grid key " + std::to_string(k);
     if (!std::isfinite(keys[k].time)) throw Error(where + ": the time is not finite");
     if (k > 0 && !(keys[k].time > keys[k - 1].time))
-      throw Error(where + ": time " + numberText(keys[k].time) + " is not after key " + std::to_string(k - 1) +
-                  "'s time " + numberText(keys[k - 1].time) + " (key times must increase strictly)");
+      throw Error(where + ": time " + numberText(keys[k].time, 10) + " is not after key " + std::to_string(k - 1) +
+                  "'s time " + numberText(keys[k - 1].time, 10) + " (key times must increase strictly)");
     if (k > 0 && !anim::isUsableTimeSpan(keys[k].time - keys[k - 1].time))
-      throw Error(where + ": the span from key " + std::to_string(k - 1) + "'s time " + numberText(keys[k - 1].time) +
-                  " to " + numberText(keys[k].time) + " is too small or too large");
+      throw Error(where + ": the span from key " + std::to_string(k - 1) + "'s time " +
+                  numberText(keys[k - 1].time, 10) + " to " + numberText(keys[k].time, 10) +
+                  " is too small or too large");
     validateGrid(keys[k].grid, where);
     requireSameShape(keys.front().grid, keys[k].grid, where);
     times.push_back(keys[k].time);

@@ -63,6 +63,7 @@
 #include <vector>
 
 #include "vdg/geom/error.h"
+#include "vdg/geom/text.h"
 #include "vdg/morph/mesh_checks.h"
 #include "vdg/morph/shape_morph.h"
 
@@ -77,12 +78,6 @@ using ExactPoint = ExactKernel::Point_3;
 using InexactMesh = CGAL::Surface_mesh<InexactPoint>;
 using ExactMesh = CGAL::Surface_mesh<ExactPoint>;
 using Nef = CGAL::Nef_polyhedron_3<ExactKernel>;
-
-std::string number(double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.17g", v);
-  return text;
-}
 
 using Vec3 = std::array<double, 3>;
 
@@ -339,10 +334,10 @@ TriMesh minkowskiMorph(const TriMesh& a, const TriMesh& b, double t, const Minko
   requireFinite(a, what_a);
   requireFinite(b, what_b);
   if (!std::isfinite(t) || t < 0 || t > 1)
-    throw Error("Minkowski morph: t must be a finite number in [0, 1], not " + number(t));
+    throw Error("Minkowski morph: t must be a finite number in [0, 1], not " + numberText(t, 17));
   if (!std::isfinite(options.convex_tolerance) || options.convex_tolerance < 0)
     throw Error("Minkowski morph: the convex tolerance must be a finite number >= 0, not " +
-                number(options.convex_tolerance));
+                numberText(options.convex_tolerance, 17));
   // A zero-scaled operand is the single point at the origin: the sum is the other mesh itself.
   if (t == 0) return a;
   if (t == 1) return b;

@@ -12,13 +12,6 @@
 
 namespace vdg::morph::detail {
 
-// A number for an error message: up to 10 significant digits.
-inline std::string numberText(double v) {
-  char buffer[40];
-  std::snprintf(buffer, sizeof buffer, "%.10g", v);
-  return buffer;
-}
-
 // Bilinear sample of `image` at the continuous pixel position (x, y) (pixel (i, j) has its centre
 // at (i + 0.5, j + 0.5)), positions clamped to the outermost pixel centres, so the border pixels
 // extend outwards. At a pixel centre it returns that pixel exactly. Writes 4 floats to `out`.

@@ -9,23 +9,16 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <sstream>
 #include <string>
 #include <unordered_map>
 #include <vector>
 
 #include "vdg/geom/error.h"
+#include "vdg/geom/text.h"
 #include "vdg/morph/mesh_checks.h"
 
 namespace vdg::morph {
 namespace {
-
-std::string number(double v) {
-  std::ostringstream s;
-  s.precision(6);
-  s << v;
-  return s.str();
-}
 
 struct Resampled {
   std::vector<double> points;           // slices * samples * 3: slice by slice, angle by angle
@@ -61,7 +54,7 @@ Resampled resample(const TriMesh& mesh, const SliceMorphOptions& o, const std::s
   std::vector<std::int32_t> loop;
   for (int s = 0; s < o.slices; ++s) {
     const double level = lo + (hi - lo) * (s + 0.5) / o.slices;
-    const std::string where = what + ": the cut at " + axis_name[ax] + " = " + number(level);
+    const std::string where = what + ": the cut at " + axis_name[ax] + " = " + numberText(level, 6);
     point_of_edge.clear();
     pts.clear();
     links.clear();
@@ -157,7 +150,7 @@ Resampled resample(const TriMesh& mesh, const SliceMorphOptions& o, const std::s
 
 }  // namespace
 
-SliceMorph::SliceMorph(const TriMesh& a, const TriMesh& b, const SliceMorphOptions& options, const std::string& what_a,
+VertexMorph sliceMorph(const TriMesh& a, const TriMesh& b, const SliceMorphOptions& options, const std::string& what_a,
                        const std::string& what_b) {
   if (options.axis < 0 || options.axis > 2) throw Error("slice morph: axis must be 0, 1 or 2");
   if (options.slices < 1 || options.slices > 100000) throw Error("slice morph: slices must be in [1, 100000]");
@@ -165,39 +158,24 @@ SliceMorph::SliceMorph(const TriMesh& a, const TriMesh& b, const SliceMorphOptio
   const Resampled ra = resample(a, options, what_a);
   const Resampled rb = resample(b, options, what_b);
   // Vertices: the slices' points, then the low and the high end.
-  pos_a_.assign(ra.points.begin(), ra.points.end());
-  pos_b_.assign(rb.points.begin(), rb.points.end());
-  pos_a_.insert(pos_a_.end(), ra.low.begin(), ra.low.end());
-  pos_a_.insert(pos_a_.end(), ra.high.begin(), ra.high.end());
-  pos_b_.insert(pos_b_.end(), rb.low.begin(), rb.low.end());
-  pos_b_.insert(pos_b_.end(), rb.high.begin(), rb.high.end());
+  std::vector<float> pos_a(ra.points.begin(), ra.points.end()), pos_b(rb.points.begin(), rb.points.end());
+  std::vector<std::int32_t> triangles;
+  pos_a.insert(pos_a.end(), ra.low.begin(), ra.low.end());
+  pos_a.insert(pos_a.end(), ra.high.begin(), ra.high.end());
+  pos_b.insert(pos_b.end(), rb.low.begin(), rb.low.end());
+  pos_b.insert(pos_b.end(), rb.high.begin(), rb.high.end());
   const std::int32_t m = options.samples, n = options.slices;
   const std::int32_t low = n * m, high = low + 1;
   auto at = [&](std::int32_t s, std::int32_t j) { return s * m + (j % m); };
   // Counter-clockwise seen from outside: theta runs counter-clockwise seen from +axis, so along a
   // band it runs to the right seen from outside.
-  for (std::int32_t j = 0; j < m; ++j) triangles_.insert(triangles_.end(), {low, at(0, j + 1), at(0, j)});
+  for (std::int32_t j = 0; j < m; ++j) triangles.insert(triangles.end(), {low, at(0, j + 1), at(0, j)});
   for (std::int32_t s = 0; s + 1 < n; ++s)
     for (std::int32_t j = 0; j < m; ++j)
-      triangles_.insert(triangles_.end(),
-                        {at(s, j), at(s, j + 1), at(s + 1, j + 1), at(s, j), at(s + 1, j + 1), at(s + 1, j)});
-  for (std::int32_t j = 0; j < m; ++j) triangles_.insert(triangles_.end(), {high, at(n - 1, j), at(n - 1, j + 1)});
-}
-
-bool SliceMorph::evaluate(double t, std::span<float> positions) const {
-  if (!std::isfinite(t) || positions.size() != pos_a_.size()) return false;
-  const double s = 1.0 - t;
-  for (std::size_t i = 0; i < pos_a_.size(); ++i)
-    positions[i] = static_cast<float>(s * static_cast<double>(pos_a_[i]) + t * static_cast<double>(pos_b_[i]));
-  return true;
-}
-
-TriMesh SliceMorph::at(double t) const {
-  TriMesh m;
-  m.positions.resize(pos_a_.size());
-  if (!evaluate(t, m.positions)) throw Error("slice morph: t " + number(t) + " is not a finite number");
-  m.triangles = triangles_;
-  return m;
+      triangles.insert(triangles.end(),
+                       {at(s, j), at(s, j + 1), at(s + 1, j + 1), at(s, j), at(s + 1, j + 1), at(s + 1, j)});
+  for (std::int32_t j = 0; j < m; ++j) triangles.insert(triangles.end(), {high, at(n - 1, j), at(n - 1, j + 1)});
+  return VertexMorph(std::move(pos_a), std::move(pos_b), std::move(triangles), "slice morph");
 }
 
 }  // namespace vdg::morph

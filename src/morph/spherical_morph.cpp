@@ -1,4 +1,4 @@
-// Spherical-projection shape interpolation (vdg/morph/shape_morph.h, SphericalMorph).
+// Spherical-projection shape interpolation (vdg/morph/shape_morph.h, sphericalMorph).
 //
 // Kent, as Parent's "Computer Animation" describes it in 4.10 "Shape Interpolation, Metamorphosis"
 // (../shared/reference/001_ee8e4823a552f1ff.txt): "Kent 'blows up' objects to surface of sphere and
@@ -37,12 +37,12 @@
 #include <cstdint>
 #include <limits>
 #include <span>
-#include <sstream>
 #include <string>
 #include <unordered_map>
 #include <vector>
 
 #include "vdg/geom/error.h"
+#include "vdg/geom/text.h"
 #include "vdg/morph/mesh_checks.h"
 #include "vdg/morph/shape_morph.h"
 
@@ -134,13 +134,6 @@ int orientSign(const D3& a, const D3& b, const D3& c) {
   return orientExact(a, b, c);
 }
 
-std::string number(double v) {
-  std::ostringstream s;
-  s.precision(6);
-  s << v;
-  return s.str();
-}
-
 // ---- One mesh, checked and projected -----------------------------------------------------------
 
 struct Projected {
@@ -183,8 +176,8 @@ Projected project(const TriMesh& mesh, const std::string& what) {
     out.dir[v] = sub(out.position(static_cast<std::int32_t>(v)), out.centre);
     out.unit[v] = normalized(out.dir[v]);
   }
-  const std::string centre =
-      "(" + number(out.centre[0]) + ", " + number(out.centre[1]) + ", " + number(out.centre[2]) + ")";
+  const std::string centre = "(" + numberText(out.centre[0], 6) + ", " + numberText(out.centre[1], 6) + ", " +
+                             numberText(out.centre[2], 6) + ")";
   const std::size_t faces = mesh.triangleCount();
   for (std::size_t f = 0; f < faces; ++f)
     if (orientSign(out.d(out.corner(f, 0)), out.d(out.corner(f, 1)), out.d(out.corner(f, 2))) <= 0)
@@ -491,10 +484,75 @@ double planeParameter(const D3& n, const D3& dp, const D3& dq) {
   return vp + vq > 0 ? vp / (vp + vq) : 0.5;
 }
 
+// The corners of one overlay polygon, welded by identity: the id of corner `v` (of A's triangle
+// with vertices va at pos_a and B's with vb at pos_b), a new vertex placed on A and on B (appended
+// to pa and pb) the first time it is met. A crossing exactly at a corner of B's triangle is that
+// corner.
+using VertexIds = std::unordered_map<Key, std::int32_t, KeyHash>;
+std::int32_t weldCorner(PolyVertex v, const Pair& pr, const std::array<std::int32_t, 3>& va,
+                        const std::array<std::int32_t, 3>& vb, const std::array<D3, 3>& pos_a,
+                        const std::array<D3, 3>& pos_b, VertexIds& ids, std::vector<double>& pa,
+                        std::vector<double>& pb) {
+  Key key;
+  // A crossing exactly at a corner of b is that corner.
+  int e0 = 0, e1 = 0, c = 0, in_first = 0;
+  if (v.kind == Kind::kCross) {
+    e0 = v.index;
+    e1 = (v.index + 1) % 3;
+    c = v.circle;
+    in_first = pr.side_a[e0][c] > 0;
+    const D3& in = *pr.a[in_first ? e0 : e1];
+    const D3& out = *pr.a[in_first ? e1 : e0];
+    if (orientSign(in, out, *pr.b[c]) == 0) {
+      v.kind = Kind::kB;
+      v.index = static_cast<std::int8_t>(c);
+    } else if (orientSign(in, out, *pr.b[(c + 1) % 3]) == 0) {
+      v.kind = Kind::kB;
+      v.index = static_cast<std::int8_t>((c + 1) % 3);
+    }
+  }
+  switch (v.kind) {
+    case Kind::kA:
+      key.first = static_cast<std::uint64_t>(va[v.index]);
+      break;
+    case Kind::kB:
+      key.first = (std::uint64_t{1} << 62) | static_cast<std::uint64_t>(vb[v.index]);
+      break;
+    case Kind::kCross:
+      key.first = (std::uint64_t{2} << 62) | edgeCode(va[e0], va[e1]);
+      key.second = edgeCode(vb[c], vb[(c + 1) % 3]);
+      break;
+    case Kind::kAntiB:
+      internalError("an antipode survived the clipping");
+  }
+  const auto [it, fresh] = ids.try_emplace(key, static_cast<std::int32_t>(pa.size() / 3));
+  if (fresh) {
+    D3 on_a{}, on_b{};
+    if (v.kind == Kind::kA) {
+      on_a = pos_a[v.index];
+      int signs[3];
+      for (int j = 0; j < 3; ++j) signs[j] = pr.side_a[v.index][(j + 1) % 3];
+      on_b = blend(pos_b, weights(pr.b, *pr.a[v.index], signs));
+    } else if (v.kind == Kind::kB) {
+      on_b = pos_b[v.index];
+      int signs[3];
+      for (int j = 0; j < 3; ++j) signs[j] = orientSign(*pr.a[(j + 1) % 3], *pr.a[(j + 2) % 3], *pr.b[v.index]);
+      on_a = blend(pos_a, weights(pr.a, *pr.b[v.index], signs));
+    } else {
+      const D3 m_b = cross(*pr.b[c], *pr.b[(c + 1) % 3]);
+      on_a = alongEdge(pos_a[e0], pos_a[e1], planeParameter(m_b, *pr.a[e0], *pr.a[e1]));
+      const D3 n_a = cross(*pr.a[e0], *pr.a[e1]);
+      on_b = alongEdge(pos_b[c], pos_b[(c + 1) % 3], planeParameter(n_a, *pr.b[c], *pr.b[(c + 1) % 3]));
+    }
+    pa.insert(pa.end(), on_a.begin(), on_a.end());
+    pb.insert(pb.end(), on_b.begin(), on_b.end());
+  }
+  return it->second;
+}
+
 }  // namespace
 
-SphericalMorph::SphericalMorph(const TriMesh& a, const TriMesh& b, const std::string& what_a,
-                               const std::string& what_b) {
+VertexMorph sphericalMorph(const TriMesh& a, const TriMesh& b, const std::string& what_a, const std::string& what_b) {
   const Projected ma = project(a, what_a);
   const Projected mb = project(b, what_b);
   const std::size_t fa = a.triangleCount(), fb = b.triangleCount();
@@ -505,8 +563,9 @@ SphericalMorph::SphericalMorph(const TriMesh& a, const TriMesh& b, const std::st
   for (std::size_t f = 0; f < fb; ++f) max_b = std::max(max_b, (caps_b[f] = capOf(mb, f)).radius);
   const CapGrid grid(caps_b, 2.0 * std::sin(0.5 * std::min(max_a + max_b, M_PI)));
 
-  std::unordered_map<Key, std::int32_t, KeyHash> ids;
+  VertexIds ids;
   std::vector<double> pa, pb;
+  std::vector<std::int32_t> triangles;
   std::vector<std::int32_t> candidates;
   for (std::size_t ia = 0; ia < fa; ++ia) {
     grid.query(caps_a[ia], candidates);
@@ -547,73 +606,19 @@ SphericalMorph::SphericalMorph(const TriMesh& a, const TriMesh& b, const std::st
       std::int32_t corner_ids[kMaxPolygon];
       int m = 0;
       for (int i = 0; i < n; ++i) {
-        PolyVertex v = poly[cur][i];
-        Key key;
-        // A crossing exactly at a corner of b is that corner.
-        int e0 = 0, e1 = 0, c = 0, in_first = 0;
-        if (v.kind == Kind::kCross) {
-          e0 = v.index;
-          e1 = (v.index + 1) % 3;
-          c = v.circle;
-          in_first = pr.side_a[e0][c] > 0;
-          const D3& in = *pr.a[in_first ? e0 : e1];
-          const D3& out = *pr.a[in_first ? e1 : e0];
-          if (orientSign(in, out, *pr.b[c]) == 0) {
-            v.kind = Kind::kB;
-            v.index = static_cast<std::int8_t>(c);
-          } else if (orientSign(in, out, *pr.b[(c + 1) % 3]) == 0) {
-            v.kind = Kind::kB;
-            v.index = static_cast<std::int8_t>((c + 1) % 3);
-          }
-        }
-        switch (v.kind) {
-          case Kind::kA:
-            key.first = static_cast<std::uint64_t>(va[v.index]);
-            break;
-          case Kind::kB:
-            key.first = (std::uint64_t{1} << 62) | static_cast<std::uint64_t>(vb[v.index]);
-            break;
-          case Kind::kCross:
-            key.first = (std::uint64_t{2} << 62) | edgeCode(va[e0], va[e1]);
-            key.second = edgeCode(vb[c], vb[(c + 1) % 3]);
-            break;
-          case Kind::kAntiB:
-            internalError("an antipode survived the clipping");
-        }
-        const auto [it, fresh] = ids.try_emplace(key, static_cast<std::int32_t>(pa.size() / 3));
-        if (fresh) {
-          D3 on_a{}, on_b{};
-          if (v.kind == Kind::kA) {
-            on_a = pos_a[v.index];
-            int signs[3];
-            for (int j = 0; j < 3; ++j) signs[j] = pr.side_a[v.index][(j + 1) % 3];
-            on_b = blend(pos_b, weights(pr.b, *pr.a[v.index], signs));
-          } else if (v.kind == Kind::kB) {
-            on_b = pos_b[v.index];
-            int signs[3];
-            for (int j = 0; j < 3; ++j) signs[j] = orientSign(*pr.a[(j + 1) % 3], *pr.a[(j + 2) % 3], *pr.b[v.index]);
-            on_a = blend(pos_a, weights(pr.a, *pr.b[v.index], signs));
-          } else {
-            const D3 m_b = cross(*pr.b[c], *pr.b[(c + 1) % 3]);
-            on_a = alongEdge(pos_a[e0], pos_a[e1], planeParameter(m_b, *pr.a[e0], *pr.a[e1]));
-            const D3 n_a = cross(*pr.a[e0], *pr.a[e1]);
-            on_b = alongEdge(pos_b[c], pos_b[(c + 1) % 3], planeParameter(n_a, *pr.b[c], *pr.b[(c + 1) % 3]));
-          }
-          pa.insert(pa.end(), on_a.begin(), on_a.end());
-          pb.insert(pb.end(), on_b.begin(), on_b.end());
-        }
-        if (m == 0 || corner_ids[m - 1] != it->second) corner_ids[m++] = it->second;
+        const std::int32_t id = weldCorner(poly[cur][i], pr, va, vb, pos_a, pos_b, ids, pa, pb);
+        if (m == 0 || corner_ids[m - 1] != id) corner_ids[m++] = id;
       }
       if (m > 1 && corner_ids[m - 1] == corner_ids[0]) --m;
       for (int i = 1; i + 1 < m; ++i)
-        triangles_.insert(triangles_.end(), {corner_ids[0], corner_ids[i], corner_ids[i + 1]});
+        triangles.insert(triangles.end(), {corner_ids[0], corner_ids[i], corner_ids[i + 1]});
     }
   }
-  pos_a_.assign(pa.begin(), pa.end());
-  pos_b_.assign(pb.begin(), pb.end());
+  VertexMorph morph(std::vector<float>(pa.begin(), pa.end()), std::vector<float>(pb.begin(), pb.end()),
+                    std::move(triangles), "spherical morph");
 
   // The overlay of two sphere triangulations is one: anything else is a defect here, not bad input.
-  TriMesh common = at(0.0);
+  TriMesh common = morph.at(0.0);
   try {
     requireClosed(common, "the common mesh");
   } catch (const Error& e) {
@@ -623,22 +628,7 @@ SphericalMorph::SphericalMorph(const TriMesh& a, const TriMesh& b, const std::st
   if (eulerCharacteristic(common) != 2)
     throw Error(std::string("spherical morph of ") + what_a + " and " + what_b +
                 ": internal error (the common mesh is not genus 0); please report the two meshes");
-}
-
-bool SphericalMorph::evaluate(double t, std::span<float> positions) const {
-  if (!std::isfinite(t) || positions.size() != pos_a_.size()) return false;
-  const double s = 1.0 - t;
-  for (std::size_t i = 0; i < pos_a_.size(); ++i)
-    positions[i] = static_cast<float>(s * static_cast<double>(pos_a_[i]) + t * static_cast<double>(pos_b_[i]));
-  return true;
-}
-
-TriMesh SphericalMorph::at(double t) const {
-  TriMesh m;
-  m.positions.resize(pos_a_.size());
-  if (!evaluate(t, m.positions)) throw Error("spherical morph: t " + number(t) + " is not a finite number");
-  m.triangles = triangles_;
-  return m;
+  return morph;
 }
 
 }  // namespace vdg::morph

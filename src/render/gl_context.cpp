@@ -6,7 +6,7 @@
 
 #include "vdg/geom/error.h"
 
-namespace vdg::render {
+namespace vdg::render::detail {
 namespace {
 
 std::string eglErrorName(EGLint code) {
@@ -154,4 +154,4 @@ void GlContext::makeCurrent() const {
   if (eglGetCurrentContext() != context_) eglMakeCurrent(display_, surface_, surface_, context_);
 }
 
-}  // namespace vdg::render
+}  // namespace vdg::render::detail

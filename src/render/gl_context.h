@@ -6,7 +6,7 @@
 
 #include <string>
 
-namespace vdg::render {
+namespace vdg::render::detail {
 
 class GlContext {
  public:
@@ -27,4 +27,4 @@ class GlContext {
   std::string platform_;
 };
 
-}  // namespace vdg::render
+}  // namespace vdg::render::detail

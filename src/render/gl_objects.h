@@ -6,7 +6,7 @@
 
 #include <utility>
 
-namespace vdg::render {
+namespace vdg::render::detail {
 
 template <void (*Delete)(GLuint)>
 class GlName {
@@ -74,4 +74,4 @@ inline GlRenderbuffer makeRenderbuffer() {
   return GlRenderbuffer(id);
 }
 
-}  // namespace vdg::render
+}  // namespace vdg::render::detail

@@ -18,13 +18,14 @@
 
 #include <Eigen/Geometry>
 
-#include "gl_context.h"
-#include "gl_objects.h"
+#include "renderer_impl.h"
 #include "shaders.h"
 #include "vdg/geom/error.h"
 #include "vdg/render/silhouette.h"
 
 namespace vdg::render {
+using namespace detail;  // the module's internals (renderer_impl.h, gl_objects.h, shaders.h)
+
 namespace {
 
 GlShader compile(GLenum type, const char* source, const char* what) {
@@ -40,6 +41,10 @@ GlShader compile(GLenum type, const char* source, const char* what) {
   }
   return shader;
 }
+
+}  // namespace
+
+namespace detail {
 
 GlProgram link(const char* what, const char* vertex, const char* geometry, const char* fragment) {
   GlProgram program(glCreateProgram());
@@ -78,384 +83,13 @@ GlProgram linkCompute(const char* what, const char* source) {
   return program;
 }
 
-// The shading program: drawMesh's, and the GPU blend's instanced draw (whose extra uniforms the
-// plain program lacks: their locations are -1, which glUniform ignores).
-struct MeshProgram {
-  GlProgram program;
-  GLint view, proj, base, warm, cool, light_warm, light_cool, ka, k, flat, textured, hue_rule, texture;
-  GLint instance_base, vertex_count, group_count, first_instance;
-  explicit MeshProgram(GlProgram p) : program(std::move(p)) {
-    const GLuint id = program.get();
-    view = glGetUniformLocation(id, "u_view");
-    proj = glGetUniformLocation(id, "u_proj");
-    base = glGetUniformLocation(id, "u_base");
-    warm = glGetUniformLocation(id, "u_warm");
-    cool = glGetUniformLocation(id, "u_cool");
-    light_warm = glGetUniformLocation(id, "u_light_warm");
-    light_cool = glGetUniformLocation(id, "u_light_cool");
-    ka = glGetUniformLocation(id, "u_ka");
-    k = glGetUniformLocation(id, "u_k");
-    flat = glGetUniformLocation(id, "u_flat");
-    textured = glGetUniformLocation(id, "u_textured");
-    hue_rule = glGetUniformLocation(id, "u_hue_rule");
-    texture = glGetUniformLocation(id, "u_texture");
-    instance_base = glGetUniformLocation(id, "u_instance_base");
-    vertex_count = glGetUniformLocation(id, "u_vertex_count");
-    group_count = glGetUniformLocation(id, "u_group_count");
-    first_instance = glGetUniformLocation(id, "u_first_instance");
-  }
-};
-
-// A compute program of the GPU blend and the locations of the uniforms its passes set (-1 where
-// a pass has none).
-struct ComputeProgram {
-  GlProgram program;
-  GLint vertex_count, group_count, edge_count, first_instance, item_offset, eye, silhouettes, borders, creases,
-      cos_crease, capacity;
-  explicit ComputeProgram(GlProgram p) : program(std::move(p)) {
-    const GLuint id = program.get();
-    vertex_count = glGetUniformLocation(id, "u_vertex_count");
-    group_count = glGetUniformLocation(id, "u_group_count");
-    edge_count = glGetUniformLocation(id, "u_edge_count");
-    first_instance = glGetUniformLocation(id, "u_first_instance");
-    item_offset = glGetUniformLocation(id, "u_item_offset");
-    eye = glGetUniformLocation(id, "u_eye");
-    silhouettes = glGetUniformLocation(id, "u_silhouettes");
-    borders = glGetUniformLocation(id, "u_borders");
-    creases = glGetUniformLocation(id, "u_creases");
-    cos_crease = glGetUniformLocation(id, "u_cos_crease");
-    capacity = glGetUniformLocation(id, "u_capacity");
-  }
-};
-
-struct StrokeProgram {
-  GlProgram program;
-  GLint view, proj, pixel_scale, pull, ortho, point_size, viewport, width, color;
-  explicit StrokeProgram(GlProgram p) : program(std::move(p)) {
-    const GLuint id = program.get();
-    view = glGetUniformLocation(id, "u_view");
-    proj = glGetUniformLocation(id, "u_proj");
-    pixel_scale = glGetUniformLocation(id, "u_pixel_scale");
-    pull = glGetUniformLocation(id, "u_pull");
-    ortho = glGetUniformLocation(id, "u_ortho");
-    point_size = glGetUniformLocation(id, "u_point_size");
-    viewport = glGetUniformLocation(id, "u_viewport");
-    width = glGetUniformLocation(id, "u_width");
-    color = glGetUniformLocation(id, "u_color");
-  }
-};
-
-// A material as the GPU draws it: its base colour and its texture (an index into
-// GpuMesh::textures, -1: none).
-struct GpuMaterial {
-  Rgb base{1.0f, 1.0f, 1.0f};
-  int texture = -1;
-};
-
-// Consecutive triangles of the sorted index buffer with one material (-1: none).
-struct DrawRange {
-  int material = -1;
-  std::size_t first = 0, count = 0;  // in indices (3 per triangle)
-};
-
-// Shading draws render vertices (one per smoothing group and texture coordinate); strokes draw
-// the mesh's own vertices, which the welded edges index.
-struct GpuMesh {
-  SurfaceTopology topology;
-  bool surface = false;  // from addSurface: empty normals = group normals (else flat)
-  std::vector<GpuMaterial> materials;
-  std::vector<GlTexture> textures;
-  std::vector<DrawRange> ranges;
-  std::size_t index_count = 0;
-  std::vector<float> positions;                         // #V x 3, this frame's (facing, creases)
-  std::vector<float> render_positions, render_normals;  // #R x 3, gathered per frame
-  std::vector<float> group_normals;                     // #G x 3
-  std::vector<std::uint8_t> front;
-  std::vector<std::uint32_t> silhouette, creases;
-  bool has_normals = false;
-  GlVertexArray vao, stroke_vao;
-  GlBuffer position_buffer, normal_buffer, uv_buffer, triangle_buffer, vertex_buffer, stroke_buffer;
-};
-
-// A view-dependent model for the GPU blend (Renderer::addBlendModel). Set-up buffers are
-// uploaded once; the batch buffers grow to the largest batch drawn.
-struct GpuBlendModel {
-  std::size_t vertex_count = 0, group_count = 0, edge_count = 0, key_count = 0;
-  std::vector<GpuMaterial> materials;
-  std::vector<GlTexture> textures;
-  std::vector<DrawRange> ranges;
-  std::size_t index_count = 0;
-  std::size_t batch_limit = 1;                 // most instances one batch may hold
-  std::size_t batch_capacity = 0;              // instances the batch buffers hold now
-  std::size_t last_first = 0, last_count = 0;  // the instances the batch buffers hold results of
-  GlVertexArray vao, stroke_vao;
-  // Set-up: base #V x 3, deltas #keys x #V x 3, triangles #F x 3, group_start #G + 1 and
-  // group_faces (faces per group, one entry per corner), edges #E x (a, b, f0, f1), render
-  // vertices' (vertex, group) and uvs, the material-sorted render triangles.
-  GlBuffer base, deltas, triangles, group_start, group_faces, edges, refs, uvs, indices;
-  // Per batch: positions #B x #V x 3, normals #B x #G x 3, strokes 2 x #E x #B indices, and the
-  // two indirect draw commands (silhouettes, creases).
-  GlBuffer positions, normals, strokes, commands;
-};
-
-Eigen::Vector3f toVec(const std::array<float, 3>& a) { return {a[0], a[1], a[2]}; }
-
-// The per-instance record of the GPU blend's storage buffer (std430: the Instance struct of the
-// shaders, 112 bytes).
-struct GpuInstance {
-  float object[16];
-  std::int32_t keys[4];
-  float weights[4];
-  float color[4];
-};
-static_assert(sizeof(GpuInstance) == 112);
-
-// glBufferData through the copy-write target, which no vertex array records.
 void bufferData(const GlBuffer& buffer, std::size_t bytes, const void* data, GLenum usage) {
   glBindBuffer(GL_COPY_WRITE_BUFFER, buffer.get());
   glBufferData(GL_COPY_WRITE_BUFFER, static_cast<GLsizeiptr>(std::max<std::size_t>(bytes, 16)), data, usage);
   glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
 }
 
-template <class T>
-GlBuffer staticBuffer(const std::vector<T>& data) {
-  GlBuffer buffer = makeBuffer();
-  bufferData(buffer, data.size() * sizeof(T), data.empty() ? nullptr : data.data(), GL_STATIC_DRAW);
-  return buffer;
-}
-
-std::string megabytes(std::size_t bytes) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.1f MB", static_cast<double>(bytes) / 1e6);
-  return text;
-}
-
-// Work groups of 64 items per dispatch, at most this many along x (the minimum every OpenGL 4.3
-// driver allows); longer item ranges are dispatched in slices with u_item_offset.
-constexpr std::size_t kGroupSize = 64;
-constexpr std::size_t kMaxGroups = 65535;
-
-void dispatchItems(const ComputeProgram& p, std::size_t items, std::size_t instances) {
-  constexpr std::size_t kSlice = kGroupSize * kMaxGroups;
-  for (std::size_t offset = 0; offset < items; offset += kSlice) {
-    const std::size_t groups = (std::min(kSlice, items - offset) + kGroupSize - 1) / kGroupSize;
-    glUniform1i(p.item_offset, static_cast<GLint>(offset));
-    glDispatchCompute(static_cast<GLuint>(groups), static_cast<GLuint>(instances), 1);
-  }
-}
-
-// The instances' checks of drawBlendInstances and blendInstances.
-bool validInstances(const GpuBlendModel& b, std::span<const InstanceBlend> instances) {
-  const int keys = static_cast<int>(b.key_count);
-  for (const InstanceBlend& instance : instances) {
-    if (!instance.object.allFinite()) return false;
-    for (std::size_t i = 0; i < 3; ++i) {
-      if (!std::isfinite(instance.color[i])) return false;
-      const int k = instance.weights.key[i];
-      if (k < -1 || k >= keys || !std::isfinite(instance.weights.weight[i])) return false;
-    }
-  }
-  return true;
-}
-
-}  // namespace
-
-struct Renderer::Impl {
-  GlContext context;  // first member: destroyed last
-  int width = 0, height = 0, samples = 1;
-  std::string info;
-  GlFramebuffer ms_fbo, resolve_fbo;
-  GlRenderbuffer ms_color, ms_depth, resolve_color;
-  std::unique_ptr<MeshProgram> mesh_program;
-  std::unique_ptr<StrokeProgram> line_program, dot_program;
-  std::vector<std::unique_ptr<GpuMesh>> meshes;
-  // GPU blend: created with the first blend model (OpenGL 4.3).
-  int gl_version = 0;  // major * 10 + minor
-  std::unique_ptr<MeshProgram> blend_program;
-  std::unique_ptr<ComputeProgram> blend_compute, normals_compute, edges_compute, crease_start_compute;
-  std::vector<std::unique_ptr<GpuBlendModel>> blend_models;
-  GlBuffer instance_buffer;
-  std::size_t instance_capacity = 0;  // bytes
-  std::vector<GpuInstance> instance_staging;
-  // Backdrops: the program and its empty vertex array are created with the first one.
-  GlProgram backdrop_program;
-  GLint backdrop_image = -1, backdrop_paper = -1, backdrop_opacity = -1;
-  GlVertexArray backdrop_vao;
-  std::vector<GlTexture> backdrops;
-  GlVertexArray overlay_vao;
-  GlBuffer overlay_buffer;
-  std::size_t overlay_capacity = 0;
-  std::vector<std::uint8_t> row;  // scratch for the vertical flip
-
-  ~Impl() { context.makeCurrent(); }
-
-  void setView(const View& v) {
-    const Viewport& vp = v.viewport;
-    const int gl_y = height - vp.y - vp.height;
-    glViewport(vp.x, gl_y, vp.width, vp.height);
-    glScissor(vp.x, gl_y, vp.width, vp.height);
-  }
-
-  void setMatrices(GLint view_loc, GLint proj_loc, const View& v) {
-    const double aspect = static_cast<double>(v.viewport.width) / std::max(1, v.viewport.height);
-    const Eigen::Matrix4f view = viewMatrix(v.camera).cast<float>();
-    const Eigen::Matrix4f proj = projectionMatrix(v.camera, aspect, v.z_near, v.z_far).cast<float>();
-    glUniformMatrix4fv(view_loc, 1, GL_FALSE, view.data());
-    glUniformMatrix4fv(proj_loc, 1, GL_FALSE, proj.data());
-  }
-
-  // Uniforms of the lighting equation for a surface of colour `base`. A textured surface gets the
-  // caller's constants and the shader applies the hue rule per texel (to base x texel).
-  // With `instance_base` (the GPU blend's faces without a material) Cbase is each instance's
-  // colour, so the hue rule runs in the shader as for a texel.
-  void setShading(const MeshStyle& style, const Rgb& base, bool textured = false, const MeshProgram* program = nullptr,
-                  bool instance_base = false) {
-    const MeshProgram& p = program ? *program : *mesh_program;
-    const bool per_fragment = textured || instance_base;
-    const bool hue_per_texel = per_fragment && style.shading.vary_by_hue;
-    const ShadingConstants k = per_fragment ? style.shading.k : effectiveConstants(style.shading, base);
-    glUniform1i(p.instance_base, instance_base ? 1 : 0);
-    const Eigen::Vector3f l1 = toVec(style.shading.light_warm).normalized();
-    const Eigen::Vector3f l2 = toVec(style.shading.light_cool).normalized();
-    glUniform3fv(p.base, 1, base.data());
-    glUniform1i(p.textured, textured ? 1 : 0);
-    glUniform1i(p.hue_rule, hue_per_texel ? 1 : 0);
-    glUniform1i(p.texture, 0);
-    glUniform3fv(p.warm, 1, style.shading.warm.data());
-    glUniform3fv(p.cool, 1, style.shading.cool.data());
-    glUniform3fv(p.light_warm, 1, l1.data());
-    glUniform3fv(p.light_cool, 1, l2.data());
-    glUniform1f(p.ka, style.shading.ka);
-    glUniform4f(p.k, k.k1, k.k2, k.k3, k.k4);
-    glUniform1i(p.flat, style.flat ? 1 : 0);
-  }
-
-  void setStroke(const StrokeProgram& p, const View& v, float size, const Rgb& color, float pull_px) {
-    setMatrices(p.view, p.proj, v);
-    const double h = std::max(1, v.viewport.height);
-    if (v.camera.isOrtho()) {
-      glUniform2f(p.pixel_scale, 0.0f, static_cast<float>(v.camera.ortho_height / h));
-    } else {
-      glUniform2f(p.pixel_scale, static_cast<float>(2.0 * std::tan(v.camera.fov_deg * std::numbers::pi / 360.0) / h),
-                  0.0f);
-    }
-    glUniform1f(p.pull, pull_px);
-    glUniform1i(p.ortho, v.camera.isOrtho() ? 1 : 0);
-    glUniform1f(p.point_size, size);
-    glUniform2f(p.viewport, static_cast<float>(v.viewport.width), static_cast<float>(v.viewport.height));
-    glUniform1f(p.width, size);
-    glUniform3fv(p.color, 1, color.data());
-  }
-
-  void uploadOverlay(std::span<const float> data) {
-    glBindVertexArray(overlay_vao.get());
-    glBindBuffer(GL_ARRAY_BUFFER, overlay_buffer.get());
-    const std::size_t bytes = data.size_bytes();
-    if (bytes > overlay_capacity) {
-      overlay_capacity = std::max(bytes, overlay_capacity * 2);
-      glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(overlay_capacity), nullptr, GL_DYNAMIC_DRAW);
-    }
-    glBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(bytes), data.data());
-  }
-
-  // Common set-up of the overlay passes (lines, dots): target, view, data, depth state.
-  void beginOverlay(const View& v, std::span<const float> data, bool depth_test) {
-    context.makeCurrent();
-    glBindFramebuffer(GL_FRAMEBUFFER, ms_fbo.get());
-    setView(v);
-    uploadOverlay(data);
-    if (depth_test) {
-      glEnable(GL_DEPTH_TEST);
-      glDepthFunc(GL_LEQUAL);
-    } else {
-      glDisable(GL_DEPTH_TEST);
-    }
-    glDepthMask(GL_FALSE);
-  }
-
-  // Round dots of `diameter` pixels at the first `count` overlay points (alpha-to-coverage edges).
-  void drawRoundDots(const View& v, GLsizei count, float diameter, const Rgb& color, float pull_px) {
-    glEnable(GL_SAMPLE_ALPHA_TO_COVERAGE);
-    glUseProgram(dot_program->program.get());
-    setStroke(*dot_program, v, diameter, color, pull_px);
-    glDrawArrays(GL_POINTS, 0, count);
-    glDisable(GL_SAMPLE_ALPHA_TO_COVERAGE);
-  }
-
-  void endOverlay() {
-    glDepthMask(GL_TRUE);
-    glBindVertexArray(0);
-  }
-
-  // Uploads the instances (checked by validInstances), grows `b`'s batch buffers and binds every
-  // storage buffer of the passes. Returns the instances per batch.
-  std::size_t prepareBlend(GpuBlendModel& b, std::span<const InstanceBlend> instances) {
-    const std::size_t count = instances.size();
-    instance_staging.resize(count);
-    for (std::size_t i = 0; i < count; ++i) {
-      const InstanceBlend& in = instances[i];
-      GpuInstance& g = instance_staging[i];
-      std::copy_n(in.object.data(), 16, g.object);
-      for (int s = 0; s < 3; ++s) {
-        const int k = in.weights.key[static_cast<std::size_t>(s)];
-        const float w = in.weights.weight[static_cast<std::size_t>(s)];
-        g.keys[s] = w == 0.0f ? -1 : k;
-        g.weights[s] = k < 0 ? 0.0f : w;
-        g.color[s] = in.color[static_cast<std::size_t>(s)];
-      }
-      g.keys[3] = -1;
-      g.weights[3] = 0.0f;
-      g.color[3] = 1.0f;
-    }
-    const std::size_t instance_bytes = count * sizeof(GpuInstance);
-    glBindBuffer(GL_COPY_WRITE_BUFFER, instance_buffer.get());
-    if (instance_bytes > instance_capacity) {
-      instance_capacity = std::max(instance_bytes, instance_capacity * 2);
-      glBufferData(GL_COPY_WRITE_BUFFER, static_cast<GLsizeiptr>(instance_capacity), nullptr, GL_DYNAMIC_DRAW);
-    }
-    glBufferSubData(GL_COPY_WRITE_BUFFER, 0, static_cast<GLsizeiptr>(instance_bytes), instance_staging.data());
-    glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
-
-    const std::size_t batch = std::min(count, b.batch_limit);
-    if (batch > b.batch_capacity) {
-      b.batch_capacity = batch;
-      bufferData(b.positions, batch * b.vertex_count * 3 * sizeof(float), nullptr, GL_DYNAMIC_COPY);
-      bufferData(b.normals, batch * b.group_count * 3 * sizeof(float), nullptr, GL_DYNAMIC_COPY);
-      bufferData(b.strokes, batch * b.edge_count * 2 * sizeof(std::uint32_t), nullptr, GL_DYNAMIC_COPY);
-    }
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, b.base.get());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, b.deltas.get());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, instance_buffer.get());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, b.positions.get());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, b.triangles.get());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, b.group_start.get());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, b.group_faces.get());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, b.normals.get());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, b.edges.get());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, b.commands.get());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 10, b.strokes.get());
-    return batch;
-  }
-
-  // Passes 1 and 2 (blend, group normals) for instances [first, first + in_batch).
-  void blendBatch(GpuBlendModel& b, std::size_t first, std::size_t in_batch) {
-    // The previous batch's draws read the buffers this batch's passes overwrite.
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    const ComputeProgram& blend = *blend_compute;
-    glUseProgram(blend.program.get());
-    glUniform1i(blend.vertex_count, static_cast<GLint>(b.vertex_count));
-    glUniform1i(blend.first_instance, static_cast<GLint>(first));
-    dispatchItems(blend, b.vertex_count, in_batch);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    const ComputeProgram& normals = *normals_compute;
-    glUseProgram(normals.program.get());
-    glUniform1i(normals.vertex_count, static_cast<GLint>(b.vertex_count));
-    glUniform1i(normals.group_count, static_cast<GLint>(b.group_count));
-    dispatchItems(normals, b.group_count, in_batch);
-    b.last_first = first;
-    b.last_count = in_batch;
-  }
-};
+}  // namespace detail
 
 int maxImageSide() {
   GlContext context;
@@ -543,7 +177,7 @@ Renderer::~Renderer() = default;
 Renderer::Renderer(Renderer&&) noexcept = default;
 Renderer& Renderer::operator=(Renderer&&) noexcept = default;
 
-namespace {
+namespace detail {
 
 bool finite3(const Eigen::Vector3d& v) { return v.allFinite(); }
 
@@ -571,14 +205,14 @@ Eigen::Vector3f facingEye(const Camera& camera) {
   return (camera.target + back * (1e6 * std::max(1.0, camera.ortho_height))).cast<float>();
 }
 
-}  // namespace
+}  // namespace detail
 
 int Renderer::width() const { return impl_->width; }
 int Renderer::height() const { return impl_->height; }
 int Renderer::samples() const { return impl_->samples; }
 std::string Renderer::glInfo() const { return impl_->info; }
 
-namespace {
+namespace detail {
 
 // Creates the GL objects of `mesh` (its topology, ranges and materials set): the shading VAO over
 // render vertices with the material-sorted index buffer, and the stroke VAO over the vertices.
@@ -713,7 +347,7 @@ std::vector<std::uint32_t> sortedRenderTriangles(const TriMesh& mesh, const Surf
   return indices;
 }
 
-}  // namespace
+}  // namespace detail
 
 int Renderer::addMesh(std::span<const std::int32_t> triangles, std::size_t vertex_count) {
   Impl& m = *impl_;
@@ -1008,285 +642,9 @@ bool Renderer::drawBackdrop(int handle, const Viewport& viewport, float opacity,
   return true;
 }
 
-int Renderer::addBlendModel(const ViewDependentModel& model) {
-  Impl& m = *impl_;
-  const std::string what = "render: addBlendModel";
-  m.context.makeCurrent();
-  if (m.gl_version < 43)
-    throw Error("OpenGL: the GPU blend (--gpu-blend) needs OpenGL 4.3 (the driver gives " +
-                std::to_string(m.gl_version / 10) + "." + std::to_string(m.gl_version % 10) + ", " +
-                reinterpret_cast<const char*>(glGetString(GL_RENDERER)) + ")");
-  if (!m.blend_program) {
-    std::string fragment = shaders::kMeshFragment;
-    fragment.replace(fragment.find("330"), 3, "430");
-    m.blend_program =
-        std::make_unique<MeshProgram>(link("blend mesh", shaders::kBlendVertex, nullptr, fragment.c_str()));
-    m.blend_compute = std::make_unique<ComputeProgram>(linkCompute("blend", shaders::kBlendCompute));
-    m.normals_compute = std::make_unique<ComputeProgram>(linkCompute("blend normals", shaders::kNormalsCompute));
-    m.edges_compute = std::make_unique<ComputeProgram>(linkCompute("blend edges", shaders::kEdgesCompute));
-    m.crease_start_compute =
-        std::make_unique<ComputeProgram>(linkCompute("blend crease start", shaders::kCreaseStartCompute));
-    m.instance_buffer = makeBuffer();
-  }
-  const TriMesh& mesh = model.base();
-  const SurfaceTopology& t = model.surface();
-  auto gpu = std::make_unique<GpuBlendModel>();
-  GpuBlendModel& b = *gpu;
-  b.vertex_count = t.vertexCount();
-  b.group_count = t.groupCount();
-  b.edge_count = t.edgeCount();
-  b.key_count = model.keyCount();
-
-  // Sizes against the driver's largest storage block; the batch size from the per-instance bytes.
-  GLint64 max_block = 0;
-  glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
-  GLint max_groups_y = 0;
-  glGetIntegeri_v(GL_MAX_COMPUTE_WORK_GROUP_COUNT, 1, &max_groups_y);
-  const auto block = static_cast<std::size_t>(std::max<GLint64>(max_block, 1));
-  const std::size_t delta_bytes = b.key_count * b.vertex_count * 3 * sizeof(float);
-  if (delta_bytes > block)
-    throw Error(what + ": the key deltas (" + std::to_string(b.key_count) + " keys x " +
-                std::to_string(b.vertex_count) + " vertices) take " + megabytes(delta_bytes) +
-                ", more than the OpenGL driver's largest storage block (" + megabytes(block) + ")");
-  const std::size_t largest = std::max({b.vertex_count * 3 * sizeof(float), b.group_count * 3 * sizeof(float),
-                                        b.edge_count * 2 * sizeof(std::uint32_t), std::size_t{1}});
-  if (largest > block)
-    throw Error(what + ": one instance's blended positions, normals or edge lists take " + megabytes(largest) +
-                ", more than the OpenGL driver's largest storage block (" + megabytes(block) + ")");
-  const std::size_t per_instance =
-      (b.vertex_count + b.group_count) * 3 * sizeof(float) + b.edge_count * 2 * sizeof(std::uint32_t);
-  b.batch_limit =
-      std::max<std::size_t>(1, std::min({block / largest, kBlendBatchBytes / std::max<std::size_t>(per_instance, 1),
-                                         static_cast<std::size_t>(std::max<GLint>(max_groups_y, 1))}));
-
-  // Key deltas: each key's full mesh minus the base (dense), keyCount() x #V x 3.
-  const std::size_t n = b.vertex_count * 3;
-  std::vector<float> deltas(b.key_count * n);
-  for (std::size_t k = 0; k < b.key_count; ++k) {
-    const std::span<float> d(deltas.data() + k * n, n);
-    if (!model.keyPositions(k, d)) throw Error(what + ": key " + std::to_string(k) + " (internal error)");
-    for (std::size_t i = 0; i < n; ++i) d[i] -= mesh.positions[i];
-  }
-  // Faces per smoothing group (one entry per corner in the group), as offsets and a list.
-  const auto corner_groups = t.cornerGroups();
-  std::vector<std::int32_t> group_start(b.group_count + 1, 0), group_faces(corner_groups.size());
-  for (const std::int32_t g : corner_groups) ++group_start[static_cast<std::size_t>(g) + 1];
-  for (std::size_t g = 0; g < b.group_count; ++g) group_start[g + 1] += group_start[g];
-  std::vector<std::int32_t> fill(group_start.begin(), group_start.end() - 1);
-  for (std::size_t c = 0; c < corner_groups.size(); ++c)
-    group_faces[static_cast<std::size_t>(fill[static_cast<std::size_t>(corner_groups[c])]++)] =
-        static_cast<std::int32_t>(c / 3);
-  std::vector<std::int32_t> edges(b.edge_count * 4);
-  for (std::size_t e = 0; e < b.edge_count; ++e) {
-    edges[e * 4] = t.edgeVertices()[e * 2];
-    edges[e * 4 + 1] = t.edgeVertices()[e * 2 + 1];
-    edges[e * 4 + 2] = t.edgeFaces()[e * 2];
-    edges[e * 4 + 3] = t.edgeFaces()[e * 2 + 1];
-  }
-  std::vector<std::int32_t> refs(t.renderVertexCount() * 2);
-  for (std::size_t r = 0; r < t.renderVertexCount(); ++r) {
-    refs[r * 2] = t.renderSource()[r];
-    refs[r * 2 + 1] = t.renderGroup()[r];
-  }
-  uploadMaterials(mesh, what, b.materials, b.textures);
-  const std::vector<std::uint32_t> indices = sortedRenderTriangles(mesh, t, b.ranges);
-  b.index_count = indices.size();
-
-  b.base = staticBuffer(mesh.positions);
-  b.deltas = staticBuffer(deltas);
-  b.triangles = staticBuffer(std::vector<std::int32_t>(t.triangles().begin(), t.triangles().end()));
-  b.group_start = staticBuffer(group_start);
-  b.group_faces = staticBuffer(group_faces);
-  b.edges = staticBuffer(edges);
-  b.refs = staticBuffer(refs);
-  b.uvs = staticBuffer(renderUvs(t, mesh.uvs));
-  b.indices = staticBuffer(indices);
-  b.positions = makeBuffer();
-  b.normals = makeBuffer();
-  b.strokes = makeBuffer();
-  b.commands = makeBuffer();
-  bufferData(b.commands, 10 * sizeof(std::uint32_t), nullptr, GL_DYNAMIC_DRAW);
-
-  b.vao = makeVertexArray();
-  glBindVertexArray(b.vao.get());
-  glBindBuffer(GL_ARRAY_BUFFER, b.refs.get());
-  glEnableVertexAttribArray(0);
-  glVertexAttribIPointer(0, 2, GL_INT, 0, nullptr);
-  glBindBuffer(GL_ARRAY_BUFFER, b.uvs.get());
-  glEnableVertexAttribArray(2);
-  glVertexAttribPointer(2, 2, GL_FLOAT, GL_FALSE, 0, nullptr);
-  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, b.indices.get());
-  // Strokes: the batch's blended positions as vertices, the edge lists as indices.
-  b.stroke_vao = makeVertexArray();
-  glBindVertexArray(b.stroke_vao.get());
-  glBindBuffer(GL_ARRAY_BUFFER, b.positions.get());
-  glEnableVertexAttribArray(0);
-  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
-  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, b.strokes.get());
-  glBindVertexArray(0);
-  glBindBuffer(GL_ARRAY_BUFFER, 0);
-  if (const GLenum err = glGetError(); err != GL_NO_ERROR)
-    throw Error("OpenGL: error " + std::to_string(err) + " while uploading a blend model (" + megabytes(delta_bytes) +
-                " of key deltas)");
-  m.blend_models.push_back(std::move(gpu));
-  return static_cast<int>(m.blend_models.size()) - 1;
-}
-
-bool Renderer::drawBlendInstances(int handle, std::span<const InstanceBlend> instances, const View& view,
-                                  const MeshStyle& style) {
-  Impl& m = *impl_;
-  if (handle < 0 || static_cast<std::size_t>(handle) >= m.blend_models.size() || !validView(view)) return false;
-  GpuBlendModel& b = *m.blend_models[static_cast<std::size_t>(handle)];
-  if (!validInstances(b, instances)) return false;
-  // Every check is above: from here on the call succeeds.
-  if (instances.empty()) return true;
-  m.context.makeCurrent();
-  const std::size_t count = instances.size();
-  const std::size_t batch = m.prepareBlend(b, instances);
-
-  const float crease_width = style.crease_width > 0.0f ? style.crease_width : 0.5f * style.silhouette_width;
-  const bool want_silhouettes = style.silhouette_width > 0.0f;
-  const bool want_creases =
-      std::isfinite(style.crease_angle_deg) && style.crease_angle_deg > 0.0f && crease_width > 0.0f;
-  const bool want_strokes = (want_silhouettes || want_creases) && b.edge_count > 0;
-  const auto cos_crease = static_cast<float>(
-      std::cos(std::min(static_cast<double>(style.crease_angle_deg), 180.0) * std::numbers::pi / 180.0));
-  const Eigen::Vector3f eye = facingEye(view.camera);
-
-  glBindFramebuffer(GL_FRAMEBUFFER, m.ms_fbo.get());
-  m.setView(view);
-  const auto capacity = static_cast<GLuint>(b.batch_capacity * b.edge_count * 2);
-  // Indirect draw commands {count, instances, first index, base vertex, base instance}: the
-  // silhouettes' list grows from index 0, the creases' down from `capacity`.
-  const std::array<GLuint, 10> reset{0, 1, 0, 0, 0, 0, 1, capacity, 0, 0};
-
-  for (std::size_t first = 0; first < count; first += batch) {
-    const std::size_t in_batch = std::min(batch, count - first);
-    m.blendBatch(b, first, in_batch);
-    if (want_strokes) {
-      glBindBuffer(GL_COPY_WRITE_BUFFER, b.commands.get());
-      glBufferSubData(GL_COPY_WRITE_BUFFER, 0, sizeof reset, reset.data());
-      glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
-      const ComputeProgram& edges = *m.edges_compute;
-      glUseProgram(edges.program.get());
-      glUniform1i(edges.vertex_count, static_cast<GLint>(b.vertex_count));
-      glUniform1i(edges.edge_count, static_cast<GLint>(b.edge_count));
-      glUniform3fv(edges.eye, 1, eye.data());
-      glUniform1i(edges.silhouettes, want_silhouettes ? 1 : 0);
-      glUniform1i(edges.borders, style.borders ? 1 : 0);
-      glUniform1i(edges.creases, want_creases ? 1 : 0);
-      glUniform1f(edges.cos_crease, cos_crease);
-      glUniform1ui(edges.capacity, capacity);
-      dispatchItems(edges, b.edge_count, in_batch);
-      if (want_creases) {
-        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-        glUseProgram(m.crease_start_compute->program.get());
-        glUniform1ui(m.crease_start_compute->capacity, capacity);
-        glDispatchCompute(1, 1, 1);
-      }
-    }
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT | GL_ELEMENT_ARRAY_BARRIER_BIT |
-                    GL_COMMAND_BARRIER_BIT);
-
-    // Shaded front faces of every instance of the batch, one instanced draw per material range.
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glDepthMask(GL_TRUE);
-    glEnable(GL_CULL_FACE);
-    glCullFace(GL_BACK);
-    glFrontFace(GL_CCW);
-    const MeshProgram& p = *m.blend_program;
-    glUseProgram(p.program.get());
-    m.setMatrices(p.view, p.proj, view);
-    glUniform1i(p.vertex_count, static_cast<GLint>(b.vertex_count));
-    glUniform1i(p.group_count, static_cast<GLint>(b.group_count));
-    glUniform1i(p.first_instance, static_cast<GLint>(first));
-    glBindVertexArray(b.vao.get());
-    glActiveTexture(GL_TEXTURE0);
-    const auto draw = [&](std::size_t offset, std::size_t indices) {
-      glDrawElementsInstanced(GL_TRIANGLES, static_cast<GLsizei>(indices), GL_UNSIGNED_INT,
-                              reinterpret_cast<const void*>(offset * sizeof(std::uint32_t)),
-                              static_cast<GLsizei>(in_batch));
-    };
-    if (!style.materials) {
-      m.setShading(style, style.color, false, &p, true);
-      draw(0, b.index_count);
-    } else {
-      for (const DrawRange& range : b.ranges) {
-        const GpuMaterial* material =
-            range.material >= 0 ? &b.materials[static_cast<std::size_t>(range.material)] : nullptr;
-        const bool textured = material && material->texture >= 0;
-        m.setShading(style, material ? material->base : style.color, textured, &p, material == nullptr);
-        glBindTexture(GL_TEXTURE_2D, textured ? b.textures[static_cast<std::size_t>(material->texture)].get() : 0);
-        draw(range.first, range.count);
-      }
-      glBindTexture(GL_TEXTURE_2D, 0);
-    }
-    glDisable(GL_CULL_FACE);
-    if (!want_strokes) continue;
-
-    // Creases, then silhouettes and borders: thick lines, then round dots at the edge ends.
-    glBindVertexArray(b.stroke_vao.get());
-    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, b.commands.get());
-    glDepthFunc(GL_LEQUAL);
-    glDepthMask(GL_FALSE);
-    const auto strokes = [&](std::size_t command, float width) {
-      const void* offset = reinterpret_cast<const void*>(command * 5 * sizeof(GLuint));
-      const float pull = style.silhouette_pull * width;
-      glUseProgram(m.line_program->program.get());
-      m.setStroke(*m.line_program, view, width, style.silhouette_color, pull);
-      glDrawElementsIndirect(GL_LINES, GL_UNSIGNED_INT, offset);
-      glEnable(GL_SAMPLE_ALPHA_TO_COVERAGE);
-      glUseProgram(m.dot_program->program.get());
-      m.setStroke(*m.dot_program, view, width, style.silhouette_color, pull);
-      glDrawElementsIndirect(GL_POINTS, GL_UNSIGNED_INT, offset);
-      glDisable(GL_SAMPLE_ALPHA_TO_COVERAGE);
-    };
-    if (want_creases) strokes(1, crease_width);
-    if (want_silhouettes) strokes(0, style.silhouette_width);
-    glDepthMask(GL_TRUE);
-    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
-  }
-  glBindVertexArray(0);
-  return true;
-}
-
-bool Renderer::blendInstances(int handle, std::span<const InstanceBlend> instances) {
-  Impl& m = *impl_;
-  if (handle < 0 || static_cast<std::size_t>(handle) >= m.blend_models.size()) return false;
-  GpuBlendModel& b = *m.blend_models[static_cast<std::size_t>(handle)];
-  if (!validInstances(b, instances)) return false;
-  if (instances.empty()) return true;
-  m.context.makeCurrent();
-  const std::size_t batch = m.prepareBlend(b, instances);
-  for (std::size_t first = 0; first < instances.size(); first += batch)
-    m.blendBatch(b, first, std::min(batch, instances.size() - first));
-  return true;
-}
-
 void Renderer::finish() {
   impl_->context.makeCurrent();
   glFinish();
-}
-
-bool Renderer::readBlendInstance(int handle, std::size_t instance, std::span<float> positions,
-                                 std::span<float> group_normals) {
-  Impl& m = *impl_;
-  if (handle < 0 || static_cast<std::size_t>(handle) >= m.blend_models.size()) return false;
-  const GpuBlendModel& b = *m.blend_models[static_cast<std::size_t>(handle)];
-  if (instance < b.last_first || instance >= b.last_first + b.last_count) return false;
-  if (positions.size() != b.vertex_count * 3 || group_normals.size() != b.group_count * 3) return false;
-  m.context.makeCurrent();
-  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-  const std::size_t local = instance - b.last_first;
-  glBindBuffer(GL_COPY_READ_BUFFER, b.positions.get());
-  glGetBufferSubData(GL_COPY_READ_BUFFER, static_cast<GLintptr>(local * positions.size_bytes()),
-                     static_cast<GLsizeiptr>(positions.size_bytes()), positions.data());
-  glBindBuffer(GL_COPY_READ_BUFFER, b.normals.get());
-  glGetBufferSubData(GL_COPY_READ_BUFFER, static_cast<GLintptr>(local * group_normals.size_bytes()),
-                     static_cast<GLsizeiptr>(group_normals.size_bytes()), group_normals.data());
-  glBindBuffer(GL_COPY_READ_BUFFER, 0);
-  return true;
 }
 
 void Renderer::readPixels(Image& out) {

@@ -1,6 +1,6 @@
 #include "shaders.h"
 
-namespace vdg::render::shaders {
+namespace vdg::render::detail::shaders {
 
 // One triangle, (-1, -1) (3, -1) (-1, 3) in clip space, covers the whole viewport; no vertex
 // attributes. v_uv runs from (0, 0) at the viewport's top-left corner to (1, 1) at its bottom-right
@@ -362,4 +362,4 @@ void main() {
 
 #undef VDG_INSTANCE_BLOCK
 
-}  // namespace vdg::render::shaders
+}  // namespace vdg::render::detail::shaders

@@ -3,7 +3,7 @@
 // raised to 4.30.
 #pragma once
 
-namespace vdg::render::shaders {
+namespace vdg::render::detail::shaders {
 
 // Shaded surface: the lighting equation of Rademacher 99, section 3.2.4.
 extern const char* const kMeshVertex;
@@ -24,4 +24,4 @@ extern const char* const kEdgesCompute;
 extern const char* const kCreaseStartCompute;
 extern const char* const kBlendVertex;
 
-}  // namespace vdg::render::shaders
+}  // namespace vdg::render::detail::shaders

@@ -11,11 +11,11 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <sstream>
 #include <string_view>
 
 #include "vdg/geom/error.h"
 #include "vdg/geom/normalize.h"
+#include "vdg/geom/text.h"
 
 namespace vdg::scene {
 
@@ -37,12 +37,6 @@ bool validField(Field field) { return static_cast<int>(field) >= 0 && static_cas
 
 bool drawable(ObjectKind kind) {
   return kind == ObjectKind::kMesh || kind == ObjectKind::kModel || kind == ObjectKind::kAnimatedModel;
-}
-
-std::string numberText(double v) {
-  std::ostringstream out;
-  out << v;
-  return out.str();
 }
 
 // The initial value of a field, from the raw node.
@@ -330,7 +324,10 @@ const char* objectListName(ObjectKind kind) {
   }
 }
 
-void validateAndBuild(const RawScene& raw, const std::string& where, detail::BuiltScene* impl) {
+using NodeNames = std::map<std::string, int, std::less<>>;
+using TrackSlots = std::vector<std::array<int, kFieldCount>>;  // per node and field: its track, or -1
+
+void checkCounts(const RawScene& raw, const std::string& where) {
   const std::size_t n = raw.nodes.size();
   if (n == 0) throw Error(where + ": a scene needs at least one node");
   if (n > static_cast<std::size_t>(kMaxSceneNodes)) {
@@ -341,68 +338,70 @@ void validateAndBuild(const RawScene& raw, const std::string& where, detail::Bui
     throw Error(where + ": " + std::to_string(raw.actions.size()) + " actions, more than the " +
                 std::to_string(kMaxSceneActions) + " a scene may have");
   }
+}
 
-  std::map<std::string, int, std::less<>> by_name;
-  for (std::size_t i = 0; i < n; ++i) {
-    const RawNode& node = raw.nodes[i];
-    const std::string label = nodeLabel(where, node, i);
-    auto fail = [&](const std::string& what) { throw Error(label + ": " + what); };
-    if (node.name.empty()) fail("empty name");
-    if (node.name.find('.') != std::string::npos) {
-      fail("the name contains '.' (it separates node and field, as in 'earth.rotation')");
+// Node `i` on its own: name (added to `by_name`), parent, object, transforms, colour, camera fields.
+void checkNode(const RawScene& raw, std::size_t i, const std::string& where, NodeNames& by_name) {
+  const RawNode& node = raw.nodes[i];
+  const std::string label = nodeLabel(where, node, i);
+  auto fail = [&](const std::string& what) { throw Error(label + ": " + what); };
+  if (node.name.empty()) fail("empty name");
+  if (node.name.find('.') != std::string::npos) {
+    fail("the name contains '.' (it separates node and field, as in 'earth.rotation')");
+  }
+  const auto [it, inserted] = by_name.emplace(node.name, static_cast<int>(i));
+  if (!inserted) fail("duplicate name (node " + std::to_string(it->second) + " has it too)");
+  if (node.parent < -1 || node.parent >= static_cast<int>(i)) {
+    fail("parent " + std::to_string(node.parent) + " is not an earlier node (-1 for a root, or 0.." +
+         std::to_string(static_cast<long>(i) - 1) + ")");
+  }
+  if (!validKind(node.kind)) fail("unknown object kind " + std::to_string(static_cast<int>(node.kind)));
+  if (node.kind == ObjectKind::kGroup || node.kind == ObjectKind::kCamera) {
+    if (node.object != -1) {
+      fail(std::string("a ") + objectKindName(node.kind) + " holds no object (object " + std::to_string(node.object) +
+           ", expected -1)");
     }
-    const auto [it, inserted] = by_name.emplace(node.name, static_cast<int>(i));
-    if (!inserted) fail("duplicate name (node " + std::to_string(it->second) + " has it too)");
-    if (node.parent < -1 || node.parent >= static_cast<int>(i)) {
-      fail("parent " + std::to_string(node.parent) + " is not an earlier node (-1 for a root, or 0.." +
-           std::to_string(static_cast<long>(i) - 1) + ")");
+  } else {
+    const std::size_t count = node.kind == ObjectKind::kMesh    ? raw.meshes.size()
+                              : node.kind == ObjectKind::kModel ? raw.models.size()
+                                                                : raw.animated_models.size();
+    const char* list = objectListName(node.kind);
+    if (node.object < 0 || static_cast<std::size_t>(node.object) >= count) {
+      fail(std::string("object ") + std::to_string(node.object) + " out of range (the scene has " +
+           std::to_string(count) + " " + list + ")");
     }
-    if (!validKind(node.kind)) fail("unknown object kind " + std::to_string(static_cast<int>(node.kind)));
-    if (node.kind == ObjectKind::kGroup || node.kind == ObjectKind::kCamera) {
-      if (node.object != -1) {
-        fail(std::string("a ") + objectKindName(node.kind) + " holds no object (object " + std::to_string(node.object) +
-             ", expected -1)");
-      }
-    } else {
-      const std::size_t count = node.kind == ObjectKind::kMesh    ? raw.meshes.size()
-                                : node.kind == ObjectKind::kModel ? raw.models.size()
-                                                                  : raw.animated_models.size();
-      const char* list = objectListName(node.kind);
-      if (node.object < 0 || static_cast<std::size_t>(node.object) >= count) {
-        fail(std::string("object ") + std::to_string(node.object) + " out of range (the scene has " +
-             std::to_string(count) + " " + list + ")");
-      }
-      const auto o = static_cast<std::size_t>(node.object);
-      const bool null = node.kind == ObjectKind::kMesh    ? !raw.meshes[o]
-                        : node.kind == ObjectKind::kModel ? !raw.models[o]
-                                                          : !raw.animated_models[o];
-      if (null) fail(std::string("object ") + std::to_string(node.object) + " of " + list + " is null");
-    }
-    checkTransform(node.placement, "placement", fail);
-    checkTransform(node.link, "link", fail);
-    for (int k = 0; k < 3; ++k) {
-      if (!inUnitRange(node.color[static_cast<std::size_t>(k)])) {
-        fail("color component " + std::to_string(k) + " (" + numberText(node.color[static_cast<std::size_t>(k)]) +
-             ") is outside [0, 1]");
-      }
-    }
-    if (!std::isfinite(node.sharpness)) fail("sharpness is not finite");
-    if (!std::isfinite(node.frame_offset)) fail("frame_offset is not finite");
-    if (node.kind == ObjectKind::kCamera) {
-      if (!validFov(node.fov_deg)) fail("fov " + numberText(node.fov_deg) + " degrees is outside (0, 180)");
-      if (!std::isfinite(node.ortho_height) || node.ortho_height < 0.0) {
-        fail("ortho_height " + numberText(node.ortho_height) + " must be finite and >= 0");
-      }
-    } else {
-      if (node.path)
-        fail(std::string("a path on a ") + objectKindName(node.kind) + " node (only cameras follow paths)");
-      if (!node.look_at.empty()) {
-        fail(std::string("look_at on a ") + objectKindName(node.kind) + " node (only cameras look at nodes)");
-      }
+    const auto o = static_cast<std::size_t>(node.object);
+    const bool null = node.kind == ObjectKind::kMesh    ? !raw.meshes[o]
+                      : node.kind == ObjectKind::kModel ? !raw.models[o]
+                                                        : !raw.animated_models[o];
+    if (null) fail(std::string("object ") + std::to_string(node.object) + " of " + list + " is null");
+  }
+  checkTransform(node.placement, "placement", fail);
+  checkTransform(node.link, "link", fail);
+  for (int k = 0; k < 3; ++k) {
+    if (!inUnitRange(node.color[static_cast<std::size_t>(k)])) {
+      fail("color component " + std::to_string(k) + " (" + numberText(node.color[static_cast<std::size_t>(k)]) +
+           ") is outside [0, 1]");
     }
   }
+  if (!std::isfinite(node.sharpness)) fail("sharpness is not finite");
+  if (!std::isfinite(node.frame_offset)) fail("frame_offset is not finite");
+  if (node.kind == ObjectKind::kCamera) {
+    if (!validFov(node.fov_deg)) fail("fov " + numberText(node.fov_deg) + " degrees is outside (0, 180)");
+    if (!std::isfinite(node.ortho_height) || node.ortho_height < 0.0) {
+      fail("ortho_height " + numberText(node.ortho_height) + " must be finite and >= 0");
+    }
+  } else {
+    if (node.path) fail(std::string("a path on a ") + objectKindName(node.kind) + " node (only cameras follow paths)");
+    if (!node.look_at.empty()) {
+      fail(std::string("look_at on a ") + objectKindName(node.kind) + " node (only cameras look at nodes)");
+    }
+  }
+}
 
-  // Cameras: paths and look_at (now that every name is known).
+// Cameras: paths and look_at (once every name is known).
+void linkCameras(const RawScene& raw, const std::string& where, const NodeNames& by_name, detail::BuiltScene* impl) {
+  const std::size_t n = raw.nodes.size();
   if (impl) {
     impl->paths.resize(n);
     impl->look_at.assign(n, -1);
@@ -421,105 +420,105 @@ void validateAndBuild(const RawScene& raw, const std::string& where, detail::Bui
       if (impl) impl->look_at[i] = it->second;
     }
   }
+}
 
-  // Tracks.
-  std::vector<std::array<int, kFieldCount>> track_of(n);
-  for (auto& t : track_of) t.fill(-1);
-  if (impl) impl->tracks.reserve(raw.tracks.size());
-  for (std::size_t t = 0; t < raw.tracks.size(); ++t) {
-    const RawFieldTrack& ft = raw.tracks[t];
-    if (ft.node < 0 || static_cast<std::size_t>(ft.node) >= n) {
-      throw Error(where + ": track " + std::to_string(t) + ": node " + std::to_string(ft.node) +
-                  " out of range (the scene has " + std::to_string(n) + " nodes)");
-    }
-    if (!validField(ft.field)) {
-      throw Error(where + ": track " + std::to_string(t) + ": unknown field " +
-                  std::to_string(static_cast<int>(ft.field)));
-    }
-    const RawNode& node = raw.nodes[static_cast<std::size_t>(ft.node)];
-    const std::string name = node.name + "." + fieldName(ft.field);
-    auto fail = [&](const std::string& what) { throw Error(where + ": track '" + name + "': " + what); };
-    if (!hasField(node.kind, ft.field)) {
-      fail(std::string("a ") + objectKindName(node.kind) + " node has no field '" + fieldName(ft.field) + "'");
-    }
-    const int dim = fieldDimension(ft.field);
-    if (ft.field == Field::kRotation) {
-      if (ft.track.type != anim::TrackType::kRotation) {
-        fail(std::string("field 'rotation' needs a rotation track, not a ") + anim::trackTypeName(ft.track.type) +
-             " track");
-      }
-    } else if (ft.track.type == anim::TrackType::kRotation || (dim > 1 && ft.track.type == anim::TrackType::kScalar)) {
-      fail(std::string("field '") + fieldName(ft.field) + "' has " + std::to_string(dim) + " number" +
-           (dim > 1 ? "s" : "") + ", not a " + anim::trackTypeName(ft.track.type) + " track");
-    } else if (ft.track.type == anim::TrackType::kVector && !ft.track.keys.empty() &&
-               ft.track.keys[0].value.size() != dim) {
-      fail(std::string("field '") + fieldName(ft.field) + "' has " + std::to_string(dim) + " number" +
-           (dim > 1 ? "s" : "") + ", the track's keys have " + std::to_string(ft.track.keys[0].value.size()));
-    }
-    int& slot = track_of[static_cast<std::size_t>(ft.node)][static_cast<std::size_t>(ft.field)];
-    if (slot >= 0) fail("the field already has a track (track " + std::to_string(slot) + ")");
-    slot = static_cast<int>(t);
-    anim::RawTrack named = ft.track;
-    named.name = name;
-    anim::Track built = anim::Track::build(named, where);
-    if (impl) impl->tracks.push_back(std::move(built));
+// Track `t`: its node, field and type; marks the field's slot (a field has one track at most).
+anim::Track checkTrack(const RawScene& raw, std::size_t t, const std::string& where, TrackSlots& track_of) {
+  const std::size_t n = raw.nodes.size();
+  const RawFieldTrack& ft = raw.tracks[t];
+  if (ft.node < 0 || static_cast<std::size_t>(ft.node) >= n) {
+    throw Error(where + ": track " + std::to_string(t) + ": node " + std::to_string(ft.node) +
+                " out of range (the scene has " + std::to_string(n) + " nodes)");
   }
+  if (!validField(ft.field)) {
+    throw Error(where + ": track " + std::to_string(t) + ": unknown field " +
+                std::to_string(static_cast<int>(ft.field)));
+  }
+  const RawNode& node = raw.nodes[static_cast<std::size_t>(ft.node)];
+  const std::string name = node.name + "." + fieldName(ft.field);
+  auto fail = [&](const std::string& what) { throw Error(where + ": track '" + name + "': " + what); };
+  if (!hasField(node.kind, ft.field)) {
+    fail(std::string("a ") + objectKindName(node.kind) + " node has no field '" + fieldName(ft.field) + "'");
+  }
+  const int dim = fieldDimension(ft.field);
+  if (ft.field == Field::kRotation) {
+    if (ft.track.type != anim::TrackType::kRotation) {
+      fail(std::string("field 'rotation' needs a rotation track, not a ") + anim::trackTypeName(ft.track.type) +
+           " track");
+    }
+  } else if (ft.track.type == anim::TrackType::kRotation || (dim > 1 && ft.track.type == anim::TrackType::kScalar)) {
+    fail(std::string("field '") + fieldName(ft.field) + "' has " + std::to_string(dim) + " number" +
+         (dim > 1 ? "s" : "") + ", not a " + anim::trackTypeName(ft.track.type) + " track");
+  } else if (ft.track.type == anim::TrackType::kVector && !ft.track.keys.empty() &&
+             ft.track.keys[0].value.size() != dim) {
+    fail(std::string("field '") + fieldName(ft.field) + "' has " + std::to_string(dim) + " number" +
+         (dim > 1 ? "s" : "") + ", the track's keys have " + std::to_string(ft.track.keys[0].value.size()));
+  }
+  int& slot = track_of[static_cast<std::size_t>(ft.node)][static_cast<std::size_t>(ft.field)];
+  if (slot >= 0) fail("the field already has a track (track " + std::to_string(slot) + ")");
+  slot = static_cast<int>(t);
+  anim::RawTrack named = ft.track;
+  named.name = name;
+  return anim::Track::build(named, where);
+}
 
-  // Actions.
-  for (std::size_t a = 0; a < raw.actions.size(); ++a) {
-    const RawAction& act = raw.actions[a];
-    if (act.node < 0 || static_cast<std::size_t>(act.node) >= n) {
-      throw Error(where + ": action " + std::to_string(a) + ": node " + std::to_string(act.node) +
-                  " out of range (the scene has " + std::to_string(n) + " nodes)");
-    }
-    if (!validField(act.field)) {
-      throw Error(where + ": action " + std::to_string(a) + ": unknown field " +
-                  std::to_string(static_cast<int>(act.field)));
-    }
-    const RawNode& node = raw.nodes[static_cast<std::size_t>(act.node)];
-    const std::string label =
-        where + ": action " + std::to_string(a) + " (" + node.name + "." + fieldName(act.field) + ")";
-    auto fail = [&](const std::string& what) { throw Error(label + ": " + what); };
-    if (act.kind != RawAction::Kind::kSet && act.kind != RawAction::Kind::kChange) {
-      fail("unknown kind " + std::to_string(static_cast<int>(act.kind)));
-    }
-    const bool set = act.kind == RawAction::Kind::kSet;
-    if (!hasField(node.kind, act.field)) {
-      fail(std::string("a ") + objectKindName(node.kind) + " node has no field '" + fieldName(act.field) + "'");
-    }
-    const int track = track_of[static_cast<std::size_t>(act.node)][static_cast<std::size_t>(act.field)];
-    if (track >= 0) {
-      fail("the field also has a track (track " + std::to_string(track) +
-           "); give a field a track or actions, not both");
-    }
-    const int dim = fieldDimension(act.field);
-    if (act.value.size() != dim) {
-      fail("the value has " + std::to_string(act.value.size()) + " numbers, field '" + fieldName(act.field) + "' has " +
-           std::to_string(dim));
-    }
-    if (!act.value.allFinite()) fail("the value is not finite");
-    if (act.field == Field::kRotation && !(act.value.norm() > 0.0)) fail("the rotation is a zero quaternion");
-    if (set && act.field == Field::kScale && (act.value.array() == 0.0).any()) {
-      fail("a scale must be non-zero in every component");
-    }
-    if (set && act.field == Field::kColor) {
-      for (Eigen::Index k = 0; k < 3; ++k) {
-        if (!inUnitRange(act.value[k])) {
-          fail("color component " + std::to_string(k) + " (" + numberText(act.value[k]) + ") is outside [0, 1]");
-        }
+// Action `a`: its node, field, kind and value; a field with a track takes no action.
+void checkAction(const RawScene& raw, std::size_t a, const std::string& where, const TrackSlots& track_of) {
+  const std::size_t n = raw.nodes.size();
+  const RawAction& act = raw.actions[a];
+  if (act.node < 0 || static_cast<std::size_t>(act.node) >= n) {
+    throw Error(where + ": action " + std::to_string(a) + ": node " + std::to_string(act.node) +
+                " out of range (the scene has " + std::to_string(n) + " nodes)");
+  }
+  if (!validField(act.field)) {
+    throw Error(where + ": action " + std::to_string(a) + ": unknown field " +
+                std::to_string(static_cast<int>(act.field)));
+  }
+  const RawNode& node = raw.nodes[static_cast<std::size_t>(act.node)];
+  const std::string label =
+      where + ": action " + std::to_string(a) + " (" + node.name + "." + fieldName(act.field) + ")";
+  auto fail = [&](const std::string& what) { throw Error(label + ": " + what); };
+  if (act.kind != RawAction::Kind::kSet && act.kind != RawAction::Kind::kChange) {
+    fail("unknown kind " + std::to_string(static_cast<int>(act.kind)));
+  }
+  const bool set = act.kind == RawAction::Kind::kSet;
+  if (!hasField(node.kind, act.field)) {
+    fail(std::string("a ") + objectKindName(node.kind) + " node has no field '" + fieldName(act.field) + "'");
+  }
+  const int track = track_of[static_cast<std::size_t>(act.node)][static_cast<std::size_t>(act.field)];
+  if (track >= 0) {
+    fail("the field also has a track (track " + std::to_string(track) + "); give a field a track or actions, not both");
+  }
+  const int dim = fieldDimension(act.field);
+  if (act.value.size() != dim) {
+    fail("the value has " + std::to_string(act.value.size()) + " numbers, field '" + fieldName(act.field) + "' has " +
+         std::to_string(dim));
+  }
+  if (!act.value.allFinite()) fail("the value is not finite");
+  if (act.field == Field::kRotation && !(act.value.norm() > 0.0)) fail("the rotation is a zero quaternion");
+  if (set && act.field == Field::kScale && (act.value.array() == 0.0).any()) {
+    fail("a scale must be non-zero in every component");
+  }
+  if (set && act.field == Field::kColor) {
+    for (Eigen::Index k = 0; k < 3; ++k) {
+      if (!inUnitRange(act.value[k])) {
+        fail("color component " + std::to_string(k) + " (" + numberText(act.value[k]) + ") is outside [0, 1]");
       }
     }
-    if (set && act.field == Field::kFov && !validFov(act.value[0])) {
-      fail("fov " + numberText(act.value[0]) + " degrees is outside (0, 180)");
-    }
-    if (!std::isfinite(act.from_frame) || (!set && !std::isfinite(act.to_frame))) fail("its frames must be finite");
-    if (!set && act.to_frame < act.from_frame) {
-      fail("the CHANGE ends at frame " + numberText(act.to_frame) + ", before it starts at frame " +
-           numberText(act.from_frame));
-    }
   }
+  if (set && act.field == Field::kFov && !validFov(act.value[0])) {
+    fail("fov " + numberText(act.value[0]) + " degrees is outside (0, 180)");
+  }
+  if (!std::isfinite(act.from_frame) || (!set && !std::isfinite(act.to_frame))) fail("its frames must be finite");
+  if (!set && act.to_frame < act.from_frame) {
+    fail("the CHANGE ends at frame " + numberText(act.to_frame) + ", before it starts at frame " +
+         numberText(act.from_frame));
+  }
+}
 
-  // The active camera.
+// The active camera: the one named, else the first camera node, else -1.
+int activeCamera(const RawScene& raw, const std::string& where, const NodeNames& by_name) {
+  const std::size_t n = raw.nodes.size();
   int camera = -1;
   if (!raw.camera.empty()) {
     const auto it = by_name.find(raw.camera);
@@ -533,8 +532,12 @@ void validateAndBuild(const RawScene& raw, const std::string& where, detail::Bui
     for (std::size_t i = 0; i < n && camera < 0; ++i)
       if (raw.nodes[i].kind == ObjectKind::kCamera) camera = static_cast<int>(i);
   }
+  return camera;
+}
 
-  if (!impl) return;
+// The checked scene into `impl`: nodes, initial field values, and actions grouped by (node, field).
+void fillBuilt(const RawScene& raw, const TrackSlots& track_of, detail::BuiltScene* impl) {
+  const std::size_t n = raw.nodes.size();
   impl->meshes = raw.meshes;
   impl->models = raw.models;
   impl->animated_models = raw.animated_models;
@@ -578,6 +581,24 @@ void validateAndBuild(const RawScene& raw, const std::string& where, detail::Bui
     src.action_end = index + 1;
     impl->actions.push_back(built);
   }
+}
+
+void validateAndBuild(const RawScene& raw, const std::string& where, detail::BuiltScene* impl) {
+  checkCounts(raw, where);
+  NodeNames by_name;
+  for (std::size_t i = 0; i < raw.nodes.size(); ++i) checkNode(raw, i, where, by_name);
+  linkCameras(raw, where, by_name, impl);
+  TrackSlots track_of(raw.nodes.size());
+  for (auto& t : track_of) t.fill(-1);
+  if (impl) impl->tracks.reserve(raw.tracks.size());
+  for (std::size_t t = 0; t < raw.tracks.size(); ++t) {
+    anim::Track built = checkTrack(raw, t, where, track_of);
+    if (impl) impl->tracks.push_back(std::move(built));
+  }
+  for (std::size_t a = 0; a < raw.actions.size(); ++a) checkAction(raw, a, where, track_of);
+  const int camera = activeCamera(raw, where, by_name);
+  if (!impl) return;
+  fillBuilt(raw, track_of, impl);
   impl->by_name = std::move(by_name);
   impl->camera = camera;
 }

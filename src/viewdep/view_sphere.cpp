@@ -138,16 +138,74 @@ Vector3d faceDirection(int face, double s, double t) {
   return d;
 }
 
-// r^alpha for r in (0, 1) and alpha > 0 (section 3.2.2's sharpening): multiplications for small
-// integer alpha (the same value to double rounding), std::pow otherwise.
-double sharpen(double r, double alpha) {
-  if (alpha == 2.0) return r * r;
-  if (alpha <= ViewSphere::kMultiplySharpnessMax && alpha == std::floor(alpha)) {
-    double p = r;
-    for (int i = 1; i < static_cast<int>(alpha); ++i) p *= r;
-    return p;
+// Section 3.2.2's sharpening, in place: p_i (>= 0, the largest > 0) becomes r_i^alpha with
+// r_i = p_i / max_j p_j, so the largest term is 1 and a sum of the results never underflows to 0
+// (plain p^alpha does for alpha above ~1100 when p <= 1/2) nor overflows; equal p_i stay equal.
+// Multiplications for small integer alpha (the same value to double rounding) without
+// data-dependent branches (random views on the per-frame hot path would mispredict them),
+// std::pow otherwise.
+void sharpenRelative(double (&p)[3], double alpha) {
+  const double largest = std::max({p[0], p[1], p[2]});
+  const double inverse = 1.0 / largest;
+  if (alpha == 2.0) {
+    for (double& x : p) x = (x * inverse) * (x * inverse);
+  } else if (alpha <= ViewSphere::kMultiplySharpnessMax && alpha == std::floor(alpha)) {
+    const int integer = static_cast<int>(alpha);
+    for (double& x : p) {
+      const double r = x * inverse;
+      x = r;
+      for (int i = 1; i < integer; ++i) x *= r;
+    }
+  } else {
+    for (double& x : p) x = x == largest ? 1.0 : std::pow(x * inverse, alpha);  // pow(r < 1, +inf) = 0
   }
-  return std::pow(r, alpha);  // pow(r < 1, +inf) = 0
+}
+
+// Keys all on one great circle (normal `normal`): the covered region is a chain of arcs between
+// neighbours, or the whole circle when no gap between neighbours reaches half a turn.
+std::vector<std::array<int, 2>> greatCircleArcs(const std::vector<Vector3d>& keys, const Vector3d& normal) {
+  std::vector<std::array<int, 2>> arcs;
+  const std::vector<int> order = angularOrder(keys, normal, Vector3d::Zero());
+  std::size_t widest = 0;
+  double widest_angle = -1.0;
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    const Vector3d& a = keys[order[i]];
+    const Vector3d& b = keys[order[(i + 1) % order.size()]];
+    double angle = std::atan2(a.cross(b).dot(normal), a.dot(b));
+    if (angle < 0) angle += 2.0 * std::numbers::pi;
+    if (angle > widest_angle) {
+      widest_angle = angle;
+      widest = i;
+    }
+  }
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    if (i == widest && widest_angle >= std::numbers::pi - kSameViewRad) continue;
+    const int a = order[i], b = order[(i + 1) % order.size()];
+    if (keys[a].dot(keys[b]) > -1.0 + 1e-12) arcs.push_back({a, b});
+  }
+  return arcs;
+}
+
+// Bounding caps (centre, angular radius) of the triangles: the circle through the three corners
+// (all points lie on the unit sphere, and the spherical triangle lies inside the circle's cap as
+// its plane does not pass through the centre). A triangle too close to the centre for that gets
+// a cap over the whole sphere.
+void boundingCaps(const std::vector<Vector3d>& points, const std::vector<std::array<int, 3>>& triangles,
+                  std::vector<Vector3d>& cap_centre, std::vector<double>& cap_radius) {
+  cap_centre.resize(triangles.size());
+  cap_radius.resize(triangles.size());
+  for (std::size_t t = 0; t < triangles.size(); ++t) {
+    const Vector3d& a = points[triangles[t][0]];
+    const Vector3d& b = points[triangles[t][1]];
+    const Vector3d& c = points[triangles[t][2]];
+    const Vector3d n = (b - a).cross(c - a).normalized();  // outward: counter-clockwise from outside
+    cap_centre[t] = n;
+    cap_radius[t] = std::max({angleBetween(n, a), angleBetween(n, b), angleBetween(n, c)});
+    if (!(n.allFinite() && std::min({n.dot(a), n.dot(b), n.dot(c)}) > 1e-9)) {
+      cap_centre[t] = a;
+      cap_radius[t] = 2.0 * std::numbers::pi;
+    }
+  }
 }
 
 }  // namespace
@@ -239,26 +297,8 @@ ViewSphere ViewSphere::build(std::span<const Eigen::Vector3d> key_directions, co
     for (std::size_t i = 1; i + 1 < order.size(); ++i) facets.push_back({{order[0], order[i], order[i + 1]}, 1.0});
     for (std::size_t i = 0; i < order.size(); ++i) sphere.arcs_.push_back({order[i], order[(i + 1) % order.size()]});
   } else if (n >= 3) {
-    // All keys on one great circle: the covered region is a chain of arcs, or the whole circle
-    // when no gap between neighbours reaches half a turn.
-    const std::vector<int> order = angularOrder(keys, fit.normal, Vector3d::Zero());
-    std::size_t widest = 0;
-    double widest_angle = -1.0;
-    for (std::size_t i = 0; i < order.size(); ++i) {
-      const Vector3d& a = keys[order[i]];
-      const Vector3d& b = keys[order[(i + 1) % order.size()]];
-      double angle = std::atan2(a.cross(b).dot(fit.normal), a.dot(b));
-      if (angle < 0) angle += 2.0 * std::numbers::pi;
-      if (angle > widest_angle) {
-        widest_angle = angle;
-        widest = i;
-      }
-    }
-    for (std::size_t i = 0; i < order.size(); ++i) {
-      if (i == widest && widest_angle >= std::numbers::pi - kSameViewRad) continue;
-      const int a = order[i], b = order[(i + 1) % order.size()];
-      if (keys[a].dot(keys[b]) > -1.0 + 1e-12) sphere.arcs_.push_back({a, b});
-    }
+    // All keys on one great circle.
+    sphere.arcs_ = greatCircleArcs(keys, fit.normal);
   } else if (n == 2 && keys[0].dot(keys[1]) > -1.0 + 1e-12) {
     sphere.arcs_.push_back({0, 1});
   } else {
@@ -320,24 +360,9 @@ void ViewSphere::buildIndex() {
       for (const auto& [u, j] : sides)
         if (u != t && neighbours_[t][k] < 0) neighbours_[t][k] = u;
 
-  // Bounding caps (centre, angular radius) of the triangles: the circle through the three corners
-  // (all points lie on the unit sphere, and the spherical triangle lies inside the circle's cap as
-  // its plane does not pass through the centre). A triangle too close to the centre for that gets
-  // a cap over the whole sphere.
-  std::vector<Vector3d> cap_centre(triangles_.size());
-  std::vector<double> cap_radius(triangles_.size());
-  for (int t = 0; t < triangle_count; ++t) {
-    const Vector3d& a = points_[triangles_[t][0]];
-    const Vector3d& b = points_[triangles_[t][1]];
-    const Vector3d& c = points_[triangles_[t][2]];
-    const Vector3d n = (b - a).cross(c - a).normalized();  // outward: counter-clockwise from outside
-    cap_centre[t] = n;
-    cap_radius[t] = std::max({angleBetween(n, a), angleBetween(n, b), angleBetween(n, c)});
-    if (!(n.allFinite() && std::min({n.dot(a), n.dot(b), n.dot(c)}) > 1e-9)) {
-      cap_centre[t] = a;
-      cap_radius[t] = 2.0 * std::numbers::pi;
-    }
-  }
+  std::vector<Vector3d> cap_centre;
+  std::vector<double> cap_radius;
+  boundingCaps(points_, triangles_, cap_centre, cap_radius);
 
   // The build tests every (cell, item) pair once, so very large key sets get coarser cells: at most
   // kMaxIndexPairs pairs (lists grow instead, and stay exact).
@@ -451,25 +476,18 @@ double ViewSphere::featureDistance(const Eigen::Vector3d& x, int feature) const 
   return std::min(angleBetween(x, a), angleBetween(x, b));
 }
 
-// Sharpens the (falloff) slot weights (section 3.2.2) and moves dummy points' weight to the base.
-// w_i^a / sum_j w_j^a is computed as r_i^a / sum_j r_j^a with r_i = w_i / max_j w_j: the same
-// value, but the largest term is exactly 1, so the sum never underflows to 0 (plain w^a does for
-// a above ~1100 when w <= 1/2) and never overflows. Ties for the largest weight share it evenly.
+// Sharpens the (falloff) slot weights (section 3.2.2, see sharpenRelative) and moves dummy points'
+// weight to the base. Ties for the largest weight share it evenly.
 void ViewSphere::finishWeights(ViewWeights& w, double sharpness) const {
   if (sharpness != 1.0) {
-    double largest = 0.0;
+    double p[3] = {0, 0, 0};
     for (int k = 0; k < 3; ++k)
-      if (w.key[k] >= 0) largest = std::max(largest, static_cast<double>(w.weight[k]));
-    double powered[3] = {0, 0, 0};
-    double sum = 0.0;
-    for (int k = 0; k < 3; ++k) {
-      if (w.key[k] < 0 || !(w.weight[k] > 0.0f)) continue;
-      const double r = static_cast<double>(w.weight[k]) / largest;  // in (0, 1]
-      powered[k] = r >= 1.0 ? 1.0 : sharpen(r, sharpness);
-      sum += powered[k];
+      if (w.key[k] >= 0 && w.weight[k] > 0.0f) p[k] = static_cast<double>(w.weight[k]);
+    if (std::max({p[0], p[1], p[2]}) > 0.0) {
+      sharpenRelative(p, sharpness);
+      const double sum = p[0] + p[1] + p[2];  // >= 1
+      for (int k = 0; k < 3; ++k) w.weight[k] = static_cast<float>(p[k] / sum);
     }
-    if (sum > 0.0)  // sum >= 1 whenever some weight is positive
-      for (int k = 0; k < 3; ++k) w.weight[k] = static_cast<float>(powered[k] / sum);
   }
   for (int k = 0; k < 3; ++k) {
     if (w.key[k] >= 0 && isDummy(w.key[k])) {
@@ -570,20 +588,7 @@ ViewWeights ViewSphere::triangleWeights(int t, const Eigen::Vector3d& lambda, do
   if (!(largest > 0.0)) {  // unreachable for a unit view inside the cone: equal weights then
     p[0] = p[1] = p[2] = 1.0;
   } else if (sharpness != 1.0) {
-    // Without data-dependent branches for the common alphas (random views would mispredict them).
-    const double inverse = 1.0 / largest;
-    if (sharpness == 2.0) {
-      for (double& x : p) x = (x * inverse) * (x * inverse);
-    } else if (sharpness <= kMultiplySharpnessMax && sharpness == std::floor(sharpness)) {
-      const int integer = static_cast<int>(sharpness);
-      for (double& x : p) {
-        const double r = x * inverse;
-        x = r;
-        for (int i = 1; i < integer; ++i) x *= r;
-      }
-    } else {
-      for (double& x : p) x = x == largest ? 1.0 : std::pow(x * inverse, sharpness);  // pow(r < 1, +inf) = 0
-    }
+    sharpenRelative(p, sharpness);
   }
   const double scale = 1.0 / (p[0] + p[1] + p[2]);
   ViewWeights w;

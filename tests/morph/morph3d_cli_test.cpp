@@ -138,8 +138,7 @@ TEST_F(Morph3dCli, MinkowskiOfTwoBoxesIsTheBoxOfInterpolatedExtents) {
 }
 
 TEST_F(Morph3dCli, SlicesOfConcentricSpheresMeetHalfWayAndKeepOneConnectivity) {
-  ASSERT_EQ(vdg("morph3d small.obj large.obj --method slices --axis y --slices 24 --count 3 -o sl --quiet"), 0)
-      << err_;
+  ASSERT_EQ(vdg("morph3d small.obj large.obj --method slices --axis y --slices 24 --count 3 -o sl --quiet"), 0) << err_;
   const TriMesh first = readObj(dir_.file("sl/frame_0000.obj")), mid = readObj(dir_.file("sl/frame_0001.obj"));
   EXPECT_EQ(first.triangles, mid.triangles);
   EXPECT_NO_THROW(morph::requireClosed(mid, "mid"));

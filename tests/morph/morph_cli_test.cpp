@@ -281,11 +281,22 @@ TEST_F(MorphCli, VideoIsEncodedFromTheFramesByFfmpeg) {
             0)
       << err_;
   const std::string args = slurp(file("seq.gif"));
-  EXPECT_EQ(args.rfind("-loglevel error -y -framerate 24 -i seq/frame_%04d.png -frames:v 3 ", 0), 0u) << args;
+  EXPECT_EQ(args.rfind("-loglevel error -y -framerate 24 -start_number 0 -i seq/frame_%04d.png -frames:v 3 ", 0), 0u)
+      << args;
   EXPECT_NE(args.find("palettegen"), std::string::npos) << args;
   EXPECT_TRUE(fs::exists(file("seq/frame_0002.png")));
   for (const auto& e : fs::directory_iterator(dir_.path()))
     EXPECT_NE(e.path().filename().string().rfind(".vdg-", 0), 0u) << "a temporary file was left: " << e.path();
+}
+
+// With the real ffmpeg (skipped where it is not installed, unless VDG_REQUIRE_FFMPEG is set).
+TEST_F(MorphCli, VideoWithTheRealFfmpeg) {
+  if (std::system("command -v ffmpeg > /dev/null 2>&1") != 0) {
+    if (std::getenv("VDG_REQUIRE_FFMPEG")) FAIL() << "VDG_REQUIRE_FFMPEG is set but ffmpeg is not on PATH";
+    GTEST_SKIP() << "ffmpeg is not on PATH";
+  }
+  ASSERT_EQ(vdg("morph src.png dst.png --grid grid.json --frames 3 -o seq --video seq.mp4 -q"), 0) << err_;
+  EXPECT_EQ(slurp(file("seq.mp4")).substr(4, 4), "ftyp");
 }
 
 TEST_F(MorphCli, VideoWithoutFfmpegIsOneLine) {

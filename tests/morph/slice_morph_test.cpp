@@ -61,7 +61,7 @@ TEST(SliceMorph, SphereToBoxIsClosedAndOnBothEnds) {
   const TriMesh a = uvSphere(10, 16);
   const TriMesh b = closedBox(3, -1, -2, 5, 2, 0);  // elsewhere, another size
   const SliceMorphOptions options{.axis = 1, .slices = 12, .samples = 20};
-  const SliceMorph morph(a, b, options);
+  const VertexMorph morph = sliceMorph(a, b, options);
   EXPECT_EQ(morph.vertexCount(), 12u * 20u + 2u);
   for (const double t : {0.0, 0.3, 1.0}) {
     const TriMesh m = morph.at(t);
@@ -78,7 +78,8 @@ TEST(SliceMorph, SphereToBoxIsClosedAndOnBothEnds) {
 
 TEST(SliceMorph, EveryAxis) {
   for (int axis = 0; axis < 3; ++axis) {
-    const SliceMorph morph(closedBox(-1, -2, -3, 1, 2, 3), uvSphere(), {.axis = axis, .slices = 5, .samples = 8});
+    const VertexMorph morph =
+        sliceMorph(closedBox(-1, -2, -3, 1, 2, 3), uvSphere(), {.axis = axis, .slices = 5, .samples = 8});
     const TriMesh m = morph.at(0.5);
     EXPECT_EQ(errorOf([&] { requireClosed(m, "lofted"); }), "") << axis;
     // Outward: the signed volume is positive.
@@ -100,7 +101,7 @@ TEST(SliceMorph, ConcentricSpheresMeetHalfway) {
   const TriMesh a = uvSphere(8, 12);
   TriMesh b = a;
   for (float& x : b.positions) x *= 2.0f;
-  const SliceMorph morph(a, b);
+  const VertexMorph morph = sliceMorph(a, b);
   const TriMesh mid = morph.at(0.5);
   for (std::size_t i = 0; i < mid.positions.size(); ++i)
     ASSERT_NEAR(mid.positions[i], 1.5 * morph.positionsOnA()[i], 1e-5) << i;
@@ -108,15 +109,17 @@ TEST(SliceMorph, ConcentricSpheresMeetHalfway) {
 
 TEST(SliceMorph, RefusesCutsThatAreNotOneContour) {
   // Cut across its axis, a torus gives rings (two contours).
-  EXPECT_EQ(errorOf([&] { SliceMorph(uvSphere(), torus(), {.axis = 1, .slices = 3, .samples = 8}, "s", "torus.obj"); }),
-            "torus.obj: the cut at y = -0.266667 is 2 contours; the slice morph needs one closed contour per cut");
+  EXPECT_EQ(
+      errorOf([&] { (void)sliceMorph(uvSphere(), torus(), {.axis = 1, .slices = 3, .samples = 8}, "s", "torus.obj"); }),
+      "torus.obj: the cut at y = -0.266667 is 2 contours; the slice morph needs one closed contour per cut");
   TriMesh open = uvSphere();
   open.triangles.resize(open.triangles.size() - 3);
-  EXPECT_EQ(errorOf([&] { SliceMorph(open, uvSphere()); }), errorOf([&] { requireClosed(open, "A"); }));
-  EXPECT_EQ(errorOf([&] { SliceMorph(uvSphere(), uvSphere(), {.axis = 3}); }), "slice morph: axis must be 0, 1 or 2");
-  EXPECT_EQ(errorOf([&] { SliceMorph(uvSphere(), uvSphere(), {.slices = 0}); }),
+  EXPECT_EQ(errorOf([&] { (void)sliceMorph(open, uvSphere()); }), errorOf([&] { requireClosed(open, "A"); }));
+  EXPECT_EQ(errorOf([&] { (void)sliceMorph(uvSphere(), uvSphere(), {.axis = 3}); }),
+            "slice morph: axis must be 0, 1 or 2");
+  EXPECT_EQ(errorOf([&] { (void)sliceMorph(uvSphere(), uvSphere(), {.slices = 0}); }),
             "slice morph: slices must be in [1, 100000]");
-  EXPECT_EQ(errorOf([&] { SliceMorph(uvSphere(), uvSphere(), {.samples = 2}); }),
+  EXPECT_EQ(errorOf([&] { (void)sliceMorph(uvSphere(), uvSphere(), {.samples = 2}); }),
             "slice morph: samples must be in [3, 100000]");
 }
 
@@ -146,12 +149,12 @@ TEST(SliceMorph, RefusesACutNotStarShapedAboutItsCentroid) {
   quad(id(0, 0, 0), id(0, 1, 0), id(0, 1, 1), id(0, 0, 1));  // the C's two ends
   quad(id(k, 1, 0), id(k, 0, 0), id(k, 0, 1), id(k, 1, 1));
   ASSERT_EQ(errorOf([&] { requireClosed(c, "c"); }), "");
-  EXPECT_EQ(errorOf([&] { SliceMorph(c, uvSphere(), {.axis = 1, .slices = 2, .samples = 16}, "c.obj"); }),
+  EXPECT_EQ(errorOf([&] { (void)sliceMorph(c, uvSphere(), {.axis = 1, .slices = 2, .samples = 16}, "c.obj"); }),
             "c.obj: the cut at y = -0.5 is not star-shaped about its centroid (a ray from it misses the contour)");
 }
 
 TEST(SliceMorph, EvaluateChecksItsContract) {
-  const SliceMorph morph(uvSphere(), closedBox(-1, -1, -1, 1, 1, 1), {.slices = 4, .samples = 6});
+  const VertexMorph morph = sliceMorph(uvSphere(), closedBox(-1, -1, -1, 1, 1, 1), {.slices = 4, .samples = 6});
   const std::size_t n = morph.vertexCount() * 3;
   std::vector<float> buffer(n + 1, 7.0f);
   const std::span<float> all(buffer);
@@ -163,6 +166,17 @@ TEST(SliceMorph, EvaluateChecksItsContract) {
   ASSERT_TRUE(morph.evaluate(1.0, all.first(n)));
   EXPECT_TRUE(std::equal(morph.positionsOnB().begin(), morph.positionsOnB().end(), buffer.begin()));
   EXPECT_EQ(buffer[n], 7.0f);
+}
+
+// The runtime both shape-morph builders return refuses placements that do not make one mesh.
+TEST(VertexMorph, RefusesPlacementsThatDoNotMakeOneMesh) {
+  const std::string sizes = "m: the placements on A and B must be #V x 3 each and the triangles #F x 3";
+  EXPECT_EQ(errorOf([&] { VertexMorph({0, 0, 0}, {0, 0, 0, 1, 1, 1}, {}, "m"); }), sizes);
+  EXPECT_EQ(errorOf([&] { VertexMorph({0, 0}, {0, 0}, {}, "m"); }), sizes);
+  EXPECT_EQ(errorOf([&] { VertexMorph({0, 0, 0}, {0, 0, 0}, {0, 0, 1}, "m"); }), "m: a triangle names vertex 1 of 1");
+  const VertexMorph one({0, 0, 0}, {2, 4, 6}, {0, 0, 0}, "m");
+  EXPECT_EQ(one.at(0.5).positions, (std::vector<float>{1, 2, 3}));
+  EXPECT_EQ(errorOf([&] { (void)one.at(std::nan("")); }), "m: t nan is not a finite number");
 }
 
 }  // namespace

@@ -228,6 +228,47 @@ TEST(CliRender, VideoWithoutFfmpeg) {
   expectOneLineError(r, 1, "ffmpeg");
 }
 
+// The video is encoded by ffmpeg from the frames just written, with the same flags as `vdg morph
+// --video` (a stand-in ffmpeg writes its arguments into the file it is asked to make), renamed into
+// place, and the scratch folder of frames is removed.
+TEST(CliRender, VideoIsEncodedFromTheFramesByFfmpeg) {
+  const fs::path dir = freshDir("vdg_render_video");
+  fs::create_directories(dir / "bin");
+  std::ofstream(dir / "bin/ffmpeg") << "#!/bin/sh\nfor a; do last=$a; done\necho \"$@\" > \"$last\"\n";
+  fs::permissions(dir / "bin/ffmpeg", fs::perms::owner_all);
+  const fs::path video = dir / "orbit.gif";
+  const Result r = vdg("render " + kSpot + " -o " + video.string() + " --orbit 4 --frames 1-2 --size 32x32 -q",
+                       "PATH=\"" + (dir / "bin").string() + ":$PATH\"");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const std::string args = readBytes(video);
+  EXPECT_EQ(args.rfind("-loglevel error -y -framerate 24 -start_number 1 -i " + video.string() +
+                           ".frames/frame_%04d.png -frames:v 2 ",
+                       0),
+            0u)
+      << args;
+  EXPECT_NE(args.find("palettegen"), std::string::npos) << args;
+  EXPECT_FALSE(fs::exists(video.string() + ".frames"));
+  for (const auto& e : fs::directory_iterator(dir))
+    EXPECT_NE(e.path().filename().string().rfind(".vdg-", 0), 0u) << "a temporary file was left: " << e.path();
+}
+
+// With the real ffmpeg (skipped where it is not installed, unless VDG_REQUIRE_FFMPEG is set): an
+// MP4 and a GIF that start as those formats do.
+TEST(CliRender, VideoWithTheRealFfmpeg) {
+  if (std::system("command -v ffmpeg > /dev/null 2>&1") != 0) {
+    if (std::getenv("VDG_REQUIRE_FFMPEG")) FAIL() << "VDG_REQUIRE_FFMPEG is set but ffmpeg is not on PATH";
+    GTEST_SKIP() << "ffmpeg is not on PATH";
+  }
+  const fs::path dir = freshDir("vdg_render_real_video");
+  fs::create_directories(dir);
+  for (const char* name : {"orbit.mp4", "orbit.gif"}) {
+    const Result r = vdg("render " + kSpot + " -o " + (dir / name).string() + " --orbit 3 --size 33x31 -q");
+    ASSERT_EQ(r.status, 0) << name << ": " << r.output;
+  }
+  EXPECT_EQ(readBytes(dir / "orbit.mp4").substr(4, 4), "ftyp");
+  EXPECT_EQ(readBytes(dir / "orbit.gif").substr(0, 6), "GIF89a");
+}
+
 // --gpu-blend: the frames of the CPU path within the GPU blend tests' tolerance (a pixel differs
 // when a channel is off by more than 48 levels; at most 0.4% of the pixels may), and one clear
 // line for a model the GPU blend does not take (bad usage) or an OpenGL older than 4.3.

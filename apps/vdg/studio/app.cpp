@@ -444,137 +444,153 @@ struct Studio::Impl {
     ImGui::RadioButton("Deform (2)", &m, 1);
     mode = static_cast<Mode>(m);
 
-    if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) {
-      if (drawing) {
-        ImGui::Checkbox("drawing (D)", &style.show_drawing);
-        ImGui::SameLine();
-        ImGui::SetNextItemWidth(120);
-        ImGui::SliderFloat("opacity", &style.drawing_opacity, 0.0f, 1.0f, "%.2f");
-      }
-      ImGui::Checkbox("wireframe (W)", &style.wireframe);
-      ImGui::SameLine();
-      ImGui::Checkbox("sphere (I)", &style.sphere_inset);
-      Camera& c = session->camera;
-      bool ortho = c.isOrtho();
-      if (ImGui::Checkbox("orthographic", &ortho)) {
-        const double d = (c.eye - c.target).norm();
-        c.ortho_height = ortho ? 2.0 * d * std::tan(c.fov_deg * 0.5 * 3.14159265358979 / 180.0) : 0.0;
-      }
-      ImGui::SetNextItemWidth(160);
-      if (c.isOrtho()) {
-        float hgt = static_cast<float>(c.ortho_height);
-        const float diag = static_cast<float>(session->baseDiagonal());
-        if (ImGui::SliderFloat("height", &hgt, diag * 0.05f, diag * 10.0f, "%.3f", ImGuiSliderFlags_Logarithmic))
-          c.ortho_height = hgt;
-      } else {
-        float fov = static_cast<float>(c.fov_deg);
-        if (ImGui::SliderFloat("field of view", &fov, 5.0f, 120.0f, "%.1f deg")) c.fov_deg = fov;
-      }
-      if (ImGui::Button("Frame (F)")) frameModel();
-      ImGui::SameLine();
-      if (ImGui::Button("Roll -5")) c = roll(c, -5.0);
-      ImGui::SameLine();
-      if (ImGui::Button("Roll +5")) c = roll(c, 5.0);
-    }
-
-    if (mode == Mode::kAlign && ImGui::CollapsingHeader("Align (3.1.1)", ImGuiTreeNodeFlags_DefaultOpen)) {
-      ImGui::Checkbox("pick pairs (C)", &pick_pairs);
-      ImGui::TextWrapped("%zu pairs%s", session->pairs.size(),
-                         pending_vertex ? "; now click the vertex's place on the drawing" : "");
-      if (ImGui::Button("Remove last") && !session->pairs.empty()) session->pairs.pop_back();
-      ImGui::SameLine();
-      if (ImGui::Button("Clear")) session->pairs.clear();
-      ImGui::Checkbox("orthographic camera", &ortho_solve);
-      if (ImGui::Button("Solve camera")) {
-        try {
-          align_result = session->solveAlignment(ortho_solve);
-          session->camera = align_result->camera;
-        } catch (const std::exception& e) {
-          status = std::string("solve: ") + e.what();
-        }
-      }
-      if (align_result)
-        ImGui::Text("reprojection: rms %.2f px, max %.2f px", align_result->rms_px, align_result->max_px);
-    }
-
-    if (mode == Mode::kDeform && ImGui::CollapsingHeader("Deform (3.1.2)", ImGuiTreeNodeFlags_DefaultOpen)) {
-      int t = static_cast<int>(session->tool);
-      ImGui::RadioButton("drag", &t, 0);
-      ImGui::SameLine();
-      ImGui::RadioButton("push/pull", &t, 1);
-      ImGui::RadioButton("rotate", &t, 2);
-      ImGui::SameLine();
-      ImGui::RadioButton("scale", &t, 3);
-      session->tool = static_cast<Tool>(t);
-      int metric = session->metric == DistanceMetric::kGeodesic ? 1 : 0;
-      ImGui::RadioButton("Euclidean", &metric, 0);
-      ImGui::SameLine();
-      ImGui::RadioButton("geodesic", &metric, 1);
-      session->metric = metric == 1 ? DistanceMetric::kGeodesic : DistanceMetric::kEuclidean;
-      float radius = static_cast<float>(session->falloff.radius);
-      const float diag = static_cast<float>(session->baseDiagonal());
-      ImGui::SetNextItemWidth(160);
-      if (ImGui::SliderFloat("radius", &radius, diag * 0.01f, diag, "%.3f", ImGuiSliderFlags_Logarithmic))
-        session->falloff.radius = radius;
-      float power = static_cast<float>(session->falloff.power);
-      ImGui::SetNextItemWidth(160);
-      if (ImGui::SliderFloat("power", &power, 0.0f, 6.0f, "%.2f")) session->falloff.power = power;
-      ImGui::BeginDisabled(!session->canUndo());
-      if (ImGui::Button("Undo")) undo();
-      ImGui::EndDisabled();
-      ImGui::SameLine();
-      ImGui::BeginDisabled(!session->canRedo());
-      if (ImGui::Button("Redo")) redo();
-      ImGui::EndDisabled();
-    }
-
-    if (ImGui::CollapsingHeader("Keys", ImGuiTreeNodeFlags_DefaultOpen)) {
-      const auto& keys = session->model().keys;
-      for (std::size_t i = 0; i < keys.size(); ++i) {
-        ImGui::PushID(static_cast<int>(i));
-        const bool current = static_cast<int>(i) == session->currentKey();
-        if (session->animated())  // an animated model's keys deform the base at their frames (section 4)
-          ImGui::Text("  %s (frame %d)", keys[i].name.c_str(), keys[i].frame);
-        else
-          ImGui::Text("%s %s%s", current ? ">" : " ", keys[i].name.c_str(),
-                      current && session->dirty() ? " *" : (current && session->currentKeyIsNew() ? " (new)" : ""));
-        ImGui::SameLine(190);
-        if (ImGui::SmallButton("view")) jumpToKey(i);
-        if (!session->animated()) {
-          ImGui::SameLine();
-          if (ImGui::SmallButton("edit")) attempt("edit key", [&] { session->editKey(i); });
-        }
-        ImGui::PopID();
-      }
-      // Key views nearly the same direction (viewdep decides), recomputed when the keys change.
-      if (warnings_revision != session->revision()) {
-        key_view_warnings = session->keyViewWarnings();
-        warnings_revision = session->revision();
-      }
-      for (const std::string& w : key_view_warnings) {
-        ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.85f, 0.45f, 0.05f, 1.0f));
-        ImGui::TextWrapped("warning: %s", w.c_str());
-        ImGui::PopStyleColor();
-      }
-      if (!session->animated()) {
-        ImGui::SetNextItemWidth(150);
-        ImGui::InputTextWithHint("##name", nextKeyName().c_str(), new_key_name, sizeof new_key_name);
-        ImGui::SameLine();
-        if (ImGui::Button("New key")) {
-          newKey(new_key_name[0] != '\0' ? std::string(new_key_name) : nextKeyName());
-          new_key_name[0] = '\0';
-        }
-        ImGui::BeginDisabled(session->currentKey() < 0);
-        if (ImGui::Button("Save key (Ctrl+S)")) saveKey();
-        ImGui::EndDisabled();
-      }
-    }
+    viewSection();
+    alignSection();
+    deformSection();
+    keysSection();
     ImGui::Checkbox("Preview (P)", &show_preview);
     ImGui::SameLine();
     ImGui::Checkbox("Help (F1)", &show_help);
     ImGui::Separator();
     ImGui::TextWrapped("%s", status.c_str());
     ImGui::End();
+  }
+
+  // The panel's "View" section: drawing, wireframe, sphere, projection, framing and roll.
+  void viewSection() {
+    if (!(ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen))) return;
+    if (drawing) {
+      ImGui::Checkbox("drawing (D)", &style.show_drawing);
+      ImGui::SameLine();
+      ImGui::SetNextItemWidth(120);
+      ImGui::SliderFloat("opacity", &style.drawing_opacity, 0.0f, 1.0f, "%.2f");
+    }
+    ImGui::Checkbox("wireframe (W)", &style.wireframe);
+    ImGui::SameLine();
+    ImGui::Checkbox("sphere (I)", &style.sphere_inset);
+    Camera& c = session->camera;
+    bool ortho = c.isOrtho();
+    if (ImGui::Checkbox("orthographic", &ortho)) {
+      const double d = (c.eye - c.target).norm();
+      c.ortho_height = ortho ? 2.0 * d * std::tan(c.fov_deg * 0.5 * 3.14159265358979 / 180.0) : 0.0;
+    }
+    ImGui::SetNextItemWidth(160);
+    if (c.isOrtho()) {
+      float hgt = static_cast<float>(c.ortho_height);
+      const float diag = static_cast<float>(session->baseDiagonal());
+      if (ImGui::SliderFloat("height", &hgt, diag * 0.05f, diag * 10.0f, "%.3f", ImGuiSliderFlags_Logarithmic))
+        c.ortho_height = hgt;
+    } else {
+      float fov = static_cast<float>(c.fov_deg);
+      if (ImGui::SliderFloat("field of view", &fov, 5.0f, 120.0f, "%.1f deg")) c.fov_deg = fov;
+    }
+    if (ImGui::Button("Frame (F)")) frameModel();
+    ImGui::SameLine();
+    if (ImGui::Button("Roll -5")) c = roll(c, -5.0);
+    ImGui::SameLine();
+    if (ImGui::Button("Roll +5")) c = roll(c, 5.0);
+  }
+
+  // The "Align" section (section 3.1.1): point pairs and the camera solve.
+  void alignSection() {
+    if (!(mode == Mode::kAlign && ImGui::CollapsingHeader("Align (3.1.1)", ImGuiTreeNodeFlags_DefaultOpen))) return;
+    ImGui::Checkbox("pick pairs (C)", &pick_pairs);
+    ImGui::TextWrapped("%zu pairs%s", session->pairs.size(),
+                       pending_vertex ? "; now click the vertex's place on the drawing" : "");
+    if (ImGui::Button("Remove last") && !session->pairs.empty()) session->pairs.pop_back();
+    ImGui::SameLine();
+    if (ImGui::Button("Clear")) session->pairs.clear();
+    ImGui::Checkbox("orthographic camera", &ortho_solve);
+    if (ImGui::Button("Solve camera")) {
+      try {
+        align_result = session->solveAlignment(ortho_solve);
+        session->camera = align_result->camera;
+      } catch (const std::exception& e) {
+        status = std::string("solve: ") + e.what();
+      }
+    }
+    if (align_result) ImGui::Text("reprojection: rms %.2f px, max %.2f px", align_result->rms_px, align_result->max_px);
+  }
+
+  // The "Deform" section (section 3.1.2): tool, distance, falloff, undo and redo.
+  void deformSection() {
+    if (!(mode == Mode::kDeform && ImGui::CollapsingHeader("Deform (3.1.2)", ImGuiTreeNodeFlags_DefaultOpen))) return;
+    int t = static_cast<int>(session->tool);
+    ImGui::RadioButton("drag", &t, 0);
+    ImGui::SameLine();
+    ImGui::RadioButton("push/pull", &t, 1);
+    ImGui::RadioButton("rotate", &t, 2);
+    ImGui::SameLine();
+    ImGui::RadioButton("scale", &t, 3);
+    session->tool = static_cast<Tool>(t);
+    int metric = session->metric == DistanceMetric::kGeodesic ? 1 : 0;
+    ImGui::RadioButton("Euclidean", &metric, 0);
+    ImGui::SameLine();
+    ImGui::RadioButton("geodesic", &metric, 1);
+    session->metric = metric == 1 ? DistanceMetric::kGeodesic : DistanceMetric::kEuclidean;
+    float radius = static_cast<float>(session->falloff.radius);
+    const float diag = static_cast<float>(session->baseDiagonal());
+    ImGui::SetNextItemWidth(160);
+    if (ImGui::SliderFloat("radius", &radius, diag * 0.01f, diag, "%.3f", ImGuiSliderFlags_Logarithmic))
+      session->falloff.radius = radius;
+    float power = static_cast<float>(session->falloff.power);
+    ImGui::SetNextItemWidth(160);
+    if (ImGui::SliderFloat("power", &power, 0.0f, 6.0f, "%.2f")) session->falloff.power = power;
+    ImGui::BeginDisabled(!session->canUndo());
+    if (ImGui::Button("Undo")) undo();
+    ImGui::EndDisabled();
+    ImGui::SameLine();
+    ImGui::BeginDisabled(!session->canRedo());
+    if (ImGui::Button("Redo")) redo();
+    ImGui::EndDisabled();
+  }
+
+  // The "Keys" section: each key's view and edit buttons, a new key, saving the current one.
+  // Key views nearly the same direction (viewdep decides), recomputed when the keys change.
+  void keyViewWarnings() {
+    if (warnings_revision != session->revision()) {
+      key_view_warnings = session->keyViewWarnings();
+      warnings_revision = session->revision();
+    }
+    for (const std::string& w : key_view_warnings) {
+      ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.85f, 0.45f, 0.05f, 1.0f));
+      ImGui::TextWrapped("warning: %s", w.c_str());
+      ImGui::PopStyleColor();
+    }
+  }
+
+  void keysSection() {
+    if (!(ImGui::CollapsingHeader("Keys", ImGuiTreeNodeFlags_DefaultOpen))) return;
+    const auto& keys = session->model().keys;
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+      ImGui::PushID(static_cast<int>(i));
+      const bool current = static_cast<int>(i) == session->currentKey();
+      if (session->animated())  // an animated model's keys deform the base at their frames (section 4)
+        ImGui::Text("  %s (frame %d)", keys[i].name.c_str(), keys[i].frame);
+      else
+        ImGui::Text("%s %s%s", current ? ">" : " ", keys[i].name.c_str(),
+                    current && session->dirty() ? " *" : (current && session->currentKeyIsNew() ? " (new)" : ""));
+      ImGui::SameLine(190);
+      if (ImGui::SmallButton("view")) jumpToKey(i);
+      if (!session->animated()) {
+        ImGui::SameLine();
+        if (ImGui::SmallButton("edit")) attempt("edit key", [&] { session->editKey(i); });
+      }
+      ImGui::PopID();
+    }
+    keyViewWarnings();
+    if (!session->animated()) {
+      ImGui::SetNextItemWidth(150);
+      ImGui::InputTextWithHint("##name", nextKeyName().c_str(), new_key_name, sizeof new_key_name);
+      ImGui::SameLine();
+      if (ImGui::Button("New key")) {
+        newKey(new_key_name[0] != '\0' ? std::string(new_key_name) : nextKeyName());
+        new_key_name[0] = '\0';
+      }
+      ImGui::BeginDisabled(session->currentKey() < 0);
+      if (ImGui::Button("Save key (Ctrl+S)")) saveKey();
+      ImGui::EndDisabled();
+    }
   }
 
   // ---- viewport ----------------------------------------------------------------------------

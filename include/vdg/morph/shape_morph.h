@@ -2,7 +2,7 @@
 // at t = 0 to a destination mesh B at t = 1, by three of the methods the text describes.
 //   DistanceMorph   signed distance volumes of A and B blended with t, the zero level set
 //                   polygonised (OpenVDB); the topology may change on the way.
-//   SphericalMorph  Kent: both star-shaped genus-0 meshes projected onto a sphere about their
+//   sphericalMorph  Kent: both star-shaped genus-0 meshes projected onto a sphere about their
 //                   centres, their edges overlaid (arcs intersected) into one common connectivity,
 //                   then vertex-to-vertex interpolation.
 //   minkowskiMorph  sizes interpolated through the Minkowski sum (1 - t) A + t B (CGAL).
@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 #include "vdg/geom/tri_mesh.h"
+#include "vdg/morph/vertex_morph.h"
 
 namespace vdg::morph {
 
@@ -71,28 +72,13 @@ class DistanceMorph {
 // coincident vertices, vertices on edges and overlapping edges give a closed manifold mesh with
 // no tolerance; a vertex is placed on A by casting the ray from A's centre onto the triangle (or
 // edge) of A it lies in, on B likewise. Unused vertices of A and B are left out.
-class SphericalMorph {
- public:
-  SphericalMorph(const TriMesh& a, const TriMesh& b, const std::string& what_a = "A", const std::string& what_b = "B");
-  // The common connectivity, posed at t (vertex positions (1 - t) pa + t pb). Exact A at t = 0
-  // and B at t = 1 as surfaces (every original vertex of each is a vertex of the common mesh,
-  // with its position unchanged; every other vertex lies on a triangle or edge of the mesh).
-  // t outside [0, 1] extrapolates. Positions and triangles only (no texture coordinates, normals
-  // or materials). Throws vdg::Error when t is not finite.
-  TriMesh at(double t) const;
-  // Per-frame, allocation-free: writes vertexCount() * 3 floats. False (nothing written) when
-  // `positions` has the wrong size or t is not finite.
-  [[nodiscard]] bool evaluate(double t, std::span<float> positions) const;
-  std::size_t vertexCount() const { return pos_a_.size() / 3; }
-  std::span<const std::int32_t> triangles() const { return triangles_; }
-  // The common vertices placed on A (t = 0) and on B (t = 1): #V x 3 each.
-  std::span<const float> positionsOnA() const { return pos_a_; }
-  std::span<const float> positionsOnB() const { return pos_b_; }
-
- private:
-  std::vector<float> pos_a_, pos_b_;  // the common vertices placed on A and on B
-  std::vector<std::int32_t> triangles_;
-};
+//
+// Builds the common mesh; the VertexMorph it returns poses it at any t: exact A at t = 0 and B at
+// t = 1 as surfaces (every original vertex of each is a vertex of the common mesh, with its
+// position unchanged; every other vertex lies on a triangle or edge of the mesh). Its at() refuses
+// a t that is not finite with "spherical morph: t T is not a finite number".
+VertexMorph sphericalMorph(const TriMesh& a, const TriMesh& b, const std::string& what_a = "A",
+                           const std::string& what_b = "B");
 
 // The Minkowski-sum inbetween (1 - t) A + t B, each scaled about its own centre (the bounding-box
 // centre) and the result centred at (1 - t) cA + t cB. A and B closed; t = 0 gives A, t = 1 gives

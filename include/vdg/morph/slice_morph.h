@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "vdg/geom/tri_mesh.h"
+#include "vdg/morph/vertex_morph.h"
 
 namespace vdg::morph {
 
@@ -33,24 +34,10 @@ struct SliceMorphOptions {
 // slices and samples); "WHAT: the cut at AXIS = L is N contours; the slice morph needs one closed
 // contour per cut"; "WHAT: the cut at AXIS = L is not star-shaped about its centroid (a ray from
 // it misses the contour)".
-class SliceMorph {
- public:
-  SliceMorph(const TriMesh& a, const TriMesh& b, const SliceMorphOptions& options = {}, const std::string& what_a = "A",
-             const std::string& what_b = "B");
-  // The lofted mesh at t: positions (1 - t) pa + t pb, slices * samples + 2 vertices, closed,
-  // genus 0, counter-clockwise seen from outside. Throws vdg::Error when t is not finite.
-  TriMesh at(double t) const;
-  // Per-frame, allocation-free: writes vertexCount() * 3 floats. False (nothing written) when
-  // `positions` has the wrong size or t is not finite.
-  [[nodiscard]] bool evaluate(double t, std::span<float> positions) const;
-  std::size_t vertexCount() const { return pos_a_.size() / 3; }
-  std::span<const std::int32_t> triangles() const { return triangles_; }
-  std::span<const float> positionsOnA() const { return pos_a_; }
-  std::span<const float> positionsOnB() const { return pos_b_; }
-
- private:
-  std::vector<float> pos_a_, pos_b_;
-  std::vector<std::int32_t> triangles_;
-};
+// The VertexMorph it returns gives the lofted mesh at t: positions (1 - t) pa + t pb, slices *
+// samples + 2 vertices, closed, genus 0, counter-clockwise seen from outside; its at() refuses a t
+// that is not finite with "slice morph: t T is not a finite number".
+VertexMorph sliceMorph(const TriMesh& a, const TriMesh& b, const SliceMorphOptions& options = {},
+                       const std::string& what_a = "A", const std::string& what_b = "B");
 
 }  // namespace vdg::morph

@@ -29,31 +29,18 @@
 
 namespace vdg::render {
 
-struct FrameOptions {
-  int width = 512, height = 512;           // main view in pixels, each in [1, kMaxImageSize]
-  int samples = 8;                         // MSAA
+// The canvas and style shared with SceneFrameOptions are in FrameSettings (renderer.h): width and
+// height (the main view, each in [1, kMaxImageSize]), samples, background, shading, strokes,
+// materials (the observer panel never uses them), base_only and gpu_blend (for an animated model
+// or a plain mesh the renderer throws vdg::Error: the GPU blend takes static view-dependent models).
+struct FrameOptions : FrameSettings {
   bool observer = false;                   // add the observer panel (doubles the width)
   bool sphere = false;                     // add the viewing-sphere inset (bottom-right of the main view)
   double sharpness = 0.0;                  // alpha of section 3.2.2; <= 0: the model's own
   Rgb color{1.0f, 1.0f, 1.0f};             // Cbase of faces without a material (white, as in the paper)
   Rgb observer_color{0.55f, 0.68f, 1.0f};  // Cbase in the observer panel (bluish, Figure 6),
                                            // lit with the warm light at a quarter (k2 * 0.25)
-  Rgb background{0.97f, 0.97f, 0.95f};     // light, as in the paper's figures
-  ShadingParams shading;
-  bool flat = false;              // per-face shading (hard-edged models such as the building)
-  float silhouette_width = 0.0f;  // stroke width in pixels; 0: max(3, height / 100)
-  bool borders = true;            // ink the true open borders (holes) of the surface
-  float crease_angle_deg = 0.0f;  // ink edges sharper than this (degrees, half the stroke width); <= 0: none
-  // The base mesh's materials and textures (per-material Cbase, hue rule per material and per
-  // texel); false: `color` everywhere. The observer panel never uses them.
-  bool materials = true;
-  // Draw the base model only (no key deformations, every view weighs the base fully): the
-  // paper's comparison of a conventional model with the view-dependent one (Figures 11 and 12).
-  bool base_only = false;
-  // Blend on the GPU (Renderer::addBlendModel, OpenGL 4.3): the same picture within rounding;
-  // the renderer throws vdg::Error for an animated model or a plain mesh (the GPU blend takes
-  // static view-dependent models) and on an OpenGL older than 4.3.
-  bool gpu_blend = false;
+  bool flat = false;                       // per-face shading (hard-edged models such as the building)
   // The observer panel's camera; default: 35 degrees to the right of and 25 above the model's
   // front (+Z), at the distance that fits the sphere about the model's centre holding the base and
   // every key (extentRadius(); a plain mesh: its bounding box's sphere).

@@ -109,6 +109,27 @@ struct View {
   double z_near = 0.1, z_far = 100.0;
 };
 
+// What the frame renderers (ModelRenderer, SceneRenderer) take alike: the canvas and the style
+// of the whole frame. FrameOptions and SceneFrameOptions add their own fields to it.
+struct FrameSettings : RendererSettings {
+  Rgb background{0.97f, 0.97f, 0.95f};  // light, as in the paper's figures
+  ShadingParams shading;
+  float silhouette_width = 0.0f;  // stroke width in pixels; 0: max(3, height / 100)
+  bool borders = true;            // ink the true open borders (holes) of the surfaces
+  float crease_angle_deg = 0.0f;  // ink edges sharper than this (degrees, half the stroke width); <= 0: none
+  // The objects' materials and textures (per-material Cbase, hue rule per material and per
+  // texel); false: the frame's base colour everywhere.
+  bool materials = true;
+  // Draw view-dependent models as their base (no key deformations, every view weighs the base
+  // fully): the paper's comparison of a conventional model with the view-dependent one (Figures
+  // 11 and 12), and a baseline for benchmarks.
+  bool base_only = false;
+  // Blend static view-dependent models on the GPU (Renderer::addBlendModel, OpenGL 4.3): the same
+  // picture within rounding; a renderer throws vdg::Error "OpenGL: the GPU blend ... needs OpenGL
+  // 4.3 ..." on an older driver (see each renderer for what stays on the CPU).
+  bool gpu_blend = false;
+};
+
 struct MeshStyle {
   Rgb color{1.0f, 1.0f, 1.0f};  // Cbase of faces without a material (of every face when !materials)
   ShadingParams shading;

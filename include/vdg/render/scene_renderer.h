@@ -27,29 +27,20 @@
 
 namespace vdg::render {
 
-struct SceneFrameOptions {
-  int width = 640, height = 360;  // pixels, each in [1, kMaxImageSize]
-  int samples = 8;                // MSAA
-  Rgb background{0.97f, 0.97f, 0.95f};
-  ShadingParams shading;
-  float silhouette_width = 0.0f;  // pixels; 0: max(3, height / 100)
-  bool borders = true;            // ink true open borders
-  float crease_angle_deg = 0.0f;  // ink creases sharper than this; <= 0: none
-  bool materials = true;          // the objects' materials and textures
-  // Draw every view-dependent object as its base (no key deformations): the same scene without
-  // view dependence, for comparisons (Figures 11 and 12) and for benchmarks.
-  bool base_only = false;
-  // Blend the static view-dependent models on the GPU (Renderer::addBlendModel and
-  // drawBlendInstances; OpenGL 4.3): every visible instance of one model is blended, shaded and
-  // inked in one call per frame, after the objects drawn on the CPU. Animated models and plain
-  // meshes stay on the CPU path. The picture equals the CPU path's within rounding wherever objects
-  // do not overlap. Where they do, the GPU path shades every instance of a model before it inks
-  // them, so a nearer instance's outline is never covered by a farther one drawn after it; on the
-  // CPU path each object is shaded and inked in turn, and a farther object drawn later covers the
-  // outer half of a nearer one's silhouette stroke. The
-  // constructor throws vdg::Error "OpenGL: the GPU blend ... needs OpenGL 4.3 ..." on an older
-  // driver.
-  bool gpu_blend = false;
+// The canvas and style shared with FrameOptions are in FrameSettings (renderer.h); a scene's
+// canvas is 640 x 360 unless set. With gpu_blend, every visible instance of one static
+// view-dependent model is blended, shaded and inked in one call per frame (drawBlendInstances),
+// after the objects drawn on the CPU; animated models and plain meshes stay on the CPU path. The
+// picture equals the CPU path's within rounding wherever objects do not overlap. Where they do,
+// the GPU path shades every instance of a model before it inks them, so a nearer instance's
+// outline is never covered by a farther one drawn after it; on the CPU path each object is shaded
+// and inked in turn, and a farther object drawn later covers the outer half of a nearer one's
+// silhouette stroke.
+struct SceneFrameOptions : FrameSettings {
+  SceneFrameOptions() {
+    width = 640;
+    height = 360;
+  }
   // The frames a scene without a camera is framed over (see above).
   double frame_first = 0.0, frame_last = 0.0;
 };
