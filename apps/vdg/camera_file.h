@@ -19,39 +19,54 @@
 
 namespace vdg::cli {
 
-// The frames asked for with --camera FILE [--count N] [--frames A-B], after the usage rules shared by
-// render and bake: --camera replaces the orbit (its options and --count do not mix with the
-// other's). `orbit_options_given` names the orbit options given on the command line. Throws
-// UsageError (exit status 2).
-inline FrameRange cameraFrameRange(const OrbitOptions& orbit, const std::string& camera_file, bool camera_given,
-                                   int count, bool count_given, const std::vector<std::string>& orbit_options_given) {
-  if (camera_given && camera_file.empty()) throw UsageError("--camera: expected a file name, got ''");
-  if (!camera_file.empty() && !orbit_options_given.empty())
-    throw UsageError("--camera and " + orbit_options_given.front() +
-                     " exclude each other (the camera file sets the camera)");
-  if (camera_file.empty() && count_given)
-    throw UsageError("--count: needs --camera FILE (an orbit's frames are --orbit N)");
-  if (camera_file.empty()) return orbit.range();
-  FrameRange range{0, count - 1};
-  if (!orbit.frames.empty()) {
-    range = parseFrameRange(orbit.frames, "--frames");
-    if (range.last >= count)
-      throw UsageError("--frames: expected frames within 0-" + std::to_string(count - 1) + " (--count " +
-                       std::to_string(count) + "), got " + quotedText(orbit.frames));
-  }
-  return range;
-}
+// The camera options that vdg render and vdg bake share: the orbit (OrbitOptions), or --camera FILE
+// with --count N frames along it. Each command's options derive from it.
+struct CameraOptions {
+  OrbitOptions camera;                           // --orbit, --azimuth, --elevation, --distance, --fov, --frames
+  std::string camera_file;                       // --camera: a camera file or a camera path
+  int count = 1;                                 // --count: frames along --camera
+  std::vector<std::string> orbit_options_given;  // orbit options given with --camera (bad usage)
+  bool count_given = false, camera_given = false;
 
-// After parsing, which of the orbit options, --count and --camera the command line gave (what
-// cameraFrameRange checks); `opt` is render's or bake's options.
-template <class Options>
-void noteCameraOptionsGiven(const CLI::App& sub, Options& opt) {
-  opt.orbit_options_given.clear();
-  for (const char* name : {"--orbit", "--azimuth", "--elevation", "--distance", "--fov"})
-    if (sub.count(name) > 0) opt.orbit_options_given.push_back(name);
-  opt.count_given = sub.count("--count") > 0;
-  opt.camera_given = sub.count("--camera") > 0;
-}
+  // The orbit's options, --camera and --count on `sub`; `camera_help` describes --camera.
+  void add(CLI::App& sub, const std::string& camera_help) {
+    camera.add(sub);
+    sub.add_option("--camera", camera_file, camera_help);
+    sub.add_option("--count", count,
+                   "Frames along --camera: a camera path sampled evenly from its start to its end time, or a fixed "
+                   "camera repeated (default 1)")
+        ->check(wholeNumber(1, OrbitOptions::kMaxOrbitFrames));
+  }
+
+  // After parsing: which of the orbit options, --count and --camera the command line gave.
+  void noteGiven(const CLI::App& sub) {
+    orbit_options_given.clear();
+    for (const char* name : {"--orbit", "--azimuth", "--elevation", "--distance", "--fov"})
+      if (sub.count(name) > 0) orbit_options_given.push_back(name);
+    count_given = sub.count("--count") > 0;
+    camera_given = sub.count("--camera") > 0;
+  }
+
+  // The frames asked for, after the usage rules: --camera replaces the orbit (its options and
+  // --count do not mix with the other's). Throws UsageError (exit status 2).
+  FrameRange range() const {
+    if (camera_given && camera_file.empty()) throw UsageError("--camera: expected a file name, got ''");
+    if (!camera_file.empty() && !orbit_options_given.empty())
+      throw UsageError("--camera and " + orbit_options_given.front() +
+                       " exclude each other (the camera file sets the camera)");
+    if (camera_file.empty() && count_given)
+      throw UsageError("--count: needs --camera FILE (an orbit's frames are --orbit N)");
+    if (camera_file.empty()) return camera.range();
+    FrameRange r{0, count - 1};
+    if (!camera.frames.empty()) {
+      r = parseFrameRange(camera.frames, "--frames");
+      if (r.last >= count)
+        throw UsageError("--frames: expected frames within 0-" + std::to_string(count - 1) + " (--count " +
+                         std::to_string(count) + "), got " + quotedText(camera.frames));
+    }
+    return r;
+  }
+};
 
 // The camera of every output frame given by --camera FILE (the orbit is OrbitOptions).
 class FrameCameras {

@@ -30,13 +30,8 @@ namespace {
 
 constexpr double kMaxFps = 1000.0;
 
-struct BakeOptions {
+struct BakeOptions : CameraOptions {
   std::string model, output, size = "512x512";
-  OrbitOptions camera;
-  std::string camera_file;                       // --camera: a camera file or a camera path, as vdg render's
-  int count = 1;                                 // --count: frames along --camera
-  std::vector<std::string> orbit_options_given;  // orbit options given with --camera (bad usage)
-  bool count_given = false, camera_given = false;
   double fps = 24.0, sharpness = 0.0;
   bool step = false, quiet = false;
 };
@@ -44,8 +39,7 @@ struct BakeOptions {
 void run(const BakeOptions& opt) {
   checkGltfOutput(opt.output);
   const ImageSize size = parseImageSize(opt.size, 'x', render::kMaxImageSize, "--size");
-  const FrameRange range = cameraFrameRange(opt.camera, opt.camera_file, opt.camera_given, opt.count, opt.count_given,
-                                            opt.orbit_options_given);
+  const FrameRange range = opt.range();
   FrameCameras file_cameras;
   if (!opt.camera_file.empty()) {
     checkInputFile(opt.camera_file, "camera");
@@ -98,15 +92,11 @@ void addBakeCommand(CLI::App& app) {
   sub->add_option("MODEL", opt->model, "Model manifest (*.vdg.json), or a glTF model vdg exported")->required();
   sub->add_option("-o,--output", opt->output, "Output OUT.glb, or OUT.gltf with its buffer in OUT.bin beside it")
       ->required();
-  opt->camera.add(*sub);
+  opt->add(*sub,
+           "Camera file (one fixed camera) or camera path ({\"camera_path\": ...}, docs/anim.md) "
+           "instead of the orbit, as vdg render --camera");
   sub->add_option("--size", opt->size, "Image size WxH whose aspect ratio the camera gets (default 512x512)")
       ->check(imageSize('x', render::kMaxImageSize));
-  sub->add_option("--camera", opt->camera_file,
-                  "Camera file (one fixed camera) or camera path ({\"camera_path\": ...}, docs/anim.md) instead of "
-                  "the orbit, as vdg render --camera");
-  sub->add_option("--count", opt->count,
-                  "Frames along --camera: a camera path sampled evenly from its start to its end time (default 1)")
-      ->check(wholeNumber(1, OrbitOptions::kMaxOrbitFrames));
   sub->add_option("--frames", opt->camera.frames,
                   "Bake only frames A-B (or N) of the orbit (or of --count), 0 <= A <= B < --orbit");
   sub->add_option("--fps", opt->fps, "Frames per second of the animation (default 24)")->check(positiveNumber(kMaxFps));
@@ -116,7 +106,7 @@ void addBakeCommand(CLI::App& app) {
                 "STEP interpolation: hold each frame's weights and camera (default LINEAR: blend between frames)");
   sub->add_flag("-q,--quiet", opt->quiet, "Print nothing on success");
   sub->callback([opt, sub] {
-    noteCameraOptionsGiven(*sub, *opt);
+    opt->noteGiven(*sub);
     run(*opt);
   });
 }

@@ -59,13 +59,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct RenderOptions {
+struct RenderOptions : CameraOptions {
   std::string model, output, size = "512x512", color, background;
-  OrbitOptions camera;                           // --orbit, --azimuth, --elevation, --distance, --fov, --frames
-  std::string camera_file;                       // --camera: a camera file or a camera path
-  int count = 1;                                 // --count: frames along --camera
-  std::vector<std::string> orbit_options_given;  // orbit options given with --camera (bad usage)
-  bool count_given = false, camera_given = false;
   int samples = 8;
   double sharpness = 0.0, line_width = 0.0, creases = 0.0;
   bool observer = false, sphere = false, flat = false, quiet = false, base_only = false;
@@ -170,8 +165,7 @@ Framing framing(const OpenedInput& input) {
 
 void run(const RenderOptions& opt) {
   render::FrameOptions fo = frameOptions(opt);
-  const FrameRange range = cameraFrameRange(opt.camera, opt.camera_file, opt.camera_given, opt.count, opt.count_given,
-                                            opt.orbit_options_given);
+  const FrameRange range = opt.range();
   checkCanvas(opt.size, fo);
 
   const bool video = isVideoPath(opt.output);
@@ -238,14 +232,9 @@ void addRenderCommand(CLI::App& app) {
       ->required();
   sub->add_option("-o,--output", opt->output, "Output folder for frame_NNNN.png, or OUT.mp4 / OUT.gif (needs ffmpeg)")
       ->required();
-  opt->camera.add(*sub);
-  sub->add_option("--camera", opt->camera_file,
-                  "Camera file (one fixed camera; vdg align writes them) or camera path ({\"camera_path\": ...}, "
-                  "docs/anim.md) instead of the orbit");
-  sub->add_option("--count", opt->count,
-                  "Frames along --camera: a camera path sampled evenly from its start to its end time, or a fixed "
-                  "camera repeated (default 1)")
-      ->check(wholeNumber(1, OrbitOptions::kMaxOrbitFrames));
+  opt->add(*sub,
+           "Camera file (one fixed camera; vdg align writes them) or camera path "
+           "({\"camera_path\": ...}, docs/anim.md) instead of the orbit");
   sub->add_option("--size", opt->size,
                   "Image size WxH of the main view, each side in [1, " + std::to_string(render::kMaxImageSize) +
                       "] and within the OpenGL driver's limits (default 512x512)")
@@ -286,7 +275,7 @@ void addRenderCommand(CLI::App& app) {
       ->check(wholeNumber(1, kMaxSamples));
   sub->add_flag("-q,--quiet", opt->quiet, "No progress bar and no summary line");
   sub->callback([opt, sub] {
-    noteCameraOptionsGiven(*sub, *opt);
+    opt->noteGiven(*sub);
     run(*opt);
   });
 }

@@ -17,6 +17,7 @@
 #include "vdg/deform/pick.h"
 #include "vdg/geom/error.h"
 #include "vdg/geom/normalize.h"
+#include "vdg/geom/text.h"
 #include "vdg/io/atomic_file.h"
 #include "vdg/io/edit_script.h"
 #include "vdg/io/file_transaction.h"
@@ -39,11 +40,7 @@ constexpr const char* kRecoveryFolder = ".vdg-studio";
 // Default selection radius as a share of the base's bounding-box diagonal.
 constexpr double kDefaultRadiusShare = 0.15;
 
-bool isManifestPath(const std::string& path) {
-  std::string ext = fs::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char ch) { return std::tolower(ch); });
-  return ext == ".json";
-}
+bool isManifestPath(const std::string& path) { return hasExtension(path, ".json"); }
 
 fs::path meshFile(const fs::path& folder, const std::string& mesh_path) {
   return fs::path(mesh_path).is_absolute() ? fs::path(mesh_path) : folder / mesh_path;
