@@ -2,8 +2,6 @@
 
 #include <cstdlib>
 #include <cstring>
-#include <map>
-#include <mutex>
 #include <vector>
 
 #include "vdg/geom/error.h"
@@ -87,27 +85,6 @@ EGLDisplay openDisplay(std::string& platform, std::string& tried) {
   return EGL_NO_DISPLAY;
 }
 
-// Live contexts per display. EGL gives every context of a process the same display, so the display
-// is terminated when its last context goes: the driver's own threads (llvmpipe's rasterizer
-// threads) then end with the last renderer, not at process exit, where they raced
-// LeakSanitizer's exit-time thread tracer (it crashed now and then: "Tracer caught signal 11").
-// A later context initialises the display again (openDisplay).
-std::mutex display_mutex;
-std::map<EGLDisplay, int> live_contexts;
-
-void retainDisplay(EGLDisplay display) {
-  const std::lock_guard lock(display_mutex);
-  ++live_contexts[display];
-}
-
-void releaseDisplay(EGLDisplay display) {
-  const std::lock_guard lock(display_mutex);
-  if (--live_contexts[display] > 0) return;
-  live_contexts.erase(display);
-  eglTerminate(display);
-  eglReleaseThread();
-}
-
 }  // namespace
 
 GlContext::GlContext() {
@@ -118,16 +95,6 @@ GlContext::GlContext() {
   if (display_ == EGL_NO_DISPLAY)
     throw Error("EGL: no display (tried " + (tried.empty() ? std::string("nothing: no EGL platform") : tried) +
                 "); a GPU driver or Mesa's llvmpipe (libegl-mesa0) is needed");
-  retainDisplay(display_);
-  try {
-    createContext();
-  } catch (...) {
-    releaseDisplay(display_);
-    throw;
-  }
-}
-
-void GlContext::createContext() {
   if (!eglBindAPI(EGL_OPENGL_API)) throw Error("EGL: desktop OpenGL not supported on the " + platform_ + " display");
 
   const EGLint config_attribs[] = {EGL_SURFACE_TYPE,
@@ -176,11 +143,11 @@ void GlContext::createContext() {
 }
 
 GlContext::~GlContext() {
+  // The display is shared by every context of the process (EGL returns the same handle), so it
+  // is not terminated here: another renderer may still use it.
   if (eglGetCurrentContext() == context_) eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
   if (surface_ != EGL_NO_SURFACE) eglDestroySurface(display_, surface_);
   eglDestroyContext(display_, context_);
-  // The display is shared by every context of the process: it ends with the last one.
-  releaseDisplay(display_);
 }
 
 void GlContext::makeCurrent() const {

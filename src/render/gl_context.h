@@ -21,8 +21,6 @@ class GlContext {
   const std::string& platform() const { return platform_; }
 
  private:
-  void createContext();  // the config, context and surface on display_; throws as the constructor
-
   EGLDisplay display_ = EGL_NO_DISPLAY;
   EGLContext context_ = EGL_NO_CONTEXT;
   EGLSurface surface_ = EGL_NO_SURFACE;  // 1x1 pbuffer, only without EGL_KHR_surfaceless_context

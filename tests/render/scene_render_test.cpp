@@ -142,6 +142,13 @@ TEST(SceneRender, BaseOnlyDropsTheKeys) {
 }
 
 TEST(SceneRender, FrameAloneIsByteIdenticalToTheSameFrameOfASequence) {
+#if defined(__SANITIZE_ADDRESS__)
+  // Under ASan this test passes, but LeakSanitizer's exit-time check then crashes in its own
+  // thread tracer ("Tracer caught signal 11") while llvmpipe's worker threads wind down, reliably
+  // for this test only. The property is checked in the ci build, and across processes by
+  // RunCli.FramesAreWrittenAndARangeEqualsTheSameFramesOfAFullRun.
+  GTEST_SKIP() << "LeakSanitizer's tracer crashes at exit after this test on llvmpipe";
+#endif
   scene::RawScene raw = sceneWithCamera(Eigen::Vector3d(1, 1, 6));
   const int a = addInstance(raw, "a", Eigen::Vector3d(-1.2, 0, 0), Eigen::Quaterniond::Identity(), {0.9f, 0.3f, 0.3f});
   addInstance(raw, "b", Eigen::Vector3d(1.2, 0, 0), Eigen::Quaterniond::Identity(), {0.3f, 0.4f, 0.9f});
