@@ -321,12 +321,7 @@ bool Renderer::drawBlendInstances(int handle, std::span<const InstanceBlend> ins
                     GL_COMMAND_BARRIER_BIT);
 
     // Shaded front faces of every instance of the batch, one instanced draw per material range.
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glDepthMask(GL_TRUE);
-    glEnable(GL_CULL_FACE);
-    glCullFace(GL_BACK);
-    glFrontFace(GL_CCW);
+    frontFacesState();
     const MeshProgram& p = *m.blend_program;
     glUseProgram(p.program.get());
     m.setMatrices(p.view, p.proj, view);

@@ -83,6 +83,15 @@ GlProgram linkCompute(const char* what, const char* source) {
   return program;
 }
 
+void frontFacesState() {
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDepthMask(GL_TRUE);
+  glEnable(GL_CULL_FACE);
+  glCullFace(GL_BACK);
+  glFrontFace(GL_CCW);
+}
+
 void bufferData(const GlBuffer& buffer, std::size_t bytes, const void* data, GLenum usage) {
   glBindBuffer(GL_COPY_WRITE_BUFFER, buffer.get());
   glBufferData(GL_COPY_WRITE_BUFFER, static_cast<GLsizeiptr>(std::max<std::size_t>(bytes, 16)), data, usage);
@@ -448,12 +457,7 @@ bool Renderer::drawMesh(int mesh_id, const View& view, const MeshStyle& style) {
   m.setView(view);
 
   // Pass 1: shaded front faces (back faces culled), one draw per material range.
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LESS);
-  glDepthMask(GL_TRUE);
-  glEnable(GL_CULL_FACE);
-  glCullFace(GL_BACK);
-  glFrontFace(GL_CCW);
+  frontFacesState();
   glUseProgram(m.mesh_program->program.get());
   m.setMatrices(m.mesh_program->view, m.mesh_program->proj, view);
   MeshStyle shaded = style;

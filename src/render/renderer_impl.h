@@ -160,6 +160,10 @@ struct GpuInstance {
 };
 static_assert(sizeof(GpuInstance) == 112);
 
+// The depth and culling state of the shaded pass: depth test and write, back faces culled, counter-
+// clockwise triangles in front.
+void frontFacesState();
+
 // glBufferData through the copy-write target, which no vertex array records.
 void bufferData(const GlBuffer& buffer, std::size_t bytes, const void* data, GLenum usage);
 

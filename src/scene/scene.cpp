@@ -422,19 +422,24 @@ void linkCameras(const RawScene& raw, const std::string& where, const NodeNames&
   }
 }
 
+// The node that a track or an action (`what`: "track 3", "action 0") names, after checking that the
+// node exists and the field is one vdg knows.
+const RawNode& namedNode(const RawScene& raw, int node, Field field, const std::string& what,
+                         const std::string& where) {
+  const std::size_t n = raw.nodes.size();
+  if (node < 0 || static_cast<std::size_t>(node) >= n) {
+    throw Error(where + ": " + what + ": node " + std::to_string(node) + " out of range (the scene has " +
+                std::to_string(n) + " nodes)");
+  }
+  if (!validField(field))
+    throw Error(where + ": " + what + ": unknown field " + std::to_string(static_cast<int>(field)));
+  return raw.nodes[static_cast<std::size_t>(node)];
+}
+
 // Track `t`: its node, field and type; marks the field's slot (a field has one track at most).
 anim::Track checkTrack(const RawScene& raw, std::size_t t, const std::string& where, TrackSlots& track_of) {
-  const std::size_t n = raw.nodes.size();
   const RawFieldTrack& ft = raw.tracks[t];
-  if (ft.node < 0 || static_cast<std::size_t>(ft.node) >= n) {
-    throw Error(where + ": track " + std::to_string(t) + ": node " + std::to_string(ft.node) +
-                " out of range (the scene has " + std::to_string(n) + " nodes)");
-  }
-  if (!validField(ft.field)) {
-    throw Error(where + ": track " + std::to_string(t) + ": unknown field " +
-                std::to_string(static_cast<int>(ft.field)));
-  }
-  const RawNode& node = raw.nodes[static_cast<std::size_t>(ft.node)];
+  const RawNode& node = namedNode(raw, ft.node, ft.field, "track " + std::to_string(t), where);
   const std::string name = node.name + "." + fieldName(ft.field);
   auto fail = [&](const std::string& what) { throw Error(where + ": track '" + name + "': " + what); };
   if (!hasField(node.kind, ft.field)) {
@@ -464,17 +469,8 @@ anim::Track checkTrack(const RawScene& raw, std::size_t t, const std::string& wh
 
 // Action `a`: its node, field, kind and value; a field with a track takes no action.
 void checkAction(const RawScene& raw, std::size_t a, const std::string& where, const TrackSlots& track_of) {
-  const std::size_t n = raw.nodes.size();
   const RawAction& act = raw.actions[a];
-  if (act.node < 0 || static_cast<std::size_t>(act.node) >= n) {
-    throw Error(where + ": action " + std::to_string(a) + ": node " + std::to_string(act.node) +
-                " out of range (the scene has " + std::to_string(n) + " nodes)");
-  }
-  if (!validField(act.field)) {
-    throw Error(where + ": action " + std::to_string(a) + ": unknown field " +
-                std::to_string(static_cast<int>(act.field)));
-  }
-  const RawNode& node = raw.nodes[static_cast<std::size_t>(act.node)];
+  const RawNode& node = namedNode(raw, act.node, act.field, "action " + std::to_string(a), where);
   const std::string label =
       where + ": action " + std::to_string(a) + " (" + node.name + "." + fieldName(act.field) + ")";
   auto fail = [&](const std::string& what) { throw Error(label + ": " + what); };
