@@ -633,9 +633,13 @@ void checkMesh(const JsonRules& r, const Json& mesh, const std::string& e) {
     for (const auto& [name, a] : prim["attributes"].items()) inRange(a, ep + ": " + shownText(name));
     if (prim.contains("indices")) {
       inRange(prim["indices"], ep + ": indices");
-      if (!r.doc()["accessors"][prim["indices"].get<std::size_t>()].contains("bufferView"))
-        r.fail(ep + ": indices", idx("accessors", prim["indices"].get<std::size_t>()) +
-                                     " has no bufferView (indices cannot be sparse values alone)");
+      const std::size_t k = prim["indices"].get<std::size_t>();
+      const Json& a = r.doc()["accessors"][k];
+      if (!a.contains("bufferView"))
+        r.fail(ep + ": indices", idx("accessors", k) + " has no bufferView (indices cannot be sparse values alone)");
+      if (a["bufferView"].get<std::size_t>() >= r.size("bufferViews"))
+        r.fail(idx("accessors", k), "bufferView " + std::to_string(a["bufferView"].get<std::size_t>()) +
+                                        " out of range (the file has " + std::to_string(r.size("bufferViews")) + ")");
     }
     if (!prim.contains("targets")) continue;
     for (std::size_t t = 0; t < prim["targets"].size(); ++t) {
@@ -677,11 +681,16 @@ void checkAnimation(const JsonRules& r, const Json& anim, const std::string& e) 
 }
 
 void checkMaterial(const JsonRules& r, const Json& m, const std::string& e) {
-  r.fields(m, e, {{"pbrMetallicRoughness", Kind::kObject}});
+  r.fields(m, e, {{"pbrMetallicRoughness", Kind::kObject}, {"emissiveFactor", Kind::kNumbers}});
+  if (m.contains("emissiveFactor") && m["emissiveFactor"].size() != 3)
+    r.fail(e, "emissiveFactor has " + std::to_string(m["emissiveFactor"].size()) + " numbers, expected 3");
   if (!m.contains("pbrMetallicRoughness")) return;
   const Json& pbr = m["pbrMetallicRoughness"];
   r.fields(pbr, e + ": pbrMetallicRoughness",
            {{"baseColorFactor", Kind::kNumbers}, {"baseColorTexture", Kind::kObject}});
+  if (pbr.contains("baseColorFactor") && pbr["baseColorFactor"].size() != 4)
+    r.fail(e, "pbrMetallicRoughness.baseColorFactor has " + std::to_string(pbr["baseColorFactor"].size()) +
+                  " numbers, expected 4");
   if (pbr.contains("baseColorTexture"))
     r.fields(pbr["baseColorTexture"], e + ": pbrMetallicRoughness.baseColorTexture",
              {{"index", Kind::kIndex, true}, {"texCoord", Kind::kUint}});

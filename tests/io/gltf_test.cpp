@@ -678,6 +678,10 @@ TEST(GltfStrict, TinygltfTextNeverLeaks) {
        "t.gltf: buffers: '/" + std::string(59, 'b') +
            "...' is an absolute path (external files must lie in the glTF "
            "file's folder)");
+  with([](Json& j) { j["accessors"][1]["bufferView"] = 6; },
+       "t.gltf: accessors[1]: bufferView 6 out of range (the file has 2)");
+  with([](Json& j) { j["materials"] = Json::parse(R"([{"pbrMetallicRoughness": {"baseColorFactor": [1, 0, 0]}}])"); },
+       "t.gltf: materials[0]: pbrMetallicRoughness.baseColorFactor has 3 numbers, expected 4");
   for (const auto& [j, expected] : cases) EXPECT_EQ(errorFor(j), expected);
 
   // An external buffer shorter than its byteLength: tinygltf said "File size mismatch :
