@@ -601,9 +601,13 @@ void checkAccessor(const JsonRules& r, const Json& a, const std::string& e) {
   const Json& s = a["sparse"];
   const std::string es = e + ": sparse";
   r.fields(s, es, {{"count", Kind::kCount, true}, {"indices", Kind::kObject, true}, {"values", Kind::kObject, true}});
+  if (s["count"].get<std::uint64_t>() > a["count"].get<std::uint64_t>())  // tinygltf reads it as an int
+    r.fail(es, "count " + std::to_string(s["count"].get<std::uint64_t>()) + " is not in [1, " +
+                   std::to_string(a["count"].get<std::uint64_t>()) + "]");
+  // tinygltf reads these as int (a larger byteOffset would be skipped, read as 0): index-sized.
   r.fields(s["indices"], es + ".indices",
-           {{"bufferView", Kind::kIndex, true}, {"byteOffset", Kind::kUint}, {"componentType", Kind::kUint, true}});
-  r.fields(s["values"], es + ".values", {{"bufferView", Kind::kIndex, true}, {"byteOffset", Kind::kUint}});
+           {{"bufferView", Kind::kIndex, true}, {"byteOffset", Kind::kIndex}, {"componentType", Kind::kIndex, true}});
+  r.fields(s["values"], es + ".values", {{"bufferView", Kind::kIndex, true}, {"byteOffset", Kind::kIndex}});
 }
 
 void checkMesh(const JsonRules& r, const Json& mesh, const std::string& e) {
@@ -920,7 +924,9 @@ class Gltf {
         fail(idx("buffers", i), quotedText(uri) + " holds " + std::to_string(read->second) +
                                     " bytes, byteLength says " + std::to_string(length));
     }
-    throw Error(source_ + ": not a glTF file vdg can read (tinygltf refused it; scripts/validate-gltf names the rule)");
+    throw Error(source_ +
+                ": not a glTF file vdg can read (it breaks a rule of the glTF 2.0 specification that the Khronos glTF "
+                "validator names)");
   }
 
   // A bufferView checked by checkStructure().
@@ -1203,9 +1209,9 @@ class MaterialReader {
       const std::string uri = out.texture_path;
       const std::string problem = uriProblem(uri);
       if (!problem.empty())
-        why = "'" + uri + "' " + problem + " (images must lie in the glTF file's folder or below)";
+        why = quotedText(uri) + " " + problem + " (images must lie in the glTF file's folder or below)";
       else if (g_.folder().empty())
-        why = "'" + uri + "' is an external file, and these bytes come without a folder";
+        why = quotedText(uri) + " is an external file, and these bytes come without a folder";
       else
         out.texture = cache_.file(io::inFolder(g_.folder(), uri), &why);
     } else if (!image.image.empty()) {

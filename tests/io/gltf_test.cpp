@@ -684,6 +684,23 @@ TEST(GltfStrict, TinygltfTextNeverLeaks) {
        "t.gltf: materials[0]: pbrMetallicRoughness.baseColorFactor has 3 numbers, expected 4");
   for (const auto& [j, expected] : cases) EXPECT_EQ(errorFor(j), expected);
 
+  // A texture's refused URI is a warning, cut short too (a data: URI of a type tinygltf does not
+  // decode reaches vdg as a URI).
+  Json t = triangle();
+  t["materials"] = Json::parse(R"([{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}])");
+  t["textures"] = Json::parse(R"([{"source": 0}])");
+  t["images"] = {{{"uri", "data:image/webp;base64," + std::string(300, 'Q')}}};
+  t["meshes"][0]["primitives"][0]["material"] = 0;
+  t["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] = 0;
+  t["accessors"].push_back({{"bufferView", 0}, {"componentType", 5126}, {"count", 3}, {"type", "VEC2"}});
+  t["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] = 2;
+  std::vector<std::string> warnings;
+  (void)parseGltfRig(t.dump(), "t.gltf", {}, {}, MeshReadOptions{true, false, &warnings});
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_EQ(warnings[0].find(";base64," + std::string(60, 'Q')), std::string::npos) << warnings[0];
+  EXPECT_EQ(warnings[0].rfind("t.gltf: materials[0]: baseColorTexture: 'data:image/webp;base64,QQQ", 0), 0u)
+      << warnings[0];
+
   // An external buffer shorter than its byteLength: tinygltf said "File size mismatch :
   // <vdg-gltf-folder>/link.bin, requestedBytes 44, but got 40".
   vdg::testing::TempDir dir;
