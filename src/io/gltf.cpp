@@ -19,7 +19,6 @@
 // clang-format on
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -28,11 +27,11 @@
 #include <map>
 #include <optional>
 #include <set>
-#include <span>
 #include <sstream>
 
 #include "json_reader.h"
 #include "material_files.h"
+#include "mesh_extent.h"
 #include "vdg/geom/error.h"
 #include "vdg/geom/text.h"
 #include "vdg/io/read_file.h"
@@ -1569,40 +1568,14 @@ void readAnimations(const Gltf& g, int mesh_node, RawRig& raw) {
   }
 }
 
-std::string pointText(std::span<const float> p, std::size_t v) {
-  return "(" + numberText(p[3 * v]) + ", " + numberText(p[3 * v + 1]) + ", " + numberText(p[3 * v + 2]) + ")";
-}
-
 // The rest pose as every command sees it (morphed by the default weights, then skinned or placed
-// by the node transforms) must be finite, and its bounding box must fit a float: a node scale of
-// 1e38 or coordinates near the float limit would otherwise give infinite bounds, voxel sizes and
-// camera distances later, silently (an empty morph, a blank render). `where` names the mesh and
-// its node.
+// by the node transforms) must be finite and fit a float (mesh_extent.h): a node scale of 1e38 or
+// coordinates near the float limit would otherwise give infinite bounds, voxel sizes and camera
+// distances later, silently (an empty morph, a blank render). `where` names the mesh and its node.
 void checkRestPose(const Gltf& g, const Rig& rig, const std::string& where) {
   std::vector<float> p(3 * rig.vertexCount());
   if (!rig.evaluate(-1, 0.0, p)) g.fail(where, "the rest pose could not be evaluated (internal error)");
-  const std::size_t nv = rig.vertexCount();
-  std::array<std::size_t, 3> lo{}, hi{};
-  for (std::size_t v = 0; v < nv; ++v)
-    for (std::size_t c = 0; c < 3; ++c) {
-      if (!std::isfinite(p[3 * v + c]))
-        g.fail(where, "vertex " + std::to_string(v) + " lies at " + pointText(p, v) +
-                          " after the node transforms; positions must be finite");
-      if (p[3 * v + c] < p[3 * lo[c] + c]) lo[c] = v;
-      if (p[3 * v + c] > p[3 * hi[c] + c]) hi[c] = v;
-    }
-  double squared = 0.0, widest = -1.0;
-  std::size_t axis = 0;
-  for (std::size_t c = 0; c < 3; ++c) {
-    const double extent = double(p[3 * hi[c] + c]) - double(p[3 * lo[c] + c]);
-    squared += extent * extent;
-    if (extent > widest) widest = extent, axis = c;
-  }
-  if (std::sqrt(squared) > std::numeric_limits<float>::max())
-    g.fail(where, "vertices " + std::to_string(lo[axis]) + " at " + pointText(p, lo[axis]) + " and " +
-                      std::to_string(hi[axis]) + " at " + pointText(p, hi[axis]) +
-                      " lie too far apart after the node transforms: the mesh's extent (" +
-                      numberText(std::sqrt(squared)) + ") overflows a float");
+  io::checkMeshExtent(p, g.source() + ": " + where, " after the node transforms");
 }
 
 RawRig buildRig(const Gltf& g, const GltfSelect& want, const MeshReadOptions& options) {

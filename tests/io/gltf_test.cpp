@@ -559,6 +559,12 @@ TEST(GltfStrict, PositionsAreFiniteAndFitAFloatAfterTheNodeTransforms) {
   { std::ofstream(dir.file("h.gltf")) << j.dump(); }
   EXPECT_NE(errorOf([&] { (void)readMesh(dir.file("h.gltf")); }).find(dir.file("h.gltf") + ": meshes[0] (nodes[1])"),
             std::string::npos);
+  // The same rule for OBJ files read as meshes (readMesh): the coordinates parse, the extent does not fit.
+  { std::ofstream(dir.file("h.obj")) << "v 0 0 0\nv 3e38 0 0\nv 0 3e38 0\nf 1 2 3\n"; }
+  EXPECT_EQ(errorOf([&] { (void)readMesh(dir.file("h.obj")); }),
+            dir.file("h.obj") +
+                ": vertices 0 at (0, 0, 0) and 1 at (3e+38, 0, 0) lie too far apart: the mesh's extent (4.24264e+38) "
+                "overflows a float");
   // Large but fitting: accepted as it is.
   j = triangle();
   j["nodes"][0]["scale"] = {1e37, 1e37, 1.0};
