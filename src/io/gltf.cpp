@@ -25,12 +25,15 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 
 #include "json_reader.h"
 #include "material_files.h"
+#include "mesh_extent.h"
 #include "vdg/geom/error.h"
+#include "vdg/geom/text.h"
 #include "vdg/io/read_file.h"
 
 namespace vdg {
@@ -55,7 +58,8 @@ struct FileAccess {
   std::string source;
   std::string folder;  // empty: external files are refused
   std::size_t external_bytes = 0;
-  std::string error;  // why the last callback refused
+  std::string error;                         // why the last callback refused
+  std::map<std::string, std::size_t> sizes;  // bytes of each external file read, by URI
 };
 
 // The URI part of a path tinygltf built as kFolderToken + "/" + URI; false when it is not one.
@@ -75,11 +79,11 @@ bool fileExists(const std::string& path, void* user) {
   if (!uriOf(path, &uri)) return false;
   const std::string problem = uriProblem(uri);
   if (!problem.empty()) {
-    access->error = "'" + uri + "' " + problem + " (external files must lie in the glTF file's folder)";
+    access->error = quotedText(uri) + " " + problem + " (external files must lie in the glTF file's folder)";
     return false;
   }
   if (access->folder.empty()) {
-    access->error = "'" + uri + "' is an external file, and these bytes come without a folder";
+    access->error = quotedText(uri) + " is an external file, and these bytes come without a folder";
     return false;
   }
   return true;
@@ -96,6 +100,7 @@ bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std:
   try {
     const std::string bytes = readFileLimited(full, "glTF buffer", budget);
     access->external_bytes += bytes.size();
+    access->sizes[uri] = bytes.size();
     out->assign(bytes.begin(), bytes.end());
   } catch (const Error& e) {
     access->error = e.what();
@@ -126,8 +131,9 @@ std::uint32_t le32(std::string_view b, std::size_t at) {
          static_cast<std::uint32_t>(static_cast<unsigned char>(b[at + 3])) << 24;
 }
 
-// GLB (section 4.4): 12-byte header, a JSON chunk, an optional BIN chunk. Returns the JSON text.
-std::string_view checkGlb(std::string_view b, const std::string& source) {
+// GLB (section 4.4): 12-byte header, a JSON chunk, an optional BIN chunk. Returns the JSON text;
+// `bin` gets the BIN chunk's length when there is one.
+std::string_view checkGlb(std::string_view b, const std::string& source, std::optional<std::size_t>* bin) {
   auto fail = [&](const std::string& what) { throw Error(source + ": " + what); };
   if (b.size() < 20)
     fail("truncated GLB: " + std::to_string(b.size()) + " bytes, less than the 20 of a header and a chunk header");
@@ -152,6 +158,9 @@ std::string_view checkGlb(std::string_view b, const std::string& source) {
     if (bin_at + 8 + bin_length > length)
       fail("truncated GLB: the BIN chunk needs " + std::to_string(bin_length) + " bytes, " +
            std::to_string(length - bin_at - 8) + " remain");
+    if (bin_length < 4 || bin_length % 4 != 0)
+      fail("GLB: the BIN chunk's length " + std::to_string(bin_length) + " is not a multiple of 4 (at least 4)");
+    *bin = static_cast<std::size_t>(bin_length);
   }
   return b.substr(20, json_length);
 }
@@ -303,19 +312,485 @@ const std::vector<std::pair<int, bool>> kFloatOrNormalized{{TINYGLTF_COMPONENT_T
 const Want kRotation{{TINYGLTF_TYPE_VEC4}, kFloatOrNormalized, "VEC4 of FLOAT or normalized integers"};
 const Want kMorphWeights{{TINYGLTF_TYPE_SCALAR}, kFloatOrNormalized, "SCALAR of FLOAT or normalized integers"};
 
+// ---- the JSON, checked before tinygltf reads it ---------------------------------------------
+//
+// tinygltf skips a field of the wrong type (a negative "byteOffset" reads as 0, a "nodes" that is
+// not an array as no nodes), fails with its own text on others, and does not look at the asset's
+// version, the required extensions or the scene indices. These checks come first, so that every
+// refusal is vdg's one line and tinygltf only ever reads a file of the right shape (glTF 2.0
+// specification, section 5: the JSON schema of each object).
+
+using io::Json;
+
+// What one field of a glTF object must be.
+enum class Kind {
+  kIndex,  // an integer >= 0 (an index into another array)
+  kCount,  // an integer >= 1
+  kUint,   // an integer >= 0
+  kString,
+  kBool,
+  kNumbers,    // an array of numbers
+  kIndexList,  // an array of indices
+  kObject,
+  kObjects,   // an array of objects
+  kIndexMap,  // an object whose values are integers >= 0 (a primitive's attributes)
+  kNumber,
+};
+
+struct Field {
+  const char* key;
+  Kind kind;
+  bool required = false;
+};
+
+const char* kindText(Kind kind) {
+  switch (kind) {
+    case Kind::kIndex:
+      return "an index (an integer in [0, 2147483647])";
+    case Kind::kUint:
+      return "an integer >= 0";
+    case Kind::kCount:
+      return "an integer >= 1";
+    case Kind::kString:
+      return "a string";
+    case Kind::kBool:
+      return "true or false";
+    case Kind::kNumbers:
+      return "an array of numbers";
+    case Kind::kIndexList:
+      return "an array of indices";
+    case Kind::kObject:
+      return "an object";
+    case Kind::kObjects:
+      return "an array of objects";
+    case Kind::kIndexMap:
+      return "an object of indices";
+    case Kind::kNumber:
+      return "a number";
+  }
+  return "";
+}
+
+// A JSON integer (not 3.0: tinygltf skips those) in [lo, hi].
+bool isInteger(const Json& v, std::uint64_t lo, std::uint64_t hi) {
+  return v.is_number_unsigned() && v.get<std::uint64_t>() >= lo && v.get<std::uint64_t>() <= hi;
+}
+
+// An index: tinygltf reads indices as int, and skips one that does not fit.
+constexpr std::uint64_t kMaxIndex = 0x7fffffff;
+bool isIndex(const Json& v) { return isInteger(v, 0, kMaxIndex); }
+
+bool hasKind(const Json& v, Kind kind) {
+  auto all = [&](auto ok) { return std::all_of(v.begin(), v.end(), ok); };
+  switch (kind) {
+    case Kind::kIndex:
+      return isIndex(v);
+    case Kind::kUint:
+      return isInteger(v, 0, UINT64_MAX);
+    case Kind::kCount:
+      return isInteger(v, 1, UINT64_MAX);
+    case Kind::kNumber:
+      return v.is_number();
+    case Kind::kString:
+      return v.is_string();
+    case Kind::kBool:
+      return v.is_boolean();
+    case Kind::kNumbers:
+      return v.is_array() && all([](const Json& x) { return x.is_number(); });
+    case Kind::kIndexList:
+      return v.is_array() && all(isIndex);
+    case Kind::kObject:
+      return v.is_object();
+    case Kind::kObjects:
+      return v.is_array() && all([](const Json& x) { return x.is_object(); });
+    case Kind::kIndexMap:
+      return v.is_object() && all(isIndex);
+  }
+  return false;
+}
+
+// The first item of `v` (an array or object) that is not of `kind`'s item kind, for the message.
+std::string firstBadItem(const Json& v, Kind kind) {
+  std::size_t i = 0;
+  for (auto it = v.begin(); it != v.end(); ++it, ++i) {
+    const bool ok = kind == Kind::kNumbers ? it->is_number() : kind == Kind::kObjects ? it->is_object() : isIndex(*it);
+    if (!ok) return (v.is_object() ? quotedText(it.key()) : "[" + std::to_string(i) + "]") + " is " + io::describe(*it);
+  }
+  return "";
+}
+
+class JsonRules {
+ public:
+  JsonRules(const Json& doc, const std::string& source) : doc_(doc), source_(source) {}
+
+  [[noreturn]] void fail(const std::string& element, const std::string& what) const {
+    throw Error(source_ + ": " + element + ": " + what);
+  }
+
+  // The fields of object `obj` (named `element`) that `fields` lists: present when required, of
+  // their kind when present. Other fields are not looked at (extensions, extras, names...).
+  void fields(const Json& obj, const std::string& element, std::initializer_list<Field> list) const {
+    if (!obj.is_object()) fail(element, "expected an object, got " + io::describe(obj));
+    for (const Field& f : list) {
+      const auto it = obj.find(f.key);
+      if (it == obj.end()) {
+        if (f.required) fail(element, std::string(f.key) + " is missing");
+        continue;
+      }
+      if (hasKind(*it, f.kind)) continue;
+      const bool container = it->is_array() || it->is_object();
+      const bool item_kind = f.kind == Kind::kNumbers || f.kind == Kind::kIndexList || f.kind == Kind::kObjects ||
+                             f.kind == Kind::kIndexMap;
+      if (container && item_kind && (it->is_array() == (f.kind != Kind::kIndexMap)))
+        fail(element, std::string(f.key) + ": expected " + kindText(f.kind) + ", but " + firstBadItem(*it, f.kind));
+      fail(element, std::string(f.key) + ": expected " + kindText(f.kind) + ", got " + io::describe(*it));
+    }
+  }
+
+  // Top-level array `key` (absent: empty), each item checked by `each(item, "key[i]")`.
+  template <typename F>
+  void each(const char* key, F each_item) const {
+    const auto it = doc_.find(key);
+    if (it == doc_.end()) return;
+    if (!it->is_array()) fail(key, "expected an array, got " + io::describe(*it));
+    for (std::size_t i = 0; i < it->size(); ++i) each_item((*it)[i], idx(key, i));
+  }
+
+  std::size_t size(const char* key) const {
+    const auto it = doc_.find(key);
+    return it != doc_.end() && it->is_array() ? it->size() : 0;
+  }
+
+  const Json& doc() const { return doc_; }
+  const std::string& source() const { return source_; }
+
+ private:
+  const Json& doc_;
+  std::string source_;
+};
+
+// "2.0" as {2, 0}; false when `text` is not MAJOR.MINOR (digits only, as the schema's pattern).
+bool versionOf(const std::string& text, std::pair<long, long>* out) {
+  const std::size_t dot = text.find('.');
+  auto digits = [](const std::string& s) {
+    return !s.empty() && s.size() <= 9 && std::all_of(s.begin(), s.end(), [](char c) { return c >= '0' && c <= '9'; });
+  };
+  if (dot == std::string::npos || !digits(text.substr(0, dot)) || !digits(text.substr(dot + 1))) return false;
+  *out = {std::stol(text.substr(0, dot)), std::stol(text.substr(dot + 1))};
+  return true;
+}
+
+// asset.version must be 2.x (glTF 2.0, section 3.2: a new major version is not compatible) and
+// asset.minVersion, when given, at most the 2.0 vdg implements (and at most the version).
+void checkAsset(const JsonRules& r) {
+  const auto it = r.doc().find("asset");
+  if (it == r.doc().end()) r.fail("asset", "is missing (every glTF file names its version there)");
+  r.fields(*it, "asset", {{"version", Kind::kString, true}, {"minVersion", Kind::kString}});
+  const std::string version = (*it)["version"].get<std::string>();
+  std::pair<long, long> v;
+  if (!versionOf(version, &v)) r.fail("asset", "version " + quotedText(version) + " is not MAJOR.MINOR");
+  if (v.first != 2) r.fail("asset", "version " + quotedText(version) + ": vdg reads glTF 2.x");
+  if (!it->contains("minVersion")) return;
+  const std::string min_version = (*it)["minVersion"].get<std::string>();
+  std::pair<long, long> m;
+  if (!versionOf(min_version, &m)) r.fail("asset", "minVersion " + quotedText(min_version) + " is not MAJOR.MINOR");
+  if (m > v)
+    r.fail("asset", "minVersion " + quotedText(min_version) + " is greater than version " + quotedText(version));
+  if (m > std::pair<long, long>{2, 0})
+    r.fail("asset", "minVersion " + quotedText(min_version) + ": the file needs glTF " + min_version +
+                        " features, vdg implements glTF 2.0");
+}
+
+// vdg implements no glTF extension: one the file requires would change what its data means
+// (compressed buffers, quantized or transformed attributes...), so such a file is refused.
+void checkExtensions(const JsonRules& r) {
+  for (const char* key : {"extensionsUsed", "extensionsRequired"}) {
+    const auto it = r.doc().find(key);
+    if (it == r.doc().end()) continue;
+    if (!it->is_array() || !std::all_of(it->begin(), it->end(), [](const Json& x) { return x.is_string(); }))
+      r.fail(key, "expected an array of strings, got " + io::describe(*it));
+  }
+  const auto it = r.doc().find("extensionsRequired");
+  if (it != r.doc().end() && !it->empty())
+    r.fail("extensionsRequired",
+           quotedText((*it)[0].get<std::string>()) + " is an extension vdg does not implement" +
+               (it->size() > 1 ? " (and " + std::to_string(it->size() - 1) + " more)" : std::string()));
+}
+
+// The data: URI prefixes tinygltf decodes (base64 only).
+bool isDataUri(const std::string& uri) { return uri.compare(0, 5, "data:") == 0; }
+
+// A buffer's bytes: a data: URI (decoded to exactly byteLength bytes), an external file (checked
+// by the file callbacks), or for a GLB's first buffer alone the BIN chunk (glTF 4.4.3.3).
+void checkBuffer(const JsonRules& r, const Json& b, std::size_t i, bool binary, std::optional<std::size_t> bin) {
+  const std::string e = idx("buffers", i);
+  r.fields(b, e, {{"byteLength", Kind::kCount, true}, {"uri", Kind::kString}});
+  const std::uint64_t length = b["byteLength"].get<std::uint64_t>();
+  if (!b.contains("uri")) {
+    if (!binary) r.fail(e, "has no uri (only the first buffer of a .glb may stand for its BIN chunk)");
+    if (i != 0) r.fail(e, "has no uri (only buffers[0] may stand for the GLB's BIN chunk)");
+    if (!bin) r.fail(e, "has no uri, and the GLB has no BIN chunk");
+    if (length > *bin)
+      r.fail(e, "byteLength " + std::to_string(length) + " is more than the GLB's BIN chunk (" + std::to_string(*bin) +
+                    " bytes)");
+    return;
+  }
+  const std::string uri = b["uri"].get<std::string>();
+  if (!isDataUri(uri)) return;  // an external file: the file callbacks
+  if (!tg::IsDataURI(uri))
+    r.fail(e, "a data: URI that is not base64 application/octet-stream or application/gltf-buffer");
+  std::vector<unsigned char> bytes;
+  std::string mime;
+  if (!tg::DecodeDataURI(&bytes, mime, uri, 0, false) || bytes.empty()) r.fail(e, "its data: URI holds no base64 data");
+  if (bytes.size() != length)
+    r.fail(e,
+           "its data: URI holds " + std::to_string(bytes.size()) + " bytes, byteLength says " + std::to_string(length));
+}
+
+// Exactly one of uri and bufferView; a data: URI tinygltf decodes, a bufferView that lies in its
+// buffer (tinygltf hands the image loader a pointer into it before vdg's checks).
+void checkImage(const JsonRules& r, const Json& image, const std::string& e) {
+  r.fields(image, e, {{"uri", Kind::kString}, {"bufferView", Kind::kIndex}, {"mimeType", Kind::kString}});
+  const bool has_uri = image.contains("uri"), has_view = image.contains("bufferView");
+  if (has_uri == has_view)
+    r.fail(e, has_uri ? "has both a uri and a bufferView" : "has neither a uri nor a bufferView");
+  if (has_uri) {
+    const std::string uri = image["uri"].get<std::string>();
+    std::vector<unsigned char> bytes;
+    std::string mime;
+    if (isDataUri(uri) && tg::IsDataURI(uri) && (!tg::DecodeDataURI(&bytes, mime, uri, 0, false) || bytes.empty()))
+      r.fail(e, "its data: URI holds no base64 data");
+    return;
+  }
+  const auto view = image["bufferView"].get<std::size_t>();
+  if (view >= r.size("bufferViews"))
+    r.fail(e, "bufferView " + std::to_string(view) + " out of range (the file has " +
+                  std::to_string(r.size("bufferViews")) + ")");
+  const Json& v = r.doc()["bufferViews"][view];
+  const auto buffer = v["buffer"].get<std::size_t>();
+  if (buffer >= r.size("buffers"))
+    r.fail(idx("bufferViews", view), "buffer " + std::to_string(buffer) + " out of range (the file has " +
+                                         std::to_string(r.size("buffers")) + ")");
+  const std::uint64_t have = r.doc()["buffers"][buffer]["byteLength"].get<std::uint64_t>();
+  const std::uint64_t offset = v.value("byteOffset", std::uint64_t{0}), length = v["byteLength"].get<std::uint64_t>();
+  if (offset > have || length > have - offset)
+    r.fail(idx("bufferViews", view), "bytes " + std::to_string(offset) + " + " + std::to_string(length) +
+                                         " lie outside " + idx("buffers", buffer) + " (" + std::to_string(have) +
+                                         " bytes)");
+}
+
+void checkAccessor(const JsonRules& r, const Json& a, const std::string& e) {
+  r.fields(a, e,
+           {{"bufferView", Kind::kIndex},
+            {"byteOffset", Kind::kUint},
+            {"componentType", Kind::kUint, true},
+            {"normalized", Kind::kBool},
+            {"count", Kind::kCount, true},
+            {"type", Kind::kString, true},
+            {"sparse", Kind::kObject},
+            {"min", Kind::kNumbers},
+            {"max", Kind::kNumbers}});
+  const auto component = a["componentType"].get<std::uint64_t>();
+  if (component > 0xffff || componentSize(static_cast<int>(component)) == 0)
+    r.fail(e, "componentType " + std::to_string(component) + " is not a glTF component type");
+  const std::string type = a["type"].get<std::string>();
+  static const std::set<std::string> kTypes{"SCALAR", "VEC2", "VEC3", "VEC4", "MAT2", "MAT3", "MAT4"};
+  if (!kTypes.count(type)) r.fail(e, "type " + quotedText(type) + " is not a glTF accessor type");
+  if (!a.contains("sparse")) return;
+  const Json& s = a["sparse"];
+  const std::string es = e + ": sparse";
+  r.fields(s, es, {{"count", Kind::kCount, true}, {"indices", Kind::kObject, true}, {"values", Kind::kObject, true}});
+  if (s["count"].get<std::uint64_t>() > a["count"].get<std::uint64_t>())  // tinygltf reads it as an int
+    r.fail(es, "count " + std::to_string(s["count"].get<std::uint64_t>()) + " is not in [1, " +
+                   std::to_string(a["count"].get<std::uint64_t>()) + "]");
+  // tinygltf reads these as int (a larger byteOffset would be skipped, read as 0): index-sized.
+  r.fields(s["indices"], es + ".indices",
+           {{"bufferView", Kind::kIndex, true}, {"byteOffset", Kind::kIndex}, {"componentType", Kind::kIndex, true}});
+  r.fields(s["values"], es + ".values", {{"bufferView", Kind::kIndex, true}, {"byteOffset", Kind::kIndex}});
+}
+
+void checkMesh(const JsonRules& r, const Json& mesh, const std::string& e) {
+  r.fields(mesh, e, {{"primitives", Kind::kObjects, true}, {"weights", Kind::kNumbers}});
+  if (mesh["primitives"].empty()) r.fail(e, "primitives is empty");
+  for (std::size_t p = 0; p < mesh["primitives"].size(); ++p) {
+    const Json& prim = mesh["primitives"][p];
+    const std::string ep = e + ": " + idx("primitives", p);
+    r.fields(prim, ep,
+             {{"attributes", Kind::kIndexMap, true},
+              {"indices", Kind::kIndex},
+              {"material", Kind::kIndex},
+              {"mode", Kind::kUint},
+              {"targets", Kind::kObjects}});
+    if (prim.contains("mode") && prim["mode"].get<std::uint64_t>() > 6)
+      r.fail(ep,
+             "mode " + std::to_string(prim["mode"].get<std::uint64_t>()) + " is not a glTF primitive mode (0 to 6)");
+    // Every accessor a primitive names, in range (tinygltf refuses indices out of range with its
+    // own text, and an index accessor without a bufferView).
+    const std::size_t accessors = r.size("accessors");
+    auto inRange = [&](const Json& a, const std::string& user) {
+      const auto k = a.get<std::size_t>();
+      if (k >= accessors)
+        r.fail(user,
+               "accessor " + std::to_string(k) + " out of range (the file has " + std::to_string(accessors) + ")");
+    };
+    for (const auto& [name, a] : prim["attributes"].items()) inRange(a, ep + ": " + shownText(name));
+    if (prim.contains("indices")) {
+      inRange(prim["indices"], ep + ": indices");
+      const std::size_t k = prim["indices"].get<std::size_t>();
+      const Json& a = r.doc()["accessors"][k];
+      if (!a.contains("bufferView"))
+        r.fail(ep + ": indices", idx("accessors", k) + " has no bufferView (indices cannot be sparse values alone)");
+      if (a["bufferView"].get<std::size_t>() >= r.size("bufferViews"))
+        r.fail(idx("accessors", k), "bufferView " + std::to_string(a["bufferView"].get<std::size_t>()) +
+                                        " out of range (the file has " + std::to_string(r.size("bufferViews")) + ")");
+    }
+    if (!prim.contains("targets")) continue;
+    for (std::size_t t = 0; t < prim["targets"].size(); ++t) {
+      const std::string et = ep + ": " + idx("targets", t);
+      if (!hasKind(prim["targets"][t], Kind::kIndexMap))
+        r.fail(et, "expected an object of indices, but " + firstBadItem(prim["targets"][t], Kind::kIndexMap));
+      for (const auto& [name, a] : prim["targets"][t].items()) inRange(a, et + ": " + shownText(name));
+    }
+  }
+}
+
+void checkNode(const JsonRules& r, const Json& node, const std::string& e) {
+  r.fields(node, e,
+           {{"camera", Kind::kIndex},
+            {"children", Kind::kIndexList},
+            {"skin", Kind::kIndex},
+            {"matrix", Kind::kNumbers},
+            {"mesh", Kind::kIndex},
+            {"rotation", Kind::kNumbers},
+            {"scale", Kind::kNumbers},
+            {"translation", Kind::kNumbers},
+            {"weights", Kind::kNumbers}});
+  if (node.contains("matrix") && (node.contains("translation") || node.contains("rotation") || node.contains("scale")))
+    r.fail(e, "has both a matrix and translation, rotation or scale (glTF allows one or the other)");
+}
+
+void checkAnimation(const JsonRules& r, const Json& anim, const std::string& e) {
+  r.fields(anim, e, {{"channels", Kind::kObjects, true}, {"samplers", Kind::kObjects, true}});
+  for (std::size_t c = 0; c < anim["channels"].size(); ++c) {
+    const Json& ch = anim["channels"][c];
+    const std::string ec = e + ": " + idx("channels", c);
+    r.fields(ch, ec, {{"sampler", Kind::kIndex, true}, {"target", Kind::kObject, true}});
+    // glTF 2.0 allows a target without a node (for extensions); tinygltf 2.7 does not.
+    r.fields(ch["target"], ec + ": target", {{"node", Kind::kIndex, true}, {"path", Kind::kString, true}});
+  }
+  for (std::size_t s = 0; s < anim["samplers"].size(); ++s)
+    r.fields(anim["samplers"][s], e + ": " + idx("samplers", s),
+             {{"input", Kind::kIndex, true}, {"interpolation", Kind::kString}, {"output", Kind::kIndex, true}});
+}
+
+void checkMaterial(const JsonRules& r, const Json& m, const std::string& e) {
+  r.fields(m, e, {{"pbrMetallicRoughness", Kind::kObject}, {"emissiveFactor", Kind::kNumbers}});
+  if (m.contains("emissiveFactor") && m["emissiveFactor"].size() != 3)
+    r.fail(e, "emissiveFactor has " + std::to_string(m["emissiveFactor"].size()) + " numbers, expected 3");
+  if (!m.contains("pbrMetallicRoughness")) return;
+  const Json& pbr = m["pbrMetallicRoughness"];
+  r.fields(pbr, e + ": pbrMetallicRoughness",
+           {{"baseColorFactor", Kind::kNumbers}, {"baseColorTexture", Kind::kObject}});
+  if (pbr.contains("baseColorFactor") && pbr["baseColorFactor"].size() != 4)
+    r.fail(e, "pbrMetallicRoughness.baseColorFactor has " + std::to_string(pbr["baseColorFactor"].size()) +
+                  " numbers, expected 4");
+  if (pbr.contains("baseColorTexture"))
+    r.fields(pbr["baseColorTexture"], e + ": pbrMetallicRoughness.baseColorTexture",
+             {{"index", Kind::kIndex, true}, {"texCoord", Kind::kUint}});
+}
+
+// vdg does not use cameras, but tinygltf refuses one without its type's projection.
+void checkCamera(const JsonRules& r, const Json& c, const std::string& e) {
+  r.fields(c, e, {{"type", Kind::kString, true}});
+  const std::string type = c["type"].get<std::string>();
+  if (type == "perspective") {
+    r.fields(c, e, {{"perspective", Kind::kObject, true}});
+    r.fields(c["perspective"], e + ": perspective", {{"yfov", Kind::kNumber, true}, {"znear", Kind::kNumber, true}});
+  } else if (type == "orthographic") {
+    r.fields(c, e, {{"orthographic", Kind::kObject, true}});
+    r.fields(c["orthographic"], e + ": orthographic",
+             {{"xmag", Kind::kNumber, true},
+              {"ymag", Kind::kNumber, true},
+              {"zfar", Kind::kNumber, true},
+              {"znear", Kind::kNumber, true}});
+  } else {
+    r.fail(e, "type " + quotedText(type) + " is not perspective or orthographic");
+  }
+}
+
+// "scene" and every scene's nodes in range; a node listed once per scene.
+void checkScenes(const JsonRules& r) {
+  const std::size_t nodes = r.size("nodes"), scenes = r.size("scenes");
+  r.each("scenes", [&](const Json& s, const std::string& e) {
+    r.fields(s, e, {{"nodes", Kind::kIndexList}});
+    if (!s.contains("nodes")) return;
+    std::set<std::size_t> seen;
+    for (const Json& n : s["nodes"]) {
+      const auto node = n.get<std::size_t>();
+      if (node >= nodes)
+        r.fail(e, "node " + std::to_string(node) + " out of range (the file has " + std::to_string(nodes) + ")");
+      if (!seen.insert(node).second) r.fail(e, "lists node " + std::to_string(node) + " twice");
+    }
+  });
+  const auto it = r.doc().find("scene");
+  if (it == r.doc().end()) return;
+  if (!isIndex(*it)) r.fail("scene", "expected an index, got " + io::describe(*it));
+  if (it->get<std::size_t>() >= scenes)
+    r.fail("scene", std::to_string(it->get<std::size_t>()) + " out of range (the file has " + std::to_string(scenes) +
+                        (scenes == 1 ? " scene)" : " scenes)"));
+}
+
+// Every rule above, in the order of the document's arrays; `bin` is the GLB's BIN chunk size.
+void checkJson(const Json& doc, const std::string& source, bool binary, std::optional<std::size_t> bin) {
+  if (!doc.is_object()) throw Error(source + ": expected a glTF JSON object, got " + io::describe(doc));
+  const JsonRules r(doc, source);
+  checkAsset(r);
+  checkExtensions(r);
+  std::size_t i = 0;
+  r.each("buffers", [&](const Json& b, const std::string&) { checkBuffer(r, b, i++, binary, bin); });
+  r.each("bufferViews", [&](const Json& v, const std::string& e) {
+    r.fields(v, e,
+             {{"buffer", Kind::kIndex, true},
+              {"byteOffset", Kind::kUint},
+              {"byteLength", Kind::kCount, true},
+              {"byteStride", Kind::kUint},
+              {"target", Kind::kUint}});
+  });
+  r.each("accessors", [&](const Json& a, const std::string& e) { checkAccessor(r, a, e); });
+  r.each("meshes", [&](const Json& m, const std::string& e) { checkMesh(r, m, e); });
+  r.each("nodes", [&](const Json& n, const std::string& e) { checkNode(r, n, e); });
+  r.each("skins", [&](const Json& s, const std::string& e) {
+    r.fields(s, e,
+             {{"inverseBindMatrices", Kind::kIndex}, {"skeleton", Kind::kIndex}, {"joints", Kind::kIndexList, true}});
+  });
+  r.each("animations", [&](const Json& a, const std::string& e) { checkAnimation(r, a, e); });
+  r.each("materials", [&](const Json& m, const std::string& e) { checkMaterial(r, m, e); });
+  r.each("textures", [&](const Json& t, const std::string& e) {
+    r.fields(t, e, {{"sampler", Kind::kIndex}, {"source", Kind::kIndex}});
+  });
+  r.each("images", [&](const Json& image, const std::string& e) { checkImage(r, image, e); });
+  r.each("samplers", [&](const Json& x, const std::string& e) { r.fields(x, e, {}); });
+  r.each("cameras", [&](const Json& c, const std::string& e) { checkCamera(r, c, e); });
+  checkScenes(r);
+}
+
+std::string percentDecoded(const std::string& uri);
+
 class Gltf {
  public:
   Gltf(std::string_view bytes, const std::string& source, const std::string& folder)
       : source_(source), folder_(folder) {
     const bool binary = bytes.size() >= 4 && bytes.substr(0, 4) == "glTF";
     binary_ = binary;
-    const std::string_view json = binary ? checkGlb(bytes, source) : bytes;
+    std::optional<std::size_t> bin;
+    const std::string_view json = binary ? checkGlb(bytes, source, &bin) : bytes;
     if (bytes.size() > std::numeric_limits<unsigned int>::max())
       throw Error(source + ": file is too large for the glTF reader");
-    // vdg's JSON layer first: its nesting limit and its message for malformed JSON.
-    (void)io::parseJson(json, source);
+    // vdg's JSON layer first: its nesting limit and its message for malformed JSON; then the
+    // rules of the glTF schema, so that tinygltf reads only a file of the right shape.
+    checkJson(io::parseJson(json, source), source, binary, bin);
 
-    FileAccess access{source, folder, 0, {}};
+    FileAccess access{source, folder, 0, {}, {}};
     tg::TinyGLTF loader;
     tg::FsCallbacks fs{};
     fs.FileExists = fileExists;
@@ -332,7 +807,7 @@ class Gltf {
                : loader.LoadASCIIFromString(&model_, &err, &warn, json.data(), static_cast<unsigned int>(json.size()),
                                             kFolderToken);
     if (!access.error.empty() && !ok) throw Error(source + ": buffers: " + oneLine(access.error));
-    if (!ok) throw Error(source + ": " + (err.empty() ? std::string("not a valid glTF file") : oneLine(err)));
+    if (!ok) refused(json, access);
     checkStructure();
   }
 
@@ -403,6 +878,20 @@ class Gltf {
   }
 
   std::size_t count(int accessor) const { return model_.accessors[static_cast<std::size_t>(accessor)].count; }
+  std::size_t componentBytes(int accessor) const {
+    return componentSize(model_.accessors[static_cast<std::size_t>(accessor)].componentType);
+  }
+
+  // Indices are tightly packed (glTF 3.6.2.4: their bufferView has no byteStride); a stride would
+  // skip indices, so it is refused. `accessor` was read by read().
+  void checkIndexView(int accessor, const std::string& user) const {
+    const tg::Accessor& a = model_.accessors[static_cast<std::size_t>(accessor)];
+    if (a.bufferView < 0) return;
+    const std::size_t stride = model_.bufferViews[static_cast<std::size_t>(a.bufferView)].byteStride;
+    if (stride != 0)
+      fail(user, idx("bufferViews", static_cast<std::size_t>(a.bufferView)) + " has byteStride " +
+                     std::to_string(stride) + ", which an index buffer must not have");
+  }
 
   // The bytes of a bufferView checked by checkStructure() (index checked by the caller).
   std::string_view viewBytes(int index) const {
@@ -416,6 +905,28 @@ class Gltf {
     std::size_t length = 0;
     std::size_t stride = 0;
   };
+
+  // tinygltf refused what checkJson let through: an external buffer whose file does not hold
+  // byteLength bytes, or a rule vdg does not check. Never tinygltf's own text: it names vdg's
+  // placeholder folder and echoes whole data: URIs.
+  [[noreturn]] void refused(std::string_view json, const FileAccess& access) const {
+    const io::Json doc = io::parseJson(json, source_);
+    const auto buffers = doc.find("buffers");
+    for (std::size_t i = 0; buffers != doc.end() && i < buffers->size(); ++i) {
+      const io::Json& b = (*buffers)[i];
+      const std::string uri = b.value("uri", std::string());
+      const auto read = access.sizes.find(percentDecoded(uri));
+      if (uri.empty() || isDataUri(uri) || read == access.sizes.end()) continue;
+      const auto length = b["byteLength"].get<std::uint64_t>();
+      if (read->second == 0) fail(idx("buffers", i), quotedText(uri) + " is empty");
+      if (read->second != length)
+        fail(idx("buffers", i), quotedText(uri) + " holds " + std::to_string(read->second) +
+                                    " bytes, byteLength says " + std::to_string(length));
+    }
+    throw Error(source_ +
+                ": not a glTF file vdg can read (it breaks a rule of the glTF 2.0 specification that the Khronos glTF "
+                "validator names)");
+  }
 
   // A bufferView checked by checkStructure().
   View view(int index) const {
@@ -488,8 +999,42 @@ class Gltf {
         };
         checkPart(a.sparse.indices.bufferView, a.sparse.indices.byteOffset, count * isize, "indices");
         checkPart(a.sparse.values.bufferView, a.sparse.values.byteOffset, count * n * csize, "values");
+        checkSparseView(es + ".indices", a.sparse.indices.bufferView);
+        checkSparseView(es + ".values", a.sparse.values.bufferView);
       }
     }
+    checkNodes();
+  }
+
+  // Sparse indices and values are read tightly packed (glTF 3.6.2.3: their bufferViews have no
+  // byteStride); a stride would be ignored, so it is refused.
+  void checkSparseView(const std::string& element, int view_index) const {
+    const std::size_t stride = model_.bufferViews[static_cast<std::size_t>(view_index)].byteStride;
+    if (stride != 0)
+      fail(element, idx("bufferViews", static_cast<std::size_t>(view_index)) + " has byteStride " +
+                        std::to_string(stride) + ", which sparse indices and values must not have");
+  }
+
+  // Every node's mesh and skin in range (not only the selected node's), and every node a scene
+  // lists a root (glTF 3.5.1: "the node hierarchy MUST be a set of disjoint strict trees", and a
+  // scene's nodes are its roots); the rest of the hierarchy is checked by readNodeHierarchy.
+  void checkNodes() const {
+    const auto& m = model_;
+    std::vector<int> parent(m.nodes.size(), -1);
+    for (std::size_t i = 0; i < m.nodes.size(); ++i) {
+      const tg::Node& n = m.nodes[i];
+      const std::string e = idx("nodes", i);
+      if (n.mesh >= 0) checkIndex(e, "mesh", n.mesh, m.meshes.size());
+      if (n.skin >= 0) checkIndex(e, "skin", n.skin, m.skins.size());
+      for (const int c : n.children)
+        if (c >= 0 && static_cast<std::size_t>(c) < m.nodes.size() && static_cast<std::size_t>(c) != i)
+          parent[static_cast<std::size_t>(c)] = static_cast<int>(i);  // a node its own child: readNodeHierarchy
+    }
+    for (std::size_t s = 0; s < m.scenes.size(); ++s)
+      for (const int n : m.scenes[s].nodes)
+        if (n >= 0 && static_cast<std::size_t>(n) < m.nodes.size() && parent[static_cast<std::size_t>(n)] >= 0)
+          fail(idx("scenes", s), "node " + std::to_string(n) + " is not a root (it is a child of nodes[" +
+                                     std::to_string(parent[static_cast<std::size_t>(n)]) + "])");
   }
 
   std::string source_;
@@ -663,9 +1208,9 @@ class MaterialReader {
       const std::string uri = out.texture_path;
       const std::string problem = uriProblem(uri);
       if (!problem.empty())
-        why = "'" + uri + "' " + problem + " (images must lie in the glTF file's folder or below)";
+        why = quotedText(uri) + " " + problem + " (images must lie in the glTF file's folder or below)";
       else if (g_.folder().empty())
-        why = "'" + uri + "' is an external file, and these bytes come without a folder";
+        why = quotedText(uri) + " is an external file, and these bytes come without a folder";
       else
         out.texture = cache_.file(io::inFolder(g_.folder(), uri), &why);
     } else if (!image.image.empty()) {
@@ -818,9 +1363,16 @@ std::size_t appendPrimitive(const Gltf& g, const tg::Primitive& prim, std::size_
   // Triangles: the indices, or 0..n-1 without them.
   if (prim.indices >= 0) {
     const auto indices = g.read(prim.indices, kIndices, ep + ": indices");
+    g.checkIndexView(prim.indices, ep + ": indices");
     if (indices.size() % 3 != 0)
       g.fail(ep, "indices: " + std::to_string(indices.size()) + " indices, not a multiple of 3");
+    // The largest value of the component type restarts a strip in graphics APIs; glTF 3.7.2.1
+    // forbids it in indices.
+    const double restart = std::ldexp(1.0, 8 * static_cast<int>(g.componentBytes(prim.indices))) - 1.0;
     for (std::size_t k = 0; k < indices.size(); ++k) {
+      if (indices[k] == restart && indices[k] < static_cast<double>(nv))
+        g.fail(ep, "indices[" + std::to_string(k) + "] = " + std::to_string(static_cast<std::uint64_t>(indices[k])) +
+                       ", the primitive restart value of its component type, which glTF indices must not use");
       if (indices[k] >= static_cast<double>(nv))
         g.fail(ep, "indices[" + std::to_string(k) + "] = " + std::to_string(static_cast<std::uint64_t>(indices[k])) +
                        " out of range (the primitive has " + std::to_string(nv) + " vertices)");
@@ -943,6 +1495,7 @@ std::vector<RigChannel> readChannels(const Gltf& g, std::size_t a, int mesh_node
   const tg::Model& m = g.model();
   const tg::Animation& anim = m.animations[a];
   std::vector<RigChannel> channels;
+  std::set<std::pair<int, RigPath>> targets;
   for (std::size_t c = 0; c < anim.channels.size(); ++c) {
     const tg::AnimationChannel& ch = anim.channels[c];
     const std::string ec = idx("animations", a) + ": " + idx("channels", c);
@@ -966,6 +1519,10 @@ std::vector<RigChannel> readChannels(const Gltf& g, std::size_t a, int mesh_node
     } else {
       g.fail(ec, "target path '" + ch.target_path + "' is not translation, rotation, scale or weights");
     }
+    // glTF 3.11: "each target (a combination of a node and a path) MUST NOT be used more than once"
+    // in an animation; vdg would apply the last channel alone.
+    if (!targets.emplace(rc.node, rc.path).second)
+      g.fail(ec, "animates " + ch.target_path + " of node " + std::to_string(rc.node) + ", as an earlier channel does");
     output_want[static_cast<std::size_t>(ch.sampler)] = w;
     channels.push_back(rc);
   }
@@ -1011,6 +1568,16 @@ void readAnimations(const Gltf& g, int mesh_node, RawRig& raw) {
   }
 }
 
+// The rest pose as every command sees it (morphed by the default weights, then skinned or placed
+// by the node transforms) must be finite and fit a float (mesh_extent.h): a node scale of 1e38 or
+// coordinates near the float limit would otherwise give infinite bounds, voxel sizes and camera
+// distances later, silently (an empty morph, a blank render). `where` names the mesh and its node.
+void checkRestPose(const Gltf& g, const Rig& rig, const std::string& where) {
+  std::vector<float> p(3 * rig.vertexCount());
+  if (!rig.evaluate(-1, 0.0, p)) g.fail(where, "the rest pose could not be evaluated (internal error)");
+  io::checkMeshExtent(p, g.source() + ": " + where, " after the node transforms");
+}
+
 RawRig buildRig(const Gltf& g, const GltfSelect& want, const MeshReadOptions& options) {
   const tg::Model& m = g.model();
   RawRig raw;
@@ -1028,6 +1595,9 @@ RawRig buildRig(const Gltf& g, const GltfSelect& want, const MeshReadOptions& op
   if (skin_index >= 0) raw.skin = readSkin(g, sel.node, skin_index);
   readAnimations(g, sel.node, raw);
   raw.validate();
+  checkRestPose(g, Rig::build(raw),
+                idx("meshes", static_cast<std::size_t>(sel.mesh)) +
+                    (sel.node >= 0 ? " (" + idx("nodes", static_cast<std::size_t>(sel.node)) + ")" : std::string()));
   return raw;
 }
 

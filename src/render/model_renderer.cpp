@@ -11,7 +11,10 @@
 #include "vdg/geom/error.h"
 #include "vdg/geom/normalize.h"
 #include "vdg/geom/surface.h"
+#include "vdg/geom/text.h"
 #include "vdg/render/sphere_inset.h"
+
+#include "renderer_impl.h"
 
 namespace vdg::render {
 namespace {
@@ -20,6 +23,15 @@ namespace {
 // and views built by this file, so a refusal is a bug of ours, reported as such.
 void check(bool ok, const char* what) {
   if (!ok) throw Error(std::string("render: ") + what + " was refused (internal error)");
+}
+
+// A draw call's refusal with its reason: a View that cannot be drawn (a camera at an infinite
+// distance, clip planes that overflow) names what is wrong with it and what was being drawn.
+void checkDraw(bool ok, const char* what, const View& view, const std::string& drawn) {
+  if (ok) return;
+  const char* problem = detail::viewProblem(view);
+  if (!problem) check(ok, what);
+  throw Error(std::string("render: ") + drawn + ": " + what + " refused the view: " + problem);
 }
 
 constexpr double kDegToRad = std::numbers::pi / 180.0;
@@ -71,6 +83,10 @@ struct ModelRenderer::Impl {
       : options(o), renderer(RendererSettings{image_width, o.height, o.samples}) {}
 
   const TriMesh& base() const { return model ? model->base() : animated ? animated->base() : plain; }
+  // What is drawn, for messages (the renderer is not told the file).
+  const char* drawn() const {
+    return model ? "the view-dependent model" : animated ? "the animated model" : "the mesh";
+  }
   bool viewDependent() const { return model || animated; }
   const ViewSphere& sphere() const { return model ? model->sphere() : animated->sphere(); }
 
@@ -91,6 +107,10 @@ struct ModelRenderer::Impl {
       center = Eigen::Vector3d(c[0], c[1], c[2]);
       radius = std::max(1e-6, 0.5 * static_cast<double>(b.diagonal()));
     }
+    // Coordinates near the float limit give an infinite extent, and no camera can frame it.
+    if (!center.allFinite() || !std::isfinite(radius))
+      throw Error(std::string("render: ") + drawn() + ": its extent overflows a float (bounding radius " +
+                  numberText(radius) + "), so no camera can frame it");
     if (options.silhouette_width <= 0.0f)
       options.silhouette_width = std::max(3.0f, static_cast<float>(options.height) / 100.0f);
     const double aspect = static_cast<double>(options.width) / options.height;
@@ -225,11 +245,11 @@ ViewWeights ModelRenderer::render(const Camera& camera, Image& out) {
   instance.weights = w;
   const auto draw = [&](const View& v, const MeshStyle& s) {
     if (m.blend_id < 0) {
-      check(m.renderer.drawMesh(m.mesh_id, v, s), "drawMesh");
+      checkDraw(m.renderer.drawMesh(m.mesh_id, v, s), "drawMesh", v, m.drawn());
       return;
     }
     instance.color = s.color;
-    check(m.renderer.drawBlendInstances(m.blend_id, {&instance, 1}, v, s), "drawBlendInstances");
+    checkDraw(m.renderer.drawBlendInstances(m.blend_id, {&instance, 1}, v, s), "drawBlendInstances", v, m.drawn());
   };
   View main;
   main.viewport = {0, 0, o.width, o.height};
@@ -257,7 +277,8 @@ ViewWeights ModelRenderer::render(const Camera& camera, Image& out) {
       ray[i] = static_cast<float>(root[i]);
       ray[3 + i] = static_cast<float>(tip[i]);
     }
-    check(m.renderer.drawLines(ray, obs, std::max(1.5f, o.silhouette_width), kCameraMarkColor, true), "drawLines");
+    checkDraw(m.renderer.drawLines(ray, obs, std::max(1.5f, o.silhouette_width), kCameraMarkColor, true), "drawLines",
+              obs, m.drawn());
     check(m.renderer.drawDots(std::span<const float>(ray).subspan(3), obs, 3.0f * std::max(1.5f, o.silhouette_width),
                               kCameraMarkColor, true),
           "drawDots");

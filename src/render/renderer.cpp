@@ -192,17 +192,24 @@ bool finite3(const Eigen::Vector3d& v) { return v.allFinite(); }
 
 // The conditions under which viewMatrix / projectionMatrix are defined (see cameraFrame), checked
 // without throwing.
-bool validView(const View& v) {
-  if (v.viewport.width < 1 || v.viewport.height < 1) return false;
-  if (!std::isfinite(v.z_near) || !std::isfinite(v.z_far) || !(v.z_near > 0.0) || !(v.z_far > v.z_near)) return false;
+const char* viewProblem(const View& v) {
+  if (v.viewport.width < 1 || v.viewport.height < 1) return "the viewport is empty";
+  if (!std::isfinite(v.z_near) || !std::isfinite(v.z_far)) return "the clip planes are not finite";
+  if (!(v.z_near > 0.0) || !(v.z_far > v.z_near)) return "the clip planes are not 0 < near < far";
   const Camera& c = v.camera;
-  if (!finite3(c.eye) || !finite3(c.target) || !finite3(c.up)) return false;
-  if (!std::isfinite(c.ortho_height) || !std::isfinite(c.fov_deg)) return false;
+  if (!finite3(c.eye)) return "the camera's eye is not finite";
+  if (!finite3(c.target)) return "the camera's target is not finite";
+  if (!finite3(c.up)) return "the camera's up vector is not finite";
+  if (!std::isfinite(c.ortho_height) || !std::isfinite(c.fov_deg)) return "the camera's field of view is not finite";
   const Eigen::Vector3d back = c.eye - c.target;
-  if (!(back.norm() > 0.0)) return false;
-  if (!(c.up.cross(back.normalized()).norm() > 1e-12 * c.up.norm())) return false;
-  return c.isOrtho() || (c.fov_deg > 0.0 && c.fov_deg < 180.0);
+  if (!(back.norm() > 0.0)) return "the camera's eye and target are the same point";
+  if (!(c.up.cross(back.normalized()).norm() > 1e-12 * c.up.norm()))
+    return "the camera's up vector is parallel to its view";
+  if (!c.isOrtho() && !(c.fov_deg > 0.0 && c.fov_deg < 180.0)) return "the camera's field of view is not in (0, 180)";
+  return nullptr;
 }
+
+bool validView(const View& v) { return viewProblem(v) == nullptr; }
 
 bool positiveFinite(float x) { return std::isfinite(x) && x > 0.0f; }
 

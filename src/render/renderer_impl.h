@@ -175,7 +175,9 @@ GlBuffer staticBuffer(const std::vector<T>& data) {
 }
 
 // The conditions under which viewMatrix / projectionMatrix are defined (see cameraFrame), checked
-// without throwing.
+// without throwing. viewProblem says which one fails ("the camera's eye is not finite"), for the
+// messages of the renderers built on this one; nullptr for a valid View.
+const char* viewProblem(const View& v);
 bool validView(const View& v);
 // The eye point of the facing test: the camera's eye, or for a parallel camera a point far back
 // along its view axis.

@@ -13,11 +13,22 @@
 #include "vdg/geom/surface.h"
 #include "vdg/render/model_renderer.h"
 
+#include "renderer_impl.h"
+
 namespace vdg::render {
 namespace {
 
 void check(bool ok, const char* what) {
   if (!ok) throw Error(std::string("render: scene: ") + what + " was refused (internal error)");
+}
+
+// A draw call's refusal with its reason when the View is what cannot be drawn (a camera at an
+// infinite distance, clip planes that overflow); otherwise a bug of ours.
+void checkDraw(bool ok, const char* what, const View& view) {
+  if (ok) return;
+  const char* problem = detail::viewProblem(view);
+  if (!problem) check(ok, what);
+  throw Error(std::string("render: scene: ") + what + " refused the view: " + problem);
 }
 
 constexpr double kAutoFovDeg = 35.0;
@@ -234,12 +245,13 @@ struct SceneRenderer::Impl {
       }
       check(renderer.updateMesh(obj.handle, obj.world, {}), "updateMesh");
       style.color = st.color;
-      check(renderer.drawMesh(obj.handle, view, style), "drawMesh");
+      checkDraw(renderer.drawMesh(obj.handle, view, style), "drawMesh", view);
       ++drawn;
     }
     for (const Object& obj : objects)
       if (obj.blend_handle >= 0 && !obj.instances.empty())
-        check(renderer.drawBlendInstances(obj.blend_handle, obj.instances, view, style), "drawBlendInstances");
+        checkDraw(renderer.drawBlendInstances(obj.blend_handle, obj.instances, view, style), "drawBlendInstances",
+                  view);
     renderer.readPixels(out);
     return camera;
   }

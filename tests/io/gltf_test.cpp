@@ -4,6 +4,7 @@
 // their one-line message naming the file and the element.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -520,6 +521,204 @@ TEST(GltfHostile, DeepJsonAndFilesOnDisk) {
   j["buffers"][0]["uri"] = "gone.bin";
   { std::ofstream(dir.file("t.gltf")) << j.dump(); }
   EXPECT_NE(errorOf([&] { (void)readGltfRig(dir.file("t.gltf")); }).find("gone.bin: no such file"), std::string::npos);
+}
+
+// ---- strictness (issue 24): extents after the node transforms, glTF's own rules, vdg's lines ----
+
+// The triangle's positions replaced by `p` (9 floats).
+Json triangleAt(const std::array<float, 9>& p) {
+  Json j = triangle();
+  std::string bin(reinterpret_cast<const char*>(p.data()), sizeof(float) * 9);
+  const std::uint16_t idx[4] = {0, 1, 2, 0};
+  bin.append(reinterpret_cast<const char*>(idx), sizeof(idx));
+  j["buffers"][0]["uri"] = "data:application/octet-stream;base64," + testing::encode64(bin);
+  return j;
+}
+
+TEST(GltfStrict, PositionsAreFiniteAndFitAFloatAfterTheNodeTransforms) {
+  Json j = triangle();
+  j["nodes"][0]["scale"] = {1e39, 1.0, 1.0};  // vertex 1 at (1e39, 0, 0): inf as a float
+  EXPECT_EQ(errorFor(j),
+            "t.gltf: meshes[0] (nodes[0]): vertex 1 lies at (inf, 0, 0) after the node transforms; positions must be "
+            "finite");
+  j = triangle();
+  j["nodes"][0]["scale"] = {3e38, 3e38, 1.0};  // finite, but the box's diagonal overflows
+  EXPECT_EQ(errorFor(j),
+            "t.gltf: meshes[0] (nodes[0]): vertices 0 at (0, 0, 0) and 1 at (3e+38, 0, 0) lie too far apart after "
+            "the node transforms: the mesh's extent (4.24264e+38) overflows a float");
+  j = triangleAt({0, 0, 0, 3e38f, 0, 0, 0, 3e38f, 0});  // in the file already, no node transform
+  j["nodes"][0].erase("mesh");
+  j["nodes"].push_back({{"mesh", 0}});
+  j["scenes"][0]["nodes"] = {0, 1};
+  EXPECT_EQ(errorFor(j),
+            "t.gltf: meshes[0] (nodes[1]): vertices 0 at (0, 0, 0) and 1 at (3e+38, 0, 0) lie too far apart after "
+            "the node transforms: the mesh's extent (4.24264e+38) overflows a float");
+  // Every way in: the description (vdg info), the static mesh (render, morph3d), the rig (export).
+  EXPECT_NE(errorOf([&] { (void)describeGltfData(j.dump(), "t.gltf"); }).find("overflows a float"), std::string::npos);
+  vdg::testing::TempDir dir;
+  { std::ofstream(dir.file("h.gltf")) << j.dump(); }
+  EXPECT_NE(errorOf([&] { (void)readMesh(dir.file("h.gltf")); }).find(dir.file("h.gltf") + ": meshes[0] (nodes[1])"),
+            std::string::npos);
+  // The same rule for OBJ files read as meshes (readMesh): the coordinates parse, the extent does not fit.
+  { std::ofstream(dir.file("h.obj")) << "v 0 0 0\nv 3e38 0 0\nv 0 3e38 0\nf 1 2 3\n"; }
+  EXPECT_EQ(errorOf([&] { (void)readMesh(dir.file("h.obj")); }),
+            dir.file("h.obj") +
+                ": vertices 0 at (0, 0, 0) and 1 at (3e+38, 0, 0) lie too far apart: the mesh's extent (4.24264e+38) "
+                "overflows a float");
+  // Large but fitting: accepted as it is.
+  j = triangle();
+  j["nodes"][0]["scale"] = {1e37, 1e37, 1.0};
+  EXPECT_EQ(errorFor(j), "");
+}
+
+TEST(GltfStrict, VersionsExtensionsAndScenes) {
+  Json j = triangle();
+  j["asset"]["version"] = "3.0";
+  EXPECT_EQ(errorFor(j), "t.gltf: asset: version '3.0': vdg reads glTF 2.x");
+  j["asset"]["version"] = "2.x";
+  EXPECT_EQ(errorFor(j), "t.gltf: asset: version '2.x' is not MAJOR.MINOR");
+  j["asset"]["version"] = "2.1";
+  EXPECT_EQ(errorFor(j), "");  // a later 2.x stays readable as 2.0 (glTF 3.2)
+  j["asset"]["minVersion"] = "2.1";
+  EXPECT_EQ(errorFor(j), "t.gltf: asset: minVersion '2.1': the file needs glTF 2.1 features, vdg implements glTF 2.0");
+  j["asset"]["version"] = "2.0";
+  EXPECT_EQ(errorFor(j), "t.gltf: asset: minVersion '2.1' is greater than version '2.0'");
+  j = triangle();
+  j["extensionsUsed"] = {"KHR_draco_mesh_compression", "EXT_meshopt_compression"};
+  EXPECT_EQ(errorFor(j), "");  // used, not required: the file must load without them
+  j["extensionsRequired"] = {"EXT_meshopt_compression", "KHR_draco_mesh_compression"};
+  EXPECT_EQ(
+      errorFor(j),
+      "t.gltf: extensionsRequired: 'EXT_meshopt_compression' is an extension vdg does not implement (and 1 more)");
+  j = triangle();
+  j["scene"] = 1;
+  EXPECT_EQ(errorFor(j), "t.gltf: scene: 1 out of range (the file has 1 scene)");
+  j = triangle();
+  j["scenes"][0]["nodes"] = {0, 3};
+  EXPECT_EQ(errorFor(j), "t.gltf: scenes[0]: node 3 out of range (the file has 1)");
+  j = triangle();
+  j["nodes"].push_back({{"children", {0}}});
+  j["scenes"][0]["nodes"] = {1, 0};
+  EXPECT_EQ(errorFor(j), "t.gltf: scenes[0]: node 0 is not a root (it is a child of nodes[1])");
+}
+
+TEST(GltfStrict, RulesThatWouldGiveAWrongAnswer) {
+  Json j = triangle();
+  j["nodes"][0]["matrix"] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 5, 0, 0, 1};
+  j["nodes"][0]["translation"] = {1, 0, 0};
+  EXPECT_EQ(errorFor(j),
+            "t.gltf: nodes[0]: has both a matrix and translation, rotation or scale (glTF allows one or the other)");
+  j = triangle();
+  j["bufferViews"][0]["byteOffset"] = -4;  // tinygltf read it as 0
+  EXPECT_EQ(errorFor(j), "t.gltf: bufferViews[0]: byteOffset: expected an integer >= 0, got the number -4");
+  j = triangle();
+  j["accessors"][0]["normalized"] = "yes";
+  EXPECT_EQ(errorFor(j), "t.gltf: accessors[0]: normalized: expected true or false, got the string \"yes\"");
+  j = triangle();
+  j["nodes"] = {{"mesh", 0}};  // an object, not an array: tinygltf saw no nodes
+  EXPECT_EQ(errorFor(j), "t.gltf: nodes: expected an array, got an object");
+  j = triangle();
+  j["nodes"].push_back({{"mesh", 2}});
+  EXPECT_EQ(errorFor(j), "t.gltf: nodes[1]: mesh 2 out of range (the file has 1)");
+  j = triangle();
+  j["meshes"][0]["primitives"][0]["attributes"]["COLOR_0"] = 5;
+  EXPECT_EQ(errorFor(j), "t.gltf: meshes[0]: primitives[0]: COLOR_0: accessor 5 out of range (the file has 2)");
+  j = triangle();
+  j["bufferViews"][1]["byteStride"] = 4;
+  j["bufferViews"][1]["byteLength"] = 8;
+  j["accessors"][1]["count"] = 2;
+  j["meshes"][0]["primitives"][0]["mode"] = 1;  // lines: not read
+  j["meshes"][0]["primitives"].push_back({{"attributes", {{"POSITION", 0}}}, {"indices", 1}});
+  EXPECT_EQ(errorFor(j),
+            "t.gltf: meshes[0]: primitives[1]: indices: bufferViews[1] has byteStride 4, which an index "
+            "buffer must not have");
+}
+
+TEST(GltfStrict, DuplicateChannelTargetsAreRefused) {
+  Json j = triangle();
+  std::string bin;
+  const float times[2] = {0, 1}, values[6] = {0, 0, 0, 1, 0, 0};
+  bin.append(reinterpret_cast<const char*>(times), sizeof(times));
+  bin.append(reinterpret_cast<const char*>(values), sizeof(values));
+  j["buffers"].push_back(
+      {{"byteLength", 32}, {"uri", "data:application/octet-stream;base64," + testing::encode64(bin)}});
+  j["bufferViews"].push_back({{"buffer", 1}, {"byteOffset", 0}, {"byteLength", 8}});
+  j["bufferViews"].push_back({{"buffer", 1}, {"byteOffset", 8}, {"byteLength", 24}});
+  j["accessors"].push_back({{"bufferView", 2}, {"componentType", 5126}, {"count", 2}, {"type", "SCALAR"}});
+  j["accessors"].push_back({{"bufferView", 3}, {"componentType", 5126}, {"count", 2}, {"type", "VEC3"}});
+  j["animations"] = Json::parse(R"([{"channels": [{"sampler": 0, "target": {"node": 0, "path": "translation"}}],
+      "samplers": [{"input": 2, "output": 3}]}])");
+  EXPECT_EQ(errorFor(j), "");
+  j["animations"][0]["channels"].push_back(j["animations"][0]["channels"][0]);
+  EXPECT_EQ(errorFor(j),
+            "t.gltf: animations[0]: channels[1]: animates translation of node 0, as an earlier channel does");
+}
+
+// Every refusal is vdg's one line naming the file: never tinygltf's text (its placeholder folder,
+// its property wording) and never a data: URI echoed back.
+TEST(GltfStrict, TinygltfTextNeverLeaks) {
+  std::vector<std::pair<Json, std::string>> cases;
+  auto with = [&](auto change, const std::string& expected) {
+    Json j = triangle();
+    change(j);
+    cases.emplace_back(j, expected);
+  };
+  with([](Json& j) { j["buffers"][0]["byteLength"] = 48; },
+       "t.gltf: buffers[0]: its data: URI holds 44 bytes, byteLength says 48");
+  with([](Json& j) { j["buffers"][0]["uri"] = "data:application/octet-stream;base64,****"; },
+       "t.gltf: buffers[0]: its data: URI holds no base64 data");
+  with([](Json& j) { j["buffers"][0]["uri"] = "data:text/html;base64," + std::string(400, 'A'); },
+       "t.gltf: buffers[0]: a data: URI that is not base64 application/octet-stream or application/gltf-buffer");
+  with([](Json& j) { j["buffers"][0].erase("byteLength"); }, "t.gltf: buffers[0]: byteLength is missing");
+  with([](Json& j) { j["accessors"][0]["type"] = "VEC7"; },
+       "t.gltf: accessors[0]: type 'VEC7' is not a glTF accessor type");
+  with([](Json& j) { j["meshes"][0]["primitives"][0]["indices"] = 8; },
+       "t.gltf: meshes[0]: primitives[0]: indices: accessor 8 out of range (the file has 2)");
+  with([](Json& j) { j["images"] = Json::parse(R"([{"uri": "data:image/png;base64,%%%%"}])"); },
+       "t.gltf: images[0]: its data: URI holds no base64 data");
+  with([](Json& j) { j["images"] = Json::parse(R"([{"bufferView": 9}])"); },
+       "t.gltf: images[0]: bufferView 9 out of range (the file has 2)");
+  with([](Json& j) { j["cameras"] = Json::parse(R"([{"type": "perspective"}])"); },
+       "t.gltf: cameras[0]: perspective is missing");
+  with([](Json& j) { j["buffers"][0]["uri"] = "/" + std::string(500, 'b') + ".bin"; },
+       "t.gltf: buffers: '/" + std::string(59, 'b') +
+           "...' is an absolute path (external files must lie in the glTF "
+           "file's folder)");
+  with([](Json& j) { j["accessors"][1]["bufferView"] = 6; },
+       "t.gltf: accessors[1]: bufferView 6 out of range (the file has 2)");
+  with([](Json& j) { j["materials"] = Json::parse(R"([{"pbrMetallicRoughness": {"baseColorFactor": [1, 0, 0]}}])"); },
+       "t.gltf: materials[0]: pbrMetallicRoughness.baseColorFactor has 3 numbers, expected 4");
+  for (const auto& [j, expected] : cases) EXPECT_EQ(errorFor(j), expected);
+
+  // A texture's refused URI is a warning, cut short too (a data: URI of a type tinygltf does not
+  // decode reaches vdg as a URI).
+  Json t = triangle();
+  t["materials"] = Json::parse(R"([{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}])");
+  t["textures"] = Json::parse(R"([{"source": 0}])");
+  t["images"] = {{{"uri", "data:image/webp;base64," + std::string(300, 'Q')}}};
+  t["meshes"][0]["primitives"][0]["material"] = 0;
+  t["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] = 0;
+  t["accessors"].push_back({{"bufferView", 0}, {"componentType", 5126}, {"count", 3}, {"type", "VEC2"}});
+  t["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] = 2;
+  std::vector<std::string> warnings;
+  (void)parseGltfRig(t.dump(), "t.gltf", {}, {}, MeshReadOptions{true, false, &warnings});
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_EQ(warnings[0].find(";base64," + std::string(60, 'Q')), std::string::npos) << warnings[0];
+  EXPECT_EQ(warnings[0].rfind("t.gltf: materials[0]: baseColorTexture: 'data:image/webp;base64,QQQ", 0), 0u)
+      << warnings[0];
+
+  // An external buffer shorter than its byteLength: tinygltf said "File size mismatch :
+  // <vdg-gltf-folder>/link.bin, requestedBytes 44, but got 40".
+  vdg::testing::TempDir dir;
+  Json j = triangle();
+  j["buffers"][0]["uri"] = "link.bin";
+  { std::ofstream(dir.file("t.gltf")) << j.dump(); }
+  { std::ofstream(dir.file("link.bin")) << std::string(40, 'x'); }
+  EXPECT_EQ(errorOf([&] { (void)readGltfRig(dir.file("t.gltf")); }),
+            dir.file("t.gltf") + ": buffers[0]: 'link.bin' holds 40 bytes, byteLength says 44");
+  { std::ofstream(dir.file("link.bin")) << ""; }
+  EXPECT_EQ(errorOf([&] { (void)readGltfRig(dir.file("t.gltf")); }),
+            dir.file("t.gltf") + ": buffers[0]: 'link.bin' is empty");
 }
 
 TEST(GltfHostile, SelectionByName) {

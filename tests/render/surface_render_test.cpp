@@ -17,6 +17,7 @@
 #include <Eigen/Geometry>
 
 #include "support/allocation_counter.h"
+#include "support/error_of.h"
 #include "support/test_meshes.h"
 #include "vdg/geom/error.h"
 #include "vdg/geom/surface.h"
@@ -544,6 +545,18 @@ TEST(SurfaceRender, SplitCubeKeepsItsHardEdgesAfterBlending) {
   const auto px = pixelAt(camera, near_edge);
   ASSERT_TRUE(px);
   EXPECT_GT(channelError(soft_img, (*px)[0], (*px)[1], expected[2]), 2 * kShadeTolerance);
+}
+
+// A mesh whose coordinates lie near the float limit has an infinite extent: no camera frames it.
+// The model renderer says so, naming what it draws, instead of a draw call "refused (internal
+// error)" (readers refuse such glTF files first; this is the renderer's own line).
+TEST(SurfaceRender, AnInfiniteExtentIsRefusedWithItsReason) {
+  TriMesh huge = testing::closedBox(0, 0, 0, 1, 1, 1);
+  for (float& c : huge.positions) c *= 3e38f;
+  FrameOptions o;
+  o.width = o.height = kCanvas;
+  EXPECT_EQ(testing::errorOf([&] { ModelRenderer(huge, o); }),
+            "render: the mesh: its extent overflows a float (bounding radius inf), so no camera can frame it");
 }
 
 TEST(SurfaceRender, UvSplitSphereShadesSmoothlyAcrossTheSeam) {

@@ -9,7 +9,19 @@
 // indices: u8/u16/u32 SCALAR; inverse bind matrices: float MAT4; animation times: float SCALAR),
 // index ranges, sparse accessors (applied, their indices checked), node indices and cycles, a
 // node with two parents, counts above kMaxGltfElements. Every error is one vdg::Error line naming
-// the file and the element: "walk.glb: accessors[3]: bufferView 7 out of range (the file has 5)".
+// the file and the element: "walk.glb: accessors[3]: bufferView 7 out of range (the file has 5)";
+// never tinygltf's own text, never a data: URI (a URI is cut short with quotedText).
+//
+// Refused besides, before tinygltf reads the JSON (docs/meshes.md, "What a glTF file must be"):
+// a field of the wrong JSON type (glTF 2.0 section 5: a negative byteOffset, a non-array "nodes"),
+// asset.version not 2.x or asset.minVersion above 2.0, any extensionsRequired (vdg implements no
+// extension), "scene" or a scene's node out of range, a node listed twice in a scene or not a
+// root, a data: URI or external buffer that does not hold byteLength bytes, an image data: URI
+// without base64 data, an image with both or neither of uri and bufferView; after it: a node with
+// a matrix and TRS, a byteStride on an index or sparse bufferView, the restart value in indices,
+// two channels of one animation on the same node and path. The selected mesh's rest pose (default morph weights, then skinned or placed by
+// the node transforms) must be finite and its bounding box's diagonal must fit a float:
+// "walk.glb: meshes[0] (nodes[2]): vertex 7 lies at (inf, 0, 0) after the node transforms; ...".
 //
 // Files: a .gltf/.glb is read as a regular file of at most kMaxMeshFileBytes (vdg/io/read_file.h).
 // External buffers (`"uri": "walk.bin"`) are read from the glTF file's folder only: an absolute
