@@ -58,6 +58,32 @@ void checkMeshNotShared(const RawViewDependentModel& raw, const RawKey& key, con
                   "': a deformation would change both; give each key its own mesh file in the manifest");
 }
 
+// What a step on `key` must leave alone, registered with the transaction so that no write lands on
+// it through another name (a hard or symbolic link, compared by device and inode): the base mesh,
+// every other key's mesh, edit log and snapshot, the manifest unless the step writes it, and the
+// run's own edit script and camera.
+void protectInputs(FileTransaction& transaction, const RawViewDependentModel& raw, const RawKey& key,
+                   const fs::path& folder, const DeformOptions& opt, bool writes_manifest) {
+  transaction.protect(meshFile(folder, raw.base_path).string(), "the base mesh " + meshFile(folder, raw.base_path).string());
+  for (const RawKey& other : raw.keys) {
+    if (&other == &key) continue;
+    const fs::path mesh = meshFile(folder, other.mesh_path);
+    const std::string whose = "key '" + other.name + "'";
+    transaction.protect(mesh.string(), "the mesh of " + whose + " " + mesh.string());
+    transaction.protect(editLogPath(mesh.string()), "the edit log of " + whose + " " + editLogPath(mesh.string()));
+    const fs::path snapshot = mesh.parent_path() / (mesh.stem().string() + ".origin.obj");
+    transaction.protect(snapshot.string(), "the snapshot of " + whose + " " + snapshot.string());
+  }
+  if (!writes_manifest) transaction.protect(opt.model, "the manifest " + opt.model);
+  if (!opt.ops.empty()) transaction.protect(opt.ops, "the edit script " + opt.ops);
+  if (!opt.camera.empty()) transaction.protect(opt.camera, "the camera file " + opt.camera);
+}
+
+// "key 'front': its mesh front.obj", naming a file the step writes.
+std::string keyFile(const RawKey& key, const char* role, const fs::path& path) {
+  return "key '" + key.name + "': its " + role + " " + path.string();
+}
+
 TriMesh originMesh(const RawViewDependentModel& raw, const EditLog& log, const fs::path& log_path) {
   if (log.origin == "base") return raw.base;
   TriMesh m = raw.base;
@@ -85,8 +111,10 @@ void runUndo(const DeformOptions& opt, RawViewDependentModel& raw, RawKey& key, 
                 counted(undone_ops, "operation").c_str(), counted(log.entries.size(), "step").c_str());
     return;
   }
-  transaction.write(mesh_path.string(), formatObj(key.mesh, "vdg deform: key '" + key.name + "'"));
-  transaction.write(log_path.string(), formatEditLog(log));
+  protectInputs(transaction, raw, key, folder, opt, false);
+  transaction.write(mesh_path.string(), formatObj(key.mesh, "vdg deform: key '" + key.name + "'"),
+                    keyFile(key, "mesh", mesh_path));
+  transaction.write(log_path.string(), formatEditLog(log), keyFile(key, "edit log", log_path));
   transaction.commit();
   if (!opt.quiet)
     std::printf("undid the last step of key '%s' (%s); %s remain\n", key.name.c_str(),
@@ -97,7 +125,8 @@ void runDeform(const DeformOptions& opt) {
   const fs::path folder = fs::path(opt.model).parent_path();
   const std::string journal = (folder / kJournalName).string();
   const FolderLock lock(folder.empty() ? "." : folder.string());  // one deform at a time per folder
-  if (const auto recovered = recoverFileTransaction(journal))
+  // A model keeps its keys in its folder or beneath it (keys/front.obj).
+  if (const auto recovered = recoverFileTransaction(journal, RecoveryScope::kFolderTree))
     std::fprintf(stderr, "vdg deform: %s: %s\n", folder.empty() ? "." : folder.string().c_str(), recovered->c_str());
   FileTransaction transaction(journal);
 
@@ -179,12 +208,15 @@ void runDeform(const DeformOptions& opt) {
     return;
   }
 
+  protectInputs(transaction, raw, key, folder, opt, new_key);
   if (!has_log && log.origin != "base")
     transaction.write(snapshot_path.string(),
-                      formatObj(before, "vdg deform: key '" + key.name + "' before its first logged edit"));
-  transaction.write(mesh_path.string(), formatObj(key.mesh, "vdg deform: key '" + key.name + "'"));
-  transaction.write(log_path.string(), formatEditLog(log));
-  if (new_key) transaction.write(opt.model, formatManifest(raw));
+                      formatObj(before, "vdg deform: key '" + key.name + "' before its first logged edit"),
+                      keyFile(key, "snapshot", snapshot_path));
+  transaction.write(mesh_path.string(), formatObj(key.mesh, "vdg deform: key '" + key.name + "'"),
+                    keyFile(key, "mesh", mesh_path));
+  transaction.write(log_path.string(), formatEditLog(log), keyFile(key, "edit log", log_path));
+  if (new_key) transaction.write(opt.model, formatManifest(raw), "the manifest " + opt.model);
   transaction.commit();
   if (!opt.quiet)
     std::printf("wrote key '%s' to %s (%s in %s)\n", key.name.c_str(), mesh_path.string().c_str(),
