@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <vector>
 
 #include "cli.h"
 #include "vdg/deform/edits.h"
@@ -21,6 +22,7 @@
 #include "vdg/io/file_transaction.h"
 #include "vdg/io/manifest.h"
 #include "vdg/io/obj.h"
+#include "vdg/io/read_file.h"
 #include "vdg/viewdep/model.h"
 
 namespace vdg::cli {
@@ -56,6 +58,24 @@ void checkMeshNotShared(const RawViewDependentModel& raw, const RawKey& key, con
     if (&other != &key && sameFile(mine, meshFile(folder, other.mesh_path)))
       throw Error("key '" + key.name + "' shares its mesh file " + mine.string() + " with key '" + other.name +
                   "': a deformation would change both; give each key its own mesh file in the manifest");
+}
+
+// The files a step on this model may have written beneath its folder, which the recovery of an
+// interrupted step may complete: each key's mesh, edit log and snapshot as the manifest names them
+// now (keys/front.obj); none when it does not parse (loading it reports why).
+std::vector<std::string> keyFilesOf(const std::string& model, const fs::path& folder) {
+  std::vector<std::string> files;
+  try {
+    const RawViewDependentModel raw = parseManifest(readFileLimited(model, "model", kMaxJsonFileBytes), model);
+    for (const RawKey& key : raw.keys) {
+      const fs::path mesh = meshFile(folder, key.mesh_path);
+      files.push_back(mesh.string());
+      files.push_back(editLogPath(mesh.string()));
+      files.push_back((mesh.parent_path() / (mesh.stem().string() + ".origin.obj")).string());
+    }
+  } catch (const Error&) {
+  }
+  return files;
 }
 
 // What a step on `key` must leave alone, registered with the transaction so that no write lands on
@@ -125,8 +145,7 @@ void runDeform(const DeformOptions& opt) {
   const fs::path folder = fs::path(opt.model).parent_path();
   const std::string journal = (folder / kJournalName).string();
   const FolderLock lock(folder.empty() ? "." : folder.string());  // one deform at a time per folder
-  // A model keeps its keys in its folder or beneath it (keys/front.obj).
-  if (const auto recovered = recoverFileTransaction(journal, RecoveryScope::kFolderTree))
+  if (const auto recovered = recoverFileTransaction(journal, keyFilesOf(opt.model, folder)))
     std::fprintf(stderr, "vdg deform: %s: %s\n", folder.empty() ? "." : folder.string().c_str(), recovered->c_str());
   FileTransaction transaction(journal);
 
@@ -196,6 +215,19 @@ void runDeform(const DeformOptions& opt) {
   const bool has_log = !new_key && fs::exists(log_path);
   EditLog log = has_log ? readEditLog(log_path.string()) : startEditLog(raw, key, snapshot_path.filename().string());
   const TriMesh before = key.mesh;
+  // The files of this step: registered first without contents, so that a write that would land on
+  // another file of the model is refused before anything is computed or printed.
+  const bool writes_snapshot = !has_log && log.origin != "base";
+  auto stage = [&](std::string mesh_text, std::string log_text, std::string snapshot_text, std::string manifest) {
+    if (writes_snapshot)
+      transaction.write(snapshot_path.string(), std::move(snapshot_text), keyFile(key, "snapshot", snapshot_path));
+    transaction.write(mesh_path.string(), std::move(mesh_text), keyFile(key, "mesh", mesh_path));
+    transaction.write(log_path.string(), std::move(log_text), keyFile(key, "edit log", log_path));
+    if (new_key) transaction.write(opt.model, std::move(manifest), "the manifest " + opt.model);
+  };
+  protectInputs(transaction, raw, key, folder, opt, new_key);
+  stage({}, {}, {}, {});
+  transaction.check();
 
   const auto reports = deformKey(raw, key_index, log, script.ops, script.image_size, opt.ops);
   if (!opt.quiet || opt.dry_run) {
@@ -208,15 +240,9 @@ void runDeform(const DeformOptions& opt) {
     return;
   }
 
-  protectInputs(transaction, raw, key, folder, opt, new_key);
-  if (!has_log && log.origin != "base")
-    transaction.write(snapshot_path.string(),
-                      formatObj(before, "vdg deform: key '" + key.name + "' before its first logged edit"),
-                      keyFile(key, "snapshot", snapshot_path));
-  transaction.write(mesh_path.string(), formatObj(key.mesh, "vdg deform: key '" + key.name + "'"),
-                    keyFile(key, "mesh", mesh_path));
-  transaction.write(log_path.string(), formatEditLog(log), keyFile(key, "edit log", log_path));
-  if (new_key) transaction.write(opt.model, formatManifest(raw), "the manifest " + opt.model);
+  stage(formatObj(key.mesh, "vdg deform: key '" + key.name + "'"), formatEditLog(log),
+        writes_snapshot ? formatObj(before, "vdg deform: key '" + key.name + "' before its first logged edit") : "",
+        new_key ? formatManifest(raw) : "");
   transaction.commit();
   if (!opt.quiet)
     std::printf("wrote key '%s' to %s (%s in %s)\n", key.name.c_str(), mesh_path.string().c_str(),

@@ -217,15 +217,23 @@ std::string folderOf(const std::string& path) {
   return parent.empty() ? std::string(".") : parent.string();
 }
 
-// Writes to a character device or a FIFO in place.
+// Whether `path` names one of vdg's own open files (/dev/stdout, /dev/fd/1, /proc/self/fd/1):
+// written in place, as the shell opened it, whatever it is.
+bool isDescriptorPath(const std::string& path) {
+  return path.starts_with("/dev/std") || path.starts_with("/dev/fd/") || path.starts_with("/proc/self/fd/");
+}
+
+// Writes to a character device or a FIFO (or a descriptor path, see above) in place.
 void writeStream(const std::string& path, const std::string& real, bool fifo, std::string_view contents) {
-  const int fd = ::open(real.c_str(), O_WRONLY | O_NOCTTY | O_CLOEXEC | O_NONBLOCK);
+  const bool descriptor = isDescriptorPath(path);
+  const int fd = ::open(real.c_str(), O_WRONLY | O_NOCTTY | O_CLOEXEC | O_NONBLOCK | (descriptor ? O_APPEND : 0));
   if (fd < 0) {
     if (fifo && errno == ENXIO) throw Error(path + ": is a FIFO that no program is reading");
     failWrite(path, errno);
   }
   struct stat st {};
-  if (::fstat(fd, &st) != 0 || !(S_ISCHR(st.st_mode) || S_ISFIFO(st.st_mode))) {
+  if (::fstat(fd, &st) != 0 ||
+      !(S_ISCHR(st.st_mode) || S_ISFIFO(st.st_mode) || S_ISSOCK(st.st_mode) || (descriptor && S_ISREG(st.st_mode)))) {
     ::close(fd);
     throw Error(path + ": changed while being opened; not written");
   }
@@ -323,8 +331,9 @@ void installOutputSignalHandlers() {
   for (int sig : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&action.sa_mask, sig);
   for (int sig : {SIGINT, SIGTERM, SIGHUP}) {
     struct sigaction old {};
-    // A signal ignored when vdg started (nohup, a background job) stays ignored.
-    if (::sigaction(sig, nullptr, &old) == 0 && old.sa_handler == SIG_IGN) continue;
+    // SIGHUP ignored when vdg started (nohup) stays ignored. SIGINT and SIGTERM are always caught:
+    // a shell script starts its background jobs with SIGINT ignored, and they must still clean up.
+    if (sig == SIGHUP && ::sigaction(sig, nullptr, &old) == 0 && old.sa_handler == SIG_IGN) continue;
     ::sigaction(sig, &action, nullptr);
   }
 }
@@ -428,8 +437,14 @@ std::string StagedFile::release() {
 }
 
 void writeFileAtomically(const std::string& path, std::string_view contents) {
-  const std::string real = checkedOutputPath(path);
   struct stat st {};
+  // A device or a FIFO is written in place, through whatever links name it (/dev/stdout is a link
+  // to /proc/self/fd/1, whose own target is no path); only files are replaced, and never through a
+  // link that leaves its folder.
+  if (::stat(path.c_str(), &st) == 0 &&
+      (S_ISCHR(st.st_mode) || S_ISFIFO(st.st_mode) || (isDescriptorPath(path) && S_ISREG(st.st_mode))))
+    return writeStream(path, path, S_ISFIFO(st.st_mode), contents);
+  const std::string real = checkedOutputPath(path);
   if (::stat(real.c_str(), &st) == 0) {
     if (S_ISCHR(st.st_mode) || S_ISFIFO(st.st_mode)) return writeStream(path, real, S_ISFIFO(st.st_mode), contents);
     if (!S_ISREG(st.st_mode)) throw Error(path + ": is " + kindOf(st.st_mode) + ", not a file");

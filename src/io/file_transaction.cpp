@@ -56,21 +56,30 @@ fs::path realFolderOf(const fs::path& path) {
   return ec ? fs::path() : folder;
 }
 
-// Whether `inner` is `outer` (or, with kFolderTree, a folder beneath it).
-bool inScope(const fs::path& inner, const fs::path& outer, RecoveryScope scope) {
+// Whether `inner` is `outer` or a folder beneath it.
+bool isWithin(const fs::path& inner, const fs::path& outer) {
   if (inner.empty() || outer.empty()) return false;
-  if (scope == RecoveryScope::kFolder) return inner == outer;
   auto i = inner.begin();
   for (auto o = outer.begin(); o != outer.end(); ++o, ++i)
     if (i == inner.end() || *i != *o) return false;
   return true;
 }
 
+// Whether `target` is one of `trusted`: the same real folder and the same name.
+bool isTrusted(const std::string& target, const std::vector<std::string>& trusted) {
+  const fs::path folder = realFolderOf(target);
+  for (const std::string& t : trusted)
+    if (fs::path(t).filename() == fs::path(target).filename() && realFolderOf(t) == folder && !folder.empty())
+      return true;
+  return false;
+}
+
 // Why recovery does not trust entry `e` of the journal in `journal_folder`, or "" when it does.
-std::string distrust(const JournalEntry& e, const fs::path& journal_folder, RecoveryScope scope) {
+std::string distrust(const JournalEntry& e, const fs::path& journal_folder, const std::vector<std::string>& trusted) {
   if (!isTemporaryBeside(e.temp, e.target) || fs::path(e.target).lexically_normal() != fs::path(e.target))
     return "not a step vdg wrote (the temporary file must be .vdg-XXXXXX beside its target)";
-  if (!inScope(realFolderOf(e.target), journal_folder, scope))
+  const fs::path folder = realFolderOf(e.target);
+  if ((folder.empty() || folder != journal_folder) && !isTrusted(e.target, trusted))
     return "not a step vdg wrote here: its target " + e.target + " is outside the journal's folder";
   struct stat st {};
   if (::lstat(e.temp.c_str(), &st) == 0 && !S_ISREG(st.st_mode))
@@ -123,7 +132,7 @@ void FileTransaction::checkTargets() const {
         throw Error(f.path + ": named twice in one step (it is the same file as " + files_[j].path +
                     "); nothing written");
     const std::string real = checkedOutputPath(f.path);
-    if (!inScope(realFolderOf(real), journal_folder, RecoveryScope::kFolderTree))
+    if (!isWithin(realFolderOf(real), journal_folder))
       throw Error(f.what + ": outside the folder of " + journal_path_ +
                   " (a step writes files in that folder and the folders beneath it); nothing written");
   }
@@ -187,7 +196,8 @@ void FileTransaction::commit() {
   removeQuietly(journal_path_);
 }
 
-std::optional<std::string> recoverFileTransaction(const std::string& journal_path, RecoveryScope scope) {
+std::optional<std::string> recoverFileTransaction(const std::string& journal_path,
+                                                  const std::vector<std::string>& also_trusted) {
   std::error_code ec;
   if (!fs::exists(fs::symlink_status(journal_path, ec))) return std::nullopt;
   const io::Json doc = io::readJsonFile(journal_path, "transaction journal");
@@ -204,7 +214,7 @@ std::optional<std::string> recoverFileTransaction(const std::string& journal_pat
     io::allowKeys(files[i], fctx, {"target", "temp"});
     JournalEntry e{io::string(io::required(files[i], "target", fctx), fctx.key("target")),
                    io::string(io::required(files[i], "temp", fctx), fctx.key("temp"))};
-    if (const std::string why = distrust(e, journal_folder, scope); !why.empty())
+    if (const std::string why = distrust(e, journal_folder, also_trusted); !why.empty())
       fctx.fail(why + "; check the files and remove the journal by hand");
     entries.push_back(std::move(e));
   }

@@ -256,7 +256,10 @@ TEST(FileTransaction, RecoveryOfAModelFolderReachesItsKeysFolder) {
   const std::string j = dir.file(".vdg-journal");
   testing::writeText(j, journal("committing", {{base + "/keys/front.obj", base + "/keys/.vdg-Aa1111"}}));
   EXPECT_NE(errorOf([&] { recoverFileTransaction(j); }).find("outside the journal's folder"), std::string::npos);
-  EXPECT_EQ(recoverFileTransaction(j, RecoveryScope::kFolderTree).value_or(""),
+  // Trusted when the caller names it as its own (a key file of the model), and then only it.
+  EXPECT_NE(errorOf([&] { recoverFileTransaction(j, {dir.file("keys/back.obj")}); }).find("outside the journal's folder"),
+            std::string::npos);
+  EXPECT_EQ(recoverFileTransaction(j, {dir.file("keys/back.obj"), dir.file("keys/./front.obj")}).value_or(""),
             "completed an interrupted step: wrote " + base + "/keys/front.obj");
   EXPECT_EQ(testing::readText(dir.file("keys/front.obj")), "new");
 }

@@ -88,7 +88,8 @@ void removeMadeOutputFolders();
 //   - SIGINT, SIGTERM and SIGHUP end the run: the temporary files being written are removed (and
 //     a FileTransaction's journal whose step was not decided yet), then the folders
 //     makeOutputFolder made that are empty, one line on stderr, "vdg: interrupted (SIGINT); the
-//     files being written were removed", and exit status 128 + the signal (130, 143, 129).
+//     files being written were removed", and exit status 128 + the signal (130, 143, 129). SIGHUP
+//     stays ignored when it was ignored at the start (nohup); SIGINT and SIGTERM are always caught.
 void installOutputSignalHandlers();
 
 // A file to remove if the run is interrupted (see above) until keepOnInterrupt(token); the path

@@ -19,9 +19,9 @@
 // recoverFileTransaction() reads a journal left behind and, by its state, either removes the
 // temporary files (staging: rolled back, the targets were never touched) or renames the ones still
 // present over their targets (committing: completed; a missing temporary was renamed already).
-// Recovery trusts a journal only when every target is in the journal's own folder (for
-// RecoveryScope::kFolderTree, in it or a folder beneath it; real paths, so neither ".." nor a link
-// leads out) and every temporary file is a ".vdg-XXXXXX" name beside its target that is a regular
+// Recovery trusts a journal only when every target is in the journal's own folder (real paths, so
+// neither ".." nor a link leads out), or is one of the files the caller names as its own (a model's
+// key files in keys/), and every temporary file is a ".vdg-XXXXXX" name beside its target that is a regular
 // file when present: a journal planted in an output folder cannot rename or remove anything
 // elsewhere. A journal it does not trust is refused with one line and nothing is touched. Since
 // recovery would refuse them, commit() refuses to write files outside the journal's folder tree.
@@ -54,6 +54,12 @@ class FileTransaction {
   void protect(const std::string& path, std::string what);
   bool empty() const { return files_.empty(); }
 
+  // The checks commit() makes before writing anything (protected files, one file under two names,
+  // links out of a folder, targets outside the journal's folder tree), for a caller that wants to
+  // refuse before it computes the contents: write() the paths with empty contents, check(), then
+  // write() them again with the contents. Throws vdg::Error as commit() would.
+  void check() const { checkTargets(); }
+
   // Writes every file as one step (see above). Throws vdg::Error naming the file that failed, or
   // the journal when one is already present. A transaction commits once.
   void commit();
@@ -83,16 +89,14 @@ class FolderLock {
   int fd_ = -1;
 };
 
-// Where recovery accepts targets: the journal's folder only (an output folder), or also the folders
-// beneath it (a model folder with its keys in keys/).
-enum class RecoveryScope { kFolder, kFolderTree };
-
 // Finishes an interrupted transaction whose journal is at `journal_path`. Returns nothing when
 // there is no journal, else one line saying what was done: "completed an interrupted step: wrote
 // A, B" or "rolled back an interrupted step: no file had been changed". Throws vdg::Error naming
 // the journal when it cannot be read or trusted (then nothing is renamed or removed), or a rename
-// fails.
+// fails. `also_trusted`: files outside the journal's folder that a step may have written (for
+// `vdg deform`, the mesh, edit log and snapshot of each key of the model, wherever they are);
+// compared by their real folder and name.
 std::optional<std::string> recoverFileTransaction(const std::string& journal_path,
-                                                  RecoveryScope scope = RecoveryScope::kFolder);
+                                                  const std::vector<std::string>& also_trusted = {});
 
 }  // namespace vdg
