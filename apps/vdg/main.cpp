@@ -6,7 +6,7 @@
 // Signals (vdg/io/atomic_file.h, installOutputSignalHandlers): Ctrl-C, SIGTERM and SIGHUP remove
 // the files being written and end with 128 + the signal; a closed reader of stdout (vdg sample |
 // head -1) ends the run quietly with status 0; a file size limit fails a write as a full disk does.
-// A run that fails removes the output folders it made and left empty.
+// A run that fails removes the files and folders it made (vdg::removeNewOutputs).
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -118,6 +118,6 @@ int main(int argc, char** argv) {
   vdg::installOutputSignalHandlers();
   int status = run(argc, argv);
   if (status == 0) status = flushStdout();
-  if (status != 0) vdg::removeMadeOutputFolders();
+  if (status != 0) vdg::removeNewOutputs();
   return status;
 }

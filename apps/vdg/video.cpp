@@ -57,6 +57,7 @@ void encodeVideo(const std::string& where, const std::string& video, const Video
   std::error_code ec;
   if (std::system(cmd.c_str()) != 0) {
     fs::remove(temp, ec);
+    keepNewOutputs();  // the frames stay for the user, as the message says
     throw Error(where + ": ffmpeg failed to encode the frames (they are in " + frames.dir + ")");
   }
   if (::rename(temp.c_str(), real.c_str()) != 0) {

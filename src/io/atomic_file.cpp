@@ -84,6 +84,43 @@ Slot g_slots[kSlots];  // files: registered while written
 Slot g_folders[kSlots];  // folders made by makeOutputFolder, in the order made (parents first)
 std::atomic<int> g_folder_count{0};
 
+std::string absoluteText(const std::string& path) {
+  std::error_code ec;
+  const fs::path a = fs::absolute(path, ec);
+  return ec ? path : a.lexically_normal().string();
+}
+
+// Files this run created (renamed into place where nothing was), newest first: a lock-free list
+// that only grows, so that the signal handler can walk it. A file is removed only while it is
+// still the one written (the same device and inode).
+struct Created {
+  dev_t device;
+  ino_t inode;
+  std::string path;  // absolute
+  Created* next;
+};
+std::atomic<Created*> g_created{nullptr};
+std::atomic<bool> g_keep_created{false};
+
+void noteCreated(const std::string& path, dev_t device, ino_t inode) {
+  auto* c = new Created{device, inode, absoluteText(path), g_created.load(std::memory_order_relaxed)};
+  while (!g_created.compare_exchange_weak(c->next, c, std::memory_order_release, std::memory_order_relaxed)) {
+  }
+}
+
+// Removes the files and then the (empty) folders this run made; async-signal-safe.
+void removeNew() {
+  if (!g_keep_created.load())
+    for (const Created* c = g_created.load(std::memory_order_acquire); c; c = c->next) {
+      struct stat st {};
+      if (::lstat(c->path.c_str(), &st) == 0 && S_ISREG(st.st_mode) && st.st_dev == c->device &&
+          st.st_ino == c->inode)
+        ::unlink(c->path.c_str());
+    }
+  for (int i = g_folder_count.load() - 1; i >= 0; --i)
+    if (g_folders[i].state.load() == 3) ::rmdir(g_folders[i].path);  // only an empty folder goes
+}
+
 // Claims a free slot of `slots` for `path` in `state`; -1 when all are taken or the path too long.
 int claimSlot(Slot* slots, const std::string& path, int state) {
   if (path.size() >= kSlotPathMax) return -1;
@@ -97,17 +134,11 @@ int claimSlot(Slot* slots, const std::string& path, int state) {
   return -1;
 }
 
-std::string absoluteText(const std::string& path) {
-  std::error_code ec;
-  const fs::path a = fs::absolute(path, ec);
-  return ec ? path : a.lexically_normal().string();
-}
 
 extern "C" void onInterrupt(int sig) {
   for (Slot& slot : g_slots)
     if (slot.state.load() == 2) ::unlink(slot.path);
-  for (int i = g_folder_count.load() - 1; i >= 0; --i)
-    if (g_folders[i].state.load() == 3) ::rmdir(g_folders[i].path);
+  removeNew();
   static constexpr char kInt[] = "vdg: interrupted (SIGINT); the files being written were removed\n";
   static constexpr char kTerm[] = "vdg: interrupted (SIGTERM); the files being written were removed\n";
   static constexpr char kHup[] = "vdg: interrupted (SIGHUP); the files being written were removed\n";
@@ -296,7 +327,7 @@ bool makeOutputFolder(const std::string& folder, std::error_code& ec) {
       ec = std::error_code(errno, std::generic_category());
       return false;
     }
-    // Remembered for removeMadeOutputFolders and the interrupt handler (made by one thread only).
+    // Remembered for removeNewOutputs and the interrupt handler (made by one thread only).
     const int n = g_folder_count.load();
     const std::string made = absoluteText(it->string());
     if (n < kSlots && made.size() < kSlotPathMax) {
@@ -316,10 +347,9 @@ void makeOutputFolder(const std::string& folder) {
   if (ec) throw Error(folder + ": cannot make the folder: " + ec.message());
 }
 
-void removeMadeOutputFolders() {
-  for (int i = g_folder_count.load() - 1; i >= 0; --i)
-    if (g_folders[i].state.load() == 3) ::rmdir(g_folders[i].path);  // only an empty folder goes
-}
+void removeNewOutputs() { removeNew(); }
+
+void keepNewOutputs() { g_keep_created.store(true); }
 
 void installOutputSignalHandlers() {
   (void)instanceTag();  // read the boot id now, not in the middle of a write
@@ -387,6 +417,8 @@ StagedFile::StagedFile(const std::string& path, std::string_view contents, const
   const int fd = createTemporary(path_, target_, temp_path, temp_path_, interrupt_token_);
   int err = 0;
   if (replacing) (void)::fchmod(fd, st.st_mode & 07777);  // best effort: set-id bits may be refused
+  struct stat written {};
+  if (::fstat(fd, &written) == 0) device_ = written.st_dev, inode_ = written.st_ino;
   err = writeAll(fd, contents);
   if (err == 0 && ::fsync(fd) != 0) err = errno;
   if (::close(fd) != 0 && err == 0 && errno != EINTR) err = errno;
@@ -407,7 +439,9 @@ StagedFile::StagedFile(StagedFile&& other) noexcept
     : path_(std::move(other.path_)),
       target_(std::move(other.target_)),
       temp_path_(std::move(other.temp_path_)),
-      interrupt_token_(other.interrupt_token_) {
+      interrupt_token_(other.interrupt_token_),
+      device_(other.device_),
+      inode_(other.inode_) {
   other.temp_path_.clear();
   other.interrupt_token_ = -1;
 }
@@ -419,6 +453,8 @@ StagedFile::~StagedFile() {
 
 void StagedFile::commit() {
   assert(!temp_path_.empty() && "StagedFile committed twice");
+  struct stat st {};
+  const bool creating = ::lstat(target_.c_str(), &st) != 0 && errno == ENOENT;
   if (::rename(temp_path_.c_str(), target_.c_str()) != 0) {
     const int err = errno;
     ::unlink(temp_path_.c_str());
@@ -426,6 +462,7 @@ void StagedFile::commit() {
     if (err == EISDIR || err == ENOTDIR) throw Error(path_ + ": is a folder, not a file vdg can replace");
     failWrite(path_, err);
   }
+  if (creating) noteCreated(target_, device_, inode_);
   forget();
   syncFolder(folderOf(target_));
 }

@@ -140,13 +140,15 @@ int inChild(const std::function<void()>& f) {
   return status;
 }
 
-TEST(AtomicFile, AnInterruptRemovesTheFilesBeingWrittenAndTheFoldersMade) {
+TEST(AtomicFile, AnInterruptRemovesTheFilesBeingWrittenAndWhatTheRunMade) {
   for (const int sig : {SIGINT, SIGTERM}) {
     testing::TempDir dir;
     testing::writeText(dir.file("done.png"), "a finished frame");
     const int status = inChild([&] {
       installOutputSignalHandlers();
       makeOutputFolder(dir.file("new/sub"));
+      writeFileAtomically(dir.file("new/sub/frame_0000.png"), "a frame of this run");
+      writeFileAtomically(dir.file("done.png"), "replaced by this run");
       StagedFile half(dir.file("new/sub/frame.png"), "half");
       StagedFile other(dir.file("frame.png"), "half");
       const int token = removeOnInterrupt(dir.file("journal"));
@@ -158,23 +160,40 @@ TEST(AtomicFile, AnInterruptRemovesTheFilesBeingWrittenAndTheFoldersMade) {
     ASSERT_TRUE(WIFEXITED(status));
     EXPECT_EQ(WEXITSTATUS(status), 128 + sig);
     EXPECT_EQ(entries(dir.path()), std::vector<std::string>{"done.png"});
+    EXPECT_EQ(testing::readText(dir.file("done.png")), "replaced by this run");
   }
 }
 
-TEST(AtomicFile, AFailedRunRemovesOnlyTheEmptyFoldersItMade) {
+TEST(AtomicFile, AFailedRunRemovesWhatItMadeAndNothingElse) {
   testing::TempDir dir;
   fs::create_directories(dir.path() / "old");
+  testing::writeText(dir.file("old/replaced.png"), "old");
+  testing::writeText(dir.file("old/user.txt"), "the user's");
   const int status = inChild([&] {
     makeOutputFolder(dir.file("old/a/b"));
+    writeFileAtomically(dir.file("old/a/b/frame_0000.png"), "made");
+    writeFileAtomically(dir.file("old/replaced.png"), "new");  // replaced: cannot be given back
     makeOutputFolder(dir.file("kept/c"));
-    testing::writeText(dir.file("kept/c/frame.png"), "written");
+    writeFileAtomically(dir.file("kept/c/frame.png"), "made, then replaced by someone else");
+    testing::writeText(dir.file("kept/c/.other"), "x");
+    fs::rename(dir.path() / "kept" / "c" / ".other", dir.path() / "kept" / "c" / "frame.png");
     makeOutputFolder(dir.file("old"));  // was there: never removed
-    removeMadeOutputFolders();
+    removeNewOutputs();
   });
   ASSERT_TRUE(WIFEXITED(status));
   EXPECT_EQ(entries(dir.path()), (std::vector<std::string>{"kept", "old"}));
-  EXPECT_TRUE(fs::is_empty(dir.path() / "old"));
+  EXPECT_EQ(entries(dir.path() / "old"), (std::vector<std::string>{"replaced.png", "user.txt"}));
+  EXPECT_EQ(testing::readText(dir.file("old/replaced.png")), "new");
   EXPECT_TRUE(fs::exists(dir.path() / "kept" / "c" / "frame.png"));
+  // keepNewOutputs keeps the files (and so their folders).
+  const int kept = inChild([&] {
+    makeOutputFolder(dir.file("frames"));
+    writeFileAtomically(dir.file("frames/frame_0000.png"), "made");
+    keepNewOutputs();
+    removeNewOutputs();
+  });
+  ASSERT_TRUE(WIFEXITED(kept));
+  EXPECT_TRUE(fs::exists(dir.path() / "frames" / "frame_0000.png"));
   testing::writeText(dir.file("file"), "x");
   EXPECT_EQ(errorOf([&] { makeOutputFolder(dir.file("file")); }), dir.file("file") + ": is a file, not a folder");
 }

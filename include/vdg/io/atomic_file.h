@@ -28,6 +28,8 @@
 // recovery). Nothing else is ever removed.
 #pragma once
 
+#include <sys/types.h>
+
 #include <functional>
 #include <ostream>
 #include <string>
@@ -69,25 +71,32 @@ std::string temporaryPathFor(const std::string& real_target);
 // link or a symbolic link to a file is that file). False when either does not exist.
 bool isSameFile(const std::string& a, const std::string& b);
 
-// ---- Output folders --------------------------------------------------------------------------
-// Makes `folder` and its missing parents (as mkdir -p) and remembers the ones it made, so that a
-// run that fails or is interrupted leaves no new empty folder behind (removeMadeOutputFolders).
-// Throws vdg::Error "FOLDER: cannot make the folder: REASON" (or "... is a file, not a folder").
+// ---- What a failed run leaves -----------------------------------------------------------------
+// A run that fails or is interrupted leaves nothing new behind: the files it created (renamed into
+// place where no file was; a replaced file cannot be given back and stays replaced) and the
+// folders makeOutputFolder made are removed again by removeNewOutputs, which the vdg tool calls
+// when a run fails, and the interrupt handler (below). A created file is removed only while it is
+// still the one written (the same device and inode); a folder only when it is empty.
+
+// Makes `folder` and its missing parents (as mkdir -p) and remembers the ones it made. Throws
+// vdg::Error "FOLDER: cannot make the folder: REASON" (or "FOLDER: is a file, not a folder").
 void makeOutputFolder(const std::string& folder);
 // The same without throwing, as std::filesystem::create_directories(folder, ec): true when it made
 // `folder`; `ec` set on failure (std::errc::not_a_directory when a file is in the way).
 bool makeOutputFolder(const std::string& folder, std::error_code& ec);
-// Removes, deepest first, the folders makeOutputFolder made in this run that are empty now; never
-// a folder that holds anything. Called by the vdg tool when a run fails.
-void removeMadeOutputFolders();
+// Removes the files and then the folders this run made, as described above.
+void removeNewOutputs();
+// From now on the files this run created are kept even if it fails (frames left for the user when
+// a video cannot be encoded); folders it made and left empty still go.
+void keepNewOutputs();
 
 // ---- Signals ---------------------------------------------------------------------------------
 // For the vdg tool's main(), before anything is written:
 //   - SIGPIPE and SIGXFSZ are ignored: a write to a closed pipe fails with EPIPE (ReaderClosed),
 //     one past the file size limit (ulimit -f) with EFBIG, reported and cleaned up as a full disk;
 //   - SIGINT, SIGTERM and SIGHUP end the run: the temporary files being written are removed (and
-//     a FileTransaction's journal whose step was not decided yet), then the folders
-//     makeOutputFolder made that are empty, one line on stderr, "vdg: interrupted (SIGINT); the
+//     a FileTransaction's journal whose step was not decided yet), then what removeNewOutputs
+//     removes, one line on stderr, "vdg: interrupted (SIGINT); the
 //     files being written were removed", and exit status 128 + the signal (130, 143, 129). SIGHUP
 //     stays ignored when it was ignored at the start (nohup); SIGINT and SIGTERM are always caught.
 void installOutputSignalHandlers();
@@ -129,6 +138,8 @@ class StagedFile {
   void forget();  // the temporary file is no longer this object's (unregisters it)
   std::string path_, target_, temp_path_;
   int interrupt_token_ = -1;
+  dev_t device_ = 0;  // the identity of the temporary file (and of the target once committed)
+  ino_t inode_ = 0;
 };
 
 }  // namespace vdg
