@@ -259,6 +259,8 @@ void writeStream(const std::string& path, const std::string& real, bool fifo, st
   const bool descriptor = isDescriptorPath(path);
   const int fd = ::open(real.c_str(), O_WRONLY | O_NOCTTY | O_CLOEXEC | O_NONBLOCK | (descriptor ? O_APPEND : 0));
   if (fd < 0) {
+    // /dev/stdout of vdg ... | head -1 once head has gone: the output is no longer wanted.
+    if (fifo && errno == ENXIO && descriptor) throw ReaderClosed(path + ": the program reading it has stopped");
     if (fifo && errno == ENXIO) throw Error(path + ": is a FIFO that no program is reading");
     failWrite(path, errno);
   }
