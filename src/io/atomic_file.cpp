@@ -324,18 +324,22 @@ bool makeOutputFolder(const std::string& folder, std::error_code& ec) {
   }
   ec.clear();
   for (auto it = missing.rbegin(); it != missing.rend(); ++it) {
-    if (::mkdir(it->c_str(), 0777) != 0) {
-      if (errno == EEXIST) continue;
-      ec = std::error_code(errno, std::generic_category());
-      return false;
-    }
-    // Remembered for removeNewOutputs and the interrupt handler (made by one thread only).
+    // Remembered before it exists, for removeNewOutputs and the interrupt handler, so that an
+    // interrupt right after the mkdir still removes it (folders are made by one thread only).
     const int n = g_folder_count.load();
     const std::string made = absoluteText(it->string());
-    if (n < kSlots && made.size() < kSlotPathMax) {
+    const bool noted = n < kSlots && made.size() < kSlotPathMax;
+    if (noted) {
       std::memcpy(g_folders[n].path, made.c_str(), made.size() + 1);
       g_folders[n].state.store(3);
       g_folder_count.store(n + 1);
+    }
+    if (::mkdir(it->c_str(), 0777) != 0) {
+      const int err = errno;
+      if (noted) g_folders[n].state.store(0);  // not made by this run: never removed
+      if (err == EEXIST) continue;
+      ec = std::error_code(err, std::generic_category());
+      return false;
     }
   }
   if (!fs::is_directory(folder, ec) && !ec) ec = std::make_error_code(std::errc::not_a_directory);
@@ -456,7 +460,9 @@ StagedFile::~StagedFile() {
 void StagedFile::commit() {
   assert(!temp_path_.empty() && "StagedFile committed twice");
   struct stat st {};
-  const bool creating = ::lstat(target_.c_str(), &st) != 0 && errno == ENOENT;
+  // A new file is noted before the rename, so that an interrupt right after it still removes it
+  // (until then nothing at the target has the temporary file's inode, and nothing is removed).
+  if (::lstat(target_.c_str(), &st) != 0 && errno == ENOENT) noteCreated(target_, device_, inode_);
   if (::rename(temp_path_.c_str(), target_.c_str()) != 0) {
     const int err = errno;
     ::unlink(temp_path_.c_str());
@@ -464,7 +470,6 @@ void StagedFile::commit() {
     if (err == EISDIR || err == ENOTDIR) throw Error(path_ + ": is a folder, not a file vdg can replace");
     failWrite(path_, err);
   }
-  if (creating) noteCreated(target_, device_, inode_);
   forget();
   syncFolder(folderOf(target_));
 }
