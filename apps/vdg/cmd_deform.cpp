@@ -84,7 +84,8 @@ std::vector<std::string> keyFilesOf(const std::string& model, const fs::path& fo
 // run's own edit script and camera.
 void protectInputs(FileTransaction& transaction, const RawViewDependentModel& raw, const RawKey& key,
                    const fs::path& folder, const DeformOptions& opt, bool writes_manifest) {
-  transaction.protect(meshFile(folder, raw.base_path).string(), "the base mesh " + meshFile(folder, raw.base_path).string());
+  transaction.protect(meshFile(folder, raw.base_path).string(),
+                      "the base mesh " + meshFile(folder, raw.base_path).string());
   for (const RawKey& other : raw.keys) {
     if (&other == &key) continue;
     const fs::path mesh = meshFile(folder, other.mesh_path);

@@ -80,7 +80,7 @@ struct Slot {
   std::atomic<int> state{0};
   char path[kSlotPathMax];
 };
-Slot g_slots[kSlots];  // files: registered while written
+Slot g_slots[kSlots];    // files: registered while written
 Slot g_folders[kSlots];  // folders made by makeOutputFolder, in the order made (parents first)
 std::atomic<int> g_folder_count{0};
 
@@ -113,8 +113,7 @@ void removeNew() {
   if (!g_keep_created.load())
     for (const Created* c = g_created.load(std::memory_order_acquire); c; c = c->next) {
       struct stat st {};
-      if (::lstat(c->path.c_str(), &st) == 0 && S_ISREG(st.st_mode) && st.st_dev == c->device &&
-          st.st_ino == c->inode)
+      if (::lstat(c->path.c_str(), &st) == 0 && S_ISREG(st.st_mode) && st.st_dev == c->device && st.st_ino == c->inode)
         ::unlink(c->path.c_str());
     }
   for (int i = g_folder_count.load() - 1; i >= 0; --i)
@@ -133,7 +132,6 @@ int claimSlot(Slot* slots, const std::string& path, int state) {
   }
   return -1;
 }
-
 
 extern "C" void onInterrupt(int sig) {
   for (Slot& slot : g_slots)
@@ -309,9 +307,9 @@ std::string checkedOutputPath(const std::string& path) {
 }
 
 bool isSameFile(const std::string& a, const std::string& b) {
-  struct stat sa {}, sb {};
-  return ::stat(a.c_str(), &sa) == 0 && ::stat(b.c_str(), &sb) == 0 && sa.st_dev == sb.st_dev &&
-         sa.st_ino == sb.st_ino;
+  struct stat sa {
+  }, sb{};
+  return ::stat(a.c_str(), &sa) == 0 && ::stat(b.c_str(), &sb) == 0 && sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
 }
 
 bool makeOutputFolder(const std::string& folder, std::error_code& ec) {

@@ -126,7 +126,8 @@ void FileTransaction::checkTargets() const {
   for (std::size_t i = 0; i < files_.size(); ++i) {
     const File& f = files_[i];
     for (const auto& [path, what] : protected_)
-      if (isSameFile(f.path, path)) throw Error(f.what + " would replace " + what + " (the same file); nothing written");
+      if (isSameFile(f.path, path))
+        throw Error(f.what + " would replace " + what + " (the same file); nothing written");
     for (std::size_t j = 0; j < i; ++j)
       if (isSameFile(f.path, files_[j].path))
         throw Error(f.path + ": named twice in one step (it is the same file as " + files_[j].path +

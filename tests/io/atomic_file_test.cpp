@@ -222,9 +222,9 @@ TEST(AtomicFile, TheLeftoversOfAKilledRunAreRemovedWhenProvenOurs) {
     testing::writeText(out.file(name), "left");
   fs::create_directories(out.path() / (".vdg-Ee5555-" + std::to_string(dead) + "-" + tag));  // not a file
   writeFileAtomically(out.file("frame.png"), "new");
-  EXPECT_EQ(entries(out.path()), (std::vector<std::string>{".vdg-Bb2222-1-" + tag, foreign, ".vdg-Dd4444",
-                                                           ".vdg-Ee5555-" + std::to_string(dead) + "-" + tag,
-                                                           "frame.png"}));
+  EXPECT_EQ(entries(out.path()),
+            (std::vector<std::string>{".vdg-Bb2222-1-" + tag, foreign, ".vdg-Dd4444",
+                                      ".vdg-Ee5555-" + std::to_string(dead) + "-" + tag, "frame.png"}));
   // A folder with a transaction's journal is left to its recovery.
   testing::TempDir journalled;
   testing::writeText(journalled.file(".vdg-journal"), "{}");

@@ -174,8 +174,9 @@ TEST(FileTransaction, AWriteOnAProtectedFileUnderAnyNameIsRefused) {
     t.protect(dir.file("cube.obj"), "the base mesh cube.obj");
     t.write(dir.file("front.edits.json"), "log");
     t.write(dir.file(name), "key", "key 'front': its mesh " + std::string(name));
-    EXPECT_EQ(errorOf([&] { t.commit(); }), "key 'front': its mesh " + std::string(name) +
-                                                " would replace the base mesh cube.obj (the same file); nothing written");
+    EXPECT_EQ(errorOf([&] { t.commit(); }),
+              "key 'front': its mesh " + std::string(name) +
+                  " would replace the base mesh cube.obj (the same file); nothing written");
     EXPECT_EQ(testing::readText(dir.file("cube.obj")), "base");
     EXPECT_EQ(entries(dir.path()), (std::vector<std::string>{"cube.obj", "hard.obj", "soft.obj"}));
   }
@@ -257,8 +258,9 @@ TEST(FileTransaction, RecoveryOfAModelFolderReachesItsKeysFolder) {
   testing::writeText(j, journal("committing", {{base + "/keys/front.obj", base + "/keys/.vdg-Aa1111"}}));
   EXPECT_NE(errorOf([&] { recoverFileTransaction(j); }).find("outside the journal's folder"), std::string::npos);
   // Trusted when the caller names it as its own (a key file of the model), and then only it.
-  EXPECT_NE(errorOf([&] { recoverFileTransaction(j, {dir.file("keys/back.obj")}); }).find("outside the journal's folder"),
-            std::string::npos);
+  EXPECT_NE(
+      errorOf([&] { recoverFileTransaction(j, {dir.file("keys/back.obj")}); }).find("outside the journal's folder"),
+      std::string::npos);
   EXPECT_EQ(recoverFileTransaction(j, {dir.file("keys/back.obj"), dir.file("keys/./front.obj")}).value_or(""),
             "completed an interrupted step: wrote " + base + "/keys/front.obj");
   EXPECT_EQ(testing::readText(dir.file("keys/front.obj")), "new");
