@@ -25,6 +25,7 @@ namespace vdg::cli {
 void writeGltfForCli(const std::string& output, const GltfExportInput& input, bool quiet);  // cmd_export.cpp
 void checkGltfOutput(const std::string& output);                                            // cmd_export.cpp
 GltfExportInput exportInputForCli(const OpenedInput& input);                                // cmd_export.cpp
+void checkOutputIsNotInput(const std::string& output, const std::string& model, const OpenedInput& input);  // idem
 
 namespace {
 
@@ -46,6 +47,7 @@ void run(const BakeOptions& opt) {
     file_cameras.load(opt.camera_file, opt.count);
   }
   const OpenedInput opened = openModel(opt.model);
+  checkOutputIsNotInput(opt.output, opt.model, opened);
   const double aspect = static_cast<double>(size.width) / size.height;
   // The whole orbit closes on itself: one more sample, frame 0 again, lets a looping viewer play it
   // without a seam.

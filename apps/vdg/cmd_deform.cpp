@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <vector>
 
 #include "cli.h"
 #include "vdg/deform/edits.h"
@@ -21,6 +22,7 @@
 #include "vdg/io/file_transaction.h"
 #include "vdg/io/manifest.h"
 #include "vdg/io/obj.h"
+#include "vdg/io/read_file.h"
 #include "vdg/viewdep/model.h"
 
 namespace vdg::cli {
@@ -58,6 +60,51 @@ void checkMeshNotShared(const RawViewDependentModel& raw, const RawKey& key, con
                   "': a deformation would change both; give each key its own mesh file in the manifest");
 }
 
+// The files a step on this model may have written beneath its folder, which the recovery of an
+// interrupted step may complete: each key's mesh, edit log and snapshot as the manifest names them
+// now (keys/front.obj); none when it does not parse (loading it reports why).
+std::vector<std::string> keyFilesOf(const std::string& model, const fs::path& folder) {
+  std::vector<std::string> files;
+  try {
+    const RawViewDependentModel raw = parseManifest(readFileLimited(model, "model", kMaxJsonFileBytes), model);
+    for (const RawKey& key : raw.keys) {
+      const fs::path mesh = meshFile(folder, key.mesh_path);
+      files.push_back(mesh.string());
+      files.push_back(editLogPath(mesh.string()));
+      files.push_back((mesh.parent_path() / (mesh.stem().string() + ".origin.obj")).string());
+    }
+  } catch (const Error&) {
+  }
+  return files;
+}
+
+// What a step on `key` must leave alone, registered with the transaction so that no write lands on
+// it through another name (a hard or symbolic link, compared by device and inode): the base mesh,
+// every other key's mesh, edit log and snapshot, the manifest unless the step writes it, and the
+// run's own edit script and camera.
+void protectInputs(FileTransaction& transaction, const RawViewDependentModel& raw, const RawKey& key,
+                   const fs::path& folder, const DeformOptions& opt, bool writes_manifest) {
+  transaction.protect(meshFile(folder, raw.base_path).string(),
+                      "the base mesh " + meshFile(folder, raw.base_path).string());
+  for (const RawKey& other : raw.keys) {
+    if (&other == &key) continue;
+    const fs::path mesh = meshFile(folder, other.mesh_path);
+    const std::string whose = "key '" + other.name + "'";
+    transaction.protect(mesh.string(), "the mesh of " + whose + " " + mesh.string());
+    transaction.protect(editLogPath(mesh.string()), "the edit log of " + whose + " " + editLogPath(mesh.string()));
+    const fs::path snapshot = mesh.parent_path() / (mesh.stem().string() + ".origin.obj");
+    transaction.protect(snapshot.string(), "the snapshot of " + whose + " " + snapshot.string());
+  }
+  if (!writes_manifest) transaction.protect(opt.model, "the manifest " + opt.model);
+  if (!opt.ops.empty()) transaction.protect(opt.ops, "the edit script " + opt.ops);
+  if (!opt.camera.empty()) transaction.protect(opt.camera, "the camera file " + opt.camera);
+}
+
+// "key 'front': its mesh front.obj", naming a file the step writes.
+std::string keyFile(const RawKey& key, const char* role, const fs::path& path) {
+  return "key '" + key.name + "': its " + role + " " + path.string();
+}
+
 TriMesh originMesh(const RawViewDependentModel& raw, const EditLog& log, const fs::path& log_path) {
   if (log.origin == "base") return raw.base;
   TriMesh m = raw.base;
@@ -85,8 +132,10 @@ void runUndo(const DeformOptions& opt, RawViewDependentModel& raw, RawKey& key, 
                 counted(undone_ops, "operation").c_str(), counted(log.entries.size(), "step").c_str());
     return;
   }
-  transaction.write(mesh_path.string(), formatObj(key.mesh, "vdg deform: key '" + key.name + "'"));
-  transaction.write(log_path.string(), formatEditLog(log));
+  protectInputs(transaction, raw, key, folder, opt, false);
+  transaction.write(mesh_path.string(), formatObj(key.mesh, "vdg deform: key '" + key.name + "'"),
+                    keyFile(key, "mesh", mesh_path));
+  transaction.write(log_path.string(), formatEditLog(log), keyFile(key, "edit log", log_path));
   transaction.commit();
   if (!opt.quiet)
     std::printf("undid the last step of key '%s' (%s); %s remain\n", key.name.c_str(),
@@ -97,7 +146,7 @@ void runDeform(const DeformOptions& opt) {
   const fs::path folder = fs::path(opt.model).parent_path();
   const std::string journal = (folder / kJournalName).string();
   const FolderLock lock(folder.empty() ? "." : folder.string());  // one deform at a time per folder
-  if (const auto recovered = recoverFileTransaction(journal))
+  if (const auto recovered = recoverFileTransaction(journal, keyFilesOf(opt.model, folder)))
     std::fprintf(stderr, "vdg deform: %s: %s\n", folder.empty() ? "." : folder.string().c_str(), recovered->c_str());
   FileTransaction transaction(journal);
 
@@ -167,6 +216,19 @@ void runDeform(const DeformOptions& opt) {
   const bool has_log = !new_key && fs::exists(log_path);
   EditLog log = has_log ? readEditLog(log_path.string()) : startEditLog(raw, key, snapshot_path.filename().string());
   const TriMesh before = key.mesh;
+  // The files of this step: registered first without contents, so that a write that would land on
+  // another file of the model is refused before anything is computed or printed.
+  const bool writes_snapshot = !has_log && log.origin != "base";
+  auto stage = [&](std::string mesh_text, std::string log_text, std::string snapshot_text, std::string manifest) {
+    if (writes_snapshot)
+      transaction.write(snapshot_path.string(), std::move(snapshot_text), keyFile(key, "snapshot", snapshot_path));
+    transaction.write(mesh_path.string(), std::move(mesh_text), keyFile(key, "mesh", mesh_path));
+    transaction.write(log_path.string(), std::move(log_text), keyFile(key, "edit log", log_path));
+    if (new_key) transaction.write(opt.model, std::move(manifest), "the manifest " + opt.model);
+  };
+  protectInputs(transaction, raw, key, folder, opt, new_key);
+  stage({}, {}, {}, {});
+  transaction.check();
 
   const auto reports = deformKey(raw, key_index, log, script.ops, script.image_size, opt.ops);
   if (!opt.quiet || opt.dry_run) {
@@ -179,12 +241,9 @@ void runDeform(const DeformOptions& opt) {
     return;
   }
 
-  if (!has_log && log.origin != "base")
-    transaction.write(snapshot_path.string(),
-                      formatObj(before, "vdg deform: key '" + key.name + "' before its first logged edit"));
-  transaction.write(mesh_path.string(), formatObj(key.mesh, "vdg deform: key '" + key.name + "'"));
-  transaction.write(log_path.string(), formatEditLog(log));
-  if (new_key) transaction.write(opt.model, formatManifest(raw));
+  stage(formatObj(key.mesh, "vdg deform: key '" + key.name + "'"), formatEditLog(log),
+        writes_snapshot ? formatObj(before, "vdg deform: key '" + key.name + "' before its first logged edit") : "",
+        new_key ? formatManifest(raw) : "");
   transaction.commit();
   if (!opt.quiet)
     std::printf("wrote key '%s' to %s (%s in %s)\n", key.name.c_str(), mesh_path.string().c_str(),

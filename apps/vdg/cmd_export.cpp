@@ -6,11 +6,15 @@
 // model gets one target per (key view, key frame) and its base animation: the skin for
 // "skinned" offsets, the sampled base frames as morph targets otherwise (docs/gltf-export.md).
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <optional>
+#include <utility>
+#include <vector>
 
 #include "cli.h"
 #include "vdg/geom/error.h"
+#include "vdg/io/atomic_file.h"
 #include "vdg/io/gltf_export.h"
 #include "vdg/io/model.h"
 
@@ -34,6 +38,30 @@ GltfExportInput exportInputForCli(const OpenedInput& input) {
   return gltfExportInput(*input.animated, raw, rig ? &*rig : nullptr);
 }
 
+// Shared with cmd_bake.cpp: refuses an output that is one of the model's own files under any name
+// (the same device and inode: the model itself, a hard or symbolic link to its base or a key mesh),
+// as OUT.gltf or as the OUT.bin written beside it.
+void checkOutputIsNotInput(const std::string& output, const std::string& model, const OpenedInput& input) {
+  namespace fs = std::filesystem;
+  const fs::path folder = fs::path(model).parent_path();
+  std::vector<std::pair<std::string, std::string>> inputs = {{model, "the model " + model}};
+  auto add = [&](const std::string& path, const std::string& what) {
+    if (!path.empty()) inputs.emplace_back((folder / path).string(), what + " " + (folder / path).string());
+  };
+  add(input.raw.base_path, "its base mesh");
+  for (const RawKey& key : input.raw.keys) add(key.mesh_path, "the mesh of its key '" + key.name + "'");
+  if (input.raw.base_animation) add(input.raw.base_animation->gltf, "its base animation");
+  std::vector<std::pair<std::string, std::string>> outputs = {{output, "-o " + output}};
+  if (hasExtension(output, ".gltf")) {
+    const fs::path bin = fs::path(output).parent_path() / (fs::path(output).stem().string() + ".bin");
+    outputs.emplace_back(bin.string(), "-o " + output + ": its buffer " + bin.string());
+  }
+  for (const auto& [out, out_what] : outputs)
+    for (const auto& [in, in_what] : inputs)
+      if (isSameFile(out, in))
+        throw Error(out_what + " is the same file as " + in_what + "; vdg does not write over its input");
+}
+
 void checkGltfOutput(const std::string& output) {
   if (!hasGltfExtension(output)) throw UsageError("-o: expected a .glb or .gltf file name, got " + quotedText(output));
 }
@@ -52,7 +80,9 @@ void addExportCommand(CLI::App& app) {
   sub->add_flag("-q,--quiet", opt->quiet, "Print nothing on success");
   sub->callback([opt] {
     checkGltfOutput(opt->output);
-    writeGltfForCli(opt->output, exportInputForCli(openModel(opt->model)), opt->quiet);
+    const OpenedInput input = openModel(opt->model);
+    checkOutputIsNotInput(opt->output, opt->model, input);
+    writeGltfForCli(opt->output, exportInputForCli(input), opt->quiet);
   });
 }
 

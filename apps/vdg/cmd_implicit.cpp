@@ -142,7 +142,7 @@ void runImplicit(const ImplicitOptions& opt) {
   if (fs::exists(fs::symlink_status(dir, ec)) && !fs::is_directory(dir, ec))
     throw Error(opt.output + ": exists and is not a folder");
   const bool made_dir = !fs::exists(dir, ec);
-  if (made_dir && !fs::create_directories(dir, ec))
+  if (made_dir && !makeOutputFolder(dir.string(), ec))
     throw Error(opt.output + ": cannot make the folder: " + ec.message());
   std::vector<StagedFile> staged;
   try {

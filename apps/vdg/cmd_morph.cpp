@@ -109,7 +109,7 @@ render::Image toRenderImage(const morph::Image& image) {
 // The folder of --count output; fails with one line when it cannot be made.
 void makeFolder(const std::string& dir) {
   std::error_code ec;
-  fs::create_directories(dir, ec);
+  makeOutputFolder(dir, ec);  // removed again when the run fails
   if (ec || !fs::is_directory(dir)) throw Error("-o " + dir + ": cannot create the folder");
 }
 

@@ -144,7 +144,7 @@ void writeSequence(const Morph3dOptions& opt, const Interpolator& morph) {
     const TriMesh mesh = morph.at(t);
     if (i == 0) {
       // Created only once the first frame exists, so that bad input leaves nothing behind.
-      fs::create_directories(dir, ec);
+      makeOutputFolder(dir.string(), ec);  // removed again when the run fails
       if (ec) throw Error(opt.output + ": cannot create the folder: " + ec.message());
       first_triangles = mesh.triangles;
       first_vertices = mesh.vertexCount();

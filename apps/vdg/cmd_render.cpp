@@ -193,7 +193,7 @@ void run(const RenderOptions& opt) {
   // Frames go to DIR, or for a video to a scratch folder beside it.
   const fs::path out_dir = video ? fs::path(opt.output + ".frames") : fs::path(opt.output);
   std::error_code ec;
-  fs::create_directories(out_dir, ec);
+  makeOutputFolder(out_dir.string(), ec);  // removed again when the run fails
   if (ec || !fs::is_directory(out_dir)) throw Error("-o " + out_dir.string() + ": cannot create the folder");
 
   Progress progress("render", range.last - range.first + 1, opt.quiet);

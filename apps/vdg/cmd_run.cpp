@@ -16,6 +16,7 @@
 
 #include "cli.h"
 #include "vdg/geom/error.h"
+#include "vdg/io/atomic_file.h"
 #include "vdg/render/image.h"
 #include "vdg/render/scene_renderer.h"
 #include "vdg/scene/scene.h"
@@ -76,7 +77,7 @@ void run(const RunOptions& opt) {
     if (b < a) continue;
     const fs::path dir = fs::path(opt.output) / r.out;
     std::error_code ec;
-    fs::create_directories(dir, ec);
+    makeOutputFolder(dir.string(), ec);  // removed again when the run fails
     if (ec || !fs::is_directory(dir))
       throw Error(opt.script + ":" + std::to_string(r.line) + ": render: cannot create the folder " + dir.string());
     render::SceneFrameOptions fo;

@@ -24,6 +24,7 @@
 #include "studio/input.h"
 #include "studio/window.h"
 #include "vdg/geom/error.h"
+#include "vdg/io/atomic_file.h"
 #include "vdg/render/image.h"
 
 namespace vdg::cli {
@@ -142,7 +143,12 @@ void addStudioCommand(CLI::App& app) {
   sub->add_flag("--discard-recovery", opt->discard_recovery, "Drop the autosaved strokes of a crashed session");
   sub->add_flag("--benchmark", opt->benchmark,
                 "Print the median viewport frame time while orbiting and the median mouse-move-to-mesh time of a drag");
-  sub->callback([opt] { run(*opt); });
+  sub->callback([opt] {
+    // What a session writes (saved keys, the recovery file of unsaved strokes) is the user's work:
+    // kept when the session ends with an error or Ctrl-C (vdg/io/atomic_file.h, removeNewOutputs).
+    keepNewOutputs();
+    run(*opt);
+  });
 }
 
 }  // namespace vdg::cli

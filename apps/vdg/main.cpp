@@ -3,13 +3,20 @@
 //   exit status 1 for bad input:  "vdg: error: FILE: what is wrong"
 //   exit status 2 for bad usage:  "vdg: render: --size: expected ..., got '0x0' (see vdg render --help)"
 // Running out of memory is reported as such (exit status 1), with what to try.
+// Signals (vdg/io/atomic_file.h, installOutputSignalHandlers): Ctrl-C, SIGTERM and SIGHUP remove
+// the files being written and end with 128 + the signal; a closed reader of stdout (vdg sample |
+// head -1) ends the run quietly with status 0; a file size limit fails a write as a full disk does.
+// A run that fails removes the files and folders it made (vdg::removeNewOutputs).
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <exception>
 #include <new>
 #include <string>
 
 #include "cli.h"
 #include "vdg/geom/error.h"
+#include "vdg/io/atomic_file.h"
 #include "vdg/version.h"
 
 namespace {
@@ -35,9 +42,7 @@ const char* memoryHint(const std::string& sub) {
   return "try a smaller model or mesh, or free some memory";
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
   CLI::App app{
       "vdg — view-dependent geometry: models whose shape follows the view direction.\n"
       "Run 'vdg SUBCOMMAND --help' for the options of each subcommand."};
@@ -82,6 +87,8 @@ int main(int argc, char** argv) {
     return usage(app, e.what());
   } catch (const vdg::cli::Exit& e) {
     return e.code;
+  } catch (const vdg::ReaderClosed&) {
+    return 0;  // the reader has what it wanted
   } catch (const vdg::Error& e) {
     std::fprintf(stderr, "vdg: error: %s\n", e.what());
     return 1;
@@ -94,4 +101,23 @@ int main(int argc, char** argv) {
     return 1;
   }
   return 0;
+}
+
+// What is still buffered for stdout, written now: a reader that has gone (EPIPE) is no error; a
+// full disk under a redirection is.
+int flushStdout() {
+  if (std::fflush(stdout) == 0 && !std::ferror(stdout)) return 0;
+  if (errno == EPIPE) return 0;
+  std::fprintf(stderr, "vdg: error: standard output: cannot write: %s\n", std::strerror(errno));
+  return 1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  vdg::installOutputSignalHandlers();
+  int status = run(argc, argv);
+  if (status == 0) status = flushStdout();
+  if (status != 0) vdg::removeNewOutputs();
+  return status;
 }

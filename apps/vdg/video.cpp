@@ -43,7 +43,7 @@ void requireFfmpeg(const std::string& where, const std::string& instead) {
 }
 
 void encodeVideo(const std::string& where, const std::string& video, const VideoFrames& frames) {
-  const std::string real = resolveOutputPath(video);
+  const std::string real = checkedOutputPath(video);  // never through a link that leaves the folder
   struct stat existing {};
   if (::stat(real.c_str(), &existing) == 0 && !S_ISREG(existing.st_mode))
     throw Error(where + ": is not a regular file; a video is written only to a file");
@@ -57,6 +57,7 @@ void encodeVideo(const std::string& where, const std::string& video, const Video
   std::error_code ec;
   if (std::system(cmd.c_str()) != 0) {
     fs::remove(temp, ec);
+    keepNewOutputs();  // the frames stay for the user, as the message says
     throw Error(where + ": ffmpeg failed to encode the frames (they are in " + frames.dir + ")");
   }
   if (::rename(temp.c_str(), real.c_str()) != 0) {

@@ -542,8 +542,18 @@ void Session::saveKey() {
   const std::string folder = m.folder.empty() ? "." : m.folder.string();
   const FolderLock lock(folder);
   const std::string journal = (m.folder / kJournalName).string();
-  recoverFileTransaction(journal);
+  std::vector<std::string> key_files;  // an interrupted step may have written these in keys/
+  for (const RawKey& k : m.raw.keys) {
+    key_files.push_back(m.keyMeshFile(k).string());
+    key_files.push_back(editLogPath(m.keyMeshFile(k).string()));
+    key_files.push_back((m.keyMeshFile(k).parent_path() / (m.keyMeshFile(k).stem().string() + ".origin.obj")).string());
+  }
+  recoverFileTransaction(journal, key_files);
   FileTransaction transaction(journal);
+  // No write may land on the base or another key's files through another name (a link).
+  transaction.protect((m.folder / m.raw.base_path).string(), "the base mesh " + m.raw.base_path);
+  for (const RawKey& other : m.raw.keys)
+    if (&other != &key) transaction.protect(m.keyMeshFile(other).string(), "the mesh of key '" + other.name + "'");
   if (!m.log_existed && log.origin != "base") {
     TriMesh before = key.mesh;
     before.positions = m.origin;

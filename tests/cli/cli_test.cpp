@@ -159,6 +159,37 @@ TEST(Cli, EvalAnimatedModelsTakeAFrame) {
   EXPECT_EQ(vdg::testing::readText(keep), "keep");
 }
 
+// Runs a shell command line from the source folder; returns its exit status (-1 for a signal).
+int shell(const std::string& line) {
+  const int status = std::system(("cd '" VDG_SOURCE_DIR "' && " + line).c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+TEST(Cli, StdoutThatGoesAwayOrFillsUp) {
+  vdg::testing::TempDir dir;
+  const std::string vdg = "'" VDG_BINARY "'", err = dir.file("err");
+  // A reader that stops early (head -1) ends the run quietly with status 0, not by SIGPIPE.
+  EXPECT_EQ(shell("( " + vdg + " sample tests/hostile/inputs/ease.json --samples 200000 2>'" + err + "'; echo $? >'" +
+                  dir.file("status") + "' ) | head -1 >/dev/null"),
+            0);
+  EXPECT_EQ(vdg::testing::readText(dir.file("status")), "0\n");
+  EXPECT_EQ(vdg::testing::readText(err), "");
+  // A full disk under a redirection is one line and status 1.
+  EXPECT_EQ(shell(vdg + " info " + kSpot + " >/dev/full 2>'" + err + "'"), 1);
+  EXPECT_EQ(vdg::testing::readText(err), "vdg: error: standard output: cannot write: No space left on device\n");
+}
+
+TEST(Cli, AFailedRunLeavesNoNewFolder) {
+  vdg::testing::TempDir dir;
+  // A sequence into a new folder that fails at its first frame (ulimit -f) removes the folder.
+  EXPECT_EQ(
+      shell("ulimit -f 1 && '" VDG_BINARY "' implicit examples/implicit/blobs.json --frames 0-1 --voxel 0.1 -q -o '" +
+            dir.file("new/seq") + "' 2>'" + dir.file("err") + "'"),
+      1);
+  EXPECT_NE(vdg::testing::readText(dir.file("err")).find("File too large"), std::string::npos);
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "new"));
+}
+
 TEST(Cli, BadInputIsOneLineAndExitOneAndLeavesFilesAlone) {
   vdg::testing::TempDir dir;
   const std::string keep = dir.file("keep.obj");

@@ -3,12 +3,16 @@
 #include <gtest/gtest.h>
 
 #include <fcntl.h>
+#include <signal.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <filesystem>
+#include <functional>
 #include <string>
+#include <thread>
 
 #include "file_limit.h"
 #include "support/error_of.h"
@@ -84,6 +88,181 @@ TEST(AtomicFile, SymlinksAreFollowedAndStayLinks) {
   fs::create_symlink("loop_a", dir.path() / "loop_b");
   EXPECT_NE(errorOf([&] { writeFileAtomically(dir.file("loop_a"), "x"); }).find("too many levels of symbolic links"),
             std::string::npos);
+}
+
+TEST(AtomicFile, ALinkThatLeavesItsFolderIsNotWrittenThrough) {
+  testing::TempDir dir;
+  fs::create_directories(dir.path() / "out" / "r");
+  testing::writeText(dir.file("victim.png"), "keep");
+  fs::create_symlink("../../victim.png", dir.path() / "out" / "r" / "frame_0001.png");
+  const std::string frame = dir.file("out/r/frame_0001.png");
+  EXPECT_EQ(errorOf([&] { writeFileAtomically(frame, "new"); }),
+            frame + ": is a symbolic link to a file outside its folder (" + dir.file("out/r/../../victim.png") +
+                "); not written through");
+  EXPECT_NE(errorOf([&] { StagedFile(frame, "new"); }).find("outside its folder"), std::string::npos);
+  // Absolute links and dangling ones too; a link to a file beside it or beneath it is followed.
+  fs::create_symlink(dir.file("victim.png"), dir.path() / "out" / "r" / "abs.png");
+  EXPECT_NE(errorOf([&] { writeFileAtomically(dir.file("out/r/abs.png"), "new"); }).find("outside its folder"),
+            std::string::npos);
+  fs::create_symlink("../made.png", dir.path() / "out" / "r" / "dangling.png");
+  EXPECT_NE(errorOf([&] { writeFileAtomically(dir.file("out/r/dangling.png"), "new"); }).find("outside its folder"),
+            std::string::npos);
+  EXPECT_EQ(testing::readText(dir.file("victim.png")), "keep");
+  EXPECT_FALSE(fs::exists(dir.path() / "out" / "made.png"));
+  EXPECT_EQ(entries(dir.path() / "out" / "r"), (std::vector<std::string>{"abs.png", "dangling.png", "frame_0001.png"}));
+  fs::create_symlink("frame_0002.png", dir.path() / "out" / "r" / "beside.png");
+  writeFileAtomically(dir.file("out/r/beside.png"), "made");
+  EXPECT_EQ(testing::readText(dir.file("out/r/frame_0002.png")), "made");
+}
+
+TEST(AtomicFile, SameFileMeansTheSameDeviceAndInode) {
+  testing::TempDir dir;
+  testing::writeText(dir.file("base.obj"), "v 0 0 0\n");
+  fs::create_hard_link(dir.path() / "base.obj", dir.path() / "hard.obj");
+  fs::create_symlink("base.obj", dir.path() / "soft.obj");
+  testing::writeText(dir.file("copy.obj"), "v 0 0 0\n");
+  EXPECT_TRUE(isSameFile(dir.file("base.obj"), dir.file("hard.obj")));
+  EXPECT_TRUE(isSameFile(dir.file("soft.obj"), dir.file("base.obj")));
+  EXPECT_TRUE(isSameFile(dir.file("./base.obj"), dir.file("base.obj")));
+  EXPECT_FALSE(isSameFile(dir.file("copy.obj"), dir.file("base.obj")));
+  EXPECT_FALSE(isSameFile(dir.file("missing.obj"), dir.file("missing.obj")));
+}
+
+// Runs `f` in a child process; returns its wait status.
+int inChild(const std::function<void()>& f) {
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    f();
+    ::_exit(0);
+  }
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  return status;
+}
+
+TEST(AtomicFile, AnInterruptRemovesTheFilesBeingWrittenAndWhatTheRunMade) {
+  for (const int sig : {SIGINT, SIGTERM}) {
+    testing::TempDir dir;
+    testing::writeText(dir.file("done.png"), "a finished frame");
+    const int status = inChild([&] {
+      installOutputSignalHandlers();
+      makeOutputFolder(dir.file("new/sub"));
+      writeFileAtomically(dir.file("new/sub/frame_0000.png"), "a frame of this run");
+      writeFileAtomically(dir.file("done.png"), "replaced by this run");
+      StagedFile half(dir.file("new/sub/frame.png"), "half");
+      StagedFile other(dir.file("frame.png"), "half");
+      const int token = removeOnInterrupt(dir.file("journal"));
+      testing::writeText(dir.file("journal"), "staging");
+      (void)token;
+      ::raise(sig);
+      ::_exit(0);  // not reached
+    });
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 128 + sig);
+    EXPECT_EQ(entries(dir.path()), std::vector<std::string>{"done.png"});
+    EXPECT_EQ(testing::readText(dir.file("done.png")), "replaced by this run");
+  }
+}
+
+TEST(AtomicFile, AFailedRunRemovesWhatItMadeAndNothingElse) {
+  testing::TempDir dir;
+  fs::create_directories(dir.path() / "old");
+  testing::writeText(dir.file("old/replaced.png"), "old");
+  testing::writeText(dir.file("old/user.txt"), "the user's");
+  const int status = inChild([&] {
+    makeOutputFolder(dir.file("old/a/b"));
+    writeFileAtomically(dir.file("old/a/b/frame_0000.png"), "made");
+    writeFileAtomically(dir.file("old/replaced.png"), "new");  // replaced: cannot be given back
+    makeOutputFolder(dir.file("kept/c"));
+    writeFileAtomically(dir.file("kept/c/frame.png"), "made, then replaced by someone else");
+    testing::writeText(dir.file("kept/c/.other"), "x");
+    fs::rename(dir.path() / "kept" / "c" / ".other", dir.path() / "kept" / "c" / "frame.png");
+    makeOutputFolder(dir.file("old"));  // was there: never removed
+    removeNewOutputs();
+  });
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(entries(dir.path()), (std::vector<std::string>{"kept", "old"}));
+  EXPECT_EQ(entries(dir.path() / "old"), (std::vector<std::string>{"replaced.png", "user.txt"}));
+  EXPECT_EQ(testing::readText(dir.file("old/replaced.png")), "new");
+  EXPECT_TRUE(fs::exists(dir.path() / "kept" / "c" / "frame.png"));
+  // keepNewOutputs keeps the files (and so their folders).
+  const int kept = inChild([&] {
+    makeOutputFolder(dir.file("frames"));
+    writeFileAtomically(dir.file("frames/frame_0000.png"), "made");
+    keepNewOutputs();
+    removeNewOutputs();
+  });
+  ASSERT_TRUE(WIFEXITED(kept));
+  EXPECT_TRUE(fs::exists(dir.path() / "frames" / "frame_0000.png"));
+  testing::writeText(dir.file("file"), "x");
+  EXPECT_EQ(errorOf([&] { makeOutputFolder(dir.file("file")); }), dir.file("file") + ": is a file, not a folder");
+}
+
+TEST(AtomicFile, TheLeftoversOfAKilledRunAreRemovedWhenProvenOurs) {
+  testing::TempDir dir;
+  // This run's temporary name: ".vdg-RRRRRR-PID-TAG".
+  std::string temp;
+  {
+    StagedFile probe(dir.file("probe"), "x");
+    temp = fs::path(probe.tempPath()).filename().string();
+  }
+  const std::string own_pid = "-" + std::to_string(::getpid()) + "-";
+  const auto at = temp.find(own_pid);
+  ASSERT_NE(at, std::string::npos) << temp;
+  const std::string tag = temp.substr(at + own_pid.size());
+  ASSERT_EQ(tag.size(), 12u) << temp;
+  const pid_t dead = ::fork();
+  if (dead == 0) ::_exit(0);
+  ::waitpid(dead, nullptr, 0);
+  testing::TempDir out;
+  const std::string stale = ".vdg-Aa1111-" + std::to_string(dead) + "-" + tag;
+  const std::string running = ".vdg-Bb2222-1-" + tag;  // init is running
+  const std::string foreign = ".vdg-Cc3333-" + std::to_string(dead) + "-000000000000";
+  for (const std::string& name : {stale, running, foreign, std::string(".vdg-Dd4444"), std::string("frame.png")})
+    testing::writeText(out.file(name), "left");
+  fs::create_directories(out.path() / (".vdg-Ee5555-" + std::to_string(dead) + "-" + tag));  // not a file
+  writeFileAtomically(out.file("frame.png"), "new");
+  EXPECT_EQ(entries(out.path()),
+            (std::vector<std::string>{".vdg-Bb2222-1-" + tag, foreign, ".vdg-Dd4444",
+                                      ".vdg-Ee5555-" + std::to_string(dead) + "-" + tag, "frame.png"}));
+  // A folder with a transaction's journal is left to its recovery.
+  testing::TempDir journalled;
+  testing::writeText(journalled.file(".vdg-journal"), "{}");
+  testing::writeText(journalled.file(stale), "left");
+  writeFileAtomically(journalled.file("frame.png"), "new");
+  EXPECT_TRUE(fs::exists(journalled.path() / stale));
+}
+
+TEST(AtomicFile, AReaderThatGoesAwayIsReaderClosed) {
+  testing::TempDir dir;
+  const std::string fifo = dir.file("pipe");
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const int status = inChild([&] {
+    ::signal(SIGPIPE, SIG_IGN);
+    std::thread reader([&] {
+      const int fd = ::open(fifo.c_str(), O_RDONLY);
+      char c = 0;
+      (void)!::read(fd, &c, 1);
+      ::close(fd);
+    });
+    std::string message;
+    for (;;) {
+      try {
+        writeFileAtomically(fifo, std::string(std::size_t{1} << 22, 'x'));
+        message = "written";
+      } catch (const ReaderClosed&) {
+        message = "closed";
+      } catch (const Error& e) {
+        message = e.what();
+        if (message.find("no program is reading") != std::string::npos) continue;  // before the reader opened
+      }
+      break;
+    }
+    reader.join();
+    ::_exit(message == "closed" ? 0 : 1);
+  });
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 0);
 }
 
 TEST(AtomicFile, CharacterDevicesAreWrittenNotReplaced) {
@@ -167,7 +346,9 @@ TEST(AtomicFile, StagedFileChangesNothingUntilCommitted) {
   testing::writeText(path, "old");
   {
     StagedFile staged(path, "new");
-    EXPECT_EQ(fs::path(staged.tempPath()).filename().string().size(), 11u);  // ".vdg-XXXXXX"
+    const std::string name = fs::path(staged.tempPath()).filename().string();
+    EXPECT_EQ(name.rfind(".vdg-", 0), 0u) << name;  // ".vdg-RRRRRR-PID-TAG"
+    EXPECT_NE(name.find("-" + std::to_string(::getpid()) + "-"), std::string::npos) << name;
     EXPECT_EQ(testing::readText(path), "old");
     EXPECT_EQ(testing::readText(staged.tempPath()), "new");
   }

@@ -164,5 +164,107 @@ TEST(FileTransaction, AJournalNotWrittenByVdgIsNotTrusted) {
   }
 }
 
+TEST(FileTransaction, AWriteOnAProtectedFileUnderAnyNameIsRefused) {
+  testing::TempDir dir;
+  testing::writeText(dir.file("cube.obj"), "base");
+  fs::create_hard_link(dir.path() / "cube.obj", dir.path() / "hard.obj");
+  fs::create_symlink("cube.obj", dir.path() / "soft.obj");
+  for (const char* name : {"cube.obj", "hard.obj", "soft.obj"}) {
+    FileTransaction t(dir.file(".vdg-journal"));
+    t.protect(dir.file("cube.obj"), "the base mesh cube.obj");
+    t.write(dir.file("front.edits.json"), "log");
+    t.write(dir.file(name), "key", "key 'front': its mesh " + std::string(name));
+    EXPECT_EQ(errorOf([&] { t.commit(); }),
+              "key 'front': its mesh " + std::string(name) +
+                  " would replace the base mesh cube.obj (the same file); nothing written");
+    EXPECT_EQ(testing::readText(dir.file("cube.obj")), "base");
+    EXPECT_EQ(entries(dir.path()), (std::vector<std::string>{"cube.obj", "hard.obj", "soft.obj"}));
+  }
+  // Two targets that are one file through a hard link.
+  FileTransaction twice(dir.file(".vdg-journal"));
+  twice.write(dir.file("cube.obj"), "a");
+  twice.write(dir.file("hard.obj"), "b");
+  EXPECT_NE(errorOf([&] { twice.commit(); }).find("named twice in one step"), std::string::npos);
+  EXPECT_EQ(testing::readText(dir.file("cube.obj")), "base");
+}
+
+TEST(FileTransaction, AStepWritesOnlyInTheJournalsFolderTree) {
+  testing::TempDir dir;
+  fs::create_directories(dir.path() / "model" / "keys");
+  fs::create_directories(dir.path() / "elsewhere");
+  FileTransaction t(dir.file("model/.vdg-journal"));
+  t.write(dir.file("model/keys/front.obj"), "in a folder beneath: fine");
+  t.write(dir.file("elsewhere/x.obj"), "outside");
+  EXPECT_NE(errorOf([&] { t.commit(); }).find("outside the folder of"), std::string::npos);
+  EXPECT_TRUE(fs::is_empty(dir.path() / "model" / "keys"));
+  FileTransaction fine(dir.file("model/.vdg-journal"));
+  fine.write(dir.file("model/keys/front.obj"), "key");
+  fine.commit();
+  EXPECT_EQ(testing::readText(dir.file("model/keys/front.obj")), "key");
+}
+
+TEST(FileTransaction, RecoveryTouchesNothingOutsideTheJournalsFolder) {
+  testing::TempDir dir;
+  fs::create_directories(dir.path() / "out");
+  fs::create_directories(dir.path() / "victim" / "sub");
+  const std::string base = fs::absolute(dir.path()).string();
+  testing::writeText(dir.file("victim/model.obj"), "keep");
+  testing::writeText(dir.file("victim/.vdg-Aa1111"), "evil");
+  testing::writeText(dir.file("out/sub.obj"), "keep");
+  const std::string j = dir.file("out/.vdg-journal");
+  const std::string outside = "is outside the journal's folder";
+  const std::pair<std::string, std::string> cases[] = {
+      {journal("committing", {{base + "/victim/model.obj", base + "/victim/.vdg-Aa1111"}}), outside},
+      {journal("staging", {{base + "/victim/model.obj", base + "/victim/.vdg-Aa1111"}}), outside},
+      {journal("committing", {{base + "/out/../victim/model.obj", base + "/out/../victim/.vdg-Aa1111"}}),
+       "not a step vdg wrote"},
+      // A step of this folder and one elsewhere: nothing at all is done.
+      {journal("committing", {{base + "/out/sub.obj", base + "/out/.vdg-Bb2222"},
+                              {base + "/victim/model.obj", base + "/victim/.vdg-Aa1111"}}),
+       outside},
+  };
+  testing::writeText(dir.file("out/.vdg-Bb2222"), "new");
+  for (const auto& [text, needle] : cases) {
+    testing::writeText(j, text);
+    const std::string message = errorOf([&] { recoverFileTransaction(j); });
+    EXPECT_NE(message.find(needle), std::string::npos) << message;
+    EXPECT_EQ(message.rfind(j, 0), 0u) << message;
+    EXPECT_EQ(testing::readText(dir.file("victim/model.obj")), "keep");
+    EXPECT_EQ(testing::readText(dir.file("victim/.vdg-Aa1111")), "evil");
+    EXPECT_EQ(testing::readText(dir.file("out/sub.obj")), "keep");
+    EXPECT_TRUE(fs::exists(dir.path() / "out" / ".vdg-Bb2222"));
+    EXPECT_TRUE(fs::exists(j));
+  }
+  // A link out of the folder is outside too: out/link -> ../victim.
+  fs::create_directory_symlink("../victim", dir.path() / "out" / "link");
+  testing::writeText(j, journal("committing", {{base + "/out/link/model.obj", base + "/out/link/.vdg-Aa1111"}}));
+  EXPECT_NE(errorOf([&] { recoverFileTransaction(j); }).find(outside), std::string::npos);
+  EXPECT_EQ(testing::readText(dir.file("victim/model.obj")), "keep");
+  // A temporary file that is a link is not one vdg made.
+  fs::remove(dir.path() / "out" / ".vdg-Bb2222");
+  fs::create_symlink("../victim/model.obj", dir.path() / "out" / ".vdg-Bb2222");
+  testing::writeText(j, journal("committing", {{base + "/out/sub.obj", base + "/out/.vdg-Bb2222"}}));
+  EXPECT_NE(errorOf([&] { recoverFileTransaction(j); }).find("is not a regular file"), std::string::npos);
+  EXPECT_EQ(testing::readText(dir.file("out/sub.obj")), "keep");
+}
+
+TEST(FileTransaction, RecoveryOfAModelFolderReachesItsKeysFolder) {
+  testing::TempDir dir;
+  fs::create_directories(dir.path() / "keys");
+  const std::string base = fs::absolute(dir.path()).string();
+  testing::writeText(dir.file("keys/front.obj"), "old");
+  testing::writeText(dir.file("keys/.vdg-Aa1111"), "new");
+  const std::string j = dir.file(".vdg-journal");
+  testing::writeText(j, journal("committing", {{base + "/keys/front.obj", base + "/keys/.vdg-Aa1111"}}));
+  EXPECT_NE(errorOf([&] { recoverFileTransaction(j); }).find("outside the journal's folder"), std::string::npos);
+  // Trusted when the caller names it as its own (a key file of the model), and then only it.
+  EXPECT_NE(
+      errorOf([&] { recoverFileTransaction(j, {dir.file("keys/back.obj")}); }).find("outside the journal's folder"),
+      std::string::npos);
+  EXPECT_EQ(recoverFileTransaction(j, {dir.file("keys/back.obj"), dir.file("keys/./front.obj")}).value_or(""),
+            "completed an interrupted step: wrote " + base + "/keys/front.obj");
+  EXPECT_EQ(testing::readText(dir.file("keys/front.obj")), "new");
+}
+
 }  // namespace
 }  // namespace vdg
