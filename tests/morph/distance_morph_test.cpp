@@ -181,6 +181,22 @@ TEST(DistanceMorph, TooManyVoxelsAreRefusedBeforeAllocatingAndTheSuggestedVoxelW
   EXPECT_NO_THROW(requireClosed(morph.at(0.5), "coarse"));
 }
 
+// --voxel 1e-300: the count (about 1e900) is past what a double holds. It used to be +infinity,
+// the suggested size infinity and its rounding NaN, and the search for it looped for ever; now it
+// is refused at once with a finite suggestion that fits.
+TEST(DistanceMorph, AVoxelCountPastWhatADoubleHoldsIsRefusedWithASizeThatFits) {
+  const TriMesh sphere = testing::uvSphere(), ring = testing::torus();
+  const std::string message = testing::errorOf([&] { DistanceMorph(sphere, ring, {.voxel_size = 1e-300}); });
+  EXPECT_EQ(message.rfind("A and B: the distance volumes at voxel size 1e-300 need more than 1e308 voxels, more than "
+                          "the limit of 2.68e+08; use a --voxel of at least ",
+                          0),
+            0u)
+      << message;
+  const double suggested = std::stod(message.substr(message.rfind(' ') + 1));
+  EXPECT_TRUE(std::isfinite(suggested) && suggested > 0) << message;
+  EXPECT_NO_THROW(DistanceMorph(sphere, ring, {.voxel_size = suggested}));
+}
+
 TEST(DistanceMorph, TOutsideTheUnitIntervalIsRefused) {
   const TriMesh sphere = testing::uvSphere();
   const DistanceMorph morph(sphere, scaled(sphere, 1.5), {});
