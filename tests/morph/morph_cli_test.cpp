@@ -341,12 +341,12 @@ TEST_F(MorphCli, ABadFfmpegTimeoutIsRefusedBeforeAnyFrame) {
 // The work is estimated from the images, the features and the frames before any pixel.
 TEST_F(MorphCli, WorkPastTheBudgetIsRefusedUpFront) {
   expectRefused("morph src.png dst.png --lines lines.json --t 0.5 -o x.png --budget 1000", 1,
-                "vdg: error: lines.json: needs about 5160 operations (" + std::to_string(kW) + "x" +
+                "vdg: error: lines.json: needs about 6000 operations (" + std::to_string(kW) + "x" +
                     std::to_string(kH) + " pixels x 2 lines x 2 images x 1 frame), more than the budget of 1000; "
                     "give --budget N to allow more, or fewer lines, pixels or frames");
   EXPECT_EQ(vdg("morph src.png dst.png --lines lines.json --t 0.5 -o x.png --budget 1e6"), 0) << err_;
   expectRefused("morph src.png dst.png --grid grid.json --count 100 -o seq --budget 1e5", 1,
-                "vdg: error: grid.json: needs about 2.26e+07 operations (" + std::to_string(kW) + "x" +
+                "vdg: error: grid.json: needs about 1.61e+06 operations (" + std::to_string(kW) + "x" +
                     std::to_string(kH) + " pixels x a 3x3 grid x 2 images x 100 frames), more than the budget of "
                     "100000; give --budget N to allow more, or fewer grid points, pixels or frames");
 }
