@@ -87,11 +87,14 @@ Eigen::AlignedBox3d meshBox(const TriMesh& mesh) {
 // any frame is polygonised. Every primitive is evaluated at every voxel of its support box, so many
 // primitives over one spot, a fine voxel or many frames multiply the work.
 [[noreturn]] void refuseWork(const ImplicitOptions& opt, const std::vector<double>& frames, double work, double upto) {
-  const long done = static_cast<long>(upto - frames.front()) + 1;
+  // The frames not yet estimated are taken to cost what the first ones did on average.
+  const double done = upto - frames.front() + 1;
+  const auto total = static_cast<double>(frames.size());
   const std::string detail =
       frames.size() == 1 ? "the primitives' fields at every voxel of their supports"
-                         : std::to_string(done) + " of the " + std::to_string(frames.size()) + " frames";
-  morph::checkBudget(work, opt.budget, opt.input, detail,
+                         : std::to_string(frames.size()) + " frames, from the first " +
+                               std::to_string(static_cast<long>(done)) + (done == 1 ? "" : " on average");
+  morph::checkBudget(work * total / done, opt.budget, opt.input, detail,
                      "give --budget N to allow more, or a larger --voxel, fewer primitives or fewer frames");
   throw Error(opt.input + ": work past the budget");  // not reached: checkBudget throws
 }

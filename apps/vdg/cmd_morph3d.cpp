@@ -109,8 +109,9 @@ class Interpolator {
       const double each = morph::minkowskiMorphCost(a_, b_);
       morph::checkBudget(each * static_cast<double>(sums), opt.budget, opt.a + " and " + opt.b,
                          std::to_string(sums) + (sums == 1 ? " Minkowski sum" : " Minkowski sums") + " x " +
-                             morph::operationsText(each) + "; " + std::to_string(morph::reflexEdgeCount(a_)) + " and " +
-                             std::to_string(morph::reflexEdgeCount(b_)) + " reflex edges (non-convex sums are slow)",
+                             morph::operationsText(each) + ", the meshes having " +
+                             std::to_string(morph::reflexEdgeCount(a_)) + " and " +
+                             std::to_string(morph::reflexEdgeCount(b_)) + " reflex edges: non-convex sums are slow",
                          "give --budget N to allow more, or fewer frames, convex meshes or --method distance");
     } else if (method_ == "slices") {
       morph::SliceMorphOptions options;
