@@ -93,10 +93,10 @@ void runAlign(const AlignCliOptions& opt) {
   }
   AlignOptions options;
   options.ortho = opt.ortho;
-  morph::checkBudget(alignCost(points.size(), options), opt.budget, opt.points,
-                     std::to_string(points.size()) + " pairs x up to " + std::to_string(options.max_iterations) +
-                         " iterations",
-                     "give --budget N to allow more, or fewer pairs");
+  morph::checkBudget(
+      alignCost(points.size(), options), opt.budget, opt.points,
+      std::to_string(points.size()) + " pairs x up to " + std::to_string(options.max_iterations) + " iterations",
+      "give --budget N to allow more, or fewer pairs");
   const AlignResult r = alignCamera(points, pixels, width, height, options);
   if (key) {
     // The key's view follows its new camera (normalize(eye - centre)); everything is checked

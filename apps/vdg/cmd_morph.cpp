@@ -156,9 +156,9 @@ class ImageMorph {
                                                         : morph::meshMorphCost(w, h, grid_.rows, grid_.cols))
                                            : (opt_.warp ? morph::featureWarpCost(w, h, lines_.src.size())
                                                         : morph::featureMorphCost(w, h, lines_.src.size()));
-    const std::string by = !opt_.grid.empty() ? "a " + std::to_string(grid_.rows) + "x" + std::to_string(grid_.cols) +
-                                                    " grid"
-                                              : std::to_string(lines_.src.size()) + " lines";
+    const std::string by = !opt_.grid.empty()
+                               ? "a " + std::to_string(grid_.rows) + "x" + std::to_string(grid_.cols) + " grid"
+                               : std::to_string(lines_.src.size()) + " lines";
     morph::checkBudget(each * frames, opt_.budget, opt_.grid.empty() ? opt_.lines : opt_.grid,
                        std::to_string(w) + "x" + std::to_string(h) + " pixels x " + by + " x " +
                            std::to_string(images) + (images == 1 ? " image" : " images") + " x " +
@@ -285,12 +285,11 @@ void runDrawings(const MorphOptions& opt) {
   // Every frame evaluates every point; a PNG frame also fills its canvas and each segment's box.
   const int count = lastFrame(opt) - firstFrame(opt) + 1;
   const double each = morph::inbetweenFrameCost(inbetweener.keys(), png ? file.width : 0, png ? file.height : 0);
-  morph::checkBudget(each * count, opt.budget, opt.drawings,
-                     std::to_string(count) + (count == 1 ? " frame" : " frames") + " of " +
-                         morph::operationsText(each) + (png ? " (a " + std::to_string(file.width) + "x" +
-                                                                 std::to_string(file.height) + " canvas)"
-                                                            : std::string()),
-                     "give --budget N to allow more, or fewer frames, points or a smaller canvas");
+  morph::checkBudget(
+      each * count, opt.budget, opt.drawings,
+      std::to_string(count) + (count == 1 ? " frame" : " frames") + " of " + morph::operationsText(each) +
+          (png ? " (a " + std::to_string(file.width) + "x" + std::to_string(file.height) + " canvas)" : std::string()),
+      "give --budget N to allow more, or fewer frames, points or a smaller canvas");
   makeFolder(opt.output);
   Progress progress("inbetween", opt.frames, opt.quiet);
   for (int i = firstFrame(opt); i <= lastFrame(opt); ++i) {

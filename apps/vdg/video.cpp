@@ -46,8 +46,8 @@ std::string makeTemporaryBeside(const std::string& real, const std::string& wher
 // What became of one ffmpeg run.
 struct FfmpegRun {
   bool timed_out = false, interrupted = false;
-  int status = 0;          // waitpid's status (when neither timed out nor interrupted)
-  std::string last_line;   // the last non-empty line ffmpeg wrote to stderr, made printable
+  int status = 0;         // waitpid's status (when neither timed out nor interrupted)
+  std::string last_line;  // the last non-empty line ffmpeg wrote to stderr, made printable
 };
 
 constexpr std::size_t kKeptStderrBytes = 65536;  // of ffmpeg's stderr, the tail kept for its last line
@@ -124,8 +124,10 @@ FfmpegRun superviseFfmpeg(pid_t pid, int err_r, std::chrono::steady_clock::time_
   while (!run.timed_out && !run.interrupted) {
     const pid_t done = ::waitpid(pid, &run.status, WNOHANG);
     if (done == pid || (done < 0 && errno != EINTR)) break;
-    if (remainingMs() <= 0) run.timed_out = true;
-    else std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    if (remainingMs() <= 0)
+      run.timed_out = true;
+    else
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
   if (run.timed_out || run.interrupted) {
     ::kill(-pid, SIGKILL);
@@ -169,11 +171,11 @@ std::string failureOf(const FfmpegRun& run, double seconds, const std::string& f
     return "ffmpeg did not finish within " + numberText(seconds) + " s and was stopped (the frames are in " +
            frames_dir + "; VDG_FFMPEG_TIMEOUT sets the seconds)";
   if (WIFEXITED(run.status) && WEXITSTATUS(run.status) == 0) return "";
-  const std::string how = WIFEXITED(run.status) ? "exit status " + std::to_string(WEXITSTATUS(run.status))
+  const std::string how = WIFEXITED(run.status)     ? "exit status " + std::to_string(WEXITSTATUS(run.status))
                           : WIFSIGNALED(run.status) ? "killed by signal " + std::to_string(WTERMSIG(run.status))
                                                     : "status " + std::to_string(run.status);
-  return "ffmpeg failed (" + how + ")" + (run.last_line.empty() ? "" : ": " + run.last_line) +
-         " (the frames are in " + frames_dir + ")";
+  return "ffmpeg failed (" + how + ")" + (run.last_line.empty() ? "" : ": " + run.last_line) + " (the frames are in " +
+         frames_dir + ")";
 }
 
 }  // namespace
@@ -205,9 +207,17 @@ void encodeVideo(const std::string& where, const std::string& video, const Video
     throw Error(where + ": is not a regular file; a video is written only to a file");
   const std::string temp = makeTemporaryBeside(real, where, video);
   const double seconds = ffmpegTimeoutSeconds(frames.count);
-  std::vector<std::string> args{"-loglevel", "error", "-y", "-framerate", "24", "-start_number",
-                                std::to_string(frames.first), "-i", (fs::path(frames.dir) / "frame_%04d.png").string(),
-                                "-frames:v", std::to_string(frames.count)};
+  std::vector<std::string> args{"-loglevel",
+                                "error",
+                                "-y",
+                                "-framerate",
+                                "24",
+                                "-start_number",
+                                std::to_string(frames.first),
+                                "-i",
+                                (fs::path(frames.dir) / "frame_%04d.png").string(),
+                                "-frames:v",
+                                std::to_string(frames.count)};
   if (hasExtension(video, ".gif"))
     args.insert(args.end(), {"-vf", "split[a][b];[a]palettegen[p];[b][p]paletteuse"});
   else

@@ -326,8 +326,7 @@ void checkVoxelBudget(const Eigen::AlignedBox3d& box, double h, std::size_t max_
   // A count past what a double holds (a voxel of 1e-300) or a guess that overflowed: search instead.
   if (!std::isfinite(count) || !std::isfinite(s) || !(s > 0) ||
       gridVoxelCount(box, s) > static_cast<double>(max_voxels))
-    s = smallestFittingSize([&](double size) { return gridVoxelCount(box, size); }, h,
-                            static_cast<double>(max_voxels));
+    s = smallestFittingSize([&](double size) { return gridVoxelCount(box, size); }, h, static_cast<double>(max_voxels));
   const double mib = count * static_cast<double>(kBytesPerVoxel) / (1024.0 * 1024.0);
   std::ostringstream msg;
   msg.precision(6);

@@ -76,9 +76,11 @@ Inbetweener::Inbetweener(std::vector<KeyDrawing> keys, InbetweenCurve curve) : k
   }
   const double total = inbetweenPointCount(keys_);
   if (total > kMaxInbetweenPoints)
-    throw Error("inbetween: the keys would hold " + numberText(total, 3) + " points once every stroke is resampled to "
-                "its largest point count (" + std::to_string(keys_.size()) + " keys), more than " +
-                numberText(kMaxInbetweenPoints, 3) + "; give fewer keys or fewer points per stroke");
+    throw Error("inbetween: the keys would hold " + numberText(total, 3) +
+                " points once every stroke is resampled to "
+                "its largest point count (" +
+                std::to_string(keys_.size()) + " keys), more than " + numberText(kMaxInbetweenPoints, 3) +
+                "; give fewer keys or fewer points per stroke");
   // A stroke keeps its points where a key already has the largest count (the drawn correspondence);
   // other keys' versions of it are resampled by arc length to that count.
   for (std::size_t s = 0; s < strokes; ++s) {

@@ -35,8 +35,8 @@ std::size_t reflexEdgeCount(const TriMesh& mesh) {
   // Outward: the sign of the enclosed volume (the divergence theorem about the origin).
   double volume = 0;
   for (std::size_t f = 0; f < faces; ++f)
-    volume += dot(at(mesh, mesh.triangles[3 * f]), cross(at(mesh, mesh.triangles[3 * f + 1]),
-                                                        at(mesh, mesh.triangles[3 * f + 2])));
+    volume += dot(at(mesh, mesh.triangles[3 * f]),
+                  cross(at(mesh, mesh.triangles[3 * f + 1]), at(mesh, mesh.triangles[3 * f + 2])));
   const double outward = volume >= 0 ? 1.0 : -1.0;
   // Each directed edge (from, to) with its face; an edge's two faces meet as (a, b) and (b, a).
   struct HalfEdge {

@@ -199,6 +199,8 @@ TEST(DistanceMorph, AVoxelCountPastWhatADoubleHoldsIsRefusedWithASizeThatFits) {
   EXPECT_TRUE(std::isfinite(suggested) && suggested > 0) << small;
   const DistanceMorph morph(sphere, ring, {.voxel_size = suggested, .max_voxels = 200000});
   EXPECT_LE(morph.activeVoxelCount(), 200000u);
+  // Each frame blends and polygonises every active voxel of both volumes (the budget's estimate).
+  EXPECT_DOUBLE_EQ(distanceMorphFrameCost(morph), 4.0 * static_cast<double>(morph.activeVoxelCount()));
 }
 
 TEST(DistanceMorph, TOutsideTheUnitIntervalIsRefused) {

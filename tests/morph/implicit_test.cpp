@@ -203,8 +203,7 @@ TEST(ImplicitPolygonise, RefusesTooManyVoxelsBeforeAllocating) {
 // is +infinity, refused with a finite suggestion that fits (it used to read "at least nan").
 TEST(ImplicitPolygonise, AVoxelCountPastWhatADoubleHoldsIsRefusedWithASizeThatFits) {
   const BlobModel m = model({prim(FieldKind::kWyvill, {0, 0, 0}, 1.0)}, 0.5);
-  const std::string message =
-      errorOf([&] { checkVoxelBudget(m.bounds(), 1e-300, std::size_t{1} << 27, "b.json"); });
+  const std::string message = errorOf([&] { checkVoxelBudget(m.bounds(), 1e-300, std::size_t{1} << 27, "b.json"); });
   EXPECT_EQ(message.rfind("b.json: the grid needs more than 1e308 voxels at voxel size "
                           "1e-300; use a --voxel of at least ",
                           0),

@@ -333,8 +333,8 @@ TEST_F(MorphCli, ABadFfmpegTimeoutIsRefusedBeforeAnyFrame) {
   fs::create_directories(file("bin"));
   testing::writeText(file("bin/ffmpeg"), "#!/bin/sh\nexit 0\n");
   fs::permissions(file("bin/ffmpeg"), fs::perms::owner_all);
-  expectRefused("morph src.png dst.png --grid grid.json --count 3 -o seq --video seq.mp4",
-                1, "vdg: error: VDG_FFMPEG_TIMEOUT: expected a number of seconds > 0, got 'soon'",
+  expectRefused("morph src.png dst.png --grid grid.json --count 3 -o seq --video seq.mp4", 1,
+                "vdg: error: VDG_FFMPEG_TIMEOUT: expected a number of seconds > 0, got 'soon'",
                 "PATH=\"" + file("bin") + ":$PATH\" VDG_FFMPEG_TIMEOUT=soon");
 }
 
@@ -342,12 +342,14 @@ TEST_F(MorphCli, ABadFfmpegTimeoutIsRefusedBeforeAnyFrame) {
 TEST_F(MorphCli, WorkPastTheBudgetIsRefusedUpFront) {
   expectRefused("morph src.png dst.png --lines lines.json --t 0.5 -o x.png --budget 1000", 1,
                 "vdg: error: lines.json: needs about 6000 operations (" + std::to_string(kW) + "x" +
-                    std::to_string(kH) + " pixels x 2 lines x 2 images x 1 frame), more than the budget of 1000; "
+                    std::to_string(kH) +
+                    " pixels x 2 lines x 2 images x 1 frame), more than the budget of 1000; "
                     "give --budget N to allow more, or fewer lines, pixels or frames");
   EXPECT_EQ(vdg("morph src.png dst.png --lines lines.json --t 0.5 -o x.png --budget 1e6"), 0) << err_;
   expectRefused("morph src.png dst.png --grid grid.json --count 100 -o seq --budget 1e5", 1,
                 "vdg: error: grid.json: needs about 1.61e+06 operations (" + std::to_string(kW) + "x" +
-                    std::to_string(kH) + " pixels x a 3x3 grid x 2 images x 100 frames), more than the budget of "
+                    std::to_string(kH) +
+                    " pixels x a 3x3 grid x 2 images x 100 frames), more than the budget of "
                     "100000; give --budget N to allow more, or fewer grid points, pixels or frames");
 }
 
