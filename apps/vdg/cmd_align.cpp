@@ -18,6 +18,7 @@
 #include "vdg/io/mesh.h"
 #include "vdg/io/point_pairs.h"
 #include "vdg/io/read_file.h"
+#include "vdg/morph/budget.h"
 #include "vdg/viewdep/model.h"
 
 namespace vdg::cli {
@@ -26,7 +27,16 @@ namespace {
 struct AlignCliOptions {
   std::string model, drawing, points, output, size, key;
   bool ortho = false, json = false, quiet = false;
+  double budget = morph::kDefaultBudget;
 };
+
+// The work (operations, vdg/morph/budget.h) of alignCamera: the DLT's 12 x 12 normal equations per
+// pair, then per Levenberg-Marquardt iteration every pair's residual for the central-difference
+// Jacobian (2 x 7 parameters) and for up to 20 damped steps.
+double alignCost(std::size_t pairs, const AlignOptions& options) {
+  constexpr double kDltPerPair = 144, kResidualsPerIteration = 2 * 7 + 20;
+  return static_cast<double>(pairs) * (kDltPerPair + options.max_iterations * kResidualsPerIteration);
+}
 
 // Drawings larger than this a side are refused (a scan at 600 dpi of an A0 sheet is about 28000).
 constexpr int kMaxDrawingSide = 65536;
@@ -83,6 +93,10 @@ void runAlign(const AlignCliOptions& opt) {
   }
   AlignOptions options;
   options.ortho = opt.ortho;
+  morph::checkBudget(
+      alignCost(points.size(), options), opt.budget, opt.points,
+      std::to_string(points.size()) + " pairs x up to " + std::to_string(options.max_iterations) + " iterations",
+      "give --budget N to allow more, or fewer pairs");
   const AlignResult r = alignCamera(points, pixels, width, height, options);
   if (key) {
     // The key's view follows its new camera (normalize(eye - centre)); everything is checked
@@ -132,6 +146,10 @@ void addAlignCommand(CLI::App& app) {
   sub->add_option("-o,--output", opt->output, "Camera JSON to write");
   sub->add_option("--key", opt->key, "Also store the camera in this key of the manifest (its view follows)");
   sub->add_flag("--json", opt->json, "Print the result as JSON");
+  sub->add_option("--budget", opt->budget,
+                  "Refuse, before solving, work estimated above N operations (default 2e9; each pair costs about "
+                  "7000 residuals: a million pairs is refused)")
+      ->check(positiveNumber(morph::kMaxBudget));
   sub->add_flag("-q,--quiet", opt->quiet, "Print nothing on success");
   sub->callback([opt] { runAlign(*opt); });
 }

@@ -31,6 +31,7 @@
 #include "vdg/io/blob_files.h"
 #include "vdg/io/camera_json.h"
 #include "vdg/io/obj.h"
+#include "vdg/morph/budget.h"
 #include "vdg/morph/implicit.h"
 
 namespace vdg::cli {
@@ -43,7 +44,7 @@ constexpr std::size_t kMaxVoxels = std::size_t{1} << 27;
 
 struct ImplicitOptions {
   std::string input, output, frames;
-  double frame = 0, voxel = 0;
+  double frame = 0, voxel = 0, budget = morph::kDefaultBudget;
   bool frame_given = false, quiet = false;
 };
 
@@ -82,6 +83,54 @@ Eigen::AlignedBox3d meshBox(const TriMesh& mesh) {
   return box;
 }
 
+// The work of the frames up to `upto` already passes --budget (vdg/morph/budget.h): refused before
+// any frame is polygonised. Every primitive is evaluated at every voxel of its support box, so many
+// primitives over one spot, a fine voxel or many frames multiply the work.
+[[noreturn]] void refuseWork(const ImplicitOptions& opt, const std::vector<double>& frames, double work, double upto) {
+  // The frames not yet estimated are taken to cost what the first ones did on average.
+  const double done = upto - frames.front() + 1;
+  const auto total = static_cast<double>(frames.size());
+  const std::string detail = frames.size() == 1
+                                 ? "the primitives' fields at every voxel of their supports"
+                                 : std::to_string(frames.size()) + " frames, from the first " +
+                                       std::to_string(static_cast<long>(done)) + (done == 1 ? "" : " on average");
+  morph::checkBudget(work * total / done, opt.budget, opt.input, detail,
+                     "give --budget N to allow more, or a larger --voxel, fewer primitives or fewer frames");
+  throw Error(opt.input + ": work past the budget");  // not reached: checkBudget throws
+}
+
+// The voxel size of every frame (the option's, the file's, or the default over the union of the
+// frames' bounds), once every frame's grid has passed the voxel limit and the frames' work
+// together has passed --budget: nothing is computed before. `model` is a pose of `animation`.
+double checkFrames(const ImplicitOptions& opt, const BlobFile& file, const morph::BlobAnimation& animation,
+                   const std::vector<double>& frames, morph::BlobModel& model) {
+  // Posing every primitive at every frame (twice, below) is work too.
+  const double posing = 2.0 * static_cast<double>(frames.size()) * static_cast<double>(animation.primitiveCount());
+  morph::checkBudget(
+      posing, opt.budget, opt.input,
+      std::to_string(animation.primitiveCount()) + " primitives posed at " + std::to_string(frames.size()) + " frames",
+      "give --budget N to allow more, or fewer frames");
+  // One voxel size for every frame, then every frame's grid checked before any work.
+  Eigen::AlignedBox3d all;
+  for (double f : frames) {
+    if (!animation.evaluate(f, model)) throw Error(opt.input + ": cannot evaluate frame " + numberText(f));
+    all.extend(model.bounds());
+  }
+  const double h = opt.voxel > 0 ? opt.voxel : file.voxel_size > 0 ? file.voxel_size : morph::defaultVoxelSize(all);
+  if (all.isEmpty()) throw Error(opt.input + ": no primitive adds to the field, so there is no surface");
+  double work = 0;
+  for (double f : frames) {
+    if (!animation.evaluate(f, model)) throw Error(opt.input + ": cannot evaluate frame " + numberText(f));
+    if (!model.bounds().isEmpty())
+      morph::checkVoxelBudget(
+          model.bounds(), h, kMaxVoxels,
+          opt.input + (!opt.frames.empty() ? ": frame " + std::to_string(static_cast<long>(f)) : std::string()));
+    work += morph::polygoniseCost(model, h);
+    if (work > opt.budget) refuseWork(opt, frames, work, f);
+  }
+  return h;
+}
+
 void runImplicit(const ImplicitOptions& opt) {
   const bool sequence = !opt.frames.empty();
   if (sequence && opt.frame_given) throw UsageError("--frame and --frames exclude each other");
@@ -105,22 +154,8 @@ void runImplicit(const ImplicitOptions& opt) {
     frames.push_back(opt.frame_given ? opt.frame : static_cast<double>(animation.firstFrame()));
   }
 
-  // One voxel size for every frame, then every frame's grid checked before any work.
-  Eigen::AlignedBox3d all;
   morph::BlobModel model = animation.modelAt(frames.front());
-  for (double f : frames) {
-    if (!animation.evaluate(f, model)) throw Error(opt.input + ": cannot evaluate frame " + numberText(f));
-    all.extend(model.bounds());
-  }
-  const double h = opt.voxel > 0 ? opt.voxel : file.voxel_size > 0 ? file.voxel_size : morph::defaultVoxelSize(all);
-  if (all.isEmpty()) throw Error(opt.input + ": no primitive adds to the field, so there is no surface");
-  for (double f : frames) {
-    if (!animation.evaluate(f, model)) throw Error(opt.input + ": cannot evaluate frame " + numberText(f));
-    if (!model.bounds().isEmpty())
-      morph::checkVoxelBudget(
-          model.bounds(), h, kMaxVoxels,
-          opt.input + (sequence ? ": frame " + std::to_string(static_cast<long>(f)) : std::string()));
-  }
+  const double h = checkFrames(opt, file, animation, frames, model);
 
   if (!sequence) {
     if (!animation.evaluate(frames.front(), model)) throw Error(opt.input + ": cannot evaluate the frame");
@@ -206,6 +241,11 @@ void addImplicitCommand(CLI::App& app) {
                   "Write frames A-B (or N) into the folder -o as frame_NNNN.obj, with camera.json and sequence.json");
   sub->add_option("--voxel", opt->voxel, "Voxel size in model units (default: the file's, else the extent / 96)")
       ->check(positiveNumber(1e15));
+  sub->add_option("--budget", opt->budget,
+                  "Refuse, before any frame is polygonised, work estimated above N operations (default 2e9: "
+                  "seconds to about a minute; each frame costs its grid plus every primitive at every voxel of its "
+                  "support; docs/implicit.md, 'Budgets')")
+      ->check(positiveNumber(morph::kMaxBudget));
   sub->add_flag("-q,--quiet", opt->quiet, "Print nothing on success (no progress either)");
   sub->callback([opt] { runImplicit(*opt); });
 }

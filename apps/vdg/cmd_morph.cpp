@@ -25,6 +25,7 @@
 #include "vdg/io/atomic_file.h"
 #include "vdg/io/image_file.h"
 #include "vdg/io/morph_files.h"
+#include "vdg/morph/budget.h"
 #include "vdg/morph/image_morph.h"
 #include "vdg/morph/inbetween.h"
 #include "vdg/render/image.h"
@@ -40,7 +41,7 @@ constexpr double kStrokeWidth = 2.0;  // pixels, the drawn inbetweens' line widt
 
 struct MorphOptions {
   std::string src, dst, grid, lines, drawings, output, video, format = "svg";
-  double t = 0.0, frame = 0.0;
+  double t = 0.0, frame = 0.0, budget = morph::kDefaultBudget;
   int frames = 0;            // --count N (the old `--frames N` too, with a deprecation note)
   std::string frames_range;  // --frames A-B: write only these frames of the N
   FrameRange range;          // parsed from frames_range; last < first: every frame
@@ -145,6 +146,27 @@ class ImageMorph {
   int width() const { return src_.width; }
   int height() const { return src_.height; }
 
+  // Refuses, before any pixel is computed, a morph whose estimated work (vdg/morph/budget.h) is
+  // past --budget: every written frame costs a warp or two of every pixel, by every feature line
+  // (O(pixels x lines)) or along the grid's curves.
+  void checkCost(int frames) const {
+    const int w = src_.width, h = src_.height;
+    const int images = opt_.warp ? 1 : 2;
+    const double each = !opt_.grid.empty() ? (opt_.warp ? morph::meshWarpCost(w, h, grid_.rows, grid_.cols)
+                                                        : morph::meshMorphCost(w, h, grid_.rows, grid_.cols))
+                                           : (opt_.warp ? morph::featureWarpCost(w, h, lines_.src.size())
+                                                        : morph::featureMorphCost(w, h, lines_.src.size()));
+    const std::string by = !opt_.grid.empty()
+                               ? "a " + std::to_string(grid_.rows) + "x" + std::to_string(grid_.cols) + " grid"
+                               : std::to_string(lines_.src.size()) + " lines";
+    morph::checkBudget(each * frames, opt_.budget, opt_.grid.empty() ? opt_.lines : opt_.grid,
+                       std::to_string(w) + "x" + std::to_string(h) + " pixels x " + by + " x " +
+                           std::to_string(images) + (images == 1 ? " image" : " images") + " x " +
+                           std::to_string(frames) + (frames == 1 ? " frame" : " frames"),
+                       "give --budget N to allow more, or fewer " +
+                           std::string(opt_.grid.empty() ? "lines" : "grid points") + ", pixels or frames");
+  }
+
   // The image at morph time t; `frame` picks a key-framed grid's grids. What the morph library
   // refuses (a line collapsing at this t) is reported under the features' file.
   morph::Image at(double t, double frame) const {
@@ -183,6 +205,7 @@ class ImageMorph {
 
 void runImageMorph(const MorphOptions& opt) {
   const ImageMorph morph(opt);
+  morph.checkCost(opt.t_given ? 1 : lastFrame(opt) - firstFrame(opt) + 1);
   if (opt.t_given) {
     const morph::Image image = morph.at(opt.t, opt.frame);
     render::writePng(opt.output, toRenderImage(image));
@@ -258,8 +281,16 @@ void runDrawings(const MorphOptions& opt) {
   const KeyDrawingsFile file = readKeyDrawings(opt.drawings);
   const morph::Inbetweener inbetweener(file.keys, file.curve);
   const double t0 = file.keys.front().time, t1 = file.keys.back().time;
-  makeFolder(opt.output);
   const bool png = opt.format == "png";
+  // Every frame evaluates every point; a PNG frame also fills its canvas and each segment's box.
+  const int count = lastFrame(opt) - firstFrame(opt) + 1;
+  const double each = morph::inbetweenFrameCost(inbetweener.keys(), png ? file.width : 0, png ? file.height : 0);
+  morph::checkBudget(
+      each * count, opt.budget, opt.drawings,
+      std::to_string(count) + (count == 1 ? " frame" : " frames") + " of " + morph::operationsText(each) +
+          (png ? " (a " + std::to_string(file.width) + "x" + std::to_string(file.height) + " canvas)" : std::string()),
+      "give --budget N to allow more, or fewer frames, points or a smaller canvas");
+  makeFolder(opt.output);
   Progress progress("inbetween", opt.frames, opt.quiet);
   for (int i = firstFrame(opt); i <= lastFrame(opt); ++i) {
     const double time = opt.frames == 1 ? t0 : t0 + (t1 - t0) * i / (opt.frames - 1);
@@ -309,6 +340,10 @@ void addMorphCommand(CLI::App& app) {
                   "Key-drawings file: inbetween its keys into --frames N drawings instead of morphing images");
   sub->add_option("--format", opt->format, "--drawings frames as 'svg' (default) or 'png'");
   sub->add_option("--video", opt->video, "Also encode the PNG frames as OUT.mp4 or OUT.gif (needs ffmpeg)");
+  sub->add_option("--budget", opt->budget,
+                  "Refuse, before starting, work estimated above N operations (default 2e9: seconds to about a "
+                  "minute; feature lines cost pixels x lines x 2 per frame; docs/morph.md, 'Budgets')")
+      ->check(positiveNumber(morph::kMaxBudget));
   sub->add_flag("-q,--quiet", opt->quiet, "No progress bar and no summary line");
   sub->callback([opt, sub] {
     opt->t_given = sub->count("--t") > 0;

@@ -26,6 +26,7 @@
 #include "vdg/io/camera_json.h"
 #include "vdg/io/mesh.h"
 #include "vdg/io/obj.h"
+#include "vdg/morph/budget.h"
 #include "vdg/morph/shape_morph.h"
 #include "vdg/morph/slice_morph.h"
 
@@ -42,7 +43,7 @@ constexpr double kCameraAzimuthDeg = 25.0, kCameraElevationDeg = 30.0, kCameraFo
 
 struct Morph3dOptions {
   std::string a, b, output, method = "distance", axis = "y";
-  double t = -1, voxel = 0;
+  double t = -1, voxel = 0, budget = morph::kDefaultBudget;
   long long max_voxels = 0;
   long frames = 0;  // --count N (the old `--frames N` too, with a deprecation note)
   std::string frames_text;
@@ -56,6 +57,7 @@ struct Morph3dOptions {
 class Interpolator {
  public:
   Interpolator(const Morph3dOptions& opt, const TriMesh& a, const TriMesh& b) : method_(opt.method), a_(a), b_(b) {
+    checkCostBeforeBuilding(opt);
     if (method_ == "distance") {
       morph::DistanceMorphOptions options;
       options.voxel_size = opt.voxel;
@@ -78,6 +80,18 @@ class Interpolator {
     if (common_) return common_->at(t);
     return morph::minkowskiMorph(a_, b_, t, what_a_, what_b_);
   }
+  // The distance method's frames, once its volumes are built (their size is bounded by
+  // --max-voxels): every frame blends and polygonises every active voxel.
+  void checkFrameCost(const Morph3dOptions& opt) const {
+    if (!distance_) return;
+    const long frames = opt.frames_given ? opt.frames : 1;
+    const double each = morph::distanceMorphFrameCost(*distance_);
+    morph::checkBudget(each * static_cast<double>(frames), opt.budget, opt.a + " and " + opt.b,
+                       std::to_string(frames) + (frames == 1 ? " frame" : " frames") + " x " +
+                           morph::operationsText(each) + " for the distance volumes' voxels",
+                       "give --budget N to allow more, or fewer frames or a larger --voxel");
+  }
+
   std::string describe() const {
     if (distance_) {
       char text[64];
@@ -88,6 +102,27 @@ class Interpolator {
   }
 
  private:
+  // The Minkowski sums (one per frame strictly between t = 0 and 1) and the slices, from the meshes.
+  void checkCostBeforeBuilding(const Morph3dOptions& opt) const {
+    if (method_ == "minkowski") {
+      const long sums = opt.frames_given ? std::max(opt.frames - 2, 0L) : (opt.t > 0 && opt.t < 1 ? 1 : 0);
+      const double each = morph::minkowskiMorphCost(a_, b_);
+      morph::checkBudget(each * static_cast<double>(sums), opt.budget, opt.a + " and " + opt.b,
+                         std::to_string(sums) + (sums == 1 ? " Minkowski sum" : " Minkowski sums") + " x " +
+                             morph::operationsText(each) + ", the meshes having " +
+                             std::to_string(morph::reflexEdgeCount(a_)) + " and " +
+                             std::to_string(morph::reflexEdgeCount(b_)) + " reflex edges: non-convex sums are slow",
+                         "give --budget N to allow more, or fewer frames, convex meshes or --method distance");
+    } else if (method_ == "slices") {
+      morph::SliceMorphOptions options;
+      options.slices = opt.slices;
+      morph::checkBudget(morph::sliceMorphCost(a_, b_, options), opt.budget, opt.a + " and " + opt.b,
+                         std::to_string(opt.slices) + " slices x " +
+                             std::to_string(a_.triangleCount() + b_.triangleCount()) + " triangles",
+                         "give --budget N to allow more, or fewer --slices");
+    }
+  }
+
   std::string method_;
   const TriMesh& a_;
   const TriMesh& b_;
@@ -189,6 +224,7 @@ void run(const Morph3dOptions& opt) {
     throw UsageError("-o: with --t, give an .obj file, got " + quotedText(opt.output));
   const TriMesh a = readMesh(opt.a), b = readMesh(opt.b);
   const Interpolator morph(opt, a, b);
+  morph.checkFrameCost(opt);
   if (opt.frames_given) {
     writeSequence(opt, morph);
     return;
@@ -254,6 +290,11 @@ void addMorph3dCommand(CLI::App& app) {
   sub->add_option("--slices", opt->slices, "Slices method: how many cutting planes (default 32)")
       ->check(wholeNumber(1, 4096))
       ->each([opt](const std::string&) { opt->slices_given = true; });
+  sub->add_option("--budget", opt->budget,
+                  "Refuse, before the frames, work estimated above N operations (default 2e9: seconds to about a "
+                  "minute; a non-convex Minkowski sum or many distance frames cost most; docs/morph3d.md, "
+                  "'Budgets')")
+      ->check(positiveNumber(morph::kMaxBudget));
   sub->add_flag("-q,--quiet", opt->quiet, "Print nothing on success (no progress lines)");
   sub->callback([opt] { run(*opt); });
 }

@@ -36,6 +36,11 @@ std::string oneLine(std::string text) {
 }
 
 constexpr std::size_t kShownToken = 32;  // bytes of a token or name a message shows
+// Faces of more corners than this are fan-triangulated here (corner 1 with corners k and k + 1:
+// n - 2 triangles, linear time, exact for convex faces); smaller ones go to tinyobjloader's ear
+// clipping, which handles non-convex faces but costs O(n^2) to O(n^3) per face (a face of 10^6
+// corners would take hours). At 16 corners the ear clipping is at most 16^2 times the corners read.
+constexpr std::size_t kMaxEarClippedCorners = 16;
 
 std::vector<std::string_view> tokens(std::string_view line) {
   std::vector<std::string_view> out;
@@ -149,6 +154,31 @@ class ObjChecker {
     fail(line, what + ": " + (bad_number ? "" : "coordinate ") + problem);
   }
 
+  // An f line as tinyobjloader should see it: as it is up to kMaxEarClippedCorners corners, else
+  // fanned into "f c1 ck ck+1" lines (see kMaxEarClippedCorners). `t` are its tokens, "f" first.
+  static void appendFace(const std::vector<std::string_view>& t, std::string& out) {
+    const std::size_t corners = t.size() - 1;
+    const auto append = [&out](std::string_view token) {
+      for (char c : token) out += c == '\r' ? ' ' : c;
+    };
+    if (corners <= kMaxEarClippedCorners) {
+      for (std::size_t i = 0; i < t.size(); ++i) {
+        if (i) out += ' ';
+        append(t[i]);
+      }
+      return;
+    }
+    for (std::size_t k = 2; k + 1 <= corners; ++k) {
+      if (k > 2) out += '\n';
+      out += "f ";
+      append(t[1]);
+      out += ' ';
+      append(t[k]);
+      out += ' ';
+      append(t[k + 1]);
+    }
+  }
+
   // One index of a face corner: a non-zero whole number; negative ones count back from the last
   // element read so far. Returns the 1-based index it refers to.
   std::int64_t index(std::string_view token, std::size_t line, int kind, const char* noun) {
@@ -194,7 +224,7 @@ class ObjChecker {
       return;
     }
     if (tag == "f") {
-      for (char c : line) out += c == '\r' ? ' ' : c;
+      appendFace(t, out);
     } else if (tag == "v" || tag == "vt" || tag == "vn") {
       out += tag;
     } else {

@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "vdg/geom/error.h"
+#include "vdg/morph/budget.h"
 #include "vdg/morph/mesh_checks.h"
 #include "vdg/morph/shape_morph.h"
 
@@ -205,21 +206,28 @@ DistanceMorph::DistanceMorph(const TriMesh& a, const TriMesh& b, const DistanceM
   };
   const double voxels = voxelsAt(voxel);
   const auto limit = static_cast<double>(options.max_voxels);
-  if (voxels > limit) {
+  if (!(voxels <= limit)) {
     // The count falls about with the cube of the voxel size; step up from that guess until the
     // count fits, and round the size up to the 3 digits the message shows.
+    // Bounded: a count past what a double holds (--voxel 1e-300 gives +infinity, and the guess
+    // infinity or NaN) is handed to the bounded search instead of looping for ever.
     double enough = voxel * std::cbrt(voxels / limit);
-    for (;;) {
+    bool found = false;
+    for (int tries = 0; tries < 1000 && std::isfinite(enough) && enough > 0; ++tries) {
       const double shown = roundUp3(enough);
       if (voxelsAt(shown) <= limit) {
         enough = shown;
+        found = true;
         break;
       }
       enough *= 1.02;
     }
-    throw Error(what_a + " and " + what_b + ": the distance volumes at voxel size " + number(voxel) + " need " +
-                number(voxels) + " voxels (about " + number(voxels * kBytesPerVoxel / 1048576.0) +
-                " MiB), more than the limit of " + number(limit) + "; use a --voxel of at least " + number(enough));
+    if (!found) enough = smallestFittingSize(voxelsAt, voxel, limit);
+    const std::string need = std::isfinite(voxels) ? number(voxels) + " voxels (about " +
+                                                         number(voxels * kBytesPerVoxel / 1048576.0) + " MiB)"
+                                                   : "more than 1e308 voxels";
+    throw Error(what_a + " and " + what_b + ": the distance volumes at voxel size " + number(voxel) + " need " + need +
+                ", more than the limit of " + number(limit) + "; use a --voxel of at least " + number(enough));
   }
   const double pad_a = reach_a + options.band_voxels * voxel, pad_b = reach_b + options.band_voxels * voxel;
 
@@ -271,6 +279,10 @@ TriMesh DistanceMorph::at(double t) const {
     out.triangles.insert(out.triangles.end(), {index(q[0]), index(q[2]), index(q[1])});
   }
   return out;
+}
+
+double distanceMorphFrameCost(const DistanceMorph& morph) {
+  return 4.0 * static_cast<double>(morph.activeVoxelCount());
 }
 
 double DistanceMorph::voxelSize() const { return volumes_->voxel; }

@@ -163,4 +163,14 @@ Image featureMorph(const Image& src, const Image& dst, std::span<const FeatureLi
   return crossDissolve(featureWarp(src, src_lines, lines, params), featureWarp(dst, dst_lines, lines, params), t);
 }
 
+double featureWarpCost(int width, int height, std::size_t lines) {
+  return static_cast<double>(std::max(width, 0)) * static_cast<double>(std::max(height, 0)) *
+         std::max(static_cast<double>(lines), 1.0);
+}
+
+double featureMorphCost(int width, int height, std::size_t lines) {
+  return 2 * featureWarpCost(width, height, lines) +
+         static_cast<double>(std::max(width, 0)) * static_cast<double>(std::max(height, 0));
+}
+
 }  // namespace vdg::morph

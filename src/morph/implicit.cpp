@@ -17,6 +17,7 @@
 #include "vdg/geom/error.h"
 #include "vdg/geom/parallel.h"
 #include "vdg/geom/text.h"
+#include "vdg/morph/budget.h"
 #include "vdg/morph/mesh_checks.h"
 
 namespace vdg::morph {
@@ -275,6 +276,36 @@ Eigen::Vector3d gridDims(const Eigen::AlignedBox3d& box, double h) {
   return n;
 }
 
+// A primitive's support box in grid indices, [lo, hi] per axis (inclusive, within the grid).
+struct Splat {
+  std::size_t index;
+  int lo[3], hi[3];
+};
+
+// The boxes of the active primitives whose support reaches the grid of n[0] x n[1] x n[2] points
+// at `origin`, spacing h.
+std::vector<Splat> splatBoxes(const BlobModel& model, double h, const Eigen::Vector3d& origin, const int n[3]) {
+  const auto& prims = model.primitives();
+  const double T = model.threshold();
+  std::vector<Splat> splats;
+  for (std::size_t i = 0; i < prims.size(); ++i) {
+    if (!model.active(i) || prims[i].strength == 0) continue;
+    const double r = supportRadius(prims[i], T);
+    if (!(r > 0)) continue;
+    Splat s{i, {}, {}};
+    bool empty = false;
+    for (int a = 0; a < 3; ++a) {
+      const double lo = std::ceil((prims[i].center[a] - r - origin[a]) / h);
+      const double hi = std::floor((prims[i].center[a] + r - origin[a]) / h);
+      s.lo[a] = static_cast<int>(std::clamp(lo, 0.0, static_cast<double>(n[a] - 1)));
+      s.hi[a] = static_cast<int>(std::clamp(hi, -1.0, static_cast<double>(n[a] - 1)));
+      if (lo > n[a] - 1 || hi < 0 || s.lo[a] > s.hi[a]) empty = true;
+    }
+    if (!empty) splats.push_back(s);
+  }
+  return splats;
+}
+
 }  // namespace
 
 double gridVoxelCount(const Eigen::AlignedBox3d& box, double voxel_size) {
@@ -288,15 +319,23 @@ void checkVoxelBudget(const Eigen::AlignedBox3d& box, double h, std::size_t max_
   // The smallest voxel size (3 significant digits, rounded up) whose grid fits.
   double s = h * std::cbrt(count / static_cast<double>(max_voxels));
   for (int tries = 0; tries < 200 && gridVoxelCount(box, s) > static_cast<double>(max_voxels); ++tries) s *= 1.01;
-  const double scale = std::pow(10.0, std::floor(std::log10(s)) - 2.0);
-  s = std::ceil(s / scale) * scale;
+  if (std::isfinite(s) && s > 0) {
+    const double scale = std::pow(10.0, std::floor(std::log10(s)) - 2.0);
+    s = std::ceil(s / scale) * scale;
+  }
+  // A count past what a double holds (a voxel of 1e-300) or a guess that overflowed: search instead.
+  if (!std::isfinite(count) || !std::isfinite(s) || !(s > 0) ||
+      gridVoxelCount(box, s) > static_cast<double>(max_voxels))
+    s = smallestFittingSize([&](double size) { return gridVoxelCount(box, size); }, h, static_cast<double>(max_voxels));
   const double mib = count * static_cast<double>(kBytesPerVoxel) / (1024.0 * 1024.0);
   std::ostringstream msg;
   msg.precision(6);
   // Whole numbers below 1e15 (exact in a double), else 3 significant digits ("8e+18").
   const auto amount = [](double v) {
     std::ostringstream t;
-    if (v < 1e15) {
+    if (!std::isfinite(v)) {
+      t << "more than 1e308";
+    } else if (v < 1e15) {
       t << std::llround(v);
     } else {
       t.precision(3);
@@ -304,9 +343,31 @@ void checkVoxelBudget(const Eigen::AlignedBox3d& box, double h, std::size_t max_
     }
     return t.str();
   };
-  msg << what << ": the grid needs " << amount(count) << " voxels (about " << amount(mib) << " MiB) at voxel size " << h
+  msg << what << ": the grid needs " << amount(count) << " voxels"
+      << (std::isfinite(count) ? " (about " + amount(mib) + " MiB)" : std::string()) << " at voxel size " << h
       << "; use a --voxel of at least " << s;
   throw Error(msg.str());
+}
+
+double polygoniseCost(const BlobModel& model, double voxel_size) {
+  const Eigen::AlignedBox3d box = model.bounds();
+  if (box.isEmpty()) return 0;
+  const double h = voxel_size > 0 ? voxel_size : defaultVoxelSize(box);
+  if (!(h > 0) || !std::isfinite(h)) return std::numeric_limits<double>::infinity();
+  const Eigen::Vector3d dims = gridDims(box, h);
+  const double voxels = dims.prod();
+  // Past what an int indexes the grid is refused by the voxel budget anyway: the count is enough.
+  if (!(dims.maxCoeff() < 1e9)) return voxels;
+  const int n[3] = {static_cast<int>(dims.x()), static_cast<int>(dims.y()), static_cast<int>(dims.z())};
+  const Eigen::Vector3d origin = box.min() - Eigen::Vector3d::Constant(kGridPadding * h);
+  const std::vector<Splat> splats = splatBoxes(model, h, origin, n);
+  double cost = 2 * voxels + dims.x() * dims.y() * static_cast<double>(splats.size());
+  for (const Splat& s : splats) {
+    double box_voxels = 1;
+    for (int a = 0; a < 3; ++a) box_voxels *= s.hi[a] - s.lo[a] + 1;
+    cost += box_voxels;
+  }
+  return cost;
 }
 
 TriMesh polygonise(const BlobModel& model, const PolygoniseOptions& options, const std::string& what) {
@@ -331,27 +392,8 @@ TriMesh polygonise(const BlobModel& model, const PolygoniseOptions& options, con
   const std::size_t count = static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny) * static_cast<std::size_t>(nz);
   std::vector<float> values(count);
   const auto& prims = model.primitives();
-  struct Splat {
-    std::size_t index;
-    int lo[3], hi[3];
-  };
-  std::vector<Splat> splats;
-  for (std::size_t i = 0; i < prims.size(); ++i) {
-    if (!model.active(i) || prims[i].strength == 0) continue;
-    const double r = supportRadius(prims[i], T);
-    if (!(r > 0)) continue;
-    Splat s{i, {}, {}};
-    const int n[3] = {nx, ny, nz};
-    bool empty = false;
-    for (int a = 0; a < 3; ++a) {
-      const double lo = std::ceil((prims[i].center[a] - r - origin[a]) / h);
-      const double hi = std::floor((prims[i].center[a] + r - origin[a]) / h);
-      s.lo[a] = static_cast<int>(std::clamp(lo, 0.0, static_cast<double>(n[a] - 1)));
-      s.hi[a] = static_cast<int>(std::clamp(hi, -1.0, static_cast<double>(n[a] - 1)));
-      if (lo > n[a] - 1 || hi < 0 || s.lo[a] > s.hi[a]) empty = true;
-    }
-    if (!empty) splats.push_back(s);
-  }
+  const int n[3] = {nx, ny, nz};
+  const std::vector<Splat> splats = splatBoxes(model, h, origin, n);
   detail::parallelChunks(static_cast<std::size_t>(nx), 1, [&](std::size_t begin, std::size_t end) {
     std::vector<double> row(static_cast<std::size_t>(nz));
     for (std::size_t i = begin; i < end; ++i) {

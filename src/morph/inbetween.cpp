@@ -6,6 +6,7 @@
 // correspond (Parent 4.1, arc length; here the exact length of the polyline).
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <string>
 #include <utility>
@@ -73,6 +74,13 @@ Inbetweener::Inbetweener(std::vector<KeyDrawing> keys, InbetweenCurve curve) : k
           throw Error(where + ", stroke " + std::to_string(s) + ", point " + std::to_string(p) + ": not finite");
     }
   }
+  const double total = inbetweenPointCount(keys_);
+  if (total > kMaxInbetweenPoints)
+    throw Error("inbetween: the keys would hold " + numberText(total, 3) +
+                " points once every stroke is resampled to "
+                "its largest point count (" +
+                std::to_string(keys_.size()) + " keys), more than " + numberText(kMaxInbetweenPoints, 3) +
+                "; give fewer keys or fewer points per stroke");
   // A stroke keeps its points where a key already has the largest count (the drawn correspondence);
   // other keys' versions of it are resampled by arc length to that count.
   for (std::size_t s = 0; s < strokes; ++s) {
@@ -102,6 +110,41 @@ std::vector<Polyline> Inbetweener::at(double time) const {
     }
   }
   return out;
+}
+
+double inbetweenPointCount(std::span<const KeyDrawing> keys) {
+  if (keys.empty()) return 0;
+  double total = 0;
+  for (std::size_t s = 0; s < keys.front().strokes.size(); ++s) {
+    std::size_t count = 0;
+    for (const KeyDrawing& key : keys)
+      if (s < key.strokes.size()) count = std::max(count, key.strokes[s].size());
+    total += static_cast<double>(count);
+  }
+  return total * static_cast<double>(keys.size());
+}
+
+double inbetweenFrameCost(std::span<const KeyDrawing> keys, int raster_width, int raster_height) {
+  if (keys.empty()) return 0;
+  const double points = inbetweenPointCount(keys) / static_cast<double>(keys.size());
+  if (raster_width <= 0 || raster_height <= 0) return points;
+  constexpr double kPad = 3;  // the stroke's width, the anti-aliasing pixel and rounding, each side
+  const double canvas = static_cast<double>(raster_width) * static_cast<double>(raster_height);
+  double cost = points + canvas;
+  for (std::size_t s = 0; s < keys.front().strokes.size(); ++s) {
+    std::size_t count = SIZE_MAX;
+    for (const KeyDrawing& key : keys) count = std::min(count, s < key.strokes.size() ? key.strokes[s].size() : 0);
+    for (std::size_t p = 0; p + 1 < count; ++p) {
+      // A linear inbetween of a segment is no longer than its longest key (the norm is convex).
+      double dx = 0, dy = 0;
+      for (const KeyDrawing& key : keys) {
+        const Eigen::Vector2d d = (key.strokes[s][p + 1] - key.strokes[s][p]).cwiseAbs();
+        dx = std::max(dx, d.x()), dy = std::max(dy, d.y());
+      }
+      cost += std::min((std::min(dx, 1e9) + 2 * kPad) * (std::min(dy, 1e9) + 2 * kPad), canvas);
+    }
+  }
+  return cost;
 }
 
 }  // namespace vdg::morph

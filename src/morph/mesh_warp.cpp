@@ -402,4 +402,13 @@ Image meshMorph(const Image& src, const Image& dst, const WarpGrid& src_grid, co
   return crossDissolve(meshWarp(src, src_grid, middle), meshWarp(dst, dst_grid, middle), t);
 }
 
+double meshWarpCost(int width, int height, int rows, int cols) {
+  const double w = std::max(width, 0), h = std::max(height, 0), r = std::max(rows, 2), c = std::max(cols, 2);
+  return 2 * (w * h * (std::log2(std::max(r, c)) + 1) + (w + h) * r * c);
+}
+
+double meshMorphCost(int width, int height, int rows, int cols) {
+  return 2 * meshWarpCost(width, height, rows, cols) + static_cast<double>(std::max(width, 0)) * std::max(height, 0);
+}
+
 }  // namespace vdg::morph

@@ -150,6 +150,11 @@ Resampled resample(const TriMesh& mesh, const SliceMorphOptions& o, const std::s
 
 }  // namespace
 
+double sliceMorphCost(const TriMesh& a, const TriMesh& b, const SliceMorphOptions& options) {
+  return std::max(options.slices, 1) * (static_cast<double>(a.triangleCount()) +
+                                        static_cast<double>(b.triangleCount()) + 2.0 * std::max(options.samples, 3));
+}
+
 VertexMorph sliceMorph(const TriMesh& a, const TriMesh& b, const SliceMorphOptions& options, const std::string& what_a,
                        const std::string& what_b) {
   if (options.axis < 0 || options.axis > 2) throw Error("slice morph: axis must be 0, 1 or 2");

@@ -26,6 +26,25 @@ TEST(JsonReader, DeepNestingIsRefusedWithoutRecursion) {
   EXPECT_EQ(msg, "deep.json: JSON nested deeper than 64 levels (at line 1, column 76)");
 }
 
+// An array of many objects parses in one pass: nlohmann's callback parser, used before for the
+// nesting limit, scanned the whole enclosing array after every object (O(n^2): 200,000 objects
+// took minutes). No time is asserted; the count of elements read is the property, the test
+// harness's watchdog the safety net.
+TEST(JsonReader, AnArrayOfManyObjectsParsesInOnePass) {
+  constexpr std::size_t kObjects = 200000;
+  std::string text = "[";
+  for (std::size_t i = 0; i < kObjects; ++i) text += i ? ", {\"a\": [1, 2]}" : "{\"a\": [1, 2]}";
+  text += "]";
+  const Json doc = parseJson(text, "doc.json");
+  ASSERT_EQ(doc.size(), kObjects);
+  EXPECT_EQ(doc.back().at("a").size(), 2u);
+  // The limit still holds inside such an array.
+  EXPECT_EQ(errorOf([&] {
+              (void)parseJson("[{}, " + nested(kMaxJsonDepth) + "]", "doc.json");
+            }).rfind("doc.json: JSON nested deeper than 64 levels", 0),
+            0u);
+}
+
 TEST(JsonReader, SyntaxErrorsNameLineAndColumn) {
   const std::string msg = errorOf([] { parseJson("{\n  \"a\": 1,\n  \"b\": x\n}", "doc.json"); });
   EXPECT_EQ(msg.rfind("doc.json: not valid JSON at line 3, column 8", 0), 0u) << msg;

@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
+#include <string>
 
 #include "support/error_of.h"
 #include "support/test_meshes.h"
@@ -42,6 +44,45 @@ TEST(ObjIo, PolygonsAreTriangulatedAndUvsKeptWithTheirOwnIndices) {
   const TriMesh back = readObj(dir.file("out.obj"));
   EXPECT_EQ(back.uv_triangles, m.uv_triangles);
   EXPECT_EQ(back.uvs, m.uvs);
+}
+
+// A face of many corners is fanned from its first corner in one pass (n - 2 triangles), not ear
+// clipped (O(n^2) to O(n^3)): the counts below are the property; the hostile harness's watchdog is
+// the safety net for the time.
+TEST(ObjIo, AFaceOfAMillionCornersIsFannedInLinearTime) {
+  constexpr std::size_t kCorners = 1000000;
+  std::string text = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf";
+  text.reserve(text.size() + 2 * kCorners + 1);
+  for (std::size_t i = 0; i < kCorners; ++i) text += i % 4 == 0 ? " 1" : i % 4 == 1 ? " 2" : i % 4 == 2 ? " 3" : " 4";
+  text += "\n";
+  const TriMesh m = parseObj(text, "big.obj");
+  ASSERT_EQ(m.triangleCount(), kCorners - 2);
+  for (std::size_t f = 0; f < m.triangleCount(); ++f) {
+    ASSERT_EQ(m.triangles[3 * f], 0) << "triangle " << f << " is not part of the fan from corner 1";
+    ASSERT_EQ(m.triangles[3 * f + 1], static_cast<std::int32_t>((f + 1) % 4));
+    ASSERT_EQ(m.triangles[3 * f + 2], static_cast<std::int32_t>((f + 2) % 4));
+  }
+}
+
+// Up to 16 corners a face is still ear clipped, so a non-convex face keeps its shape; from 17 on it
+// is a fan from corner 1 (exact for convex faces).
+TEST(ObjIo, SmallFacesAreEarClippedLargeOnesFanned) {
+  const auto polygon = [](std::size_t n) {
+    std::string text;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double a = 2 * M_PI * static_cast<double>(i) / static_cast<double>(n);
+      text += "v " + std::to_string(std::cos(a)) + " " + std::to_string(std::sin(a)) + " 0\n";
+    }
+    text += "f";
+    for (std::size_t i = 1; i <= n; ++i) text += " " + std::to_string(i);
+    return text + "\n";
+  };
+  for (const std::size_t n : {5u, 16u, 17u, 200u}) {
+    const TriMesh m = parseObj(polygon(n), "polygon.obj");
+    EXPECT_EQ(m.triangleCount(), n - 2) << n << " corners";
+  }
+  const TriMesh fanned = parseObj(polygon(17), "polygon.obj");
+  for (std::size_t f = 0; f < fanned.triangleCount(); ++f) EXPECT_EQ(fanned.triangles[3 * f], 0);
 }
 
 TEST(ObjIo, ReadsTheShippedExampleWithoutReordering) {

@@ -181,6 +181,28 @@ TEST(DistanceMorph, TooManyVoxelsAreRefusedBeforeAllocatingAndTheSuggestedVoxelW
   EXPECT_NO_THROW(requireClosed(morph.at(0.5), "coarse"));
 }
 
+// --voxel 1e-300: the count (about 1e900) is past what a double holds. It used to be +infinity,
+// the suggested size infinity and its rounding NaN, and the search for it looped for ever; now it
+// is refused at once with a finite suggestion that fits.
+TEST(DistanceMorph, AVoxelCountPastWhatADoubleHoldsIsRefusedWithASizeThatFits) {
+  const TriMesh sphere = testing::uvSphere(), ring = testing::torus();
+  const std::string message = testing::errorOf([&] { DistanceMorph(sphere, ring, {.voxel_size = 1e-300}); });
+  EXPECT_EQ(message.rfind("A and B: the distance volumes at voxel size 1e-300 need more than 1e308 voxels, more than "
+                          "the limit of 2.68e+08; use a --voxel of at least ",
+                          0),
+            0u)
+      << message;
+  // Under a small limit (so that the volumes stay quick to build) the suggestion fits.
+  const std::string small =
+      testing::errorOf([&] { DistanceMorph(sphere, ring, {.voxel_size = 1e-300, .max_voxels = 200000}); });
+  const double suggested = std::stod(small.substr(small.rfind(' ') + 1));
+  EXPECT_TRUE(std::isfinite(suggested) && suggested > 0) << small;
+  const DistanceMorph morph(sphere, ring, {.voxel_size = suggested, .max_voxels = 200000});
+  EXPECT_LE(morph.activeVoxelCount(), 200000u);
+  // Each frame blends and polygonises every active voxel of both volumes (the budget's estimate).
+  EXPECT_DOUBLE_EQ(distanceMorphFrameCost(morph), 4.0 * static_cast<double>(morph.activeVoxelCount()));
+}
+
 TEST(DistanceMorph, TOutsideTheUnitIntervalIsRefused) {
   const TriMesh sphere = testing::uvSphere();
   const DistanceMorph morph(sphere, scaled(sphere, 1.5), {});

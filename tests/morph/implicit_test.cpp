@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include <cmath>
 
 #include "support/error_of.h"
@@ -195,6 +197,40 @@ TEST(ImplicitPolygonise, RefusesTooManyVoxelsBeforeAllocating) {
   EXPECT_GT(gridVoxelCount(m.bounds(), 0.0205), 1000000.0);
   EXPECT_EQ(errorOf([&] { (void)polygonise(m, {.voxel_size = -1}, "b.json"); }),
             "b.json: voxel size must be a finite number >= 0, got -1");
+}
+
+// A voxel of 1e-300 over a box 2 wide: about 1e903 voxels, past what a double holds. The count
+// is +infinity, refused with a finite suggestion that fits (it used to read "at least nan").
+TEST(ImplicitPolygonise, AVoxelCountPastWhatADoubleHoldsIsRefusedWithASizeThatFits) {
+  const BlobModel m = model({prim(FieldKind::kWyvill, {0, 0, 0}, 1.0)}, 0.5);
+  const std::string message = errorOf([&] { checkVoxelBudget(m.bounds(), 1e-300, std::size_t{1} << 27, "b.json"); });
+  EXPECT_EQ(message.rfind("b.json: the grid needs more than 1e308 voxels at voxel size "
+                          "1e-300; use a --voxel of at least ",
+                          0),
+            0u)
+      << message;
+  const double suggested = std::stod(message.substr(message.rfind(' ') + 1));
+  EXPECT_LE(gridVoxelCount(m.bounds(), suggested), static_cast<double>(std::size_t{1} << 27)) << message;
+  EXPECT_GT(gridVoxelCount(m.bounds(), suggested * 0.99), static_cast<double>(std::size_t{1} << 27)) << message;
+}
+
+// The estimate: every grid point twice, every support box per grid row, every primitive at every
+// voxel of its support box. Thousands of primitives over one spot cost thousands of grids.
+TEST(ImplicitPolygonise, CostCountsEveryPrimitiveAtEveryVoxelOfItsSupport) {
+  const BlobModel one = model({prim(FieldKind::kWyvill, {0, 0, 0}, 1.0)}, 0.5);
+  const double h = 0.05, voxels = gridVoxelCount(one.bounds(), h);  // (40 + 1 + 4)^3
+  ASSERT_EQ(voxels, 45.0 * 45 * 45);
+  const double single = polygoniseCost(one, h);
+  EXPECT_GT(single, 2 * voxels);
+  EXPECT_LT(single, 3 * voxels + 45 * 45);
+  std::vector<BlobPrimitive> many(kMaxBlobPrimitives, prim(FieldKind::kWyvill, {0, 0, 0}, 1.0));
+  const double crowd = polygoniseCost(model(many, 0.5), h);
+  EXPECT_GT(crowd, 0.5 * static_cast<double>(kMaxBlobPrimitives) * voxels);
+  // At a voxel of 0.02 (about a million grid points) 4096 blobs at one spot pass the default budget.
+  EXPECT_GT(polygoniseCost(model(many, 0.5), 0.02), 2e9);
+  // Halving the voxel multiplies the work by about 8; a voxel past any grid is +infinity, not a wrap.
+  EXPECT_GT(polygoniseCost(one, h / 2), 6 * single);
+  EXPECT_EQ(polygoniseCost(one, 1e-300), std::numeric_limits<double>::infinity());
 }
 
 TEST(ImplicitModel, RefusesBadPrimitives) {

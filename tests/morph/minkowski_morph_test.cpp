@@ -299,5 +299,22 @@ TEST(MinkowskiMorph, DifferentTopologiesMorphThroughSums) {
   EXPECT_NEAR(volumeOf(half), 3.0 * 3 * 2, kVolumeTolerance * 18);
 }
 
+// The estimate counts what makes the Nef path slow: the reflex edges (a convex mesh has none) and
+// the triangles; the convex path costs the pairwise vertex sums.
+TEST(MinkowskiCost, ReflexEdgesAndTheNefPathCostMore) {
+  const TriMesh box = testing::closedBox(0, 0, 0, 1, 1, 1), sphere = testing::uvSphere(), ring = testing::torus();
+  EXPECT_EQ(reflexEdgeCount(box), 0u);
+  EXPECT_EQ(reflexEdgeCount(sphere), 0u);
+  EXPECT_GT(reflexEdgeCount(lShape()), 0u);
+  EXPECT_GT(reflexEdgeCount(ring), ring.triangleCount() / 8);  // the inner half of the ring folds inwards
+  const double convex = minkowskiMorphCost(sphere, box), nef = minkowskiMorphCost(ring, box);
+  EXPECT_LT(convex, 1e8);
+  // A torus of 1024 triangles + a box took 213 s: far past the default budget of 2e9.
+  EXPECT_GT(nef, 1e10);
+  EXPECT_GT(minkowskiMorphCost(sphere, box, {.path = MinkowskiPath::nef}), convex);
+  // The estimate grows with both reflex edge counts.
+  EXPECT_GT(minkowskiMorphCost(ring, ring), nef);
+}
+
 }  // namespace
 }  // namespace vdg::morph

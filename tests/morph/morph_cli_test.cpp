@@ -289,6 +289,70 @@ TEST_F(MorphCli, VideoIsEncodedFromTheFramesByFfmpeg) {
     EXPECT_NE(e.path().filename().string().rfind(".vdg-", 0), 0u) << "a temporary file was left: " << e.path();
 }
 
+// An ffmpeg that never exits is stopped after VDG_FFMPEG_TIMEOUT seconds (here 1; by default 60 s
+// + 2 s per frame), killed with whatever it started (the script's own sleep) and reaped; one line
+// naming the video, nothing left of it.
+TEST_F(MorphCli, AnFfmpegThatNeverExitsIsStoppedAfterItsTimeout) {
+  fs::create_directories(file("bin"));
+  testing::writeText(file("bin/ffmpeg"), "#!/bin/sh\necho starting >&2\nsleep 600\n");
+  fs::permissions(file("bin/ffmpeg"), fs::perms::owner_all);
+  EXPECT_EQ(vdg("morph src.png dst.png --grid grid.json --count 3 -o seq --video seq.mp4 -q",
+                "PATH=\"" + file("bin") + ":$PATH\" VDG_FFMPEG_TIMEOUT=1"),
+            1);
+  EXPECT_EQ(err_,
+            "vdg: error: --video seq.mp4: ffmpeg did not finish within 1 s and was stopped (the frames are in seq; "
+            "VDG_FFMPEG_TIMEOUT sets the seconds)\n");
+  EXPECT_FALSE(fs::exists(file("seq.mp4")));
+  for (const auto& e : fs::directory_iterator(dir_.path()))
+    EXPECT_NE(e.path().filename().string().rfind(".vdg-", 0), 0u) << "a temporary file was left: " << e.path();
+}
+
+// A failing ffmpeg's many lines become one: the video named, the exit status, ffmpeg's last line.
+TEST_F(MorphCli, AFailingFfmpegIsOneLineWithItsLastLineAndStatus) {
+  fs::create_directories(file("bin"));
+  testing::writeText(file("bin/ffmpeg"),
+                     "#!/bin/sh\nfor i in $(seq 1 200); do echo \"noise $i\" >&2; done\n"
+                     "printf 'seq.mp4: Invalid argument\\n\\n' >&2\nexit 3\n");
+  fs::permissions(file("bin/ffmpeg"), fs::perms::owner_all);
+  EXPECT_EQ(vdg("morph src.png dst.png --grid grid.json --count 3 -o seq --video seq.mp4 -q",
+                "PATH=\"" + file("bin") + ":$PATH\""),
+            1);
+  EXPECT_EQ(err_,
+            "vdg: error: --video seq.mp4: ffmpeg failed (exit status 3): seq.mp4: Invalid argument (the frames are in "
+            "seq)\n");
+  EXPECT_FALSE(fs::exists(file("seq.mp4")));
+  // Nothing on stderr: the exit status alone.
+  testing::writeText(file("bin/ffmpeg"), "#!/bin/sh\nexit 9\n");
+  EXPECT_EQ(vdg("morph src.png dst.png --grid grid.json --count 3 -o seq --video seq.mp4 -q",
+                "PATH=\"" + file("bin") + ":$PATH\""),
+            1);
+  EXPECT_EQ(err_, "vdg: error: --video seq.mp4: ffmpeg failed (exit status 9) (the frames are in seq)\n");
+}
+
+TEST_F(MorphCli, ABadFfmpegTimeoutIsRefusedBeforeAnyFrame) {
+  fs::create_directories(file("bin"));
+  testing::writeText(file("bin/ffmpeg"), "#!/bin/sh\nexit 0\n");
+  fs::permissions(file("bin/ffmpeg"), fs::perms::owner_all);
+  expectRefused("morph src.png dst.png --grid grid.json --count 3 -o seq --video seq.mp4", 1,
+                "vdg: error: VDG_FFMPEG_TIMEOUT: expected a number of seconds > 0, got 'soon'",
+                "PATH=\"" + file("bin") + ":$PATH\" VDG_FFMPEG_TIMEOUT=soon");
+}
+
+// The work is estimated from the images, the features and the frames before any pixel.
+TEST_F(MorphCli, WorkPastTheBudgetIsRefusedUpFront) {
+  expectRefused("morph src.png dst.png --lines lines.json --t 0.5 -o x.png --budget 1000", 1,
+                "vdg: error: lines.json: needs about 6000 operations (" + std::to_string(kW) + "x" +
+                    std::to_string(kH) +
+                    " pixels x 2 lines x 2 images x 1 frame), more than the budget of 1000; "
+                    "give --budget N to allow more, or fewer lines, pixels or frames");
+  EXPECT_EQ(vdg("morph src.png dst.png --lines lines.json --t 0.5 -o x.png --budget 1e6"), 0) << err_;
+  expectRefused("morph src.png dst.png --grid grid.json --count 100 -o seq --budget 1e5", 1,
+                "vdg: error: grid.json: needs about 1.61e+06 operations (" + std::to_string(kW) + "x" +
+                    std::to_string(kH) +
+                    " pixels x a 3x3 grid x 2 images x 100 frames), more than the budget of "
+                    "100000; give --budget N to allow more, or fewer grid points, pixels or frames");
+}
+
 // With the real ffmpeg (skipped where it is not installed, unless VDG_REQUIRE_FFMPEG is set).
 TEST_F(MorphCli, VideoWithTheRealFfmpeg) {
   if (std::system("command -v ffmpeg > /dev/null 2>&1") != 0) {

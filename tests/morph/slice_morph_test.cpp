@@ -179,5 +179,13 @@ TEST(VertexMorph, RefusesPlacementsThatDoNotMakeOneMesh) {
   EXPECT_EQ(errorOf([&] { (void)one.at(std::nan("")); }), "m: t nan is not a finite number");
 }
 
+TEST(SliceMorph, CostIsSlicesTimesTrianglesAndSamples) {
+  const TriMesh a = testing::uvSphere(), b = testing::closedBox(0, 0, 0, 1, 1, 1);
+  const double triangles = static_cast<double>(a.triangleCount() + b.triangleCount());
+  EXPECT_DOUBLE_EQ(sliceMorphCost(a, b, {.axis = 1, .slices = 10, .samples = 64}), 10 * (triangles + 128));
+  EXPECT_DOUBLE_EQ(sliceMorphCost(a, b, {.axis = 1, .slices = 20, .samples = 64}),
+                   2 * sliceMorphCost(a, b, {.axis = 1, .slices = 10, .samples = 64}));
+}
+
 }  // namespace
 }  // namespace vdg::morph

@@ -2,10 +2,11 @@
 // the MTL material libraries an OBJ names.
 //
 // Reading keeps the file's vertex order (key deformations correspond to the base by vertex index),
-// triangulates polygons, and keeps texture coordinates and normals (`vn`) with their own indices
-// (TriMesh::uvs/uv_triangles, normals/normal_triangles; each kept only when every face corner has
-// one; normals are scaled to unit length, a zero normal stays zero). The file's normals classify
-// hard edges; shading normals are always derived from positions (vdg/geom/tri_mesh.h).
+// triangulates polygons (up to 16 corners by ear clipping, which keeps a non-convex face's shape;
+// a face of more corners as a fan from its first corner, in linear time), and keeps texture coordinates and normals
+// (`vn`) with their own indices (TriMesh::uvs/uv_triangles, normals/normal_triangles; each kept only when every face
+// corner has one; normals are scaled to unit length, a zero normal stays zero). The file's normals classify hard edges;
+// shading normals are always derived from positions (vdg/geom/tri_mesh.h).
 //
 // Reading is strict where a lenient reader would silently change the shape: a vertex needs three
 // finite coordinates ("v 1 2" and "v nan 1 1" are errors), a face index must be a whole number

@@ -106,4 +106,17 @@ Image featureWarp(const Image& image, std::span<const FeatureLine> from, std::sp
 Image featureMorph(const Image& src, const Image& dst, std::span<const FeatureLine> src_lines,
                    std::span<const FeatureLine> dst_lines, double t, const FeatureParams& params);
 
+// ---- Cost estimates (operations, vdg/morph/budget.h; in double, never overflowing) ---------------
+// featureWarp: a weight per pixel and line, W H max(lines, 1): O(pixels x lines), the cost that
+// makes 100,000 lines on a 256 x 256 image take minutes.
+double featureWarpCost(int width, int height, std::size_t lines);
+// featureMorph: two warps and the dissolve, 2 featureWarpCost + W H.
+double featureMorphCost(int width, int height, std::size_t lines);
+// meshWarp: two passes; each resamples every pixel (with a search among the grid's curves,
+// log2(curves) + 1) and evaluates every curve on every scanline: 2 (W H (log2(max(rows, cols)) + 1)
+// + (W + H) rows cols).
+double meshWarpCost(int width, int height, int rows, int cols);
+// meshMorph: two warps and the dissolve, 2 meshWarpCost + W H.
+double meshMorphCost(int width, int height, int rows, int cols);
+
 }  // namespace vdg::morph

@@ -190,6 +190,13 @@ double gridVoxelCount(const Eigen::AlignedBox3d& box, double voxel_size);
 void checkVoxelBudget(const Eigen::AlignedBox3d& box, double voxel_size, std::size_t max_voxels,
                       const std::string& what);
 
+// The work (operations, vdg/morph/budget.h) of polygonise(model, {voxel_size}): every grid point
+// sampled and meshed (2 per voxel), every primitive's support box tested on every grid row, and
+// every primitive evaluated at every voxel of its support box, so thousands of primitives over one
+// spot cost thousands of times the grid. In double: +infinity for a voxel size that is not > 0
+// and finite (0: the default, as polygonise).
+double polygoniseCost(const BlobModel& model, double voxel_size);
+
 // Samples F over a grid of the model's bounds (padded by kGridPadding voxels) and extracts the
 // iso-surface F = T with OpenVDB's volumeToMesh (quads split along their shorter diagonal).
 // The result is closed and consistently oriented with outward normals (counter-clockwise seen from

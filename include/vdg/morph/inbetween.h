@@ -23,9 +23,22 @@ enum class InbetweenCurve { kLinear, kCatmullRom };
 // repeated point gives `count` copies of it.
 Polyline resampleByArcLength(std::span<const Eigen::Vector2d> polyline, int count);
 
+// Points every key holds together once each stroke is resampled to its largest count: the sum over
+// strokes of (keys x the stroke's largest point count), in double (never overflowing). The
+// Inbetweener refuses more than kMaxInbetweenPoints (16 bytes each: 320 MiB) before resampling.
+inline constexpr double kMaxInbetweenPoints = 2e7;
+double inbetweenPointCount(std::span<const KeyDrawing> keys);
+// The work (operations, vdg/morph/budget.h) of one drawing at a time: every point of every stroke
+// of one key (Inbetweener::at). With `raster_width` x `raster_height` > 0, also what `vdg morph
+// --format png` spends drawing it: every pixel once, plus, per segment, the pixels of its box (the
+// largest a key gives it, padded by the stroke, at most the canvas; a linear inbetween is never
+// longer). `keys` as Inbetweener::keys() holds them (each stroke one point count in every key).
+double inbetweenFrameCost(std::span<const KeyDrawing> keys, int raster_width = 0, int raster_height = 0);
+
 // Builder: checks the keys (>= 1, finite strictly increasing times whose spans anim::isUsableTimeSpan
 // accepts, the same stroke count, every stroke >= 2 finite points; throws vdg::Error "inbetween:
-// key K[, stroke S]: ...") and resamples every stroke to the largest point count any key gives it
+// key K[, stroke S]: ...", or "inbetween: the keys would hold N points once resampled, more than
+// 2e+07 (...)" past kMaxInbetweenPoints) and resamples every stroke to the largest point count any key gives it
 // (a key that already has that count keeps its points as drawn).
 class Inbetweener {
  public:

@@ -105,6 +105,26 @@ struct MinkowskiOptions {
 // As above, with the path chosen by `options` (convex_tolerance finite and >= 0, else vdg::Error).
 TriMesh minkowskiMorph(const TriMesh& a, const TriMesh& b, double t, const MinkowskiOptions& options,
                        const std::string& what_a = "A", const std::string& what_b = "B");
+// ---- Cost estimates (operations, vdg/morph/budget.h; in double, never overflowing) ------------
+// Edges of a closed mesh where it folds inwards (reflex: the neighbouring triangle's far corner
+// stands in front of the triangle's plane, outward taken by the sign of the enclosed volume).
+// Linear (a sort of the edges). CGAL's Nef path cuts a mesh into about that many convex pieces + 1.
+std::size_t reflexEdgeCount(const TriMesh& mesh);
+// Operations per convex piece pair and triangle on the Nef path (calibrated on the timings in
+// minkowski_morph.cpp: a 256-triangle torus + a box, 47 s, estimated 2.6e9 operations).
+inline constexpr double kNefOperationsPerPieceTriangle = 5e4;
+// Operations per pairwise vertex sum hulled on the convex path (two 500-vertex spheres, 1.1 s).
+inline constexpr double kHullOperationsPerSum = 25;
+// The work of one minkowskiMorph(a, b, t, options) with 0 < t < 1 (t = 0 and 1 are copies): the
+// convexity test of the automatic path (V x F per mesh), then either the convex hull of the
+// Va x Vb sums (kHullOperationsPerSum x Va Vb log2(Va Vb)) or, when a mesh is not convex (or the
+// path says nef), the Nef sum, kNefOperationsPerPieceTriangle x (reflex edges of A + 1) x (reflex
+// edges of B + 1) x (triangles of A + B): the cost that makes a non-convex sum take minutes.
+double minkowskiMorphCost(const TriMesh& a, const TriMesh& b, const MinkowskiOptions& options = {});
+// The work of one DistanceMorph::at(t): the blend and the polygoniser visit every active voxel of
+// both volumes, twice each.
+double distanceMorphFrameCost(const DistanceMorph& morph);
+
 // True when no vertex of `mesh` stands more than relative_tolerance * (bounding-box diagonal) in
 // front of the plane of any of its non-degenerate triangles, taking the triangles outward by the
 // sign of the enclosed volume. O(V * F). The mesh should be closed (requireClosed).

@@ -37,6 +37,9 @@ struct SliceMorphOptions {
 // The VertexMorph it returns gives the lofted mesh at t: positions (1 - t) pa + t pb, slices *
 // samples + 2 vertices, closed, genus 0, counter-clockwise seen from outside; its at() refuses a t
 // that is not finite with "slice morph: t T is not a finite number".
+// The work (operations, vdg/morph/budget.h) of sliceMorph: every cut tests every triangle of its
+// mesh, and every contour is resampled: slices x (triangles of A + B + 2 samples).
+double sliceMorphCost(const TriMesh& a, const TriMesh& b, const SliceMorphOptions& options = {});
 VertexMorph sliceMorph(const TriMesh& a, const TriMesh& b, const SliceMorphOptions& options = {},
                        const std::string& what_a = "A", const std::string& what_b = "B");
 
