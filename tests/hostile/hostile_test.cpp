@@ -10,11 +10,13 @@
 
 #include <fcntl.h>
 #include <signal.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -24,6 +26,7 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 extern char** environ;
@@ -53,8 +56,9 @@ std::string readAll(const fs::path& path) {
 // One line of a cases file: checked here, so that a malformed case fails with a clear reason.
 std::string checkCase(const Json& j) {
   if (!j.is_object()) return "a case must be a JSON object";
-  static const std::set<std::string> kKeys = {"name",  "args", "exit",  "stderr", "stdout",
-                                              "files", "dirs", "fifos", "env",    "note"};
+  static const std::set<std::string> kKeys = {"name",  "args",      "exit",   "stderr", "stdout", "files",
+                                              "dirs",  "fifos",     "links",  "hardlinks", "limits", "stdout_closed",
+                                              "signal", "removed", "env",    "note"};
   for (const auto& item : j.items())
     if (!kKeys.count(item.key())) return "unknown field '" + item.key() + "'";
   if (!j.contains("name") || !j["name"].is_string() ||
@@ -66,6 +70,24 @@ std::string checkCase(const Json& j) {
   if (!j.contains("exit") || !j["exit"].is_number_integer()) return "'exit' must be an integer";
   if (!j.contains("stderr") || !j["stderr"].is_string()) return "'stderr' must be a string";
   if (j["stderr"].get<std::string>().find('\n') != std::string::npos) return "'stderr' must be one line";
+  for (const char* key : {"links", "hardlinks", "env"})
+    if (j.contains(key) && (!j[key].is_object() || !std::all_of(j[key].begin(), j[key].end(), [](const Json& v) {
+                              return v.is_string();
+                            })))
+      return std::string("'") + key + "' must be an object of strings";
+  if (j.contains("limits") && (!j["limits"].is_object() || j["limits"].size() != 1 || !j["limits"].contains("fsize") ||
+                               !j["limits"]["fsize"].is_number_unsigned()))
+    return "'limits' must be {\"fsize\": BYTES}";
+  if (j.contains("stdout_closed") && !j["stdout_closed"].is_boolean()) return "'stdout_closed' must be true or false";
+  if (j.contains("signal")) {
+    const Json& s = j["signal"];
+    if (!s.is_object() || !s.contains("name") || !s.contains("after") || s.size() != 2 || !s["after"].is_string() ||
+        !s["name"].is_string() || !std::set<std::string>{"INT", "TERM", "KILL"}.count(s["name"].get<std::string>()))
+      return "'signal' must be {\"name\": \"INT\"|\"TERM\"|\"KILL\", \"after\": REGEX}";
+  }
+  if (j.contains("removed") && (!j["removed"].is_array() || !std::all_of(j["removed"].begin(), j["removed"].end(),
+                                                                          [](const Json& v) { return v.is_string(); })))
+    return "'removed' must be an array of strings";
   return {};
 }
 
@@ -149,7 +171,9 @@ std::map<std::string, std::string> snapshot(const fs::path& root) {
   for (auto it = fs::recursive_directory_iterator(root); it != fs::recursive_directory_iterator(); ++it) {
     const std::string rel = fs::relative(it->path(), root).string();
     const fs::file_status status = it->symlink_status();
-    if (fs::is_regular_file(status))
+    if (fs::is_symlink(status))
+      out[rel] = "link:" + fs::read_symlink(it->path()).string();
+    else if (fs::is_regular_file(status))
       out[rel] = "file:" + readAll(it->path());
     else if (fs::is_directory(status))
       out[rel] = "<folder>";
@@ -163,12 +187,53 @@ std::map<std::string, std::string> snapshot(const fs::path& root) {
 
 struct Outcome {
   int exit = -1;
-  std::string signal;  // non-empty when the process died of a signal
+  std::string signal;  // non-empty when the process died of a signal it was not sent by the case
   std::string out, err;
 };
 
-Outcome runVdg(const std::vector<std::string>& args, const fs::path& cwd, const fs::path& scratch,
-               const std::map<std::string, std::string>& env) {
+// How a case runs vdg, beyond its arguments.
+struct RunSetup {
+  std::map<std::string, std::string> env;
+  long long fsize = -1;        // RLIMIT_FSIZE in bytes, or -1 for none
+  bool stdout_closed = false;  // stdout is a pipe whose reader has already gone
+  int signal = 0;              // sent once a path under the folder matches `signal_after`
+  std::regex signal_after;
+};
+
+int signalNumber(const std::string& name) {
+  if (name == "INT") return SIGINT;
+  if (name == "TERM") return SIGTERM;
+  return SIGKILL;
+}
+
+// True once some path under `root` (relative, '/'-separated) matches `pattern`.
+bool anyPathMatches(const fs::path& root, const std::regex& pattern) {
+  std::error_code ec;
+  for (auto it = fs::recursive_directory_iterator(root, ec); !ec && it != fs::recursive_directory_iterator();
+       it.increment(ec))
+    if (std::regex_match(fs::relative(it->path(), root, ec).generic_string(), pattern)) return true;
+  return false;
+}
+
+// Waits for `pid`; with a case signal, sends it once its path exists. Returns the wait status, or
+// -1 when waiting failed.
+int waitFor(pid_t pid, const fs::path& cwd, const RunSetup& setup, bool& sent) {
+  int status = 0;
+  while (setup.signal != 0 && !sent) {
+    const pid_t done = ::waitpid(pid, &status, WNOHANG);
+    if (done == pid) return status;
+    if (done < 0) return -1;
+    if (anyPathMatches(cwd, setup.signal_after)) {
+      ::kill(pid, setup.signal);
+      sent = true;
+    } else {
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+  }
+  return ::waitpid(pid, &status, 0) == pid ? status : -1;
+}
+
+Outcome runVdg(const std::vector<std::string>& args, const fs::path& cwd, const fs::path& scratch, const RunSetup& setup) {
   std::vector<std::string> argv_text = {VDG_BINARY};
   argv_text.insert(argv_text.end(), args.begin(), args.end());
   std::vector<char*> argv;
@@ -177,37 +242,54 @@ Outcome runVdg(const std::vector<std::string>& args, const fs::path& cwd, const 
   std::vector<std::string> env_text;
   for (char** e = environ; *e; ++e) {
     const std::string entry = *e;
-    if (!env.count(entry.substr(0, entry.find('=')))) env_text.push_back(entry);
+    if (!setup.env.count(entry.substr(0, entry.find('=')))) env_text.push_back(entry);
   }
-  for (const auto& [key, value] : env) env_text.push_back(key + "=" + value);
+  for (const auto& [key, value] : setup.env) env_text.push_back(key + "=" + value);
   std::vector<char*> envp;
   for (std::string& e : env_text) envp.push_back(e.data());
   envp.push_back(nullptr);
   const std::string out_path = (scratch / "stdout").string(), err_path = (scratch / "stderr").string();
+  // A pipe with no reader: vdg's first write to stdout meets EPIPE (and SIGPIPE).
+  int closed_pipe[2] = {-1, -1};
+  if (setup.stdout_closed && (::pipe(closed_pipe) != 0 || ::close(closed_pipe[0]) != 0)) return {-1, "no pipe", {}, {}};
 
   const pid_t pid = ::fork();
   if (pid == 0) {
     const int in = ::open("/dev/null", O_RDONLY);
-    const int out = ::open(out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+    const int out = setup.stdout_closed ? closed_pipe[1] : ::open(out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
     const int err = ::open(err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
     if (in < 0 || out < 0 || err < 0 || ::chdir(cwd.c_str()) != 0) ::_exit(126);
     ::dup2(in, 0);
     ::dup2(out, 1);
     ::dup2(err, 2);
+    // vdg starts with the dispositions a shell gives it, whatever the test runner ignores.
+    for (int sig : {SIGPIPE, SIGXFSZ, SIGINT, SIGTERM}) ::signal(sig, SIG_DFL);
+    sigset_t none;
+    sigemptyset(&none);
+    ::sigprocmask(SIG_SETMASK, &none, nullptr);
+    if (setup.fsize >= 0) {
+      const rlimit limit{static_cast<rlim_t>(setup.fsize), static_cast<rlim_t>(setup.fsize)};
+      if (::setrlimit(RLIMIT_FSIZE, &limit) != 0) ::_exit(126);
+    }
     ::alarm(kWatchdogSeconds);  // survives exec: a hung vdg dies of SIGALRM
     ::execve(argv[0], argv.data(), envp.data());
     ::_exit(127);
   }
+  if (setup.stdout_closed) ::close(closed_pipe[1]);
   Outcome o;
-  int status = 0;
-  if (pid < 0 || ::waitpid(pid, &status, 0) != pid) {
+  bool sent = false;
+  const int status = pid < 0 ? -1 : waitFor(pid, cwd, setup, sent);
+  if (status == -1) {
     o.signal = "could not run";
     return o;
   }
   if (WIFEXITED(status)) o.exit = WEXITSTATUS(status);
-  if (WIFSIGNALED(status))
+  if (WIFSIGNALED(status) && sent && setup.signal == SIGKILL && WTERMSIG(status) == SIGKILL)
+    o.exit = 128 + SIGKILL;  // the case killed it, as it meant to
+  else if (WIFSIGNALED(status))
     o.signal = WTERMSIG(status) == SIGALRM ? "hung (killed by the watchdog)" : strsignal(WTERMSIG(status));
-  o.out = readAll(out_path);
+  if (setup.signal != 0 && !sent) o.signal = "it ended before the case's signal could be sent";
+  if (!setup.stdout_closed) o.out = readAll(out_path);
   o.err = readAll(err_path);
   return o;
 }
@@ -238,13 +320,27 @@ TEST_P(Hostile, GivesItsMessageAndTouchesNothing) {
     fs::create_directories(path.parent_path());
     std::ofstream(path, std::ios::binary) << content(value);
   }
-  std::map<std::string, std::string> env;
-  for (const auto& [key, value] : env_vars.items()) env[key] = value.get<std::string>();
+  const Json links = j.value("links", Json::object()), hardlinks = j.value("hardlinks", Json::object());
+  for (const auto& [name, target] : links.items())
+    fs::create_symlink(expand(target.get<std::string>()), dir / expand(name));
+  for (const auto& [name, existing] : hardlinks.items())
+    fs::create_hard_link(dir / expand(existing.get<std::string>()), dir / expand(name));
+  RunSetup setup;
+  for (const auto& [key, value] : env_vars.items()) setup.env[key] = value.get<std::string>();
+  if (j.contains("limits")) setup.fsize = j["limits"]["fsize"].get<long long>();
+  setup.stdout_closed = j.value("stdout_closed", false);
+  if (j.contains("signal")) {
+    setup.signal = signalNumber(j["signal"]["name"].get<std::string>());
+    setup.signal_after = std::regex(expand(j["signal"]["after"].get<std::string>()));
+  }
+  std::set<std::string> removed;
+  const Json removed_list = j.value("removed", Json::array());
+  for (const Json& r : removed_list) removed.insert(expand(r.get<std::string>()));
   std::vector<std::string> args;
   for (const Json& a : j["args"]) args.push_back(expand(a.get<std::string>()));
 
   const auto before = snapshot(dir);
-  const Outcome o = runVdg(args, dir, scratch.path(), env);
+  const Outcome o = runVdg(args, dir, scratch.path(), setup);
   const auto after = snapshot(dir);
 
   SCOPED_TRACE(c.source);
@@ -256,7 +352,9 @@ TEST_P(Hostile, GivesItsMessageAndTouchesNothing) {
   if (j.contains("stdout")) {
     EXPECT_EQ(o.out, expand(j["stdout"].get<std::string>()));
   }
+  for (const std::string& rel : removed) EXPECT_FALSE(after.count(rel)) << rel << " should have been removed";
   for (const auto& [rel, was] : before) {
+    if (removed.count(rel)) continue;
     const auto now = after.find(rel);
     EXPECT_TRUE(now != after.end() && now->second == was) << rel << " was changed or removed";
   }
