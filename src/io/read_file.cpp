@@ -5,8 +5,8 @@
 #include <unistd.h>
 
 #include <cerrno>
-#include <cstdio>
 #include <climits>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <mutex>
@@ -54,7 +54,8 @@ std::string openedRealPath(int fd, const std::string& path) {
   char target[PATH_MAX + 1];
   const ssize_t n = ::readlink(link, target, PATH_MAX);
   if (n > 0 && target[0] == '/') return std::string(target, static_cast<std::size_t>(n));
-  struct stat opened {}, named {};
+  struct stat opened {
+  }, named{};
   char* real = ::realpath(path.c_str(), nullptr);
   if (!real) return {};
   std::string result(real);

@@ -78,14 +78,16 @@ long long softText(rlim_t value) { return value == RLIM_INFINITY ? -1 : static_c
 struct Launch {
   std::vector<std::string> args, env;
   std::vector<char*> argv, envp;
-  struct rlimit cpu {}, as {};
+  struct rlimit cpu {
+  }, as{};
   bool limit_as = false;
 };
 
 Launch prepare(const ProcessLimits& limits, const std::vector<std::string>& args, int announce) {
   Launch l;
   l.args = args;
-  struct rlimit cpu_now {}, as_now {};
+  struct rlimit cpu_now {
+  }, as_now{};
   ::getrlimit(RLIMIT_CPU, &cpu_now);
   ::getrlimit(RLIMIT_AS, &as_now);
   l.cpu = cpu_now;
@@ -116,7 +118,7 @@ Launch prepare(const ProcessLimits& limits, const std::vector<std::string>& args
   if (::getppid() != parent) ::_exit(127);  // the parent died before the line above
   ::fcntl(announce, F_SETFD, 0);            // kept across exec
   ::setrlimit(RLIMIT_CPU, &l.cpu);
-  const struct rlimit no_core {0, 0};
+  const struct rlimit no_core { 0, 0 };
   ::setrlimit(RLIMIT_CORE, &no_core);
   if (l.limit_as) ::setrlimit(RLIMIT_AS, &l.as);
   ::execve("/proc/self/exe", l.argv.data(), l.envp.data());
@@ -143,7 +145,8 @@ void readAnnouncements(int fd, std::vector<std::string>& created) {
 
 ChildOutcome waitForChild(pid_t pid, int announce, const ProcessLimits& limits) {
   ChildOutcome out;
-  struct sigaction forwarding {}, before[4];
+  struct sigaction forwarding {
+  }, before[4];
   forwarding.sa_handler = forward;
   sigemptyset(&forwarding.sa_mask);
   g_child = pid;
@@ -212,7 +215,8 @@ bool inLimitedChild() { return childState().child; }
 void liftLimits() {
   ChildState& s = childState();
   if (!s.child) return;
-  struct rlimit cpu {}, as {};
+  struct rlimit cpu {
+  }, as{};
   ::getrlimit(RLIMIT_CPU, &cpu);
   ::getrlimit(RLIMIT_AS, &as);
   cpu.rlim_cur = s.cpu_before < 0 ? cpu.rlim_max : static_cast<rlim_t>(s.cpu_before);

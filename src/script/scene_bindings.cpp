@@ -49,7 +49,8 @@ bool overlapping(const std::string& a, const std::string& b) {
 void checkOwnFolder(const Context& ctx, const std::string& out) {
   std::error_code ec;
   const auto resolved = [&](const std::string& rel) {
-    const std::filesystem::path full = std::filesystem::weakly_canonical(std::filesystem::path(ctx.output_dir) / rel, ec);
+    const std::filesystem::path full =
+        std::filesystem::weakly_canonical(std::filesystem::path(ctx.output_dir) / rel, ec);
     std::string text = ec ? std::string() : full.lexically_relative(ctx.output_dir).string();
     if (text.size() > 1 && text.back() == '/') text.pop_back();
     return text;
@@ -59,7 +60,8 @@ void checkOwnFolder(const Context& ctx, const std::string& out) {
     const std::string other = resolved(r.out);
     if (overlapping(out, r.out) || (!real.empty() && !other.empty() && overlapping(real, other)))
       throw Error("out '" + out + "' overlaps the out '" + r.out + "' of the render call at line " +
-                  std::to_string(r.line) + " (each vdg.render needs a folder of its own, not the same as another's or "
+                  std::to_string(r.line) +
+                  " (each vdg.render needs a folder of its own, not the same as another's or "
                   "inside it)");
   }
 }

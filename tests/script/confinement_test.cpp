@@ -51,9 +51,9 @@ TEST(ScriptConfinement, AGltfBufferThatLinksOutOfTheRootIsRefused) {
   writeText(bench.scripts + "/l.gltf", triangleGltf("link.bin"));
   fs::create_symlink(bench.dir.file("outside.bin"), bench.scripts + "/link.bin");
   const std::string root = fs::canonical(bench.scripts).string();
-  EXPECT_EQ(errorWith(bench, "vdg.load('l.gltf')"),
-            "s.lua:1: vdg.load: " + root + "/l.gltf: buffers: " + root +
-                "/link.bin: the glTF buffer leads outside the read root '" + root + "'");
+  EXPECT_EQ(errorWith(bench, "vdg.load('l.gltf')"), "s.lua:1: vdg.load: " + root + "/l.gltf: buffers: " + root +
+                                                        "/link.bin: the glTF buffer leads outside the read root '" +
+                                                        root + "'");
   // With the root widened above it, the same file loads.
   bench.read_root = bench.dir.path().string();
   EXPECT_EQ(bench.run("vdg.node{object = vdg.load('l.gltf')}").scene.meshes.size(), 1u);
@@ -175,9 +175,9 @@ TEST(ScriptConfinement, RenderRequestsWriteFoldersOfTheirOwn) {
 script::ChildOutcome runBody(const std::string& body, int cpu_seconds) {
   script::ProcessLimits limits;
   limits.cpu_seconds = cpu_seconds;
-  return script::runLimitedChild(limits, {script::thisProgramArguments().at(0),
-                                          "--gtest_filter=ScriptChildProcess.DISABLED_" + body,
-                                          "--gtest_also_run_disabled_tests"});
+  return script::runLimitedChild(
+      limits, {script::thisProgramArguments().at(0), "--gtest_filter=ScriptChildProcess.DISABLED_" + body,
+               "--gtest_also_run_disabled_tests"});
 }
 
 TEST(ScriptChildProcess, DISABLED_AnnounceAndExit3) {
