@@ -62,6 +62,7 @@ void forward(int sig) {
 
 constexpr int kForwarded[] = {SIGINT, SIGTERM, SIGHUP, SIGQUIT};
 
+#ifndef VDG_ASAN
 // The address space in use now (bytes; /proc/self/statm), 0 when unknown.
 std::size_t addressSpaceNow() {
   std::FILE* f = std::fopen("/proc/self/statm", "re");
@@ -71,6 +72,7 @@ std::size_t addressSpaceNow() {
   std::fclose(f);
   return ok ? pages * static_cast<std::size_t>(::sysconf(_SC_PAGESIZE)) : 0;
 }
+#endif
 
 long long softText(rlim_t value) { return value == RLIM_INFINITY ? -1 : static_cast<long long>(value); }
 
