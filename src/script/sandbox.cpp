@@ -123,8 +123,11 @@ bool sameFile(int fd, const std::string& path) {
 struct Opened {
   int fd = -1;
   int err = 0;          // errno of a failed open (io.open's nil, message, code)
-  std::string refusal;  // why the sandbox refuses the file (raised)
+  // Why the sandbox refuses the file (raised), a literal: an Opened lives in a frame that raises
+  // with longjmp, so it has nothing to destroy.
+  const char* refusal = nullptr;
 };
+static_assert(std::is_trivially_destructible_v<Opened>);
 
 // Opens `full` (checked by confinedPath) for writing: relative to its folder, which must be the
 // output folder or below it once opened, never through a symbolic link as its last component, and
@@ -177,7 +180,7 @@ Opened openChecked(Context& ctx, const std::string& full, const char* mode) {
     o.refusal = "a file with another hard link is refused for writing";
   else if (mode[0] == 'w' && ::ftruncate(o.fd, 0) != 0)
     o.err = errno;
-  if (!o.refusal.empty() || o.err) {
+  if (o.refusal || o.err) {
     ::close(o.fd);
     o.fd = -1;
   } else {
@@ -212,7 +215,7 @@ int pushOpened(lua_State* L, int path_index, const char* mode, const char* funct
         ctx.text = write ? confinedPath(ctx.output_dir, std::string_view(path, size), verb)
                          : confinedPath(ctx.read_root, std::string_view(path, size), verb, ctx.script_dir);
         o = openChecked(ctx, ctx.text, mode);
-        if (!o.refusal.empty()) throw Error(std::string(verb) + " '" + std::string(path, size) + "': " + o.refusal);
+        if (o.refusal) throw Error(std::string(verb) + " '" + std::string(path, size) + "': " + o.refusal);
       }))
     raiseKept(L, function);
   if (o.fd >= 0 && !(stream->f = ::fdopen(o.fd, mode))) {
