@@ -122,7 +122,7 @@ bool sameFile(int fd, const std::string& path) {
 
 struct Opened {
   int fd = -1;
-  int err = 0;          // errno of a failed open (io.open's nil, message, code)
+  int err = 0;  // errno of a failed open (io.open's nil, message, code)
   // Why the sandbox refuses the file (raised), a literal: an Opened lives in a frame that raises
   // with longjmp, so it has nothing to destroy.
   const char* refusal = nullptr;
