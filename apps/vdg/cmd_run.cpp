@@ -1,4 +1,4 @@
-// vdg run SCRIPT.lua [--frames A-B] [-o DIR] [--root DIR] [--gpu-blend] [--quiet]
+// vdg run SCRIPT.lua [--frames A-B] [-o DIR] [--root DIR] [--cpu-seconds N] [--gpu-blend] [--quiet]
 //
 // Runs an animation script (the animation language of Parent 4.6 and 4.8 on Lua 5.4, see
 // docs/language.md): the script builds a scene (objects, hierarchy, cameras, SET/CHANGE actions,
@@ -7,9 +7,12 @@
 // The script runs once, before any frame is drawn, and only describes the animation: a frame's
 // image depends on nothing but the scene and its number, so --frames A-B renders exactly the same
 // bytes as the same frames of a full run, and ranges can be split across machines.
+// The script runs in a child process (script/child_process.h) whose CPU time is limited while the
+// script runs (--cpu-seconds); the child then renders, and this process ends as it ends.
 // --gpu-blend blends the scene's static view-dependent models on the GPU, every instance of a
 // model in one call (SceneFrameOptions::gpu_blend; OpenGL 4.3); the images equal the CPU path's
 // within rounding.
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -20,6 +23,7 @@
 #include "vdg/render/image.h"
 #include "vdg/render/scene_renderer.h"
 #include "vdg/scene/scene.h"
+#include "vdg/script/child_process.h"
 #include "vdg/script/script.h"
 
 namespace vdg::cli {
@@ -30,16 +34,47 @@ namespace fs = std::filesystem;
 struct RunOptions {
   std::string script, output = ".", frames, root;
   bool quiet = false, gpu_blend = false;
+  int cpu_seconds = script::kDefaultCpuSeconds;
 };
+
+// The parent's side of the script's child process: the child's end becomes this process's end (its
+// exit status, or death by the same signal), and a failed run's files made by io.open are removed.
+void finishParent(const script::ChildOutcome& child, const RunOptions& opt) {
+  if (child.end == script::ChildEnd::kExited && child.code == 0) return;
+  for (const std::string& path : child.created) {
+    std::error_code ec;
+    if (fs::is_regular_file(fs::symlink_status(path, ec))) fs::remove(path, ec);
+  }
+  if (child.end == script::ChildEnd::kCpuExceeded)
+    throw Error(opt.script + ": exceeded its CPU-time budget (" + std::to_string(opt.cpu_seconds) +
+                " s of CPU; an endless computation such as a runaway pattern match? see vdg run --cpu-seconds)");
+  if (child.end == script::ChildEnd::kSignaled) {
+    std::signal(child.code, SIG_DFL);
+    std::raise(child.code);
+    throw Exit{128 + child.code};
+  }
+  throw Exit{child.code};  // the child has said why on stderr
+}
 
 void run(const RunOptions& opt) {
   FrameRange only;
   if (!opt.frames.empty()) only = parseFrameRange(opt.frames, "--frames");
 
+  // The script runs in a child process (this command again) under a CPU-time limit, the backstop
+  // of the instruction budget; the child goes on to render with the limits lifted, and this
+  // process ends as it ends.
+  if (!script::inLimitedChild()) {
+    script::ProcessLimits limits;
+    limits.cpu_seconds = opt.cpu_seconds;
+    return finishParent(script::runLimitedChild(limits, script::thisProgramArguments()), opt);
+  }
+
   script::ScriptOptions so;
   so.output_dir = opt.output;
   so.read_root = opt.root;
+  so.created = script::announceCreated;
   const script::Shot shot = script::runScript(opt.script, so);
+  script::liftLimits();
   if (shot.renders.empty()) {
     if (!opt.quiet) std::printf("%s asked for no frames (it has no render{...} call)\n", opt.script.c_str());
     return;
@@ -123,6 +158,11 @@ void addRunCommand(CLI::App& app) {
   sub->add_flag("--gpu-blend", opt->gpu_blend,
                 "Blend the view-dependent models on the GPU, all instances of a model at once (needs OpenGL 4.3); "
                 "animated models and plain meshes stay on the CPU");
+  sub->add_option("--cpu-seconds", opt->cpu_seconds,
+                  "CPU time the script may use while it runs and loads its models, in seconds (default " +
+                      std::to_string(script::kDefaultCpuSeconds) +
+                      "); the script runs in a child process killed past it, rendering is not limited")
+      ->check(CLI::Range(1, script::kMaxCpuSeconds));
   sub->add_flag("-q,--quiet", opt->quiet, "No progress bar and no summary line");
   sub->callback([opt] { run(*opt); });
 }

@@ -1212,7 +1212,7 @@ class MaterialReader {
       else if (g_.folder().empty())
         why = quotedText(uri) + " is an external file, and these bytes come without a folder";
       else
-        out.texture = cache_.file(io::inFolder(g_.folder(), uri), &why);
+        out.texture = fileTexture(io::inFolder(g_.folder(), uri), ei, &why);
     } else if (!image.image.empty()) {
       out.texture =
           cache_.bytes(ei, std::string_view(reinterpret_cast<const char*>(image.image.data()), image.image.size()),
@@ -1230,6 +1230,15 @@ class MaterialReader {
   const Gltf& g_;
   io::WarningSink sink_;
   io::TextureCache cache_;
+
+  // An image file; one outside the read root is refused (ReadRootError), not a warning.
+  std::shared_ptr<const TextureImage> fileTexture(const std::string& path, const std::string& ei, std::string* why) {
+    try {
+      return cache_.file(path, why);
+    } catch (const ReadRootError& e) {
+      throw ReadRootError(g_.source() + ": " + ei + ": " + e.what());
+    }
+  }
   std::set<std::size_t> warned_images_;
 };
 

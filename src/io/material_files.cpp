@@ -66,6 +66,8 @@ std::shared_ptr<const TextureImage> TextureCache::file(const std::string& path, 
   Entry entry;
   try {
     entry = decode(readFileLimited(path, "texture", kMaxImageFileBytes), path);
+  } catch (const ReadRootError&) {
+    throw;  // outside the read root: refused, as the file that refers to it would be
   } catch (const Error& e) {
     entry = {nullptr, e.what()};
   }

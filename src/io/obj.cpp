@@ -419,6 +419,16 @@ struct DefinedMaterial {
 
 // Gives the mesh the materials its usemtl names refer to (see obj.h). `face_names[f]` is the
 // usemtl index of triangle f (-1: none).
+// A map_Kd texture file; one outside the read root is refused (ReadRootError), not a warning.
+std::shared_ptr<const TextureImage> fileTexture(io::TextureCache& textures, const std::string& path,
+                                                const std::string& where, std::string* why) {
+  try {
+    return textures.file(path, why);
+  } catch (const ReadRootError& e) {
+    throw ReadRootError(where + ": " + e.what());
+  }
+}
+
 void attachMaterials(TriMesh& mesh, const std::vector<int>& face_names, const ObjChecker& checker,
                      const std::string& source, const MeshReadOptions& options) {
   const io::WarningSink sink(options);
@@ -455,6 +465,8 @@ void attachMaterials(TriMesh& mesh, const std::vector<int>& face_names, const Ob
         std::string name = mtl.materials[i].name;
         defined.emplace(std::move(name), DefinedMaterial{std::move(mtl.materials[i]), path, mtl.texture_lines[i]});
       }
+    } catch (const ReadRootError& e) {
+      throw ReadRootError(at(ref.line) + "mtllib: " + e.what());  // the same rule as the OBJ file's own
     } catch (const Error& e) {
       sink.warn(at(ref.line) + "mtllib: " + e.what() + "; its materials are not used");
       all_read = false;
@@ -483,7 +495,7 @@ void attachMaterials(TriMesh& mesh, const std::vector<int>& face_names, const Ob
       if (!problem.empty())
         why = where + " " + quotedText(m.texture_path, kShownToken) + " " + problem +
               " (textures must lie in the material library's folder or below)";
-      else if (!(m.texture = textures.file(path, &why)))
+      else if (!(m.texture = fileTexture(textures, path, where, &why)))
         why = where + ": " + why;
       if (!why.empty() && warned.insert(problem.empty() ? path : why).second)
         sink.warn(why + "; material " + quotedText(m.name, kShownToken) + " shows its colour alone");

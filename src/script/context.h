@@ -65,6 +65,7 @@ struct Context {
   std::int64_t budget = 0;
   std::size_t memory_limit = 0;
   std::function<void(std::string_view)> print;
+  std::function<void(const std::string&)> created;  // ScriptOptions::created
 
   // Accounting.
   std::int64_t executed = 0;  // instructions, in steps of hook_interval

@@ -1,9 +1,16 @@
 // The sandbox: which standard libraries a script sees, and the checked replacements of print,
 // load, collectgarbage, setmetatable, io.open and io.lines (see script.h and docs/language.md).
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 
 #include "context.h"
+#include "vdg/io/read_file.h"
 
 namespace vdg::script::detail {
 namespace {
@@ -72,12 +79,160 @@ int luaSetMetatable(lua_State* L) {
 
 bool isWriteMode(const char* mode) { return std::strpbrk(mode, "wa+") != nullptr; }
 
-// io.open(path [, mode]): reads relative to the script's folder, writes relative to the output
-// folder, both confined there. Upvalue 1: the real io.open.
+// xpcall(f, msgh, ...): Lua runs a message handler where the error is raised, with hooks off, so a
+// handler that loops would escape the instruction budget. Here the handler runs after the call has
+// unwound, with the hook on; without the debug library a handler cannot look at the failed call's
+// stack anyway, so what it can compute is the same.
+int luaXpcall(lua_State* L) {
+  const int n = lua_gettop(L);
+  luaL_checktype(L, 2, LUA_TFUNCTION);
+  lua_pushvalue(L, 1);
+  for (int i = 3; i <= n; ++i) lua_pushvalue(L, i);
+  const int status = lua_pcall(L, n - 2, LUA_MULTRET, 0);
+  if (status == LUA_OK) {
+    lua_pushboolean(L, 1);
+    lua_insert(L, n + 1);
+    return lua_gettop(L) - n;
+  }
+  if (status != LUA_ERRMEM) {  // Lua calls no handler for a memory error either
+    lua_pushvalue(L, 2);
+    lua_insert(L, n + 1);
+    (void)lua_pcall(L, 1, 1, 0);  // an error in the handler: its error value is the result
+  }
+  lua_pushboolean(L, 0);
+  lua_insert(L, n + 1);
+  return 2;
+}
+
+// open(2) flags of an io.open mode (already validated), without O_TRUNC: truncation waits until
+// the opened file has been checked.
+int openFlags(const char* mode) {
+  const bool plus = std::strchr(mode, '+') != nullptr;
+  int flags = O_NONBLOCK | O_NOCTTY | O_CLOEXEC;
+  if (mode[0] == 'r') return flags | (plus ? O_RDWR : O_RDONLY);
+  flags |= (plus ? O_RDWR : O_WRONLY);
+  return mode[0] == 'a' ? flags | O_APPEND : flags;
+}
+
+bool sameFile(int fd, const std::string& path) {
+  struct stat a {
+  }, b{};
+  return ::fstat(fd, &a) == 0 && ::stat(path.c_str(), &b) == 0 && a.st_dev == b.st_dev && a.st_ino == b.st_ino;
+}
+
+struct Opened {
+  int fd = -1;
+  int err = 0;  // errno of a failed open (io.open's nil, message, code)
+  // Why the sandbox refuses the file (raised), a literal: an Opened lives in a frame that raises
+  // with longjmp, so it has nothing to destroy.
+  const char* refusal = nullptr;
+};
+static_assert(std::is_trivially_destructible_v<Opened>);
+
+// Opens `full` (checked by confinedPath) for writing: relative to its folder, which must be the
+// output folder or below it once opened, never through a symbolic link as its last component, and
+// announcing a file it creates (ScriptOptions::created).
+Opened openForWriting(Context& ctx, const std::string& full, const char* mode) {
+  Opened o;
+  const std::filesystem::path p(full);
+  const std::string dir = p.parent_path().string(), name = p.filename().string();
+  const int dirfd = ::open(dir.c_str(), O_PATH | O_DIRECTORY | O_CLOEXEC);
+  if (dirfd < 0) {
+    o.err = errno;
+    return o;
+  }
+  if (!sameFile(dirfd, ctx.output_dir) && !openedBelow(dirfd, dir, ctx.output_dir)) {
+    ::close(dirfd);
+    o.refusal = "the path leads outside its folder (through a symbolic link)";
+    return o;
+  }
+  const int flags = openFlags(mode) | O_NOFOLLOW;
+  o.fd = ::openat(dirfd, name.c_str(), flags);
+  if (o.fd < 0 && errno == ENOENT) {
+    o.fd = ::openat(dirfd, name.c_str(), flags | O_CREAT | O_EXCL, 0666);
+    if (o.fd >= 0 && ctx.created) ctx.created(full);
+  }
+  if (o.fd < 0) o.err = errno;
+  if (o.err == ELOOP) o.refusal = "writing through a symbolic link is refused";
+  ::close(dirfd);
+  return o;
+}
+
+// Opens `full` for io.open or io.lines and checks the opened file: a regular file (a FIFO or a
+// device would block or never end), below its folder (the read root, or the output folder for
+// writes) as opened, and for writes a file with no other hard link. Then truncates for "w".
+Opened openChecked(Context& ctx, const std::string& full, const char* mode) {
+  const bool write = isWriteMode(mode);
+  Opened o;
+  if (write) {
+    o = openForWriting(ctx, full, mode);
+  } else if ((o.fd = ::open(full.c_str(), openFlags(mode))) < 0) {
+    o.err = errno;
+  }
+  if (o.fd < 0) return o;
+  struct stat info {};
+  if (::fstat(o.fd, &info) != 0 || !S_ISREG(info.st_mode))
+    o.refusal = S_ISFIFO(info.st_mode) ? "a FIFO (named pipe) is refused (regular files only)"
+                                       : "not a regular file (a folder or a device is refused)";
+  else if (!write && !openedBelow(o.fd, full, ctx.read_root))
+    o.refusal = "the path leads outside its folder (through a symbolic link)";
+  else if (write && info.st_nlink > 1)
+    o.refusal = "a file with another hard link is refused for writing";
+  else if (mode[0] == 'w' && ::ftruncate(o.fd, 0) != 0)
+    o.err = errno;
+  if (o.refusal || o.err) {
+    ::close(o.fd);
+    o.fd = -1;
+  } else {
+    ::fcntl(o.fd, F_SETFL, ::fcntl(o.fd, F_GETFL) & ~O_NONBLOCK);
+  }
+  return o;
+}
+
+int closeStream(lua_State* L) {
+  auto* p = static_cast<luaL_Stream*>(luaL_checkudata(L, 1, LUA_FILEHANDLE));
+  const int ok = std::fclose(p->f) == 0;
+  return luaL_fileresult(L, ok, nullptr);
+}
+
+// Opens the file named by the string at `path_index` for io.open or io.lines (`function`, in
+// messages): reads relative to the script's folder, writes relative to the output folder, both
+// confined there and checked on the opened file (openChecked). Pushes a file handle (1 result), or
+// nil, message, code (3) as Lua's io.open does; raises the sandbox's refusals.
+int pushOpened(lua_State* L, int path_index, const char* mode, const char* function) {
+  std::size_t size = 0;
+  const char* path = luaL_checklstring(L, path_index, &size);
+  const bool write = isWriteMode(mode);
+  const char* verb = write ? "writing" : "reading";
+  // The handle first: once the file is open, nothing may raise before it owns the descriptor.
+  auto* stream = static_cast<luaL_Stream*>(lua_newuserdatauv(L, sizeof(luaL_Stream), 0));
+  stream->f = nullptr;
+  stream->closef = nullptr;  // not yet a file: the handle's __gc leaves it alone
+  luaL_setmetatable(L, LUA_FILEHANDLE);
+  Context& ctx = contextOf(L);
+  Opened o;
+  if (!guarded(ctx, [&] {
+        ctx.text = write ? confinedPath(ctx.output_dir, std::string_view(path, size), verb)
+                         : confinedPath(ctx.read_root, std::string_view(path, size), verb, ctx.script_dir);
+        o = openChecked(ctx, ctx.text, mode);
+        if (o.refusal) throw Error(std::string(verb) + " '" + std::string(path, size) + "': " + o.refusal);
+      }))
+    raiseKept(L, function);
+  if (o.fd >= 0 && !(stream->f = ::fdopen(o.fd, mode))) {
+    o.err = errno;
+    ::close(o.fd);
+  }
+  if (!stream->f) {
+    errno = o.err;
+    return luaL_fileresult(L, 0, ctx.text.c_str());
+  }
+  stream->closef = closeStream;
+  return 1;
+}
+
+// io.open(path [, mode]): see pushOpened.
 int luaIoOpen(lua_State* L) {
   lua_settop(L, 2);
-  std::size_t size = 0;
-  const char* path = luaL_checklstring(L, 1, &size);
   const char* mode = luaL_optstring(L, 2, "r");
   // The modes Lua's io.open takes (r, w or a, an optional +, an optional b).
   bool valid_mode = false;
@@ -85,36 +240,23 @@ int luaIoOpen(lua_State* L) {
     valid_mode = valid_mode || std::strcmp(mode, m) == 0;
   if (!valid_mode)
     return luaL_error(L, "io.open: invalid mode '%s' (expected r, w, a, r+, w+, a+, each with an optional b)", mode);
-  const bool write = isWriteMode(mode);
-  Context& ctx = contextOf(L);
-  if (!guarded(ctx, [&] {
-        ctx.text = write ? confinedPath(ctx.output_dir, std::string_view(path, size), "writing")
-                         : confinedPath(ctx.read_root, std::string_view(path, size), "reading", ctx.script_dir);
-      }))
-    raiseKept(L, "io.open");
-  lua_pushvalue(L, lua_upvalueindex(1));
-  lua_pushlstring(L, ctx.text.data(), ctx.text.size());
-  lua_pushstring(L, mode);
-  lua_call(L, 2, LUA_MULTRET);
-  return lua_gettop(L) - 2;
+  return pushOpened(L, 1, mode, "io.open");
 }
 
-// io.lines(path, ...): read-only, under the script's folder. Upvalue 1: the real io.lines.
+// io.lines(path, ...): read-only, under the read root, through pushOpened's checks; returns the
+// handle's lines iterator and the handle as the loop's to-be-closed value (as Lua 5.4's io.lines).
 int luaIoLines(lua_State* L) {
-  std::size_t size = 0;
-  const char* path = luaL_checklstring(L, 1, &size);
-  Context& ctx = contextOf(L);
-  if (!guarded(ctx, [&] {
-        ctx.text = confinedPath(ctx.read_root, std::string_view(path, size), "reading", ctx.script_dir);
-      }))
-    raiseKept(L, "io.lines");
-  lua_pushlstring(L, ctx.text.data(), ctx.text.size());
-  lua_replace(L, 1);
   const int n = lua_gettop(L);
-  lua_pushvalue(L, lua_upvalueindex(1));
-  lua_insert(L, 1);
-  lua_call(L, n, LUA_MULTRET);
-  return lua_gettop(L);
+  if (pushOpened(L, 1, "r", "io.lines") != 1) return luaL_error(L, "%s", lua_tostring(L, -2));
+  const int file = lua_gettop(L);
+  lua_getfield(L, file, "lines");
+  lua_pushvalue(L, file);
+  for (int i = 2; i <= n; ++i) lua_pushvalue(L, i);
+  lua_call(L, n, 1);  // the iterator
+  lua_pushnil(L);
+  lua_pushnil(L);
+  lua_pushvalue(L, file);
+  return 4;
 }
 
 // Copies field `name` of the table at -1 into the table at `to`.
@@ -144,6 +286,8 @@ void openSandbox(lua_State* L) {
   lua_getfield(L, g, "load");
   lua_pushcclosure(L, luaLoadText, 1);
   lua_setfield(L, g, "load");
+  lua_pushcfunction(L, luaXpcall);
+  lua_setfield(L, g, "xpcall");
   lua_pushcfunction(L, luaCollectGarbage);
   lua_setfield(L, g, "collectgarbage");
   lua_getfield(L, g, "setmetatable");
@@ -169,11 +313,9 @@ void openSandbox(lua_State* L) {
   const int real_io = lua_gettop(L);
   lua_createtable(L, 0, 3);
   const int io = lua_gettop(L);
-  lua_getfield(L, real_io, "open");
-  lua_pushcclosure(L, luaIoOpen, 1);
+  lua_pushcfunction(L, luaIoOpen);
   lua_setfield(L, io, "open");
-  lua_getfield(L, real_io, "lines");
-  lua_pushcclosure(L, luaIoLines, 1);
+  lua_pushcfunction(L, luaIoLines);
   lua_setfield(L, io, "lines");
   copyField(L, real_io, io, "type");
   lua_setfield(L, g, LUA_IOLIBNAME);

@@ -32,6 +32,40 @@ struct Text {
   std::string_view view() const { return {data, size}; }
 };
 
+// ---- vdg.render ----
+
+// Whether folder `a` is `b` or one holds the other (lexically normal relative paths; "." holds all).
+bool overlapping(const std::string& a, const std::string& b) {
+  if (a == b || a == "." || b == ".") return true;
+  const auto holds = [](const std::string& outer, const std::string& inner) {
+    return inner.size() > outer.size() && inner.compare(0, outer.size(), outer) == 0 && inner[outer.size()] == '/';
+  };
+  return holds(a, b) || holds(b, a);
+}
+
+// Refuses an `out` folder that is the folder of an earlier render request or lies inside it (or
+// holds it), as written and as resolved through symbolic links: the frames would overwrite each
+// other, or one sequence would hold another's.
+void checkOwnFolder(const Context& ctx, const std::string& out) {
+  std::error_code ec;
+  const auto resolved = [&](const std::string& rel) {
+    const std::filesystem::path full =
+        std::filesystem::weakly_canonical(std::filesystem::path(ctx.output_dir) / rel, ec);
+    std::string text = ec ? std::string() : full.lexically_relative(ctx.output_dir).string();
+    if (text.size() > 1 && text.back() == '/') text.pop_back();
+    return text;
+  };
+  const std::string real = resolved(out);
+  for (const RenderRequest& r : ctx.renders) {
+    const std::string other = resolved(r.out);
+    if (overlapping(out, r.out) || (!real.empty() && !other.empty() && overlapping(real, other)))
+      throw Error("out '" + out + "' overlaps the out '" + r.out + "' of the render call at line " +
+                  std::to_string(r.line) +
+                  " (each vdg.render needs a folder of its own, not the same as another's or "
+                  "inside it)");
+  }
+}
+
 // ---- vdg.load ----
 
 // vdg.load(path) -> object: a mesh (.obj, plain glTF), a view-dependent model (manifest, vdg
@@ -809,6 +843,8 @@ int luaRender(lua_State* L) {
         RenderRequest r;
         r.first_frame = first, r.last_frame = last, r.width = width, r.height = height, r.samples = samples;
         r.out = std::filesystem::path(std::string(out_text.view())).lexically_normal().string();
+        if (r.out.size() > 1 && r.out.back() == '/') r.out.pop_back();
+        checkOwnFolder(ctx, r.out);
         for (int i = 0; i < 3; ++i) r.background[i] = static_cast<float>(background[i]);
         r.silhouette_width = static_cast<float>(silhouette);
         r.crease_angle_deg = static_cast<float>(creases);

@@ -44,7 +44,9 @@ void* allocate(void* ud, void* ptr, std::size_t osize, std::size_t nsize) {
 }
 
 // Count hook: every hook_interval instructions. Once the budget is spent it raises on every
-// instruction, so a script's pcall cannot hold the error back for long.
+// instruction (sticky), so a script's pcall cannot hold the error back for long. Lua runs a message
+// handler with hooks off, so the sandbox's xpcall runs its handler after the call instead (see
+// sandbox.cpp): no script code runs where this hook cannot reach it.
 void countHook(lua_State* L, lua_Debug*) {
   Context& ctx = detail::contextOf(L);
   ctx.executed += ctx.hook_interval;
@@ -169,6 +171,7 @@ Shot runScriptText(std::string_view text, const std::string& chunk_name, const s
   ctx.hook_interval = static_cast<int>(std::min<std::int64_t>(options.instruction_budget, 1000));
   ctx.memory_limit = options.memory_limit;
   ctx.print = options.print;
+  ctx.created = options.created;
 
   lua_State* L = lua_newstate(allocate, &ctx);
   if (!L) throw Error(chunk_name + ": out of memory (limit " + mib(ctx.memory_limit) + " MiB)");
@@ -178,6 +181,9 @@ Shot runScriptText(std::string_view text, const std::string& chunk_name, const s
 
   const std::string lua_name = "=" + chunk_name;
   Chunk chunk{text.data(), text.size(), lua_name.c_str()};
+  // Every file the script's loads reach (buffers, images, material libraries, a manifest's meshes)
+  // obeys the read root, not only the path given to vdg.load.
+  const ScopedReadRoot confinement(ctx.read_root);
   lua_pushcfunction(L, protectedMain);
   lua_pushlightuserdata(L, &chunk);
   const int status = lua_pcall(L, 1, 0, 0);

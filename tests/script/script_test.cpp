@@ -187,8 +187,8 @@ TEST(Script, RenderRequests) {
       "vdg.render{frames = '1-48', size = {320, 200}, out = 'frames/a', samples = 4, background = {0, 0, 0},\n"
       "           silhouette = 2.5, creases = 40}\n"
       "\n"
-      "vdg.render{frames = {5, 7}}\n"
-      "vdg.render{frames = 12}\n");
+      "vdg.render{frames = {5, 7}, out = 'b'}\n"
+      "vdg.render{frames = 12, out = 'c'}\n");
   ASSERT_EQ(shot.renders.size(), 3u);
   const auto& a = shot.renders[0];
   EXPECT_EQ(a.first_frame, 1);
@@ -203,8 +203,9 @@ TEST(Script, RenderRequests) {
   EXPECT_EQ(a.line, 1);
   EXPECT_EQ(shot.renders[1].first_frame, 5);
   EXPECT_EQ(shot.renders[1].last_frame, 7);
-  EXPECT_EQ(shot.renders[1].out, ".");
+  EXPECT_EQ(shot.renders[1].out, "b");
   EXPECT_EQ(shot.renders[1].line, 4);
+  EXPECT_EQ(bench.run("vdg.render{}").renders.at(0).out, ".");  // the default (alone: "." holds every folder)
   EXPECT_EQ(shot.renders[2].first_frame, 12);
   EXPECT_EQ(shot.renders[2].last_frame, 12);
   EXPECT_TRUE(shot.scene.nodes.empty());

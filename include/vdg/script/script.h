@@ -13,12 +13,18 @@
 //  - files: io.open / io.lines and vdg.load READ below ScriptOptions::read_root (default: the
 //    script's folder; paths relative to the script's folder), and io.open WRITES below
 //    ScriptOptions::output_dir (paths relative to it, no ".."); absolute paths, backslashes and
-//    paths or symbolic links that lead outside are refused;
+//    paths or symbolic links that lead outside are refused. While the script runs a
+//    vdg::ScopedReadRoot holds the read root, so every file a load reaches (glTF buffers and
+//    images, material libraries, textures, a manifest's meshes) obeys it too. io.open and io.lines
+//    check the file they opened: regular files only (a FIFO or a device is refused), below the
+//    folder as opened, never written through a symbolic link or a second hard link;
 //  - an instruction budget (a count hook; pcall cannot catch its error for long: once spent,
-//    every further instruction raises it again) and a memory limit (a counting allocator; the
-//    scene the script builds is charged to the same limit).
-// Lua pattern matching (string.find / match / gmatch / gsub) runs inside one C call and is not
-// interrupted by the instruction budget.
+//    every further instruction raises it again; xpcall runs its message handler after the call,
+//    where the hook reaches it) and a memory limit (a counting allocator; the scene the script
+//    builds is charged to the same limit).
+// Lua pattern matching (string.find / match / gmatch / gsub) runs inside one C call that the
+// instruction budget cannot interrupt: the backstop for it (and for any other CPU the budget does
+// not see) is the CPU-time limit of the child process vdg run runs scripts in (child_process.h).
 #pragma once
 
 #include <array>
@@ -62,6 +68,9 @@ struct ScriptOptions {
   std::int64_t instruction_budget = 200'000'000;  // Lua VM instructions (lua_sethook count), >= 1
   std::size_t memory_limit = 512u << 20;          // bytes (Lua allocations + the scene built), >= kMinMemoryLimit
   std::function<void(std::string_view)> print;    // receives each print() line (no newline); null: stdout
+  // Called with the absolute path of each file io.open has just created (vdg run
+  // removes them when the run fails); null: nobody is told.
+  std::function<void(const std::string&)> created;
   // The folder below which the script may read (io.open / io.lines reads, vdg.load), relative paths
   // being relative to the script's folder and free to climb with ".." while they stay below it;
   // empty: the script's own folder. It must hold the script.
