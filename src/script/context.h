@@ -64,6 +64,7 @@ struct Context {
   std::string output_dir;  // weakly canonical
   std::int64_t budget = 0;
   std::size_t memory_limit = 0;
+  std::int64_t write_limit = 0;  // ScriptOptions::write_limit
   std::function<void(std::string_view)> print;
   std::function<void(const std::string&)> created;  // ScriptOptions::created
 
@@ -74,6 +75,8 @@ struct Context {
   std::size_t lua_bytes = 0;
   std::size_t cxx_bytes = 0;   // the scene being built, estimated
   bool out_of_memory = false;  // an allocation or a charge was refused
+  std::int64_t written = 0;    // bytes given to f:write, against write_limit
+  int created_files = 0;       // files io.open created, against kMaxCreatedFiles
 
   // What the script builds.
   scene::RawScene scene;

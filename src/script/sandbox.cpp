@@ -148,8 +148,15 @@ Opened openForWriting(Context& ctx, const std::string& full, const char* mode) {
   }
   const int flags = openFlags(mode) | O_NOFOLLOW;
   o.fd = ::openat(dirfd, name.c_str(), flags);
+  if (o.fd < 0 && errno == ENOENT && ctx.created_files >= kMaxCreatedFiles) {
+    ::close(dirfd);
+    o.refusal = "the script has created 10000 files, the most one run may";
+    static_assert(kMaxCreatedFiles == 10000, "the message above names the limit");
+    return o;
+  }
   if (o.fd < 0 && errno == ENOENT) {
     o.fd = ::openat(dirfd, name.c_str(), flags | O_CREAT | O_EXCL, 0666);
+    if (o.fd >= 0) ++ctx.created_files;
     if (o.fd >= 0 && ctx.created) ctx.created(full);
   }
   if (o.fd < 0) o.err = errno;
@@ -187,6 +194,29 @@ Opened openChecked(Context& ctx, const std::string& full, const char* mode) {
     ::fcntl(o.fd, F_SETFL, ::fcntl(o.fd, F_GETFL) & ~O_NONBLOCK);
   }
   return o;
+}
+
+// The longest text Lua writes for a number ("%.14g" of a float, "%lld" of an integer).
+constexpr std::int64_t kLongestNumberText = 32;
+
+// f:write(...) counted against ScriptOptions::write_limit before anything is written (a number
+// counts as the longest text Lua writes for one). Upvalue 1: the handle's real write method.
+int luaFileWrite(lua_State* L) {
+  std::int64_t bytes = 0;
+  for (int i = 2, n = lua_gettop(L); i <= n; ++i) {
+    std::size_t size = 0;
+    if (lua_type(L, i) == LUA_TSTRING) (void)lua_tolstring(L, i, &size);
+    bytes += lua_type(L, i) == LUA_TNUMBER ? kLongestNumberText : static_cast<std::int64_t>(size);
+  }
+  Context& ctx = contextOf(L);
+  if (bytes > ctx.write_limit - ctx.written)
+    return luaL_error(L, "write: the script's files would hold more than its write limit of %I bytes",
+                      static_cast<lua_Integer>(ctx.write_limit));
+  ctx.written += bytes;
+  lua_pushvalue(L, lua_upvalueindex(1));
+  lua_insert(L, 1);
+  lua_call(L, lua_gettop(L) - 1, LUA_MULTRET);
+  return lua_gettop(L);
 }
 
 int closeStream(lua_State* L) {
@@ -321,6 +351,11 @@ void openSandbox(lua_State* L) {
   lua_setfield(L, g, LUA_IOLIBNAME);
   lua_pop(L, 1);
   luaL_getmetatable(L, LUA_FILEHANDLE);
+  lua_getfield(L, -1, "__index");  // the handles' methods: write is counted
+  lua_getfield(L, -1, "write");
+  lua_pushcclosure(L, luaFileWrite, 1);
+  lua_setfield(L, -2, "write");
+  lua_pop(L, 1);
   lua_pushliteral(L, "locked");
   lua_setfield(L, -2, "__metatable");
   lua_pop(L, 1);

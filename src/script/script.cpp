@@ -140,6 +140,8 @@ Shot runScriptText(std::string_view text, const std::string& chunk_name, const s
   if (options.instruction_budget < 1)
     throw Error(chunk_name + ": instruction budget must be at least 1, got " +
                 std::to_string(options.instruction_budget));
+  if (options.write_limit < 0)
+    throw Error(chunk_name + ": the write limit must be >= 0 bytes, got " + std::to_string(options.write_limit));
   if (options.memory_limit < kMinMemoryLimit)
     throw Error(chunk_name + ": memory limit must be at least " + mib(kMinMemoryLimit) + " MiB, got " +
                 std::to_string(options.memory_limit) + " bytes");
@@ -170,6 +172,7 @@ Shot runScriptText(std::string_view text, const std::string& chunk_name, const s
   ctx.budget = options.instruction_budget;
   ctx.hook_interval = static_cast<int>(std::min<std::int64_t>(options.instruction_budget, 1000));
   ctx.memory_limit = options.memory_limit;
+  ctx.write_limit = options.write_limit;
   ctx.print = options.print;
   ctx.created = options.created;
 

@@ -224,5 +224,30 @@ TEST(ScriptChildProcess, APatternMatchPastTheCpuLimitIsKilled) {
   EXPECT_GE(child.cpu_seconds, kCpuLimit - kCpuAccountingTol);
 }
 
+// A loop of writes cannot fill the disk: every f:write is counted against the write limit before
+// it writes, and io.open creates at most kMaxCreatedFiles files.
+TEST(ScriptConfinement, WritesAreCountedAgainstTheWriteLimit) {
+  ScriptBench bench;
+  bench.write_limit = 100;
+  bench.run("local f = io.open('a.txt', 'w') f:write(string.rep('x', 60), 'y') f:write(7) f:close()");
+  EXPECT_EQ(fs::file_size(bench.out + "/a.txt"), 62u);
+  EXPECT_EQ(errorWith(bench, "local f = io.open('b.txt', 'w') f:write(string.rep('x', 101))"),
+            "s.lua:1: write: the script's files would hold more than its write limit of 100 bytes");
+  EXPECT_TRUE(fs::is_empty(bench.out + "/b.txt") || !fs::exists(bench.out + "/b.txt"));
+  // The limit is for the whole run, over every handle.
+  EXPECT_EQ(
+      errorWith(bench, "for i = 1, 3 do local f = io.open('c' .. i, 'w') f:write(string.rep('x', 40)) f:close() end"),
+      "s.lua:1: write: the script's files would hold more than its write limit of 100 bytes");
+}
+
+TEST(ScriptConfinement, IoOpenCreatesAtMostTheFileLimit) {
+  ScriptBench bench;
+  EXPECT_EQ(errorWith(bench, "for i = 1, " + std::to_string(script::kMaxCreatedFiles + 1) +
+                                 " do io.open('f' .. i, 'w'):close() end"),
+            "s.lua:1: io.open: writing 'f10001': the script has created 10000 files, the most one run may");
+  // Files that exist already are opened again without counting.
+  bench.run("for i = 1, 3 do io.open('f1', 'w'):close() end");
+}
+
 }  // namespace
 }  // namespace vdg

@@ -20,6 +20,7 @@ struct ScriptBench {
   std::string out = dir.file("out");
   std::vector<std::string> printed;
   std::string read_root;  // ScriptOptions::read_root (empty: the script folder)
+  std::int64_t write_limit = script::ScriptOptions{}.write_limit;
 
   ScriptBench() {
     std::filesystem::create_directories(scripts);
@@ -29,6 +30,7 @@ struct ScriptBench {
     script::ScriptOptions o;
     o.output_dir = out;
     o.read_root = read_root;
+    o.write_limit = write_limit;
     o.print = [this](std::string_view line) { printed.emplace_back(line); };
     return o;
   }

@@ -68,6 +68,9 @@ struct ScriptOptions {
   std::int64_t instruction_budget = 200'000'000;  // Lua VM instructions (lua_sethook count), >= 1
   std::size_t memory_limit = 512u << 20;          // bytes (Lua allocations + the scene built), >= kMinMemoryLimit
   std::function<void(std::string_view)> print;    // receives each print() line (no newline); null: stdout
+  // Bytes the script's file handles may write in all (f:write), >= 0: a loop of writes cannot fill
+  // the disk. io.open creates at most kMaxCreatedFiles files.
+  std::int64_t write_limit = std::int64_t{1} << 30;
   // Called with the absolute path of each file io.open has just created (vdg run
   // removes them when the run fails); null: nobody is told.
   std::function<void(const std::string&)> created;
@@ -78,6 +81,7 @@ struct ScriptOptions {
 };
 
 inline constexpr std::size_t kMinMemoryLimit = std::size_t{1} << 20;
+inline constexpr int kMaxCreatedFiles = 10000;  // files io.open may create in one run
 
 // Runs the script at `path` (read with io's bounded reader, kMaxJsonFileBytes) and returns what it
 // built. Its folder is the script folder (vdg.load, io.open reads). Throws vdg::Error:
