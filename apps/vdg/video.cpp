@@ -159,9 +159,12 @@ FfmpegRun runFfmpeg(const std::vector<std::string>& args, double seconds, const 
     throw Error(where + ": cannot run ffmpeg: " + std::strerror(e));
   }
   if (pid == 0) execFfmpeg(argv.data(), err[1]);
-  ::setpgid(pid, pid);  // also here, so that the group exists before any kill (either call may win)
+  ::setpgid(pid, pid);   // also here, so that the group exists before any kill (either call may win)
+  killOnInterrupt(pid);  // Ctrl-C reaches vdg only: its handler stops the encoder too
   ::close(err[1]);
-  return superviseFfmpeg(pid, err[0], deadline);
+  FfmpegRun run = superviseFfmpeg(pid, err[0], deadline);
+  killOnInterrupt(0);
+  return run;
 }
 
 // The one-line message for a run that did not succeed; empty when it did.
@@ -206,6 +209,10 @@ void encodeVideo(const std::string& where, const std::string& video, const Video
   if (::stat(real.c_str(), &existing) == 0 && !S_ISREG(existing.st_mode))
     throw Error(where + ": is not a regular file; a video is written only to a file");
   const std::string temp = makeTemporaryBeside(real, where, video);
+  struct Forget {  // the temp file is the interrupt handler's to remove until this call ends
+    int token;
+    ~Forget() { keepOnInterrupt(token); }
+  } const forget{removeOnInterrupt(temp)};
   const double seconds = ffmpegTimeoutSeconds(frames.count);
   std::vector<std::string> args{"-loglevel",
                                 "error",

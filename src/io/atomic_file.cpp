@@ -133,7 +133,10 @@ int claimSlot(Slot* slots, const std::string& path, int state) {
   return -1;
 }
 
+std::atomic<pid_t> g_child_group{0};  // killOnInterrupt
+
 extern "C" void onInterrupt(int sig) {
+  if (const pid_t group = g_child_group.load(); group > 0) ::kill(-group, SIGKILL);  // it stops writing first
   for (Slot& slot : g_slots)
     if (slot.state.load() == 2) ::unlink(slot.path);
   removeNew();
@@ -377,6 +380,8 @@ int removeOnInterrupt(const std::string& path) { return claimSlot(g_slots, absol
 void keepOnInterrupt(int token) {
   if (token >= 0 && token < kSlots) g_slots[token].state.store(0);
 }
+
+void killOnInterrupt(pid_t group) { g_child_group.store(group); }
 
 std::string temporaryPathFor(const std::string& real_target) {
   return (fs::path(folderOf(real_target)) / (".vdg-" + randomSuffix())).string();

@@ -105,6 +105,10 @@ void installOutputSignalHandlers();
 // is made absolute. At most 64 files at a time are remembered (more are not; the token is then -1).
 int removeOnInterrupt(const std::string& path);
 void keepOnInterrupt(int token);  // -1 is ignored
+// A child process group (an encoder such as ffmpeg, started in a group of its own, so that the
+// terminal's Ctrl-C does not reach it) that an interrupt kills before removing the files; 0 forgets
+// it. One group at a time.
+void killOnInterrupt(pid_t group);
 
 // A file staged for an atomic replacement: its complete contents are in a temporary file beside
 // the real target, flushed to the disk, and nothing has changed yet. commit() renames it over the
