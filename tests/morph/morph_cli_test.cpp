@@ -75,6 +75,20 @@ class MorphCli : public ::testing::Test {
 
   std::string file(const std::string& name) const { return dir_.file(name); }
 
+  // A stand-in ffmpeg (a shell script) in bin/; returns the environment that puts it first on PATH.
+  std::string fakeFfmpeg(const std::string& script) {
+    fs::create_directories(file("bin"));
+    testing::writeText(file("bin/ffmpeg"), "#!/bin/sh\n" + script);
+    fs::permissions(file("bin/ffmpeg"), fs::perms::owner_all);
+    return "PATH=\"" + file("bin") + ":$PATH\"";
+  }
+
+  // No temporary file of vdg's was left in the folder.
+  void expectNoTemporaryFiles() {
+    for (const auto& e : fs::directory_iterator(dir_.path()))
+      EXPECT_NE(e.path().filename().string().rfind(".vdg-", 0), 0u) << "a temporary file was left: " << e.path();
+  }
+
   // Runs vdg with `args` in the test's folder; returns the exit status, stdout and stderr kept.
   // `env` is put in front of the command ("PATH=/nonexistent").
   int vdg(const std::string& args, const std::string& env = "") {
@@ -273,69 +287,52 @@ TEST_F(MorphCli, BadUsageIsOneLineAndExitTwo) {
 // A stand-in ffmpeg that writes its arguments into the file it is asked to make: the video is
 // encoded from the frames just written and renamed into place.
 TEST_F(MorphCli, VideoIsEncodedFromTheFramesByFfmpeg) {
-  fs::create_directories(file("bin"));
-  testing::writeText(file("bin/ffmpeg"), "#!/bin/sh\nfor a; do last=$a; done\necho \"$@\" > \"$last\"\n");
-  fs::permissions(file("bin/ffmpeg"), fs::perms::owner_all);
-  ASSERT_EQ(vdg("morph src.png dst.png --grid grid.json --count 3 -o seq --video seq.gif -q",
-                "PATH=\"" + file("bin") + ":$PATH\""),
-            0)
-      << err_;
+  const std::string env = fakeFfmpeg("for a; do last=$a; done\necho \"$@\" > \"$last\"\n");
+  ASSERT_EQ(vdg("morph src.png dst.png --grid grid.json --count 3 -o seq --video seq.gif -q", env), 0) << err_;
   const std::string args = slurp(file("seq.gif"));
   EXPECT_EQ(args.rfind("-loglevel error -y -framerate 24 -start_number 0 -i seq/frame_%04d.png -frames:v 3 ", 0), 0u)
       << args;
   EXPECT_NE(args.find("palettegen"), std::string::npos) << args;
   EXPECT_TRUE(fs::exists(file("seq/frame_0002.png")));
-  for (const auto& e : fs::directory_iterator(dir_.path()))
-    EXPECT_NE(e.path().filename().string().rfind(".vdg-", 0), 0u) << "a temporary file was left: " << e.path();
+  expectNoTemporaryFiles();
 }
 
 // An ffmpeg that never exits is stopped after VDG_FFMPEG_TIMEOUT seconds (here 1; by default 60 s
 // + 2 s per frame), killed with whatever it started (the script's own sleep) and reaped; one line
 // naming the video, nothing left of it.
 TEST_F(MorphCli, AnFfmpegThatNeverExitsIsStoppedAfterItsTimeout) {
-  fs::create_directories(file("bin"));
-  testing::writeText(file("bin/ffmpeg"), "#!/bin/sh\necho starting >&2\nsleep 600\n");
-  fs::permissions(file("bin/ffmpeg"), fs::perms::owner_all);
-  EXPECT_EQ(vdg("morph src.png dst.png --grid grid.json --count 3 -o seq --video seq.mp4 -q",
-                "PATH=\"" + file("bin") + ":$PATH\" VDG_FFMPEG_TIMEOUT=1"),
-            1);
+  const std::string env = fakeFfmpeg("echo starting >&2\nsleep 600\n");
+  EXPECT_EQ(
+      vdg("morph src.png dst.png --grid grid.json --count 3 -o seq --video seq.mp4 -q", env + " VDG_FFMPEG_TIMEOUT=1"),
+      1);
   EXPECT_EQ(err_,
             "vdg: error: --video seq.mp4: ffmpeg did not finish within 1 s and was stopped (the frames are in seq; "
             "VDG_FFMPEG_TIMEOUT sets the seconds)\n");
   EXPECT_FALSE(fs::exists(file("seq.mp4")));
-  for (const auto& e : fs::directory_iterator(dir_.path()))
-    EXPECT_NE(e.path().filename().string().rfind(".vdg-", 0), 0u) << "a temporary file was left: " << e.path();
+  expectNoTemporaryFiles();
 }
 
 // A failing ffmpeg's many lines become one: the video named, the exit status, ffmpeg's last line.
 TEST_F(MorphCli, AFailingFfmpegIsOneLineWithItsLastLineAndStatus) {
-  fs::create_directories(file("bin"));
-  testing::writeText(file("bin/ffmpeg"),
-                     "#!/bin/sh\nfor i in $(seq 1 200); do echo \"noise $i\" >&2; done\n"
-                     "printf 'seq.mp4: Invalid argument\\n\\n' >&2\nexit 3\n");
-  fs::permissions(file("bin/ffmpeg"), fs::perms::owner_all);
-  EXPECT_EQ(vdg("morph src.png dst.png --grid grid.json --count 3 -o seq --video seq.mp4 -q",
-                "PATH=\"" + file("bin") + ":$PATH\""),
-            1);
+  std::string env = fakeFfmpeg(
+      "for i in $(seq 1 200); do echo \"noise $i\" >&2; done\n"
+      "printf 'seq.mp4: Invalid argument\\n\\n' >&2\nexit 3\n");
+  EXPECT_EQ(vdg("morph src.png dst.png --grid grid.json --count 3 -o seq --video seq.mp4 -q", env), 1);
   EXPECT_EQ(err_,
             "vdg: error: --video seq.mp4: ffmpeg failed (exit status 3): seq.mp4: Invalid argument (the frames are in "
             "seq)\n");
   EXPECT_FALSE(fs::exists(file("seq.mp4")));
   // Nothing on stderr: the exit status alone.
-  testing::writeText(file("bin/ffmpeg"), "#!/bin/sh\nexit 9\n");
-  EXPECT_EQ(vdg("morph src.png dst.png --grid grid.json --count 3 -o seq --video seq.mp4 -q",
-                "PATH=\"" + file("bin") + ":$PATH\""),
-            1);
+  env = fakeFfmpeg("exit 9\n");
+  EXPECT_EQ(vdg("morph src.png dst.png --grid grid.json --count 3 -o seq --video seq.mp4 -q", env), 1);
   EXPECT_EQ(err_, "vdg: error: --video seq.mp4: ffmpeg failed (exit status 9) (the frames are in seq)\n");
 }
 
 TEST_F(MorphCli, ABadFfmpegTimeoutIsRefusedBeforeAnyFrame) {
-  fs::create_directories(file("bin"));
-  testing::writeText(file("bin/ffmpeg"), "#!/bin/sh\nexit 0\n");
-  fs::permissions(file("bin/ffmpeg"), fs::perms::owner_all);
+  const std::string env = fakeFfmpeg("exit 0\n");
   expectRefused("morph src.png dst.png --grid grid.json --count 3 -o seq --video seq.mp4", 1,
                 "vdg: error: VDG_FFMPEG_TIMEOUT: expected a number of seconds > 0, got 'soon'",
-                "PATH=\"" + file("bin") + ":$PATH\" VDG_FFMPEG_TIMEOUT=soon");
+                env + " VDG_FFMPEG_TIMEOUT=soon");
 }
 
 // The work is estimated from the images, the features and the frames before any pixel.
