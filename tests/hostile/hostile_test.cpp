@@ -56,9 +56,9 @@ std::string readAll(const fs::path& path) {
 // One line of a cases file: checked here, so that a malformed case fails with a clear reason.
 std::string checkCase(const Json& j) {
   if (!j.is_object()) return "a case must be a JSON object";
-  static const std::set<std::string> kKeys = {"name",  "args",      "exit",   "stderr", "stdout", "files",
-                                              "dirs",  "fifos",     "links",  "hardlinks", "limits", "stdout_closed",
-                                              "signal", "removed", "env",    "note"};
+  static const std::set<std::string> kKeys = {"name",   "args",    "exit",  "stderr",    "stdout", "files",
+                                              "dirs",   "fifos",   "links", "hardlinks", "limits", "stdout_closed",
+                                              "signal", "removed", "env",   "note"};
   for (const auto& item : j.items())
     if (!kKeys.count(item.key())) return "unknown field '" + item.key() + "'";
   if (!j.contains("name") || !j["name"].is_string() ||
@@ -71,9 +71,8 @@ std::string checkCase(const Json& j) {
   if (!j.contains("stderr") || !j["stderr"].is_string()) return "'stderr' must be a string";
   if (j["stderr"].get<std::string>().find('\n') != std::string::npos) return "'stderr' must be one line";
   for (const char* key : {"links", "hardlinks", "env"})
-    if (j.contains(key) && (!j[key].is_object() || !std::all_of(j[key].begin(), j[key].end(), [](const Json& v) {
-                              return v.is_string();
-                            })))
+    if (j.contains(key) && (!j[key].is_object() ||
+                            !std::all_of(j[key].begin(), j[key].end(), [](const Json& v) { return v.is_string(); })))
       return std::string("'") + key + "' must be an object of strings";
   if (j.contains("limits") && (!j["limits"].is_object() || j["limits"].size() != 1 || !j["limits"].contains("fsize") ||
                                !j["limits"]["fsize"].is_number_unsigned()))
@@ -86,7 +85,7 @@ std::string checkCase(const Json& j) {
       return "'signal' must be {\"name\": \"INT\"|\"TERM\"|\"KILL\", \"after\": REGEX}";
   }
   if (j.contains("removed") && (!j["removed"].is_array() || !std::all_of(j["removed"].begin(), j["removed"].end(),
-                                                                          [](const Json& v) { return v.is_string(); })))
+                                                                         [](const Json& v) { return v.is_string(); })))
     return "'removed' must be an array of strings";
   return {};
 }
@@ -233,7 +232,8 @@ int waitFor(pid_t pid, const fs::path& cwd, const RunSetup& setup, bool& sent) {
   return ::waitpid(pid, &status, 0) == pid ? status : -1;
 }
 
-Outcome runVdg(const std::vector<std::string>& args, const fs::path& cwd, const fs::path& scratch, const RunSetup& setup) {
+Outcome runVdg(const std::vector<std::string>& args, const fs::path& cwd, const fs::path& scratch,
+               const RunSetup& setup) {
   std::vector<std::string> argv_text = {VDG_BINARY};
   argv_text.insert(argv_text.end(), args.begin(), args.end());
   std::vector<char*> argv;

@@ -19,9 +19,9 @@
 // root, a data: URI or external buffer that does not hold byteLength bytes, an image data: URI
 // without base64 data, an image with both or neither of uri and bufferView; after it: a node with
 // a matrix and TRS, a byteStride on an index or sparse bufferView, the restart value in indices,
-// two channels of one animation on the same node and path. The selected mesh's rest pose (default morph weights, then skinned or placed by
-// the node transforms) must be finite and its bounding box's diagonal must fit a float:
-// "walk.glb: meshes[0] (nodes[2]): vertex 7 lies at (inf, 0, 0) after the node transforms; ...".
+// two channels of one animation on the same node and path. The selected mesh's rest pose (default morph weights, then
+// skinned or placed by the node transforms) must be finite and its bounding box's diagonal must fit a float: "walk.glb:
+// meshes[0] (nodes[2]): vertex 7 lies at (inf, 0, 0) after the node transforms; ...".
 //
 // Files: a .gltf/.glb is read as a regular file of at most kMaxMeshFileBytes (vdg/io/read_file.h).
 // External buffers (`"uri": "walk.bin"`) are read from the glTF file's folder only: an absolute
