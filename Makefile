@@ -12,8 +12,10 @@ ASAN_BUILD := build/asan
 FUZZ_BUILD := build/fuzz
 FUZZ_SECONDS ?= 25
 FUZZ_JOBS ?= $(JOBS)
-# make test's tests must not skip: it installs the glTF validator, Slurm + munge, Xvfb and ffmpeg.
-REQUIRE := VDG_REQUIRE_GLTF_VALIDATOR=1 VDG_REQUIRE_SLURM=1 VDG_REQUIRE_XVFB=1 VDG_REQUIRE_FFMPEG=1
+# make test's tests must not skip: it installs the glTF validator, Slurm + munge, Xvfb, ffmpeg,
+# Node with web/node_modules + Chromium, and Blender.
+REQUIRE := VDG_REQUIRE_GLTF_VALIDATOR=1 VDG_REQUIRE_SLURM=1 VDG_REQUIRE_XVFB=1 VDG_REQUIRE_FFMPEG=1 \
+           VDG_REQUIRE_WEB=1 VDG_REQUIRE_BLENDER=1
 
 .PHONY: deps demo-deps build demo test test-release test-asan fuzz bench format clean \
         ci-build ci-ctest asan-build asan-ctest fuzz-build fuzz-run
