@@ -131,14 +131,23 @@ function sharpen(s, alpha) {
  * @param {number} alpha sharpness
  * @param {Int32Array} slots
  * @param {Float64Array} w
+ * @param {number} [hint] a triangle to test first (-1: none)
  * @returns {number}
  */
-function locate(p, vx, vy, vz, alpha, slots, w) {
+function locate(p, vx, vy, vz, alpha, slots, w, hint = -1) {
   const { inverses, triangles, points } = p;
   const count = triangles.length / 3;
   const base = p.extras.uncovered === 'base';
   let found = -1, bestMin = -1e300, l0 = 0, l1 = 0, l2 = 0;
-  for (let t = 0; t < count; ++t) {  // scanTriangles: first inside, else the least outside (base)
+  if (hint >= 0 && hint < count) {  // a coherent camera: the last triangle first (locateByScan)
+    const m = inverses, o = 9 * hint;
+    const a = m[o] * vx + m[o + 1] * vy + m[o + 2] * vz;
+    const b = m[o + 3] * vx + m[o + 4] * vy + m[o + 5] * vz;
+    const c = m[o + 6] * vx + m[o + 7] * vy + m[o + 8] * vz;
+    if (Math.min(a, b, c) >= -kInsideTol) { found = hint; bestMin = Math.min(a, b, c); l0 = a; l1 = b; l2 = c; }
+  }
+  const hinted = found >= 0;
+  for (let t = 0; !hinted && t < count; ++t) {  // scanTriangles: first inside, else the least outside
     const m = inverses, o = 9 * t;
     const a = m[o] * vx + m[o + 1] * vy + m[o + 2] * vz;
     const b = m[o + 3] * vx + m[o + 4] * vy + m[o + 5] * vz;
@@ -295,11 +304,13 @@ const tmpCoef = new Float64Array(64);
  * @param {Float64Array|number[]} out
  * @param {Int32Array} slots
  * @param {Float64Array} w
+ * @param {number} [hint]
+ * @returns {number} the triangle (-1: uncovered)
  */
-function weightsInto(p, vx, vy, vz, alpha, frame, out, slots, w) {
+function weightsInto(p, vx, vy, vz, alpha, frame, out, slots, w, hint = -1) {
   const extras = p.extras;
   for (let i = 0; i < p.targetCount; ++i) out[i] = 0;
-  locate(p, vx, vy, vz, alpha, slots, w);
+  const triangle = locate(p, vx, vy, vz, alpha, slots, w, hint);
   const viewTargets = extras.sphere.view_targets;
   for (let k = 0; k < 3; ++k) {
     const i = slots[k];
@@ -324,6 +335,7 @@ function weightsInto(p, vx, vy, vz, alpha, frame, out, slots, w) {
     if (k0 > 0) out[first + k0] += 1 - u;
     if (k1 > 0 && u > 0) out[first + k1] += u;
   }
+  return triangle;
 }
 
 /**
@@ -341,4 +353,248 @@ export function vdgWeights(extras, view, { frame = 0, sharpness = null } = {}) {
   weightsInto(p, tmpView[0], tmpView[1], tmpView[2], resolveSharpness(extras, sharpness), frame, out, tmpSlots,
     tmpWeights);
   return out;
+}
+
+// ---- three.js controller ----------------------------------------------------------------------
+
+/**
+ * @typedef {object} VdgModel one view-dependent model under the root
+ * @property {import('three').Mesh[]} meshes its Meshes (one per glTF primitive, sharing one target list)
+ * @property {VdgExtras} extras
+ */
+
+const _inverse = new Matrix4();
+const _eye = new Vector3();
+const _dir = new Vector3();
+
+/**
+ * True for a pass that is not a view of the scene: a depth or distance material (shadow maps, depth
+ * pre-passes), or a camera marked `camera.userData.vdgAuxiliary = true` (reflections, probes).
+ * @param {any} camera @param {any} material
+ */
+function auxiliaryPass(camera, material) {
+  return !!(material && (material.isMeshDepthMaterial || material.isMeshDistanceMaterial)) ||
+    !!(camera && camera.userData && camera.userData.vdgAuxiliary);
+}
+
+/**
+ * The model-space view of `camera` seen from an object whose world matrix is `world` (then
+ * `instance`, for an instanced mesh): the eye (perspective) or the camera's backward axis
+ * (orthographic) mapped through the inverse, then through extras.dequantize, minus the centre
+ * (points only). Writes `out`; false when the eye sits on the centre.
+ * @param {any} camera @param {import('three').Matrix4} world @param {VdgExtras} extras
+ * @param {Float64Array} out
+ */
+function cameraView(camera, world, extras, out) {
+  _inverse.copy(world).invert();
+  const e = camera.matrixWorld.elements;
+  const ortho = !!camera.isOrthographicCamera;
+  const q = extras.dequantize;
+  if (ortho) {
+    _dir.set(e[8], e[9], e[10]).transformDirection(_inverse);  // towards the eye: the camera's +Z
+    out[0] = _dir.x * (q ? q.scale[0] : 1);
+    out[1] = _dir.y * (q ? q.scale[1] : 1);
+    out[2] = _dir.z * (q ? q.scale[2] : 1);
+  } else {
+    _eye.set(e[12], e[13], e[14]).applyMatrix4(_inverse);
+    const c = extras.center;
+    out[0] = (q ? q.offset[0] + q.scale[0] * _eye.x : _eye.x) - c[0];
+    out[1] = (q ? q.offset[1] + q.scale[1] * _eye.y : _eye.y) - c[1];
+    out[2] = (q ? q.offset[2] + q.scale[2] * _eye.z : _eye.z) - c[2];
+  }
+  const big = Math.max(Math.abs(out[0]), Math.abs(out[1]), Math.abs(out[2]));
+  if (!(big > 0) || !Number.isFinite(big)) return false;
+  const len = Math.hypot(out[0] / big, out[1] / big, out[2] / big) * big;
+  out[0] /= len; out[1] /= len; out[2] /= len;
+  return true;
+}
+
+/**
+ * The animation frame of a controller: `frame`, or `time` seconds times fps (wrapped when looping).
+ * @param {VdgExtras} extras @param {number} frame @param {number|null} time
+ */
+function controllerFrame(extras, frame, time) {
+  const anim = extras.animation;
+  if (!anim) return 0;
+  if (time == null) return frame;
+  const f = time * anim.fps;
+  return anim.loop ? ((f % anim.frame_count) + anim.frame_count) % anim.frame_count : f;
+}
+
+/**
+ * Makes every view-dependent mesh under `root` (a GLTFLoader scene from `vdg export`) follow the
+ * camera that renders it. The rule (web/README.md): each render of a mesh sets its
+ * morphTargetInfluences from THE CAMERA THAT IS RENDERING it (onBeforeRender), so two views of one
+ * scene each see the model drawn for them; auxiliary passes (shadow maps through onBeforeShadow,
+ * depth or distance materials, cameras with userData.vdgAuxiliary) use `mainCamera` (when null,
+ * the camera the renderer was called with), so a shadow matches what the main view shows.
+ * @param {import('three').Object3D} root
+ * @param {{mainCamera?: import('three').Camera|null, sharpness?: number|null, frame?: number}} [options]
+ */
+export function attachVdg(root, { mainCamera = null, sharpness = null, frame = 0 } = {}) {
+  /** @type {Map<VdgExtras, VdgModel & {weights: Float64Array, sphere: SphereWeights|null, hint: number}>} */
+  const byExtras = new Map();
+  root.traverse((object) => {
+    const mesh = /** @type {any} */ (object);
+    const extras = mesh.isMesh && mesh.userData && mesh.userData.vdg;
+    if (!extras || !mesh.morphTargetInfluences) return;
+    prepare(extras);  // throws for a version 1 export, naming the problem
+    let model = byExtras.get(extras);
+    if (!model) {
+      model = { meshes: [], extras, weights: new Float64Array(prepare(extras).targetCount), sphere: null, hint: -1 };
+      byExtras.set(extras, model);
+    }
+    model.meshes.push(mesh);
+  });
+  const view = new Float64Array(3);
+  const slots = new Int32Array(3);
+  const w = new Float64Array(4);
+  /** @type {{mesh: any, before: any, shadow: any}[]} */
+  const hooked = [];
+
+  const controller = {
+    /** @type {number|null} null: each model's own sharpness */
+    sharpness,
+    /** animated models: the frame (fractional ok); used when `time` is null */
+    frame,
+    /** @type {number|null} animated models: seconds; frame = time * fps (wrapped when looping) */
+    time: null,
+    /** @type {import('three').Camera|null} */
+    mainCamera,
+    /** @type {VdgModel[]} */
+    models: Array.from(byExtras.values()).map(({ meshes, extras }) => ({ meshes, extras })),
+    /**
+     * The morph weights last set for a model by a view of the scene (not an auxiliary pass).
+     * @param {VdgModel} model
+     */
+    lastWeights(model) { return /** @type {any} */ (byExtras.get(model.extras)).weights; },
+    /**
+     * Its sphere weights (vdgSphereWeights' form), or null before the first render.
+     * @param {VdgModel} model
+     */
+    lastSphereWeights(model) { return /** @type {any} */ (byExtras.get(model.extras)).sphere; },
+    /** Restores the meshes' hooks and zero weights (the base). */
+    dispose() {
+      for (const { mesh, before, shadow } of hooked) {
+        mesh.onBeforeRender = before;
+        mesh.onBeforeShadow = shadow;
+        mesh.morphTargetInfluences.fill(0);
+      }
+      hooked.length = 0;
+    },
+  };
+
+  /**
+   * Sets the influences of `mesh` (of `model`) for `camera`.
+   * @param {any} model @param {any} mesh @param {any} camera @param {boolean} record
+   */
+  function update(model, mesh, camera, record) {
+    if (!camera || !cameraView(camera, mesh.matrixWorld, model.extras, view)) return;
+    const p = prepare(model.extras);
+    const alpha = resolveSharpness(model.extras, controller.sharpness);
+    const f = controllerFrame(model.extras, controller.frame, controller.time);
+    const out = record ? model.weights : _scratchWeights(p.targetCount);
+    model.hint = weightsInto(p, view[0], view[1], view[2], alpha, f, out, slots, w, model.hint);
+    const influences = mesh.morphTargetInfluences;
+    for (let i = 0; i < influences.length && i < out.length; ++i) influences[i] = out[i];
+    if (record) {
+      model.sphere = { triangle: model.hint, points: Array.from(slots), weights: [w[0], w[1], w[2]], base: w[3] };
+    }
+  }
+
+  for (const model of byExtras.values()) {
+    for (const mesh of model.meshes) {
+      const m = /** @type {any} */ (mesh);
+      hooked.push({ mesh: m, before: m.onBeforeRender, shadow: m.onBeforeShadow });
+      const before = m.onBeforeRender, shadow = m.onBeforeShadow;
+      m.onBeforeRender = function (renderer, scene, camera, geometry, material, group) {
+        const aux = auxiliaryPass(camera, material);
+        update(model, m, aux ? controller.mainCamera || camera : camera, !aux);
+        before.call(this, renderer, scene, camera, geometry, material, group);
+      };
+      m.onBeforeShadow = function (renderer, object, camera, shadowCamera, geometry, depthMaterial, group) {
+        update(model, m, controller.mainCamera || camera, false);
+        shadow.call(this, renderer, object, camera, shadowCamera, geometry, depthMaterial, group);
+      };
+    }
+  }
+  return controller;
+}
+
+/** @type {Float64Array} */
+let scratchWeights = new Float64Array(0);
+/** @param {number} n */
+function _scratchWeights(n) {
+  if (scratchWeights.length < n) scratchWeights = new Float64Array(n);
+  return scratchWeights;
+}
+
+/**
+ * Crowds: many instances of one model in a three.js InstancedMesh (its geometry the model's, with
+ * its morph attributes), each weighted for its own view: the rendering camera seen from that
+ * instance (mesh.matrixWorld then its instance matrix), written into the per-instance morph
+ * weights (instancedMesh.morphTexture, as setMorphAt lays it out) before every render. The same
+ * camera rule as attachVdg. Per frame: one 4x4 inverse and one triangle search per instance (the
+ * instance's last triangle is tried first, so a smooth camera costs one cone test).
+ * @param {import('three').InstancedMesh} instancedMesh
+ * @param {VdgExtras} extras the model's mesh.extras.vdg
+ * @param {{mainCamera?: import('three').Camera|null, sharpness?: number|null, frame?: number}} [options]
+ */
+export function attachVdgInstanced(instancedMesh, extras, { mainCamera = null, sharpness = null, frame = 0 } = {}) {
+  const p = prepare(extras);
+  const mesh = /** @type {any} */ (instancedMesh);
+  const targets = p.targetCount;
+  const width = targets + 1;
+  // The morph texture, created by three's own setMorphAt (then written directly).
+  mesh.setMorphAt(0, { morphTargetInfluences: new Array(targets).fill(0) });
+  const hints = new Int32Array(mesh.count).fill(-1);
+  const view = new Float64Array(3);
+  const slots = new Int32Array(3);
+  const w = new Float64Array(4);
+  const weights = new Float64Array(targets);
+  const instance = new Matrix4();
+  const world = new Matrix4();
+  const relative = !!mesh.geometry.morphTargetsRelative;
+  const before = mesh.onBeforeRender, shadow = mesh.onBeforeShadow;
+  const controller = {
+    sharpness,
+    frame,
+    /** @type {number|null} */
+    time: null,
+    mainCamera,
+    /** @type {Float64Array|null} per-instance frames (animated models), overriding frame / time */
+    frames: null,
+    /** Restores the hooks. */
+    dispose() { mesh.onBeforeRender = before; mesh.onBeforeShadow = shadow; },
+    /**
+     * Writes every instance's weights for `camera` (called before each render; callable directly).
+     * @param {import('three').Camera} camera
+     */
+    update(camera) {
+      const data = mesh.morphTexture.source.data.data;
+      const alpha = resolveSharpness(extras, controller.sharpness);
+      const shared = controllerFrame(extras, controller.frame, controller.time);
+      for (let i = 0; i < mesh.count; ++i) {
+        mesh.getMatrixAt(i, instance);
+        world.multiplyMatrices(mesh.matrixWorld, instance);
+        if (!cameraView(camera, world, extras, view)) continue;
+        const f = controller.frames ? controller.frames[i] : shared;
+        hints[i] = weightsInto(p, view[0], view[1], view[2], alpha, f, weights, slots, w, hints[i]);
+        let sum = 0;
+        const row = i * width;
+        for (let t = 0; t < targets; ++t) { data[row + 1 + t] = weights[t]; sum += weights[t]; }
+        data[row] = relative ? 1 : 1 - sum;
+      }
+      mesh.morphTexture.needsUpdate = true;
+    },
+  };
+  mesh.onBeforeRender = function (renderer, scene, camera, geometry, material, group) {
+    controller.update(auxiliaryPass(camera, material) ? controller.mainCamera || camera : camera);
+    before.call(this, renderer, scene, camera, geometry, material, group);
+  };
+  mesh.onBeforeShadow = function (renderer, object, camera, shadowCamera, geometry, depthMaterial, group) {
+    controller.update(controller.mainCamera || camera);
+    shadow.call(this, renderer, object, camera, shadowCamera, geometry, depthMaterial, group);
+  };
+  return controller;
 }
