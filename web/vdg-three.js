@@ -432,7 +432,11 @@ function controllerFrame(extras, frame, time) {
  * @param {{mainCamera?: import('three').Camera|null, sharpness?: number|null, frame?: number}} [options]
  */
 export function attachVdg(root, { mainCamera = null, sharpness = null, frame = 0 } = {}) {
-  /** @type {Map<VdgExtras, VdgModel & {weights: Float64Array, sphere: SphereWeights|null, hint: number}>} */
+  /**
+   * Per model: its last view's morph weights and sphere weights (kept without allocating per frame).
+   * @type {Map<VdgExtras, VdgModel & {weights: Float64Array, hint: number, drawn: boolean, triangle: number,
+   *   slots: Int32Array, slotWeights: Float64Array}>}
+   */
   const byExtras = new Map();
   root.traverse((object) => {
     const mesh = /** @type {any} */ (object);
@@ -441,7 +445,10 @@ export function attachVdg(root, { mainCamera = null, sharpness = null, frame = 0
     prepare(extras);  // throws for a version 1 export, naming the problem
     let model = byExtras.get(extras);
     if (!model) {
-      model = { meshes: [], extras, weights: new Float64Array(prepare(extras).targetCount), sphere: null, hint: -1 };
+      model = {
+        meshes: [], extras, weights: new Float64Array(prepare(extras).targetCount), hint: -1,
+        drawn: false, triangle: -1, slots: new Int32Array(3), slotWeights: new Float64Array(4),
+      };
       byExtras.set(extras, model);
     }
     model.meshes.push(mesh);
@@ -472,7 +479,12 @@ export function attachVdg(root, { mainCamera = null, sharpness = null, frame = 0
      * Its sphere weights (vdgSphereWeights' form), or null before the first render.
      * @param {VdgModel} model
      */
-    lastSphereWeights(model) { return /** @type {any} */ (byExtras.get(model.extras)).sphere; },
+    lastSphereWeights(model) {
+      const m = /** @type {any} */ (byExtras.get(model.extras));
+      if (!m.drawn) return null;
+      const w = m.slotWeights;
+      return { triangle: m.triangle, points: Array.from(m.slots), weights: [w[0], w[1], w[2]], base: w[3] };
+    },
     /** Restores the meshes' hooks and zero weights (the base). */
     dispose() {
       for (const { mesh, before, shadow } of hooked) {
@@ -498,7 +510,10 @@ export function attachVdg(root, { mainCamera = null, sharpness = null, frame = 0
     const influences = mesh.morphTargetInfluences;
     for (let i = 0; i < influences.length && i < out.length; ++i) influences[i] = out[i];
     if (record) {
-      model.sphere = { triangle: model.hint, points: Array.from(slots), weights: [w[0], w[1], w[2]], base: w[3] };
+      model.drawn = true;
+      model.triangle = model.hint;
+      model.slots.set(slots);
+      model.slotWeights.set(w);
     }
   }
 
