@@ -524,6 +524,11 @@ TEST(GltfExport, HandMadeStaticInputsGetTheirSphereFromTheTargets) {
   input.view_sphere.reset();
   const nlohmann::json derived =
       nlohmann::json::parse(decodeModel(testing::decodeGlb(gltfToGlb(input, "t.glb"))).extras);
+  // Targets whose views cannot make a sphere are refused naming the file.
+  GltfExportInput twice = input;
+  twice.targets[1].view = twice.targets[0].view;
+  EXPECT_EQ(errorOf([&] { (void)gltfToGlb(twice, "t.glb"); }),
+            "t.glb: key 1: same view direction as key 0 (within 1e-6 rad)");
   // The same sphere: the targets' views are the model's unit views, normalised again (an ulp).
   constexpr double kUlpTol = 1e-14;
   const nlohmann::json& a = derived.at("vdg").at("sphere");
