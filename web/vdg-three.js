@@ -56,7 +56,6 @@ const kInsideTol = 1e-9;
  * @property {Float64Array} arcFrames per arc: normal, b x normal, normal x a (9 numbers)
  * @property {Int32Array} isolated
  * @property {number} targetCount morph targets of the mesh (keys, then base frames)
- * @property {Float64Array} scratch slot weights etc.
  */
 
 /** @type {WeakMap<object, Prepared>} */
@@ -104,7 +103,6 @@ function prepare(extras) {
     extras, points, views: s.views, triangles, inverses, arcs, arcFrames,
     isolated: new Int32Array(s.isolated),
     targetCount: extras.keys.length + frameTargets,
-    scratch: new Float64Array(16),
   };
   preparedCache.set(extras, p);
   return p;
@@ -293,7 +291,8 @@ export function vdgTimeCoefficients(extras, i, frame, out) {
   for (let k = 0; k < m; ++k) out[k] += ca * s[j * m + k] + cb * s[next * m + k];
 }
 
-const tmpCoef = new Float64Array(64);
+/** Coefficients of one view's key frames (vdg allows 256 key frames per view: kMaxKeyFramesPerView). */
+const tmpCoef = new Float64Array(256);
 
 /**
  * Morph weights of a view into `out` (length: the mesh's targets), allocation-free.
