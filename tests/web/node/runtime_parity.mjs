@@ -196,7 +196,7 @@ for (const [name, relative] of examples) {
   // needs its skin, which three.js applies and the browser test checks).
   const views = [keyViews[0], [0.3, 0.4, 0.87], [-0.8, 0.1, -0.2]];
   if (!vdgExtras.animation) comparePositions(manifest, exported, views, [0], `${name} positions`);
-  else if (vdgExtras.animation.base === 'frames') comparePositions(manifest, exported, views, [0, 7, 23, 39], `${name} positions`);
+  else if (vdgExtras.animation.base === 'frames') comparePositions(manifest, exported, views.slice(1), [0, 7, 23], `${name} positions`);
 }
 
 // Degenerate key sets, written here: a tetrahedron base and keys that push one vertex each.
@@ -250,7 +250,7 @@ function animatedSequence(loop) {
   }));
   const exported = exportModel(manifest, name);
   compareWeights(manifest, exported.extras, randomViews(kDegenerateViews, 3), name);
-  comparePositions(manifest, exported, [[0.2, 0.3, 0.93], [0.5, 0.6, 0.1]], [0, 1, 3, 4, 6, 10, 11], `${name} positions`);
+  comparePositions(manifest, exported, [[0.2, 0.3, 0.93], [0.5, 0.6, 0.1]], [0, 3, 6, 11], `${name} positions`);
 }
 animatedSequence(false);
 animatedSequence(true);
