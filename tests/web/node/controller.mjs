@@ -278,5 +278,29 @@ function animatedPositions(gltf, controller, manifest, camera, frame) {
   console.log(`ok walker: skinned base, key targets; three's morph + skin = vdg eval within ${skinWorst.toExponential(2)}`);
 }
 
+// ---- Bad input: one clear error, nothing half-done ----
+{
+  const { gltf } = await load('examples/figure13/head/head.vdg.json', 'head');
+  let extras = null;
+  gltf.scene.traverse((/** @type {any} */ o) => { if (o.userData.vdg) extras = o.userData.vdg; });
+  const thrown = (/** @type {() => void} */ f) => { try { f(); return ''; } catch (e) { return String(e); } };
+  check(thrown(() => vdgWeights(extras, [0, 0, 0])).includes('finite and non-zero'), 'a zero view is refused');
+  check(thrown(() => vdgWeights(extras, [NaN, 0, 1])).includes('finite and non-zero'), 'a NaN view is refused');
+  check(thrown(() => vdgWeights(extras, [0, 0, 1], { sharpness: 0 })).includes('sharpness'), 'sharpness 0 is refused');
+  check(thrown(() => vdgWeights(extras, [1e-300, 0, 0])) === '', 'a 1e-300 long view is a direction');
+  check(maxDiff(vdgWeights(extras, [1e300, 1e300, 0]), vdgWeights(extras, [1, 1, 0])) <= kSameTol, 'a 1e300 view');
+  const v1 = { ...extras, version: 1 };
+  delete v1.sphere;
+  check(thrown(() => vdgWeights(v1, [0, 0, 1])).includes('re-export'), 'a version 1 description asks for a re-export');
+  const root = new THREE.Group();
+  const mesh = new THREE.Mesh(new THREE.BufferGeometry(), new THREE.MeshBasicMaterial());
+  mesh.morphTargetInfluences = [0, 0, 0];
+  mesh.userData = { vdg: v1 };
+  root.add(mesh);
+  check(thrown(() => attachVdg(root)).includes('re-export'), 'attachVdg refuses a version 1 export');
+  check(mesh.onBeforeRender === THREE.Mesh.prototype.onBeforeRender, 'a refused attach leaves no hook');
+  console.log('ok bad input');
+}
+
 console.log(failures === 0 ? 'PASS' : `FAIL: ${failures} failures`);
 process.exit(failures === 0 ? 0 : 1);
