@@ -13,9 +13,9 @@
 #include <cstring>
 #include <filesystem>
 #include <limits>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <numbers>
-#include <map>
 #include <set>
 #include <tuple>
 
@@ -425,7 +425,7 @@ enum class ImageStore { kBuffer, kFiles, kDataUri };
 
 struct ImageOutput {
   ImageStore store = ImageStore::kBuffer;
-  std::string stem;                          // kFiles: the names' prefix
+  std::string stem;                             // kFiles: the names' prefix
   std::vector<GltfImageFile>* files = nullptr;  // kFiles: where the files' bytes go
 };
 
@@ -436,8 +436,7 @@ std::string base64(std::string_view bytes) {
   for (std::size_t i = 0; i < bytes.size(); i += 3) {
     const std::size_t n = std::min<std::size_t>(3, bytes.size() - i);
     std::uint32_t x = 0;
-    for (std::size_t k = 0; k < 3; ++k)
-      x = (x << 8) | (k < n ? static_cast<std::uint8_t>(bytes[i + k]) : 0u);
+    for (std::size_t k = 0; k < 3; ++k) x = (x << 8) | (k < n ? static_cast<std::uint8_t>(bytes[i + k]) : 0u);
     for (std::size_t k = 0; k < 4; ++k) out += k <= n ? kDigits[(x >> (18 - 6 * k)) & 63] : '=';
   }
   return out;
@@ -469,8 +468,8 @@ int addImage(BufferBuilder& b, const TextureImage& texture, const ImageOutput& o
              const std::string& where) {
   const ImageFormat format = imageFormatOf(texture.file_bytes);
   std::string bytes = format == ImageFormat::kUnknown ? encodePng(texture, where + ": texture")
-                     : format == ImageFormat::kPng   ? pngWithoutAncillaryChunks(texture.file_bytes)
-                                                     : texture.file_bytes;
+                      : format == ImageFormat::kPng   ? pngWithoutAncillaryChunks(texture.file_bytes)
+                                                      : texture.file_bytes;
   const bool jpeg = format == ImageFormat::kJpeg;
   const std::string mime = jpeg ? "image/jpeg" : "image/png";
   OJson image;
@@ -499,8 +498,8 @@ constexpr double kExportRoughness = 0.8;
 OJson pbrMaterial(const std::string& name, const std::array<float, 3>& display_rgb) {
   OJson pbr = OJson::object();
   if (display_rgb != std::array<float, 3>{1, 1, 1})
-    pbr["baseColorFactor"] = {srgbToLinear(display_rgb[0]), srgbToLinear(display_rgb[1]),
-                              srgbToLinear(display_rgb[2]), 1.0};
+    pbr["baseColorFactor"] = {srgbToLinear(display_rgb[0]), srgbToLinear(display_rgb[1]), srgbToLinear(display_rgb[2]),
+                              1.0};
   pbr["metallicFactor"] = 0.0;
   pbr["roughnessFactor"] = kExportRoughness;
   OJson material = OJson::object();
@@ -844,6 +843,38 @@ GltfExportInput gltfExportInput(const ViewDependentModel& model) {
   in.sphere = model.sphere().settings();
   in.center = model.center();
   return in;
+}
+
+std::size_t gltfTargetCount(const GltfExportInput& input) { return totalTargets(input); }
+
+std::size_t gltfTargetCount(const AnimatedViewDependentModel& model) {
+  std::size_t keys = 0;
+  for (std::size_t i = 0; i < model.viewCount(); ++i) keys += model.keyFrames(i).size();
+  const bool frames = model.offsetSpace() != OffsetSpace::kSkinned;
+  return keys + (frames ? static_cast<std::size_t>(std::max(model.frameCount(), 1) - 1) : 0);
+}
+
+std::string morphTargetCapsExceeded(std::size_t count) {
+  std::string out;
+  for (const MorphTargetCap& cap : kMorphTargetCaps)
+    if (count > cap.targets)
+      out += (out.empty() ? "" : ", ") + std::string(cap.engine) + " (" + std::to_string(cap.targets) + ")";
+  return out;
+}
+
+void checkMaxTargets(const GltfExportInput& input, std::size_t max_targets, const std::string& where) {
+  const std::size_t count = totalTargets(input);
+  if (count <= max_targets) return;
+  const std::size_t frames = count - input.targets.size();
+  std::string what = std::to_string(input.targets.size()) + " keys";
+  if (frames > 0) what += " + " + std::to_string(frames) + " base frames";
+  std::string todo = "use fewer keys or raise --max-targets";
+  if (frames > 0)
+    todo =
+        "a \"world\"-offset animated model needs one target per base frame: use fewer frames, \"skinned\" "
+        "offsets on a skinned glTF base (written with its skin, no frame targets), or raise --max-targets";
+  throw Error(where + ": the export needs " + std::to_string(count) + " morph targets (" + what +
+              "), more than --max-targets " + std::to_string(max_targets) + "; " + todo);
 }
 
 const char* gltfBaseModeName(GltfBaseMode mode) { return mode == GltfBaseMode::kSkin ? "skin" : "frames"; }

@@ -146,6 +146,26 @@ RawRig readBaseRig(const RawViewDependentModel& raw);
 // when the samples' weights do not match input's targets, or a kSkin base's samples carry no frames.
 GltfBakedAnimation gltfBakedAnimation(CameraPathBake samples, const GltfExportInput& input);
 
+// Morph target caps of engines (docs/gltf-export.md, "Target count"): Bevy takes 64 targets a mesh,
+// three.js and Filament about 256 (three.js packs them into a texture; Filament's limit).
+struct MorphTargetCap {
+  const char* engine;
+  std::size_t targets;
+};
+inline constexpr MorphTargetCap kMorphTargetCaps[] = {{"Bevy", 64}, {"three.js", 256}, {"Filament", 256}};
+
+// Morph targets an export writes: the keys, then a kFrames base's frames 1..N-1.
+std::size_t gltfTargetCount(const GltfExportInput& input);
+// The same for an animated model without building its export: one target per raw key (per key view
+// and key frame), plus frameCount() - 1 base frames for "world" offsets (a kFrames base; "skinned"
+// offsets are written with the skin, which needs no targets).
+std::size_t gltfTargetCount(const AnimatedViewDependentModel& model);
+// The engines whose cap `count` exceeds, as "Bevy (64), three.js (256)"; empty when none.
+std::string morphTargetCapsExceeded(std::size_t count);
+// Throws vdg::Error "WHERE: the export needs N morph targets (K keys + F base frames), more than
+// --max-targets M; ..." (what to do) when gltfTargetCount(input) > max_targets.
+void checkMaxTargets(const GltfExportInput& input, std::size_t max_targets, const std::string& where);
+
 // What an export wrote and left out, for the command line to tell the user.
 struct GltfExportReport {
   bool uvs_written = false;
@@ -167,11 +187,11 @@ struct GltfImageFile {
 // Serialises `input` in memory: the GLB bytes (12-byte header, JSON chunk, BIN chunk; images in
 // bufferViews), or for the .gltf form the JSON text with the buffer's "uri" set to `bin_uri` and the
 // buffer returned in `bin`, and the images returned in `images` (named "STEM-texture-N.png" or
-// ".jpg" after bin_uri's stem), or, when `images` is null, written as data: URIs. Names that are not valid UTF-8 are written with U+FFFD in place of the bad bytes (JSON
-// is UTF-8). Throws vdg::Error naming `where` and the element for an inconsistent input: an empty
-// base, array sizes that do not match #V, a triangle index out of range, non-finite values, normals
-// that are not unit length, empty or duplicate target names, a zero target view, a bake whose
-// arrays do not match its times or #targets, times not strictly increasing.
+// ".jpg" after bin_uri's stem), or, when `images` is null, written as data: URIs. Names that are not valid UTF-8 are
+// written with U+FFFD in place of the bad bytes (JSON is UTF-8). Throws vdg::Error naming `where` and the element for
+// an inconsistent input: an empty base, array sizes that do not match #V, a triangle index out of range, non-finite
+// values, normals that are not unit length, empty or duplicate target names, a zero target view, a bake whose arrays do
+// not match its times or #targets, times not strictly increasing.
 std::string gltfToGlb(const GltfExportInput& input, const std::string& where, GltfExportReport* report = nullptr);
 std::string gltfToJson(const GltfExportInput& input, const std::string& where, const std::string& bin_uri,
                        std::string& bin, GltfExportReport* report = nullptr,
