@@ -297,6 +297,30 @@ TEST(GltfExport, UvsAreWrittenAndSeamsSplitWithTheSameDeltas) {
           << "corner " << c;
 }
 
+TEST(GltfExport, AVertexMapThatDoesNotMatchIsRefusedByTheReader) {
+  GltfExportInput input = squareInput();
+  input.base.uvs.insert(input.base.uvs.end(), {0.5f, 0.5f});
+  input.base.uv_triangles = {0, 1, 2, 2, 4, 3};
+  const std::string glb = gltfToGlb(input, "t.glb");
+  const DecodedGltf g = testing::decodeGlb(glb);
+  const auto& prim = g.doc.at("meshes").at(0).at("primitives").at(0);
+  const auto& a = g.doc.at("accessors").at(prim.at("attributes").at("_VDG_VERTEX").get<int>());
+  const std::size_t json_length = testing::u32At(glb, 12);
+  const std::size_t view_at =
+      20 + json_length + 8 +
+      g.doc.at("bufferViews").at(a.at("bufferView").get<int>()).at("byteOffset").get<std::size_t>();
+  // Exported vertex 4 (the copy of model vertex 1) named as another vertex, or out of range.
+  const auto withId = [&](std::uint16_t id) {
+    std::string bytes = glb;
+    std::memcpy(&bytes[view_at + 4 * 4], &id, 2);
+    return errorOf([&] { (void)parseGltfRig(bytes, "t.glb"); });
+  };
+  EXPECT_NE(withId(3).find("t.glb: meshes[0]: vertex 4 (_VDG_VERTEX 3) lies elsewhere than vertex 3"),
+            std::string::npos)
+      << withId(3);
+  EXPECT_NE(withId(9).find("t.glb: meshes[0]: _VDG_VERTEX[4] = 9"), std::string::npos) << withId(9);
+}
+
 // Display sRGB to linear, the inverse of the reader's encoding (IEC 61966-2-1), for the expectations.
 double linearOf(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); }
 
