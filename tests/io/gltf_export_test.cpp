@@ -297,6 +297,24 @@ TEST(GltfExport, UvsAreWrittenAndSeamsSplitWithTheSameDeltas) {
           << "corner " << c;
 }
 
+TEST(GltfExport, BaseFrameTargetsAreSplitLikeTheKeys) {
+  GltfExportInput input = squareInput();
+  input.base.uvs.insert(input.base.uvs.end(), {0.5f, 0.5f});
+  input.base.uv_triangles = {0, 1, 2, 2, 4, 3};
+  GltfBaseAnimation ba;
+  ba.frame_count = 2;
+  ba.frame_deltas = {{0, 0, 0, 0.25f, 0, 0, 0, 0, 0, 0, 0, 0}};  // frame 1 moves vertex 1
+  input.base_animation = ba;
+  input.offsets = OffsetSpace::kWorld;
+  const DecodedGltf g = testing::decodeGlb(gltfToGlb(input, "t.glb"));
+  const auto& prim = g.doc.at("meshes").at(0).at("primitives").at(0);
+  ASSERT_EQ(prim.at("targets").size(), 2u);  // the key, then base frame 1
+  const auto frame = readAccessor(g, prim.at("targets").at(1).at("POSITION"));
+  ASSERT_EQ(frame.size(), 15u);
+  for (int c = 0; c < 3; ++c) EXPECT_EQ(frame[12 + c], frame[3 + c]) << c;  // exported vertex 4 is vertex 1
+  EXPECT_EQ(frame[3], 0.25);
+}
+
 TEST(GltfExport, AVertexMapThatDoesNotMatchIsRefusedByTheReader) {
   GltfExportInput input = squareInput();
   input.base.uvs.insert(input.base.uvs.end(), {0.5f, 0.5f});
