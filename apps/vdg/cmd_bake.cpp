@@ -13,6 +13,7 @@
 
 #include "camera_file.h"
 #include "cli.h"
+#include "compress_option.h"
 #include "orbit_options.h"
 #include "vdg/geom/error.h"
 #include "vdg/io/gltf_export.h"
@@ -35,6 +36,7 @@ struct BakeOptions : CameraOptions {
   std::string model, output, size = "512x512";
   double fps = 24.0, sharpness = 0.0;
   bool step = false, quiet = false;
+  CompressOption compress;
 };
 
 void run(const BakeOptions& opt) {
@@ -76,6 +78,7 @@ void run(const BakeOptions& opt) {
         input);
   }
   input.bake->step = opt.step;
+  input.compression = opt.compress.value();
   const std::string path =
       opt.camera_file.empty() ? "orbit " + std::to_string(opt.camera.orbit) : "camera " + opt.camera_file;
   input.bake->description = "vdg bake: " + path + " frames " + std::to_string(range.first) + "-" +
@@ -106,6 +109,7 @@ void addBakeCommand(CLI::App& app) {
       ->check(positiveNumber());
   sub->add_flag("--step", opt->step,
                 "STEP interpolation: hold each frame's weights and camera (default LINEAR: blend between frames)");
+  opt->compress.add(*sub);
   sub->add_flag("-q,--quiet", opt->quiet, "Print nothing on success");
   sub->callback([opt, sub] {
     opt->noteGiven(*sub);

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "cli.h"
+#include "compress_option.h"
 #include "vdg/geom/error.h"
 #include "vdg/io/atomic_file.h"
 #include "vdg/io/gltf_export.h"
@@ -70,6 +71,7 @@ void addExportCommand(CLI::App& app) {
   struct Options {
     std::string model, output;
     bool quiet = false;
+    CompressOption compress;
   };
   auto opt = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand(
@@ -77,12 +79,15 @@ void addExportCommand(CLI::App& app) {
   sub->add_option("MODEL", opt->model, "Model manifest (*.vdg.json), or a glTF model vdg exported")->required();
   sub->add_option("-o,--output", opt->output, "Output OUT.glb, or OUT.gltf with its buffer in OUT.bin beside it")
       ->required();
+  opt->compress.add(*sub);
   sub->add_flag("-q,--quiet", opt->quiet, "Print nothing on success");
   sub->callback([opt] {
     checkGltfOutput(opt->output);
     const OpenedInput input = openModel(opt->model);
     checkOutputIsNotInput(opt->output, opt->model, input);
-    writeGltfForCli(opt->output, exportInputForCli(input), opt->quiet);
+    GltfExportInput gltf = exportInputForCli(input);
+    gltf.compression = opt->compress.value();
+    writeGltfForCli(opt->output, gltf, opt->quiet);
   });
 }
 

@@ -30,6 +30,7 @@
 #include "vdg/anim/rig.h"
 #include "vdg/geom/camera.h"
 #include "vdg/geom/tri_mesh.h"
+#include "vdg/io/gltf_compress.h"
 #include "vdg/io/mesh_read_options.h"
 #include "vdg/viewdep/animated_model.h"
 #include "vdg/viewdep/camera_bake.h"
@@ -113,6 +114,7 @@ struct GltfExportInput {
   std::optional<GltfBaseAnimation> base_animation;
   std::optional<GltfBakedAnimation> bake;
   std::string mesh_name = "vdg-model";
+  GltfCompression compression = GltfCompression::kNone;  // vdg/io/gltf_compress.h
 };
 
 // Fills the input from a built static model: its base, normals computed from the base positions
