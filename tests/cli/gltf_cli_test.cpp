@@ -299,6 +299,42 @@ TEST(GltfCli, EveryKindOfExportPassesTheKhronosValidator) {
   EXPECT_EQ(v.code, 0) << v.out << v.err;
 }
 
+// --compress quantize|meshopt (vdg/io/gltf_compress.h) on every kind of export: no error and no
+// warning from the validator (it checks KHR_mesh_quantization's types, strides and bounds; it
+// cannot decode EXT_meshopt_compression and says so as an info), and vdg reads each file again.
+TEST(GltfCli, CompressedExportsPassTheKhronosValidator) {
+  const std::string validator = validatorCommand();
+  if (validator.empty()) GTEST_SKIP() << "the Khronos glTF validator is not installed (scripts/validate-gltf)";
+  vdg::testing::TempDir dir;
+  const std::string grid = writeGridModel(dir);
+  EXPECT_EQ(run("export " + kSpot + " -o " + dir.file("x.glb") + " --compress draco").code, 2);
+  const std::vector<std::pair<std::string, std::string>> exports = {
+      {"export " + kSpot, "spot"},                         // sparse targets (quantize), 16-bit indices
+      {"export " + grid, "grid"},                          // uvs, 32-bit indices, a sparse and a dense key
+      {"bake " + kSpot + " --orbit 12", "bake"},           // weights + camera
+      {"export " + kWalk, "walk-skin"},                    // skinned: float positions
+      {"export " + kWalkWorld, "walk-frames"},             // base frames as targets
+      {"bake " + kWalk + " --orbit 8", "walk-skin-bake"},  // weights + skeleton + camera
+      {"bake " + kWalkWorld + " --orbit 6 --step", "walk-frames-bake"}};
+  std::string files;
+  std::vector<std::string> names;
+  for (const auto& [args, stem] : exports)
+    for (const char* c : {"quantize", "meshopt"})
+      for (const char* ext : {".glb", ".gltf"}) {
+        const std::string name = stem + "-" + c + ext;
+        const Result r = run(args + " -q --compress " + c + " -o " + dir.file(name));
+        ASSERT_EQ(r.code, 0) << args << ": " << r.err;
+        files += " '" + dir.file(name) + "'";
+        names.push_back(name);
+        const Result info = run("info " + dir.file(name));
+        EXPECT_EQ(info.code, 0) << name << ": " << info.err;
+      }
+  const Result v = runShell(validator + files);
+  EXPECT_EQ(v.code, 0) << v.out << v.err;
+  for (const std::string& name : names)
+    EXPECT_NE(v.out.find(name + ": 0 errors, 0 warnings"), std::string::npos) << name << "\n" << v.out;
+}
+
 }  // namespace
 
 namespace {
