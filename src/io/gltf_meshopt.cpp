@@ -19,6 +19,7 @@ namespace vdg {
 namespace {
 
 constexpr const char* kExt = "EXT_meshopt_compression";
+constexpr std::uint64_t kMaxExpansion = 256;  // four times the codecs' own bound
 
 std::string base64(std::string_view bytes) {
   static constexpr char kDigits[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
@@ -91,6 +92,11 @@ void decodeView(const io::Json& ext, std::uint64_t view_length, const std::strin
   if (count == 0 || count > (std::uint64_t{1} << 32) || count * stride != view_length)
     throw Error(e + ": count " + std::to_string(count) + " x byteStride " + std::to_string(stride) +
                 " is not the bufferView's byteLength " + std::to_string(view_length));
+  // meshoptimizer's codecs expand at most 64 times (a 2-bit header per 16 zero bytes of vertex
+  // data; at least a byte per triangle or index): a larger claim is refused before allocating it.
+  if (view_length > kMaxExpansion * length + kMaxExpansion)
+    throw Error(e + ": byteLength " + std::to_string(length) + " cannot decode to the bufferView's " +
+                std::to_string(view_length) + " bytes");
   if (view_length > budget)
     throw Error(e + ": decoded, the compressed bufferViews exceed the limit of " + std::to_string(budget) + " bytes");
   const std::string_view source = buffer_bytes(buffer);
@@ -128,9 +134,11 @@ std::optional<std::string> decodeMeshoptViews(const io::Json& doc, const std::st
   auto compressed = [](const io::Json& v) {
     return v.contains("extensions") && v["extensions"].is_object() && v["extensions"].contains(kExt);
   };
-  if (std::none_of(views->begin(), views->end(), compressed)) return std::nullopt;
-  io::Json out = doc;
   const io::Json& buffers = doc["buffers"];
+  if (std::none_of(views->begin(), views->end(), compressed) &&
+      std::none_of(buffers.begin(), buffers.end(), [](const io::Json& b) { return isMeshoptFallback(b); }))
+    return std::nullopt;
+  io::Json out = doc;
   std::vector<bool> fallback(buffers.size());
   std::vector<std::size_t> renumber(buffers.size());
   io::Json kept = io::Json::array();
@@ -161,7 +169,8 @@ std::optional<std::string> decodeMeshoptViews(const io::Json& doc, const std::st
     v["extensions"].erase(kExt);
     if (v["extensions"].empty()) v.erase("extensions");
   }
-  kept.push_back({{"byteLength", decoded.size()}, {"uri", "data:application/octet-stream;base64," + base64(decoded)}});
+  if (!decoded.empty())
+    kept.push_back({{"byteLength", decoded.size()}, {"uri", "data:application/octet-stream;base64," + base64(decoded)}});
   out["buffers"] = std::move(kept);
   for (const char* key : {"extensionsUsed", "extensionsRequired"}) {
     if (!out.contains(key)) continue;

@@ -19,10 +19,10 @@ bool isMeshoptFallback(const io::Json& buffer);
 // the document's JSON text with every such view decoded into one new buffer (a base64 data: URI,
 // appended), its extension removed, fallback buffers dropped (the other buffers renumbered), and
 // EXT_meshopt_compression taken out of extensionsUsed/extensionsRequired. nullopt when no view is
-// compressed. `buffer_bytes(i)` gives the bytes of buffers[i] (not a fallback one). Every size is
-// checked before decoding (count x byteStride must be the view's byteLength, the source must lie in
-// its buffer, all decoded views together at most `max_bytes`), and every decoder's return code;
-// throws vdg::Error "SOURCE: bufferViews[3]: EXT_meshopt_compression: ..." otherwise.
+// compressed and no buffer is a fallback one. `buffer_bytes(i)` gives the bytes of buffers[i] (not a fallback one).
+// Every size is checked before decoding (count x byteStride must be the view's byteLength, the source must lie in its
+// buffer, all decoded views together at most `max_bytes`), and every decoder's return code; throws vdg::Error "SOURCE:
+// bufferViews[3]: EXT_meshopt_compression: ..." otherwise.
 std::optional<std::string> decodeMeshoptViews(const io::Json& doc, const std::string& source, std::size_t max_bytes,
                                               const std::function<std::string_view(std::size_t)>& buffer_bytes);
 
