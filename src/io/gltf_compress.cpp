@@ -528,7 +528,8 @@ std::vector<std::size_t> plainMeshNodes(const OJson& doc, std::size_t m) {
 
 }  // namespace
 
-void compressGltf(OJson& doc, std::string& bin, GltfCompression compression, const std::string& where) {
+void compressGltf(OJson& doc, std::string& bin, GltfCompression compression, const std::string& where,
+                  std::size_t* sparse_targets) {
   if (compression == GltfCompression::kNone || !doc.contains("meshes")) return;
   Doc d(doc, bin);
   const bool meshopt = compression == GltfCompression::kMeshopt;
@@ -542,6 +543,12 @@ void compressGltf(OJson& doc, std::string& bin, GltfCompression compression, con
   if (meshopt) widenByteIndices(d);
   compactViews(d);
   layOut(d, bin, meshopt ? encodeViews(d, where) : std::vector<Encoded>());
+  if (sparse_targets) {
+    *sparse_targets = 0;
+    for (const OJson& mesh : doc["meshes"])
+      for (std::size_t a : meshAccessors(mesh, "POSITION", false, true))
+        *sparse_targets += doc["accessors"][a].contains("sparse") ? 1 : 0;
+  }
 }
 
 }  // namespace vdg

@@ -754,7 +754,7 @@ GltfBakedAnimation gltfBakedAnimation(CameraPathBake samples, const GltfExportIn
 
 std::string gltfToGlb(const GltfExportInput& input, const std::string& where, GltfExportReport* report) {
   Built built = build(input, where, report);
-  compressGltf(built.doc, built.bin, input.compression, where);
+  compressGltf(built.doc, built.bin, input.compression, where, report ? &report->sparse_targets : nullptr);
   built.doc["buffers"][0].erase("uri");
   std::string json = built.doc.dump(-1, ' ', false, OJson::error_handler_t::replace);
   json.resize(pad4(json.size()), ' ');
@@ -779,7 +779,7 @@ std::string gltfToGlb(const GltfExportInput& input, const std::string& where, Gl
 std::string gltfToJson(const GltfExportInput& input, const std::string& where, const std::string& bin_uri,
                        std::string& bin, GltfExportReport* report) {
   Built built = build(input, where, report);
-  compressGltf(built.doc, built.bin, input.compression, where);
+  compressGltf(built.doc, built.bin, input.compression, where, report ? &report->sparse_targets : nullptr);
   built.doc["buffers"][0]["uri"] = bin_uri;
   std::string json = built.doc.dump(1, ' ', false, OJson::error_handler_t::replace);
   json += '\n';
