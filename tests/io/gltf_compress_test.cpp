@@ -10,9 +10,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
+#include "gltf_compress_pass.h"
 #include "gltf_test_decoder.h"
 #include "support/error_of.h"
 #include "support/test_meshes.h"
@@ -219,6 +221,127 @@ TEST(GltfCompress, AnimatedExportsReadBackWithinTheGrid) {
   expectAnimatedRoundTrip(kWalk, dir.file("skin-q.glb"), GltfCompression::kQuantize, true);
   expectAnimatedRoundTrip(kWalk, dir.file("skin-m.gltf"), GltfCompression::kMeshopt, true);
   expectAnimatedRoundTrip(kWalkWorld, dir.file("frames-m.glb"), GltfCompression::kMeshopt, false);
+}
+
+// A document as the materials work writes it: two primitives with their own POSITION, indices
+// (8- and 16-bit), TEXCOORD_0 (one in [0, 1], one not), a custom `_VDG_VERTEX` attribute of
+// unsigned ints, one morph target each, and an image in a bufferView.
+struct Handmade {
+  nlohmann::ordered_json doc;
+  std::string bin;
+  std::vector<float> positions;  // both primitives' POSITION, in order
+  std::string image = std::string("\x89PNG\r\n\x1a\n-not-really-", 21);
+
+  int add(const void* bytes, std::size_t size, int target) {
+    bin.resize((bin.size() + 3) & ~std::size_t{3}, '\0');
+    nlohmann::ordered_json v = {{"buffer", 0}, {"byteOffset", bin.size()}, {"byteLength", size}};
+    if (target) v["target"] = target;
+    bin.append(static_cast<const char*>(bytes), size);
+    doc["bufferViews"].push_back(v);
+    return static_cast<int>(doc["bufferViews"].size()) - 1;
+  }
+  int accessor(int view, int component, std::size_t count, const char* type) {
+    doc["accessors"].push_back({{"bufferView", view}, {"componentType", component}, {"count", count}, {"type", type}});
+    return static_cast<int>(doc["accessors"].size()) - 1;
+  }
+  int floats(const std::vector<float>& v, const char* type, int n, bool bounds) {
+    const int a = accessor(add(v.data(), v.size() * 4, 34962), 5126, v.size() / n, type);
+    if (bounds) {
+      std::vector<float> lo(n, 1e30f), hi(n, -1e30f);
+      for (std::size_t i = 0; i < v.size(); ++i)
+        lo[i % n] = std::min(lo[i % n], v[i]), hi[i % n] = std::max(hi[i % n], v[i]);
+      doc["accessors"][a]["min"] = lo;
+      doc["accessors"][a]["max"] = hi;
+    }
+    return a;
+  }
+
+  Handmade() {
+    doc = {{"asset", {{"version", "2.0"}}},
+           {"scene", 0},
+           {"scenes", {{{"nodes", {0}}}}},
+           {"nodes", {{{"mesh", 0}}}},
+           {"bufferViews", nlohmann::ordered_json::array()},
+           {"accessors", nlohmann::ordered_json::array()}};
+    nlohmann::ordered_json prims = nlohmann::ordered_json::array();
+    const std::vector<std::vector<float>> pos = {{0, 0, 0, 2, 0, 0, 0, 1, 0}, {2, 0, 0, 2, 1, 0.5f, 0, 1, 0}};
+    const std::vector<std::vector<float>> uvs = {{0, 0, 1, 0, 0, 1}, {0, 0, 1.5f, 0, 0, 1}};
+    const std::vector<float> delta = {0, 0, 0.25f, 0, 0, 0, 0, -0.5f, 0};
+    const std::uint8_t i8[3] = {0, 1, 2};
+    const std::uint16_t i16[3] = {0, 1, 2};
+    for (int p = 0; p < 2; ++p) {
+      positions.insert(positions.end(), pos[p].begin(), pos[p].end());
+      const std::uint32_t ids[3] = {7u + p, 70000u, 3u};
+      nlohmann::ordered_json attributes = {{"POSITION", floats(pos[p], "VEC3", 3, true)},
+                                           {"TEXCOORD_0", floats(uvs[p], "VEC2", 2, false)},
+                                           {"_VDG_VERTEX", accessor(add(ids, 12, 34962), 5125, 3, "SCALAR")}};
+      const int indices =
+          p == 0 ? accessor(add(i8, 3, 34963), 5121, 3, "SCALAR") : accessor(add(i16, 6, 34963), 5123, 3, "SCALAR");
+      prims.push_back({{"attributes", attributes},
+                       {"indices", indices},
+                       {"targets", {{{"POSITION", floats(delta, "VEC3", 3, true)}}}}});
+    }
+    doc["meshes"] = {{{"primitives", prims}, {"weights", {0.0}}}};
+    doc["images"] = {{{"bufferView", add(image.data(), image.size(), 0)}, {"mimeType", "image/png"}}};
+    bin.resize((bin.size() + 3) & ~std::size_t{3}, '\0');
+    doc["buffers"] = {{{"byteLength", bin.size()}}};
+  }
+};
+
+std::string glbOf(const nlohmann::ordered_json& doc, const std::string& bin) {
+  std::string json = doc.dump();
+  json.resize((json.size() + 3) & ~std::size_t{3}, ' ');
+  std::string out;
+  const auto u32 = [&](std::uint32_t x) { out.append(reinterpret_cast<const char*>(&x), 4); };
+  u32(0x46546C67);
+  u32(2);
+  u32(static_cast<std::uint32_t>(28 + json.size() + bin.size()));
+  u32(static_cast<std::uint32_t>(json.size()));
+  u32(0x4E4F534A);
+  out += json;
+  u32(static_cast<std::uint32_t>(bin.size()));
+  u32(0x004E4942);
+  return out + bin;
+}
+
+TEST(GltfCompress, SeveralPrimitivesCustomAttributesAndImages) {
+  testing::TempDir dir;
+  for (const GltfCompression c : {GltfCompression::kQuantize, GltfCompression::kMeshopt}) {
+    Handmade h;
+    nlohmann::ordered_json doc = h.doc;
+    std::string bin = h.bin;
+    compressGltf(doc, bin, c, "hand.glb");
+    const std::string path = dir.file(std::string(gltfCompressionName(c)) + ".glb");
+    testing::writeText(path, glbOf(doc, bin));
+    // Placed by its node, the mesh is where the float one is, within half a step.
+    const double scale = doc["nodes"][0]["scale"][0].get<double>();
+    EXPECT_EQ(scale, 1.0);  // the largest half extent (x: 0..2)
+    const TriMesh placed = readGltfMesh(path);
+    ASSERT_EQ(placed.positions.size(), h.positions.size());
+    for (std::size_t i = 0; i < h.positions.size(); ++i)
+      EXPECT_NEAR(placed.positions[i], h.positions[i], scale / kShortSteps / 2 + kFloatTol) << i;
+    const auto& prims = doc["meshes"][0]["primitives"];
+    for (int p = 0; p < 2; ++p) {
+      const auto& custom = doc["accessors"][prims[p]["attributes"]["_VDG_VERTEX"].get<std::size_t>()];
+      EXPECT_EQ(custom["componentType"], 5125);
+      EXPECT_FALSE(custom.contains("normalized"));
+      const auto& uv = doc["accessors"][prims[p]["attributes"]["TEXCOORD_0"].get<std::size_t>()];
+      EXPECT_EQ(uv["componentType"], p == 0 ? 5123 : 5126);  // 1.5 does not fit a normalized value
+    }
+    // The image's bytes are where its bufferView says, untouched and uncompressed.
+    const auto& view = doc["bufferViews"][doc["images"][0]["bufferView"].get<std::size_t>()];
+    EXPECT_FALSE(view.contains("extensions"));
+    EXPECT_EQ(bin.substr(view["byteOffset"].get<std::size_t>(), view["byteLength"].get<std::size_t>()), h.image);
+    if (c == GltfCompression::kQuantize) {
+      // Without meshopt the custom attribute's bytes are read as they are.
+      const auto& custom = doc["accessors"][prims[1]["attributes"]["_VDG_VERTEX"].get<std::size_t>()];
+      const auto& cv = doc["bufferViews"][custom["bufferView"].get<std::size_t>()];
+      std::uint32_t ids[3];
+      std::memcpy(ids, bin.data() + cv["byteOffset"].get<std::size_t>(), 12);
+      EXPECT_EQ(ids[0], 8u);
+      EXPECT_EQ(ids[1], 70000u);
+    }
+  }
 }
 
 // The meshopt .gltf of a small model with its JSON edited by `edit`, read by vdg: the error.
