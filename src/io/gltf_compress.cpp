@@ -9,6 +9,7 @@
 // place in a fallback buffer without data and names its compressed bytes in the extension.
 #include <meshoptimizer.h>
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -51,6 +52,7 @@ constexpr int kByte = 5120, kUnsignedByte = 5121, kShort = 5122, kUnsignedShort 
 constexpr int kArrayBuffer = 34962, kElementArrayBuffer = 34963;
 // The largest magnitude of a normalized signed integer: value = q / kMax (glTF 2.0, section 3.11).
 constexpr double kShortMax = 32767.0, kByteMax = 127.0, kUnsignedShortMax = 65535.0;
+constexpr std::array<double, 3> kNoOffset = {0.0, 0.0, 0.0};
 
 std::size_t pad4(std::size_t n) { return (n + 3) & ~std::size_t{3}; }
 
@@ -208,13 +210,14 @@ OJson quantizedAccessor(Doc& d, std::span<const std::int32_t> q, int n, int comp
   return acc;
 }
 
-std::vector<std::int32_t> quantized(std::span<const double> x, double offset_scale[4], double max, bool per_axis) {
+// The normalized integers closest to `x`: round(max * (x - offset) / scale), per component with
+// the offset of its axis (x, y, z in turn), clamped to [-max, max]; a reader gets q / max back.
+std::vector<std::int32_t> quantized(std::span<const double> x, const std::array<double, 3>& offset, double scale,
+                                    double max) {
   std::vector<std::int32_t> q(x.size());
-  for (std::size_t i = 0; i < x.size(); ++i) {
-    const double local = per_axis ? (x[i] - offset_scale[i % 3]) / offset_scale[3] : x[i];
+  for (std::size_t i = 0; i < x.size(); ++i)
     q[i] = static_cast<std::int32_t>(
-        std::clamp(std::lround(local * max), -static_cast<long>(max), static_cast<long>(max)));
-  }
+        std::clamp(std::lround(max * (x[i] - offset[i % 3]) / scale), -static_cast<long>(max), static_cast<long>(max)));
   return q;
 }
 
@@ -258,24 +261,21 @@ void quantizePositions(Doc& d, OJson& mesh, const std::vector<std::size_t>& node
     for (std::size_t i = 0; i < values[a].size(); ++i)
       lo[i % 3] = std::min(lo[i % 3], values[a][i]), hi[i % 3] = std::max(hi[i % 3], values[a][i]);
   }
-  // One scale for the three axes: a normal stays a normal under a uniform scale.
-  double grid[4] = {(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, (lo[2] + hi[2]) / 2, 0.0};
-  for (int c = 0; c < 3; ++c) grid[3] = std::max(grid[3], (hi[c] - lo[c]) / 2);
+  // One scale for the three axes: a normal stays a normal under a uniform scale. It holds the
+  // base's half extents and every target delta, so that each fits [-1, 1].
+  const std::array<double, 3> center = {(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, (lo[2] + hi[2]) / 2};
+  double s = 0.0;
+  for (int c = 0; c < 3; ++c) s = std::max(s, (hi[c] - lo[c]) / 2);
   for (std::size_t a : targets) {
     values[a] = readFloats(d, accessors[a]);
-    for (double x : values[a]) grid[3] = std::max(grid[3], std::abs(x));
+    for (double x : values[a]) s = std::max(s, std::abs(x));
   }
-  if (!(grid[3] > 0.0) || !std::isfinite(grid[3])) grid[3] = 1.0;
-  for (std::size_t a : bases) {
-    const auto q = quantized(values[a], grid, kShortMax, true);
-    accessors[a] = quantizedAccessor(d, q, 3, kShort, true, false);
-  }
-  double delta_grid[4] = {0.0, 0.0, 0.0, grid[3]};
-  for (std::size_t a : targets) {
-    const auto q = quantized(values[a], delta_grid, kShortMax, true);
-    accessors[a] = quantizedAccessor(d, q, 3, kShort, true, allow_sparse);
-  }
-  const OJson offset = {grid[0], grid[1], grid[2]}, scale = {grid[3], grid[3], grid[3]};
+  if (!(s > 0.0) || !std::isfinite(s)) s = 1.0;
+  for (std::size_t a : bases)
+    accessors[a] = quantizedAccessor(d, quantized(values[a], center, s, kShortMax), 3, kShort, true, false);
+  for (std::size_t a : targets)
+    accessors[a] = quantizedAccessor(d, quantized(values[a], kNoOffset, s, kShortMax), 3, kShort, true, allow_sparse);
+  const OJson offset = {center[0], center[1], center[2]}, scale = {s, s, s};
   for (std::size_t n : nodes) {
     d.doc["nodes"][n]["translation"] = offset;
     d.doc["nodes"][n]["scale"] = scale;
@@ -289,14 +289,13 @@ void quantizePositions(Doc& d, OJson& mesh, const std::vector<std::size_t>& node
 // [0, 1] as normalized UNSIGNED_SHORT.
 void quantizeOthers(Doc& d, OJson& mesh, bool allow_sparse) {
   OJson& accessors = d.doc["accessors"];
-  double unit[4] = {0.0, 0.0, 0.0, 1.0};
   const auto bases = meshAccessors(mesh, "NORMAL", true, false);
   for (std::size_t a : meshAccessors(mesh, "NORMAL", true, true)) {
     if (!isFloat(accessors[a])) continue;
     const std::vector<double> v = readFloats(d, accessors[a]);
     if (std::any_of(v.begin(), v.end(), [](double x) { return std::abs(x) > 1.0; })) continue;
     const bool base = std::find(bases.begin(), bases.end(), a) != bases.end();
-    accessors[a] = quantizedAccessor(d, quantized(v, unit, kByteMax, false), 3, kByte, false, allow_sparse && !base);
+    accessors[a] = quantizedAccessor(d, quantized(v, kNoOffset, 1.0, kByteMax), 3, kByte, false, allow_sparse && !base);
     d.quantized = true;
   }
   std::set<std::string> uv_names;
@@ -308,9 +307,7 @@ void quantizeOthers(Doc& d, OJson& mesh, bool allow_sparse) {
       if (!isFloat(accessors[a])) continue;
       const std::vector<double> v = readFloats(d, accessors[a]);
       if (std::any_of(v.begin(), v.end(), [](double x) { return x < 0.0 || x > 1.0; })) continue;
-      std::vector<std::int32_t> q(v.size());
-      for (std::size_t i = 0; i < v.size(); ++i)
-        q[i] = static_cast<std::int32_t>(std::lround(v[i] * kUnsignedShortMax));
+      const auto q = quantized(v, kNoOffset, 1.0, kUnsignedShortMax);
       accessors[a] = quantizedAccessor(d, q, 2, kUnsignedShort, false, false);
       d.quantized = true;
     }
