@@ -170,7 +170,8 @@ std::optional<std::string> decodeMeshoptViews(const io::Json& doc, const std::st
     if (v["extensions"].empty()) v.erase("extensions");
   }
   if (!decoded.empty())
-    kept.push_back({{"byteLength", decoded.size()}, {"uri", "data:application/octet-stream;base64," + base64(decoded)}});
+    kept.push_back(
+        {{"byteLength", decoded.size()}, {"uri", "data:application/octet-stream;base64," + base64(decoded)}});
   out["buffers"] = std::move(kept);
   for (const char* key : {"extensionsUsed", "extensionsRequired"}) {
     if (!out.contains(key)) continue;
