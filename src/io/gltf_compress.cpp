@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <cstring>
 #include <map>
+#include <optional>
 #include <set>
 #include <span>
 #include <vector>
@@ -241,19 +242,25 @@ std::vector<std::size_t> meshAccessors(const OJson& mesh, const std::string& nam
 
 bool isFloat(const OJson& acc) { return acc["componentType"].get<int>() == kFloat; }
 
-// Positions and position targets of `mesh` on one uniform grid whose dequantisation becomes the
-// transform of `nodes` (which carry none) and mesh.extras.vdg.dequantize.
-void quantizePositions(Doc& d, OJson& mesh, const std::vector<std::size_t>& nodes, bool allow_sparse) {
+// The grid of quantised positions: mesh-local p in [-1, 1] is center + scale * p in model units.
+struct Grid {
+  std::array<double, 3> center{};
+  double scale = 1.0;
+};
+
+// Positions and position targets of `mesh` on one uniform grid (nullopt, and nothing changed, when
+// one of them is not float).
+std::optional<Grid> quantizePositions(Doc& d, OJson& mesh, bool allow_sparse) {
   OJson& accessors = d.doc["accessors"];
   const auto bases = meshAccessors(mesh, "POSITION", true, false);
   std::vector<std::size_t> targets;
   for (std::size_t t : meshAccessors(mesh, "POSITION", false, true))
     if (std::find(bases.begin(), bases.end(), t) == bases.end()) targets.push_back(t);
   for (std::size_t a : bases)
-    if (!isFloat(accessors[a])) return;
+    if (!isFloat(accessors[a])) return std::nullopt;
   for (std::size_t a : targets)
-    if (!isFloat(accessors[a])) return;
-  if (bases.empty()) return;
+    if (!isFloat(accessors[a])) return std::nullopt;
+  if (bases.empty()) return std::nullopt;
   std::map<std::size_t, std::vector<double>> values;
   double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
   for (std::size_t a : bases) {
@@ -275,14 +282,8 @@ void quantizePositions(Doc& d, OJson& mesh, const std::vector<std::size_t>& node
     accessors[a] = quantizedAccessor(d, quantized(values[a], center, s, kShortMax), 3, kShort, true, false);
   for (std::size_t a : targets)
     accessors[a] = quantizedAccessor(d, quantized(values[a], kNoOffset, s, kShortMax), 3, kShort, true, allow_sparse);
-  const OJson offset = {center[0], center[1], center[2]}, scale = {s, s, s};
-  for (std::size_t n : nodes) {
-    d.doc["nodes"][n]["translation"] = offset;
-    d.doc["nodes"][n]["scale"] = scale;
-  }
-  if (mesh.contains("extras") && mesh["extras"].is_object() && mesh["extras"].contains("vdg"))
-    mesh["extras"]["vdg"]["dequantize"] = {{"scale", scale}, {"offset", offset}};
   d.quantized = true;
+  return Grid{center, s};
 }
 
 // Normals (and normal targets whose deltas fit [-1, 1]) as normalized BYTE, texture coordinates in
@@ -507,20 +508,74 @@ void layOut(Doc& d, std::string& bin, const std::vector<Encoded>& encoded) {
   d.doc["buffers"] = std::move(buffers);
 }
 
-// The nodes that instance mesh `m`; empty when one of them is skinned or already has a transform
-// (its positions then stay float: a skinned mesh ignores its node's transform, glTF 2.0 section
-// 3.7.3, and vdg writes no other transform on a mesh node).
-std::vector<std::size_t> plainMeshNodes(const OJson& doc, std::size_t m) {
-  std::vector<std::size_t> nodes;
-  if (!doc.contains("nodes")) return nodes;
+// Where the dequantisation of mesh `m` can go: the transform of its nodes (none of which has one
+// or a skin: vdg writes no other transform on a mesh node), or, when they are all skinned (glTF
+// 2.0, section 3.7.3: a skinned mesh ignores its node's transform), the inverse bind matrices of
+// their skins (used by no other mesh). `ok` false: nowhere, the positions stay float.
+struct Placement {
+  bool ok = false;
+  std::vector<std::size_t> nodes;  // plain nodes
+  std::vector<std::size_t> ibms;   // inverse bind matrix accessors of the skins
+};
+
+Placement placement(const OJson& doc, std::size_t m) {
+  Placement p;
+  if (!doc.contains("nodes")) return p;
+  std::set<std::size_t> skins, ibms;
   for (std::size_t n = 0; n < doc["nodes"].size(); ++n) {
     const OJson& node = doc["nodes"][n];
     if (!node.contains("mesh") || node["mesh"].get<std::size_t>() != m) continue;
-    for (const char* key : {"skin", "matrix", "translation", "rotation", "scale"})
-      if (node.contains(key)) return {};
-    nodes.push_back(n);
+    if (node.contains("skin")) {
+      const OJson& skin = doc["skins"][node["skin"].get<std::size_t>()];
+      if (!skin.contains("inverseBindMatrices")) return p;
+      skins.insert(node["skin"].get<std::size_t>());
+      ibms.insert(skin["inverseBindMatrices"].get<std::size_t>());
+      continue;
+    }
+    for (const char* key : {"matrix", "translation", "rotation", "scale"})
+      if (node.contains(key)) return p;
+    p.nodes.push_back(n);
   }
-  return nodes;
+  for (const OJson& node : doc["nodes"])  // a skin of this mesh must serve no other
+    if (node.contains("skin") && skins.count(node["skin"].get<std::size_t>()) &&
+        (!node.contains("mesh") || node["mesh"].get<std::size_t>() != m))
+      return p;
+  if (!p.nodes.empty() && !skins.empty()) return p;
+  p.ibms.assign(ibms.begin(), ibms.end());
+  p.ok = !p.nodes.empty() || !p.ibms.empty();
+  return p;
+}
+
+// The grid's dequantisation on the mesh's nodes (translation, uniform scale) and in
+// mesh.extras.vdg.dequantize.
+void placeOnNodes(Doc& d, OJson& mesh, const std::vector<std::size_t>& nodes, const Grid& g) {
+  const OJson offset = {g.center[0], g.center[1], g.center[2]}, scale = {g.scale, g.scale, g.scale};
+  for (std::size_t n : nodes) {
+    d.doc["nodes"][n]["translation"] = offset;
+    d.doc["nodes"][n]["scale"] = scale;
+  }
+  if (mesh.contains("extras") && mesh["extras"].is_object() && mesh["extras"].contains("vdg"))
+    mesh["extras"]["vdg"]["dequantize"] = {{"scale", scale}, {"offset", offset}};
+}
+
+// The grid's dequantisation D (scale, then translate) folded into each inverse bind matrix:
+// IBM' = IBM * D, so that skinning a mesh-local point gives what skinning the float point gave
+// (glTF 2.0, section 3.7.3.3: joint matrix = joint world transform * inverse bind matrix). The
+// morph target deltas, added before skinning, are scaled by D's linear part the same way.
+void foldIntoInverseBindMatrices(Doc& d, const std::vector<std::size_t>& ibms, const Grid& g) {
+  for (std::size_t a : ibms) {
+    OJson& acc = d.doc["accessors"][a];
+    const std::vector<double> m = readFloats(d, acc);  // count x 16, column-major
+    std::vector<float> out(m.size());
+    for (std::size_t k = 0; k + 16 <= m.size(); k += 16)
+      for (int row = 0; row < 4; ++row) {
+        for (int col = 0; col < 3; ++col) out[k + col * 4 + row] = static_cast<float>(m[k + col * 4 + row] * g.scale);
+        out[k + 12 + row] = static_cast<float>(m[k + row] * g.center[0] + m[k + 4 + row] * g.center[1] +
+                                               m[k + 8 + row] * g.center[2] + m[k + 12 + row]);
+      }
+    const int view = d.addView(std::string(reinterpret_cast<const char*>(out.data()), out.size() * 4), 0, 0);
+    acc = {{"bufferView", view}, {"componentType", kFloat}, {"count", acc["count"]}, {"type", "MAT4"}};
+  }
 }
 
 }  // namespace
@@ -532,8 +587,12 @@ void compressGltf(OJson& doc, std::string& bin, GltfCompression compression, con
   const bool meshopt = compression == GltfCompression::kMeshopt;
   for (std::size_t m = 0; m < doc["meshes"].size(); ++m) {
     OJson& mesh = doc["meshes"][m];
-    const std::vector<std::size_t> nodes = plainMeshNodes(doc, m);
-    if (!nodes.empty()) quantizePositions(d, mesh, nodes, !meshopt);
+    const Placement p = placement(doc, m);
+    if (p.ok)
+      if (const std::optional<Grid> g = quantizePositions(d, mesh, !meshopt)) {
+        if (p.ibms.empty()) placeOnNodes(d, mesh, p.nodes, *g);
+        foldIntoInverseBindMatrices(d, p.ibms, *g);
+      }
     quantizeOthers(d, mesh, !meshopt);
   }
   if (d.quantized) addExtension(doc, "KHR_mesh_quantization", true);

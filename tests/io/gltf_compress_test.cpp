@@ -41,6 +41,8 @@ constexpr double kShortSteps = 32767.0;
 constexpr double kNormalTol = 1.0 / 127.0;
 // Float arithmetic of the blend on a model of unit size (kRoundTripTol of the float exports).
 constexpr double kFloatTol = 1e-5;
+// An animated model's float round trip (skin re-applied in floats; gltf_model_io_test.cpp).
+constexpr double kAnimatedFloatTol = 1e-4;
 
 std::vector<Eigen::Vector3d> testViews() {
   return {{0, 0, 1}, {1, 0.1, 0}, {0.6, 0.3, 0.7}, {-0.8, 0.2, -0.5}, {0.2, -0.9, 0.3}};
@@ -191,18 +193,44 @@ TEST(GltfCompress, NormalsComeBackWithinAByteStep) {
     ASSERT_NEAR(placed.positions[i], model.base().positions[i], tol) << i;
 }
 
+// Half a step of the grid of `in` as the writer chooses it: the largest of the base's half extents
+// and of the targets' delta components, / 32767 / 2 (vdg/io/gltf_compress.h).
+double gridHalfStep(const GltfExportInput& in) {
+  double s = 0;
+  for (int c = 0; c < 3; ++c) {
+    double lo = INFINITY, hi = -INFINITY;
+    for (std::size_t i = c; i < in.base.positions.size(); i += 3)
+      lo = std::min<double>(lo, in.base.positions[i]), hi = std::max<double>(hi, in.base.positions[i]);
+    s = std::max(s, (hi - lo) / 2);
+  }
+  for (const GltfTarget& t : in.targets)
+    for (float x : t.deltas) s = std::max(s, std::abs(double(x)));
+  if (in.base_animation)
+    for (const auto& f : in.base_animation->frame_deltas)
+      for (float x : f) s = std::max(s, std::abs(double(x)));
+  return s / kShortSteps / 2;
+}
+
 void expectAnimatedRoundTrip(const std::string& manifest, const std::string& path, GltfCompression c, bool skinned) {
   const RawViewDependentModel raw = loadManifest(manifest);
   const AnimatedViewDependentModel model = AnimatedViewDependentModel::build(raw);
   std::optional<RawRig> rig;
   if (!raw.base_animation->gltf.empty()) rig = readBaseRig(raw);
-  writeGltfExport(path, withCompression(gltfExportInput(model, raw, rig ? &*rig : nullptr), c));
+  const GltfExportInput input = withCompression(gltfExportInput(model, raw, rig ? &*rig : nullptr), c);
+  writeGltfExport(path, input);
   const nlohmann::json doc = fileJson(path);
   const auto& vdg = doc.at("meshes").at(0).at("extras").at("vdg");
-  // A skinned mesh ignores its node's transform: its positions stay float, without dequantize.
+  const auto& prim = doc.at("meshes").at(0).at("primitives").at(0);
+  EXPECT_EQ(doc.at("accessors").at(prim.at("attributes").at("POSITION").get<std::size_t>()).at("componentType"), 5122);
+  // A skinned mesh ignores its node's transform: the dequantisation is folded into the inverse
+  // bind matrices instead, and the model space stays the file's (no dequantize).
   EXPECT_EQ(vdg.contains("dequantize"), !skinned) << path;
-  // Frame k of a "frames" base is POSITION plus its frame target, a key adds its own: three half steps.
-  const double tol = (skinned ? 0.0 : 3 * halfStep(doc)) + 1e-4;
+  if (!skinned) {
+    EXPECT_NEAR(halfStep(doc), gridHalfStep(input), 1e-12);
+  }
+  // Frame k of a "frames" base is POSITION plus its frame target, a key adds its own: three half
+  // steps; skinning turns the error vector (its largest component grows by sqrt(3) at most).
+  const double tol = 3 * (skinned ? std::sqrt(3.0) : 1.0) * gridHalfStep(input) + kAnimatedFloatTol;
   const AnimatedViewDependentModel back = AnimatedViewDependentModel::build(loadModel(path));
   ASSERT_EQ(back.frameCount(), model.frameCount());
   std::vector<float> pa(model.vertexCount() * 3), pb(pa.size());

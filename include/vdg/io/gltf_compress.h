@@ -8,8 +8,9 @@
 //    node's translation and scale (the extension's standard dequantisation), written also as
 //    mesh.extras.vdg.dequantize. A position is off by at most half a step, scale / 32767 / 2 per
 //    component; a normal by 1 / 127 / 2. A skinned mesh ignores its node's transform (glTF 2.0,
-//    section 3.7.3), so a skinned base keeps float positions and position targets (its normals and
-//    uvs are quantised) and gets no dequantize field.
+//    section 3.7.3), so for a skinned base the dequantisation is folded into the skin's inverse
+//    bind matrices (IBM' = IBM * D) and there is no dequantize field (the model space is the
+//    skinned one); positions stay float when the skin serves another mesh or has no matrices.
 //  - kMeshopt (EXT_meshopt_compression, meshoptimizer's codecs): quantised as above, then vertex
 //    attribute bufferViews (mode ATTRIBUTES), triangle index bufferViews (mode TRIANGLES) and the
 //    other data (animation, sparse parts) encoded; images are left as they are. Morph targets are

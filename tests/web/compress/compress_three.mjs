@@ -1,8 +1,9 @@
 // vdg's compressed exports in three.js (docs/gltf-export.md, "Smaller files"): GLTFLoader, with the
 // meshopt decoder three ships (examples/jsm/libs/meshopt_decoder.module.js), parses the .glb of
 // `vdg export --compress quantize` and `--compress meshopt` of the shipped examples in Node; every
-// mesh's positions, placed by its node (KHR_mesh_quantization's dequantisation), and its morph
-// targets (times the node's scale) equal the float export's within half a grid step.
+// mesh's positions as a viewer places them (by the node: KHR_mesh_quantization's dequantisation;
+// skinned at rest: vdg folds it into the inverse bind matrices) and its morph targets equal the
+// float export's within half a grid step.
 // Usage: node compress_three.mjs VDG_BINARY SOURCE_DIR WEB_DIR WORK_DIR
 // Exit 0 pass, 1 fail, 77 skip (three.js not installed, unless VDG_REQUIRE_WEB=1).
 import { execFileSync } from 'node:child_process';
@@ -57,16 +58,20 @@ function meshes(gltf) {
 }
 
 /**
- * Positions of `attr` (normalized integers denormalised by three) placed by `matrix` (none: as
- * they are).
- * @param {any} attr @param {any} matrix
+ * Positions of `attr` (normalized integers denormalised by three) as a viewer shows them at rest:
+ * placed by the mesh node's world matrix, or, for a skinned mesh (glTF 2.0: it ignores its node's
+ * transform), skinned by its skeleton at rest, `delta` (a morph target, or none) added first.
+ * @param {any} mesh @param {any} attr @param {any} [delta]
  */
-function placed(attr, matrix) {
+function placed(mesh, attr, delta) {
   const out = new Float64Array(attr.count * 3);
   const v = new THREE.Vector3();
+  const d = new THREE.Vector3();
   for (let i = 0; i < attr.count; i++) {
     v.fromBufferAttribute(attr, i);
-    if (matrix) v.applyMatrix4(matrix);
+    if (delta) v.add(d.fromBufferAttribute(delta, i));
+    if (mesh.isSkinnedMesh) mesh.applyBoneTransform(i, v);
+    else v.applyMatrix4(mesh.matrixWorld);
     out[i * 3] = v.x;
     out[i * 3 + 1] = v.y;
     out[i * 3 + 2] = v.z;
@@ -81,31 +86,28 @@ function worst(a, b) {
   return a.length === b.length ? w : Infinity;
 }
 
-/**
- * The node's world matrix that places the mesh's vertices; null for a skinned mesh (glTF 2.0: a
- * skinned mesh ignores its node's transform, so vdg keeps its positions float).
- * @param {any} mesh
- */
-function placement(mesh) {
-  return mesh.isSkinnedMesh ? null : mesh.matrixWorld;
+/** @param {Float64Array} a @param {Float64Array} b @returns {Float64Array} a - b */
+function minus(a, b) {
+  return a.map((x, i) => x - b[i]);
 }
 
 /**
- * Morph target deltas of `attr`, moved by the linear part of `matrix` (none: as they are).
- * @param {any} attr @param {any} matrix
+ * Half a step of the grid vdg quantises `mesh` on: the largest of its base's half extents and of
+ * its targets' delta components, / 32767 / 2 (docs/gltf-export.md).
+ * @param {any} mesh the float export's mesh
  */
-function deltas(attr, matrix) {
-  const out = new Float64Array(attr.count * 3);
-  const v = new THREE.Vector3();
-  const linear = matrix ? new THREE.Matrix3().setFromMatrix4(matrix) : null;
-  for (let i = 0; i < attr.count; i++) {
-    v.fromBufferAttribute(attr, i);
-    if (linear) v.applyMatrix3(linear);
-    out[i * 3] = v.x;
-    out[i * 3 + 1] = v.y;
-    out[i * 3 + 2] = v.z;
+function halfStep(mesh) {
+  const pos = mesh.geometry.attributes.position;
+  let s = 0;
+  for (let c = 0; c < 3; c++) {
+    let lo = Infinity;
+    let hi = -Infinity;
+    for (let i = 0; i < pos.count; i++) lo = Math.min(lo, pos.getComponent(i, c)), hi = Math.max(hi, pos.getComponent(i, c));
+    s = Math.max(s, (hi - lo) / 2);
   }
-  return out;
+  for (const t of mesh.geometry.morphAttributes.position ?? [])
+    for (let i = 0; i < t.array.length; i++) s = Math.max(s, Math.abs(t.array[i]));
+  return s / kSteps / 2;
 }
 
 /** @param {string} name @param {string} manifest */
@@ -123,21 +125,26 @@ async function compare(name, manifest) {
       const g = got[k];
       const r = reference[k];
       const dq = g.userData?.vdg?.dequantize;
-      const step = dq ? dq.scale[0] / kSteps / 2 : 0;
       check(!!dq === !g.isSkinnedMesh, `${name} ${c}: mesh ${k}: dequantize ${dq ? 'present' : 'absent'} on a ${g.isSkinnedMesh ? 'skinned' : 'plain'} mesh`);
+      if (dq) check(Math.abs(dq.scale[0] / kSteps / 2 - halfStep(r)) <= 1e-12, `${name} ${c}: mesh ${k}: dequantize.scale ${dq.scale[0]} is not the grid's`);
+      // Skinning turns an error vector by a rotation: its largest component grows by sqrt(3) at most.
       const size = r.geometry.boundingSphere ?? (r.geometry.computeBoundingSphere(), r.geometry.boundingSphere);
-      const tol = step + kFloatTol * Math.max(1, size.radius);
-      const pg = placed(g.geometry.attributes.position, placement(g));
-      const pr = placed(r.geometry.attributes.position, null);
+      const tol = (g.isSkinnedMesh ? Math.sqrt(3) : 1) * halfStep(r) + kFloatTol * Math.max(1, size.radius);
+      const pg = placed(g, g.geometry.attributes.position);
+      const pr = placed(r, r.geometry.attributes.position);
       const wp = worst(pg, pr);
       check(wp <= tol, `${name} ${c}: mesh ${k}: positions off by ${wp}, tolerance ${tol}`);
       const tg = g.geometry.morphAttributes.position ?? [];
       const tr = r.geometry.morphAttributes.position ?? [];
       check(tg.length === tr.length, `${name} ${c}: mesh ${k}: ${tg.length} morph targets, expected ${tr.length}`);
+      // A target's placed delta: placed(base + delta) - placed(base), each end within tol.
       let wt = 0;
-      for (let t = 0; t < Math.min(tg.length, tr.length); t++)
-        wt = Math.max(wt, worst(deltas(tg[t], placement(g)), deltas(tr[t], null)));
-      check(wt <= tol, `${name} ${c}: mesh ${k}: morph targets off by ${wt}, tolerance ${tol}`);
+      for (let t = 0; t < Math.min(tg.length, tr.length); t++) {
+        const dg = minus(placed(g, g.geometry.attributes.position, tg[t]), pg);
+        const dr = minus(placed(r, r.geometry.attributes.position, tr[t]), pr);
+        wt = Math.max(wt, worst(dg, dr));
+      }
+      check(wt <= 2 * tol, `${name} ${c}: mesh ${k}: morph targets off by ${wt}, tolerance ${2 * tol}`);
       console.log(`${name} ${c}: mesh ${k}: ${g.geometry.attributes.position.count} vertices, ${tg.length} targets, ` +
                   `positions within ${wp.toExponential(2)}, targets within ${wt.toExponential(2)} (tolerance ${tol.toExponential(2)})`);
     }
