@@ -14,6 +14,7 @@
 
 #include "camera_file.h"
 #include "cli.h"
+#include "compress_option.h"
 #include "orbit_options.h"
 #include "vdg/geom/error.h"
 #include "vdg/io/gltf_export.h"
@@ -38,6 +39,7 @@ struct BakeOptions : CameraOptions {
   double fps = 24.0, sharpness = 0.0;
   bool step = false, quiet = false;
   std::size_t max_targets = std::numeric_limits<std::size_t>::max();
+  CompressOption compress;
 };
 
 void run(const BakeOptions& opt) {
@@ -80,6 +82,7 @@ void run(const BakeOptions& opt) {
         input);
   }
   input.bake->step = opt.step;
+  input.compression = opt.compress.value();
   const std::string path =
       opt.camera_file.empty() ? "orbit " + std::to_string(opt.camera.orbit) : "camera " + opt.camera_file;
   input.bake->description = "vdg bake: " + path + " frames " + std::to_string(range.first) + "-" +
@@ -110,6 +113,7 @@ void addBakeCommand(CLI::App& app) {
       ->check(positiveNumber());
   sub->add_flag("--step", opt->step,
                 "STEP interpolation: hold each frame's weights and camera (default LINEAR: blend between frames)");
+  opt->compress.add(*sub);
   sub->add_flag("-q,--quiet", opt->quiet, "Print nothing on success");
   addMaxTargetsOption(*sub, opt->max_targets);
   sub->callback([opt, sub] {

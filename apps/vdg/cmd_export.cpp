@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "cli.h"
+#include "compress_option.h"
 #include "vdg/geom/error.h"
 #include "vdg/io/atomic_file.h"
 #include "vdg/io/gltf_export.h"
@@ -84,6 +85,7 @@ void addExportCommand(CLI::App& app) {
     std::string model, output;
     bool quiet = false;
     std::size_t max_targets = std::numeric_limits<std::size_t>::max();
+    CompressOption compress;
   };
   auto opt = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand(
@@ -91,13 +93,15 @@ void addExportCommand(CLI::App& app) {
   sub->add_option("MODEL", opt->model, "Model manifest (*.vdg.json), or a glTF model vdg exported")->required();
   sub->add_option("-o,--output", opt->output, "Output OUT.glb, or OUT.gltf with its buffer in OUT.bin beside it")
       ->required();
+  opt->compress.add(*sub);
   sub->add_flag("-q,--quiet", opt->quiet, "Print nothing on success");
   addMaxTargetsOption(*sub, opt->max_targets);
   sub->callback([opt] {
     checkGltfOutput(opt->output);
     const OpenedInput input = openModel(opt->model);
     checkOutputIsNotInput(opt->output, opt->model, input);
-    const GltfExportInput export_input = exportInputForCli(input);
+    GltfExportInput export_input = exportInputForCli(input);
+    export_input.compression = opt->compress.value();
     checkMaxTargets(export_input, opt->max_targets, opt->model);
     writeGltfForCli(opt->output, export_input, opt->quiet);
   });

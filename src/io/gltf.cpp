@@ -29,6 +29,7 @@
 #include <set>
 #include <sstream>
 
+#include "gltf_meshopt.h"
 #include "json_reader.h"
 #include "material_files.h"
 #include "mesh_extent.h"
@@ -308,6 +309,17 @@ const Want kIndices{{TINYGLTF_TYPE_SCALAR},
                      {TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, false},
                      {TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, false}},
                     "SCALAR of UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT"};
+// KHR_mesh_quantization: POSITION, NORMAL, TEXCOORD_n and morph targets may also be (normalized)
+// integers; the reader turns them into floats (section 3.11's normalisation) and the node's
+// transform, as for any mesh, dequantises them.
+const std::vector<std::pair<int, bool>> kQuantized{
+    {TINYGLTF_COMPONENT_TYPE_FLOAT, false},         {TINYGLTF_COMPONENT_TYPE_BYTE, true},
+    {TINYGLTF_COMPONENT_TYPE_BYTE, false},          {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, true},
+    {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, false}, {TINYGLTF_COMPONENT_TYPE_SHORT, true},
+    {TINYGLTF_COMPONENT_TYPE_SHORT, false},         {TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, true},
+    {TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, false}};
+const Want kQuantizedVec3{{TINYGLTF_TYPE_VEC3}, kQuantized, "VEC3 of FLOAT or (normalized) integers"};
+const Want kQuantizedTexcoord{{TINYGLTF_TYPE_VEC2}, kQuantized, "VEC2 of FLOAT or (normalized) integers"};
 const Want kMat4{{TINYGLTF_TYPE_MAT4}, {{TINYGLTF_COMPONENT_TYPE_FLOAT, false}}, "FLOAT MAT4"};
 const Want kTimes{{TINYGLTF_TYPE_SCALAR}, {{TINYGLTF_COMPONENT_TYPE_FLOAT, false}}, "FLOAT SCALAR"};
 const std::vector<std::pair<int, bool>> kFloatOrNormalized{{TINYGLTF_COMPONENT_TYPE_FLOAT, false},
@@ -507,8 +519,10 @@ void checkAsset(const JsonRules& r) {
                         " features, vdg implements glTF 2.0");
 }
 
-// vdg implements no glTF extension: one the file requires would change what its data means
-// (compressed buffers, quantized or transformed attributes...), so such a file is refused.
+// The extensions vdg reads (the ones its exports use: vdg/io/gltf_compress.h). Any other that the
+// file requires would change what its data means, so such a file is refused.
+constexpr const char* kReadExtensions[] = {"KHR_mesh_quantization", "EXT_meshopt_compression"};
+
 void checkExtensions(const JsonRules& r) {
   for (const char* key : {"extensionsUsed", "extensionsRequired"}) {
     const auto it = r.doc().find(key);
@@ -517,10 +531,22 @@ void checkExtensions(const JsonRules& r) {
       r.fail(key, "expected an array of strings, got " + io::describe(*it));
   }
   const auto it = r.doc().find("extensionsRequired");
-  if (it != r.doc().end() && !it->empty())
+  if (it == r.doc().end()) return;
+  std::vector<std::string> unknown;
+  for (const Json& x : *it)
+    if (std::find(std::begin(kReadExtensions), std::end(kReadExtensions), x.get<std::string>()) ==
+        std::end(kReadExtensions))
+      unknown.push_back(x.get<std::string>());
+  if (!unknown.empty())
     r.fail("extensionsRequired",
-           quotedText((*it)[0].get<std::string>()) + " is an extension vdg does not implement" +
-               (it->size() > 1 ? " (and " + std::to_string(it->size() - 1) + " more)" : std::string()));
+           quotedText(unknown[0]) + " is an extension vdg does not implement" +
+               (unknown.size() > 1 ? " (and " + std::to_string(unknown.size() - 1) + " more)" : std::string()));
+}
+
+// True when the document lists `name` in extensionsUsed.
+bool usesExtension(const Json& doc, const char* name) {
+  const auto it = doc.find("extensionsUsed");
+  return it != doc.end() && it->is_array() && std::find(it->begin(), it->end(), Json(name)) != it->end();
 }
 
 // The data: URI prefixes tinygltf decodes (base64 only).
@@ -533,6 +559,7 @@ void checkBuffer(const JsonRules& r, const Json& b, std::size_t i, bool binary, 
   r.fields(b, e, {{"byteLength", Kind::kCount, true}, {"uri", Kind::kString}});
   const std::uint64_t length = b["byteLength"].get<std::uint64_t>();
   if (!b.contains("uri")) {
+    if (isMeshoptFallback(b)) return;  // EXT_meshopt_compression: decoded before tinygltf reads it
     if (!binary) r.fail(e, "has no uri (only the first buffer of a .glb may stand for its BIN chunk)");
     if (i != 0) r.fail(e, "has no uri (only buffers[0] may stand for the GLB's BIN chunk)");
     if (!bin) r.fail(e, "has no uri, and the GLB has no BIN chunk");
@@ -782,6 +809,50 @@ void checkJson(const Json& doc, const std::string& source, bool binary, std::opt
 
 std::string percentDecoded(const std::string& uri);
 
+// EXT_meshopt_compression (gltf_meshopt.h): the file's bytes with every compressed bufferView
+// decoded into a plain buffer, or nullopt when none is compressed. `doc` passed checkJson.
+std::optional<std::string> decodedMeshopt(std::string_view bytes, const Json& doc, const std::string& source,
+                                          const std::string& folder, std::optional<std::size_t> bin) {
+  const bool binary = bytes.substr(0, 4) == "glTF";
+  std::map<std::size_t, std::string> cache;
+  std::size_t external = 0;
+  auto bufferBytes = [&](std::size_t i) -> std::string_view {
+    const Json& b = doc["buffers"][i];
+    if (!b.contains("uri")) return bytes.substr(20 + le32(bytes, 12) + 8, *bin);  // the BIN chunk (checkBuffer)
+    if (const auto it = cache.find(i); it != cache.end()) return it->second;
+    const std::string uri = b["uri"].get<std::string>();
+    std::string data;
+    if (isDataUri(uri)) {
+      std::vector<unsigned char> decoded;
+      std::string mime;
+      (void)tg::DecodeDataURI(&decoded, mime, uri, 0, false);  // checked by checkBuffer
+      data.assign(decoded.begin(), decoded.end());
+    } else {
+      const std::string path = percentDecoded(uri), problem = uriProblem(path);
+      if (!problem.empty() || folder.empty())
+        throw Error(source + ": " + idx("buffers", i) + ": " + quotedText(path) + " " +
+                    (problem.empty() ? "is an external file, and these bytes come without a folder" : problem));
+      const std::string full = folder == "." ? path : (std::filesystem::path(folder) / path).string();
+      data = readFileLimited(full, "glTF buffer", kMaxMeshFileBytes - std::min(kMaxMeshFileBytes, external));
+      external += data.size();
+    }
+    return cache.emplace(i, std::move(data)).first->second;
+  };
+  std::optional<std::string> json = decodeMeshoptViews(doc, source, kMaxMeshFileBytes, bufferBytes);
+  if (!json || !binary) return json;
+  // The GLB again: its header, the new JSON chunk, the BIN chunk as it was.
+  json->resize((json->size() + 3) & ~std::size_t{3}, ' ');
+  const std::string_view tail = bytes.substr(20 + le32(bytes, 12));
+  std::string out = std::string(bytes.substr(0, 12)) + std::string(8, '\0') + *json + std::string(tail);
+  const auto put = [&](std::size_t at, std::size_t value) {
+    for (int k = 0; k < 4; ++k) out[at + k] = static_cast<char>((value >> (8 * k)) & 0xFF);
+  };
+  put(8, out.size());
+  put(12, json->size());
+  put(16, 0x4E4F534Au);
+  return out;
+}
+
 class Gltf {
  public:
   Gltf(std::string_view bytes, const std::string& source, const std::string& folder)
@@ -789,12 +860,23 @@ class Gltf {
     const bool binary = bytes.size() >= 4 && bytes.substr(0, 4) == "glTF";
     binary_ = binary;
     std::optional<std::size_t> bin;
-    const std::string_view json = binary ? checkGlb(bytes, source, &bin) : bytes;
+    std::string_view json = binary ? checkGlb(bytes, source, &bin) : bytes;
     if (bytes.size() > std::numeric_limits<unsigned int>::max())
       throw Error(source + ": file is too large for the glTF reader");
     // vdg's JSON layer first: its nesting limit and its message for malformed JSON; then the
     // rules of the glTF schema, so that tinygltf reads only a file of the right shape.
-    checkJson(io::parseJson(json, source), source, binary, bin);
+    const Json doc = io::parseJson(json, source);
+    checkJson(doc, source, binary, bin);
+    quantized_ = usesExtension(doc, "KHR_mesh_quantization");
+    // Compressed bufferViews decoded into a plain buffer, and the result checked again.
+    std::optional<std::string> decoded = decodedMeshopt(bytes, doc, source, folder, bin);
+    if (decoded) {
+      bytes = *decoded;
+      if (bytes.size() > std::numeric_limits<unsigned int>::max())
+        throw Error(source + ": decoded, the file is too large for the glTF reader");
+      json = binary ? checkGlb(bytes, source, &bin) : bytes;
+      checkJson(io::parseJson(json, source), source, binary, bin);
+    }
 
     FileAccess access{source, folder, 0, {}, {}};
     tg::TinyGLTF loader;
@@ -821,6 +903,9 @@ class Gltf {
   const std::string& source() const { return source_; }
   const std::string& folder() const { return folder_; }
   bool binary() const { return binary_; }
+  // What POSITION, NORMAL and morph targets may be: float, or integers under KHR_mesh_quantization.
+  const Want& vec3() const { return quantized_ ? kQuantizedVec3 : kFloatVec3; }
+  const Want& texcoord() const { return quantized_ ? kQuantizedTexcoord : kTexcoord; }
 
   [[noreturn]] void fail(const std::string& element, const std::string& what) const {
     throw Error(source_ + ": " + element + ": " + what);
@@ -1046,6 +1131,7 @@ class Gltf {
   std::string source_;
   std::string folder_;
   bool binary_ = false;
+  bool quantized_ = false;  // KHR_mesh_quantization in extensionsUsed
   tg::Model model_;
 };
 
@@ -1322,7 +1408,7 @@ std::size_t appendPrimitive(const Gltf& g, const tg::Primitive& prim, std::size_
                             std::size_t base, RawRig& raw) {
   const std::string ep = l.where + ": " + idx("primitives", p);
   const int pos = attributeOf(prim, "POSITION");
-  const std::vector<double> positions = g.read(pos, kFloatVec3, ep + ": POSITION");
+  const std::vector<double> positions = g.read(pos, g.vec3(), ep + ": POSITION");
   const std::size_t nv = g.count(pos);
   if (base + nv > kMaxGltfElements)
     g.fail(l.where, "more than " + std::to_string(kMaxGltfElements) + " vertices in all primitives");
@@ -1334,13 +1420,13 @@ std::size_t appendPrimitive(const Gltf& g, const tg::Primitive& prim, std::size_
   raw.mesh.positions.insert(raw.mesh.positions.end(), positions.begin(), positions.end());
   if (l.with_normals) {
     const int a = attributeOf(prim, "NORMAL");
-    const auto normals = g.read(a, kFloatVec3, ep + ": NORMAL");
+    const auto normals = g.read(a, g.vec3(), ep + ": NORMAL");
     sameCount(a, "NORMAL");
     raw.normals.insert(raw.normals.end(), normals.begin(), normals.end());
   }
   if (l.with_uvs) {
     const int a = attributeOf(prim, "TEXCOORD_0");
-    auto uvs = g.read(a, kTexcoord, ep + ": TEXCOORD_0");
+    auto uvs = g.read(a, g.texcoord(), ep + ": TEXCOORD_0");
     sameCount(a, "TEXCOORD_0");
     for (std::size_t i = 1; i < uvs.size(); i += 2) uvs[i] = 1.0 - uvs[i];  // top-left origin to bottom-left
     raw.mesh.uvs.insert(raw.mesh.uvs.end(), uvs.begin(), uvs.end());
@@ -1360,7 +1446,7 @@ std::size_t appendPrimitive(const Gltf& g, const tg::Primitive& prim, std::size_
     const std::string et = ep + ": " + idx("targets", t);
     const auto pit = target.find("POSITION");
     if (pit != target.end()) {
-      const auto d = g.read(pit->second, kFloatVec3, et + ": POSITION");
+      const auto d = g.read(pit->second, g.vec3(), et + ": POSITION");
       sameCount(pit->second, "a target's POSITION");
       raw.target_positions[t].insert(raw.target_positions[t].end(), d.begin(), d.end());
     } else {
@@ -1369,7 +1455,7 @@ std::size_t appendPrimitive(const Gltf& g, const tg::Primitive& prim, std::size_
     if (l.with_normals && l.target_has_normals[t]) {
       const auto nit = target.find("NORMAL");
       if (nit != target.end()) {
-        const auto d = g.read(nit->second, kFloatVec3, et + ": NORMAL");
+        const auto d = g.read(nit->second, g.vec3(), et + ": NORMAL");
         sameCount(nit->second, "a target's NORMAL");
         raw.target_normals[t].insert(raw.target_normals[t].end(), d.begin(), d.end());
       } else {

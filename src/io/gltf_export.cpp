@@ -20,6 +20,7 @@
 #include <tuple>
 
 #include "camera_fields.h"
+#include "gltf_compress_pass.h"
 #include "json_reader.h"
 #include "model_names.h"
 #include "vdg/geom/error.h"
@@ -1130,6 +1131,7 @@ GltfBakedAnimation gltfBakedAnimation(CameraPathBake samples, const GltfExportIn
 
 std::string gltfToGlb(const GltfExportInput& input, const std::string& where, GltfExportReport* report) {
   Built built = build(input, where, report);
+  compressGltf(built.doc, built.bin, input.compression, where, report ? &report->sparse_targets : nullptr);
   built.doc["buffers"][0].erase("uri");
   std::string json = built.doc.dump(-1, ' ', false, OJson::error_handler_t::replace);
   json.resize(pad4(json.size()), ' ');
@@ -1162,6 +1164,7 @@ std::string gltfToJson(const GltfExportInput& input, const std::string& where, c
     image_out.store = ImageStore::kDataUri;
   }
   Built built = build(input, where, report, image_out);
+  compressGltf(built.doc, built.bin, input.compression, where, report ? &report->sparse_targets : nullptr);
   built.doc["buffers"][0]["uri"] = bin_uri;
   std::string json = built.doc.dump(1, ' ', false, OJson::error_handler_t::replace);
   json += '\n';
@@ -1419,6 +1422,34 @@ RawViewDependentModel fromDescription(Described d, const TriMesh& base, std::spa
   return raw;
 }
 
+// mesh.extras.vdg.dequantize of a quantised export (vdg/io/gltf_compress.h): the file's mesh-local
+// positions p lie at offset + scale * p in model units and its deltas d at scale * d. Applied to
+// `base` and `deltas` in place; nothing when the field is absent.
+void dequantize(const io::Json& extras, TriMesh& base, std::span<std::vector<float>> deltas, const std::string& where) {
+  if (!extras.is_object() || !extras.contains("vdg") || !extras["vdg"].is_object() ||
+      !extras["vdg"].contains("dequantize"))
+    return;
+  const io::Json& dq = extras["vdg"]["dequantize"];
+  const std::string e = where + ": mesh extras: 'vdg'.'dequantize'";
+  if (!dq.is_object()) throw Error(e + ": expected an object, got " + io::describe(dq));
+  double field[2][3];
+  const char* names[2] = {"scale", "offset"};
+  for (int f = 0; f < 2; ++f) {
+    const auto it = dq.find(names[f]);
+    if (it == dq.end() || !it->is_array() || it->size() != 3 ||
+        !std::all_of(it->begin(), it->end(), [](const io::Json& x) { return x.is_number(); }))
+      throw Error(e + ".'" + names[f] + "': expected 3 numbers");
+    for (int c = 0; c < 3; ++c) field[f][c] = (*it)[static_cast<std::size_t>(c)].get<double>();
+    for (int c = 0; c < 3; ++c)
+      if (!std::isfinite(field[f][c]) || (f == 0 && !(field[f][c] > 0.0)))
+        throw Error(e + ".'" + names[f] + "': expected 3 finite numbers" + (f == 0 ? " > 0" : ""));
+  }
+  for (std::size_t i = 0; i < base.positions.size(); ++i)
+    base.positions[i] = static_cast<float>(field[1][i % 3] + field[0][i % 3] * base.positions[i]);
+  for (std::vector<float>& d : deltas)
+    for (std::size_t i = 0; i < d.size(); ++i) d[i] = static_cast<float>(field[0][i % 3] * d[i]);
+}
+
 }  // namespace
 
 RawViewDependentModel rawModelFromGltfExtras(std::string_view mesh_extras_json, const TriMesh& base,
@@ -1430,7 +1461,10 @@ RawViewDependentModel rawModelFromGltfExtras(std::string_view mesh_extras_json, 
     throw Error(where +
                 ": mesh extras: 'vdg'.'animation': an animated view-dependent model needs its file's skin and "
                 "animation; read it with loadGltfModel");
-  return fromDescription(std::move(d), base, target_deltas, where);
+  TriMesh model_base = base;
+  std::vector<std::vector<float>> deltas(target_deltas.begin(), target_deltas.end());
+  dequantize(extras, model_base, deltas, where);
+  return fromDescription(std::move(d), model_base, deltas, where);
 }
 
 RawViewDependentModel loadGltfModel(const std::string& path, const MeshReadOptions& options) {
@@ -1443,8 +1477,12 @@ RawViewDependentModel loadGltfModel(const std::string& path, const MeshReadOptio
                 ": the mesh has no extras.vdg: this glTF file is a plain mesh, not a view-dependent model "
                 "exported by vdg");
   Described d = describedModel(extras, rig.target_positions.size(), path);
-  const TriMesh base = baseFromRig(rig);
-  if (!d.animation) return fromDescription(std::move(d), base, rig.target_positions, path);
+  TriMesh base = baseFromRig(rig);
+  std::vector<std::vector<float>> deltas = rig.target_positions;
+  // An animated base's frames are posed by the node's transform below (Rig), so only its
+  // positions taken as they are here (replaced by frame 0) and the deltas need dequantising.
+  dequantize(extras, base, deltas, path);
+  if (!d.animation) return fromDescription(std::move(d), base, deltas, path);
 
   // Animated: the base sampled by vdg's own glTF reader at every frame.
   const GltfBaseAnimation ba = *d.animation;
@@ -1472,7 +1510,7 @@ RawViewDependentModel loadGltfModel(const std::string& path, const MeshReadOptio
   raw.base.positions = raw.base_frames.front();
   for (std::size_t k = 0; k < raw.keys.size(); ++k) {
     RawKey& rk = raw.keys[k];
-    const std::vector<float>& delta = rig.target_positions[k];
+    const std::vector<float>& delta = deltas[k];
     const std::vector<float>& frame = raw.base_frames[static_cast<std::size_t>(rk.frame)];
     rk.mesh.triangles = base.triangles;
     rk.mesh.positions = frame;

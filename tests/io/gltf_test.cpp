@@ -586,10 +586,13 @@ TEST(GltfStrict, VersionsExtensionsAndScenes) {
   j = triangle();
   j["extensionsUsed"] = {"KHR_draco_mesh_compression", "EXT_meshopt_compression"};
   EXPECT_EQ(errorFor(j), "");  // used, not required: the file must load without them
-  j["extensionsRequired"] = {"EXT_meshopt_compression", "KHR_draco_mesh_compression"};
+  // EXT_meshopt_compression and KHR_mesh_quantization are read (gltf_compress_test.cpp); others refused.
+  j["extensionsRequired"] = {"EXT_meshopt_compression", "KHR_draco_mesh_compression", "KHR_texture_basisu"};
   EXPECT_EQ(
       errorFor(j),
-      "t.gltf: extensionsRequired: 'EXT_meshopt_compression' is an extension vdg does not implement (and 1 more)");
+      "t.gltf: extensionsRequired: 'KHR_draco_mesh_compression' is an extension vdg does not implement (and 1 more)");
+  j["extensionsRequired"] = {"EXT_meshopt_compression", "KHR_mesh_quantization"};
+  EXPECT_EQ(errorFor(j), "");  // required, and read: no bufferView is compressed, no attribute quantised
   j = triangle();
   j["scene"] = 1;
   EXPECT_EQ(errorFor(j), "t.gltf: scene: 1 out of range (the file has 1 scene)");

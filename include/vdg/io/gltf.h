@@ -14,14 +14,22 @@
 //
 // Refused besides, before tinygltf reads the JSON (docs/meshes.md, "What a glTF file must be"):
 // a field of the wrong JSON type (glTF 2.0 section 5: a negative byteOffset, a non-array "nodes"),
-// asset.version not 2.x or asset.minVersion above 2.0, any extensionsRequired (vdg implements no
-// extension), "scene" or a scene's node out of range, a node listed twice in a scene or not a
+// asset.version not 2.x or asset.minVersion above 2.0, any extensionsRequired other than the two
+// vdg reads (below), "scene" or a scene's node out of range, a node listed twice in a scene or not a
 // root, a data: URI or external buffer that does not hold byteLength bytes, an image data: URI
 // without base64 data, an image with both or neither of uri and bufferView; after it: a node with
 // a matrix and TRS, a byteStride on an index or sparse bufferView, the restart value in indices,
 // two channels of one animation on the same node and path. The selected mesh's rest pose (default morph weights, then
 // skinned or placed by the node transforms) must be finite and its bounding box's diagonal must fit a float: "walk.glb:
 // meshes[0] (nodes[2]): vertex 7 lies at (inf, 0, 0) after the node transforms; ...".
+//
+// Compressed files (what `vdg export --compress` writes, docs/gltf-export.md): KHR_mesh_quantization
+// (POSITION, NORMAL, TEXCOORD_n and morph targets may be (normalized) integers; they are read as
+// floats, and the node's transform dequantises them like any node transform) and
+// EXT_meshopt_compression (compressed bufferViews are decoded into one plain buffer before
+// tinygltf reads the file; fallback buffers need no data; every size is checked before decoding
+// and every decoder's return code: "walk.glb: bufferViews[3]: EXT_meshopt_compression: ...").
+// After decoding, buffers are numbered without the fallback ones.
 //
 // Files: a .gltf/.glb is read as a regular file of at most kMaxMeshFileBytes (vdg/io/read_file.h).
 // External buffers (`"uri": "walk.bin"`) are read from the glTF file's folder only: an absolute

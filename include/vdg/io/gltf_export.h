@@ -33,6 +33,7 @@
 #include "vdg/anim/rig.h"
 #include "vdg/geom/camera.h"
 #include "vdg/geom/tri_mesh.h"
+#include "vdg/io/gltf_compress.h"
 #include "vdg/io/mesh_read_options.h"
 #include "vdg/viewdep/animated_model.h"
 #include "vdg/viewdep/camera_bake.h"
@@ -147,6 +148,7 @@ struct GltfExportInput {
   // gltfExportInput fills it. Left empty on a static input, the writer builds it from the targets'
   // views and `sphere`; an animated input must carry it.
   std::optional<GltfViewSphere> view_sphere;
+  GltfCompression compression = GltfCompression::kNone;  // vdg/io/gltf_compress.h
 };
 
 // Fills the input from a built static model: its base, normals computed from the base positions
