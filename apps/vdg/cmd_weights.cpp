@@ -1,19 +1,29 @@
-// vdg weights MODEL (--view X,Y,Z | --eye X,Y,Z) [--sharpness A] [--json]
+// vdg weights MODEL (--view X,Y,Z | --eye X,Y,Z | --views FILE) [--sharpness A] [--json]
+//
+// Batch mode (--views FILE): FILE is a JSON array whose items are directions [x, y, z] (towards
+// the eye, from the model centre), or objects {"view": [x, y, z]} or {"eye": [x, y, z]} (an eye
+// position in model space); the output is one JSON array with the --json object of each item, in
+// order. One process for thousands of views (the runtime's parity tests use it).
 //
 // An animated model (manifest "base_animation") is weighed per key VIEW: its keys that share a view
 // are one point of the viewing sphere (Rademacher 99, section 4.1), and the weights do not depend on
 // the frame (the frame only decides how that view's key offsets mix in time). JSON:
 // {"views": [{"view": [x, y, z], "keys": [names], "frames": [key frames], "weight": w}, ...],
 //  "base": w}, listing the views with a weight above 0.
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
+#include <vector>
 
 #include "cli.h"
 #include "vdg/geom/error.h"
+#include "vdg/geom/normalize.h"
 #include "vdg/io/model.h"
+#include "vdg/io/read_file.h"
 #include "vdg/viewdep/animated_model.h"
 #include "view_options.h"
 
@@ -31,26 +41,40 @@ double floatDigits(float w) {
               std::to_string(view.z()) + " (internal error)");
 }
 
+nlohmann::ordered_json animatedJson(const AnimatedViewDependentModel& model, const ViewWeights& w) {
+  nlohmann::ordered_json out;
+  out["views"] = nlohmann::ordered_json::array();
+  for (int k = 0; k < 3; ++k) {
+    if (w.key[k] < 0 || w.weight[k] <= 0.0f) continue;
+    const auto i = static_cast<std::size_t>(w.key[k]);
+    const Eigen::Vector3d& d = model.viewDirection(i);
+    nlohmann::ordered_json names = nlohmann::ordered_json::array();
+    for (std::size_t j = 0; j < model.keyFrames(i).size(); ++j) names.push_back(model.keyName(i, j));
+    out["views"].push_back({{"view", {d.x(), d.y(), d.z()}},
+                            {"keys", names},
+                            {"frames", std::vector<int>(model.keyFrames(i).begin(), model.keyFrames(i).end())},
+                            {"weight", floatDigits(w.weight[k])}});
+  }
+  out["base"] = floatDigits(w.base);
+  return out;
+}
+
+nlohmann::ordered_json staticJson(const ViewDependentModel& model, const ViewWeights& w) {
+  nlohmann::ordered_json out;
+  out["keys"] = nlohmann::ordered_json::object();
+  for (int k = 0; k < 3; ++k)
+    if (w.key[k] >= 0 && w.weight[k] > 0.0f)
+      out["keys"][model.keyName(static_cast<std::size_t>(w.key[k]))] = floatDigits(w.weight[k]);
+  out["base"] = floatDigits(w.base);
+  return out;
+}
+
 void animatedWeights(const AnimatedViewDependentModel& model, const ViewOptions& options, bool json) {
   const Eigen::Vector3d view = options.resolve(model.center());
   ViewWeights w;
   if (!model.weights(view, options.sharpness, w)) refused(view);  // a unit view; sharpness > 0
   if (json) {
-    nlohmann::ordered_json out;
-    out["views"] = nlohmann::ordered_json::array();
-    for (int k = 0; k < 3; ++k) {
-      if (w.key[k] < 0 || w.weight[k] <= 0.0f) continue;
-      const auto i = static_cast<std::size_t>(w.key[k]);
-      const Eigen::Vector3d& d = model.viewDirection(i);
-      nlohmann::ordered_json names = nlohmann::ordered_json::array();
-      for (std::size_t j = 0; j < model.keyFrames(i).size(); ++j) names.push_back(model.keyName(i, j));
-      out["views"].push_back({{"view", {d.x(), d.y(), d.z()}},
-                              {"keys", names},
-                              {"frames", std::vector<int>(model.keyFrames(i).begin(), model.keyFrames(i).end())},
-                              {"weight", floatDigits(w.weight[k])}});
-    }
-    out["base"] = floatDigits(w.base);
-    std::cout << out.dump() << "\n";
+    std::cout << animatedJson(model, w).dump() << "\n";
     return;
   }
   std::printf("view (%.6f, %.6f, %.6f)  (the weights of key views; they do not depend on the frame)\n", view.x(),
@@ -66,6 +90,63 @@ void animatedWeights(const AnimatedViewDependentModel& model, const ViewOptions&
   }
   std::printf("  %-20s %.6f\n", "(base)", w.base);
 }
+
+// The items of a --views file as view directions from `center`; one line naming the file and item
+// for anything else.
+std::vector<Eigen::Vector3d> readViews(const std::string& path, const Eigen::Vector3d& center) {
+  const std::string text = readFileLimited(path, "views file", kMaxJsonFileBytes);
+  constexpr int kMaxDepth = 3;  // [ {"eye": [x, y, z]} ]
+  nlohmann::json doc;
+  try {
+    doc = nlohmann::json::parse(text, [&](int depth, nlohmann::json::parse_event_t, nlohmann::json&) {
+      if (depth > kMaxDepth) throw Error(path + ": --views: nested deeper than a list of [x, y, z] items");
+      return true;
+    });
+  } catch (const nlohmann::json::exception& e) {
+    throw Error(path + ": --views: not valid JSON (" + std::string(e.what()).substr(0, 120) + ")");
+  }
+  if (!doc.is_array()) throw Error(path + ": --views: expected a JSON array of [x, y, z] directions");
+  std::vector<Eigen::Vector3d> views;
+  for (std::size_t i = 0; i < doc.size(); ++i) {
+    const std::string where = path + ": --views: item " + std::to_string(i);
+    const nlohmann::json& item = doc[i];
+    const bool eye = item.is_object() && item.size() == 1 && item.contains("eye");
+    const nlohmann::json* xyz = &item;
+    if (item.is_object()) {
+      if (item.size() != 1 || !(eye || item.contains("view")))
+        throw Error(where + ": expected [x, y, z], {\"view\": [x, y, z]} or {\"eye\": [x, y, z]}");
+      xyz = eye ? &item.at("eye") : &item.at("view");
+    }
+    Eigen::Vector3d v;
+    bool ok = xyz->is_array() && xyz->size() == 3;
+    for (int c = 0; ok && c < 3; ++c) {
+      ok = (*xyz)[c].is_number() && std::isfinite((*xyz)[c].get<double>());
+      if (ok) v[c] = (*xyz)[c].get<double>();
+    }
+    if (!ok) throw Error(where + ": expected 3 finite numbers");
+    const std::optional<Eigen::Vector3d> unit = normalizedOrNone(eye ? Eigen::Vector3d(v - center) : v);
+    if (!unit) throw Error(where + (eye ? ": the eye is at the model centre" : ": the direction is zero"));
+    views.push_back(*unit);
+  }
+  return views;
+}
+
+void batchWeights(const OpenedInput& input, const std::string& path, double sharpness) {
+  const Eigen::Vector3d center = input.animated ? input.animated->center() : input.model->center();
+  nlohmann::ordered_json out = nlohmann::ordered_json::array();
+  int hint = -1;
+  for (const Eigen::Vector3d& view : readViews(path, center)) {
+    ViewWeights w;
+    if (input.animated) {
+      if (!input.animated->weights(view, sharpness, w, &hint)) refused(view);
+      out.push_back(animatedJson(*input.animated, w));
+    } else {
+      if (!input.model->weights(view, sharpness, w, &hint)) refused(view);
+      out.push_back(staticJson(*input.model, w));
+    }
+  }
+  std::cout << out.dump() << "\n";
+}
 }  // namespace
 
 void addWeightsCommand(CLI::App& app) {
@@ -73,6 +154,7 @@ void addWeightsCommand(CLI::App& app) {
     std::string model;
     ViewOptions view;
     bool json = false;
+    std::string views;
   };
   auto opt = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand(
@@ -80,8 +162,17 @@ void addWeightsCommand(CLI::App& app) {
   sub->add_option("MODEL", opt->model, "Model manifest (*.vdg.json), or a glTF model vdg exported")->required();
   opt->view.add(*sub);
   sub->add_flag("--json", opt->json, "Print one JSON object {\"keys\": {name: w, ...}, \"base\": w}");
+  sub->add_option("--views", opt->views,
+                  "Batch: a JSON file with an array of directions [x,y,z] (or {\"view\": [x,y,z]}, {\"eye\": "
+                  "[x,y,z]}); prints a JSON array with the --json object of each, in order")
+      ->excludes("--view")
+      ->excludes("--eye");
   sub->callback([opt] {
     const OpenedInput input = openModel(opt->model);
+    if (!opt->views.empty()) {
+      batchWeights(input, opt->views, opt->view.sharpness);
+      return;
+    }
     if (input.animated) {
       animatedWeights(*input.animated, opt->view, opt->json);
       return;
@@ -91,13 +182,7 @@ void addWeightsCommand(CLI::App& app) {
     ViewWeights w;
     if (!model.weights(view, opt->view.sharpness, w)) refused(view);  // a unit view; sharpness > 0
     if (opt->json) {
-      nlohmann::ordered_json out;
-      out["keys"] = nlohmann::ordered_json::object();
-      for (int k = 0; k < 3; ++k)
-        if (w.key[k] >= 0 && w.weight[k] > 0.0f)
-          out["keys"][model.keyName(static_cast<std::size_t>(w.key[k]))] = floatDigits(w.weight[k]);
-      out["base"] = floatDigits(w.base);
-      std::cout << out.dump() << "\n";
+      std::cout << staticJson(model, w).dump() << "\n";
       return;
     }
     std::printf("view (%.6f, %.6f, %.6f)\n", view.x(), view.y(), view.z());

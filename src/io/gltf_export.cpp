@@ -173,6 +173,42 @@ std::size_t totalTargets(const GltfExportInput& in) {
   return in.targets.size() + (framesBase(in) ? in.base_animation->frame_deltas.size() : 0);
 }
 
+// The view sphere of an input (extras v2): sizes consistent with the targets, indices in range.
+template <typename Fail>
+void validateViewSphere(const GltfExportInput& in, const Fail& fail) {
+  if (!in.view_sphere) {
+    if (in.base_animation && !in.targets.empty()) fail("an animated input needs its view sphere (internal error)");
+    return;
+  }
+  const GltfViewSphere& vs = *in.view_sphere;
+  const auto points = static_cast<int>(vs.points.size());
+  if (vs.views == 0 || vs.views > vs.points.size() || vs.view_targets.size() != vs.views)
+    fail("view sphere: expected 1 to #points key views, each with its targets (internal error)");
+  if (vs.inverses.size() != vs.triangles.size()) fail("view sphere: one inverse per triangle (internal error)");
+  const auto inRange = [&](int i, int n) { return i >= 0 && i < n; };
+  for (const auto& t : vs.triangles)
+    if (!inRange(t[0], points) || !inRange(t[1], points) || !inRange(t[2], points))
+      fail("view sphere: a triangle index is out of range (internal error)");
+  for (const auto& a : vs.arcs)
+    if (!inRange(a[0], points) || !inRange(a[1], points)) fail("view sphere: an arc index is out of range");
+  for (int k : vs.isolated)
+    if (!inRange(k, static_cast<int>(vs.views))) fail("view sphere: an isolated key is out of range");
+  std::vector<int> seen(in.targets.size(), 0);
+  for (const auto& targets : vs.view_targets)
+    for (int t : targets)
+      if (!inRange(t, static_cast<int>(in.targets.size())) || seen[static_cast<std::size_t>(t)]++)
+        fail("view sphere: every key target must belong to exactly one view (internal error)");
+  if (std::find(seen.begin(), seen.end(), 0) != seen.end())
+    fail("view sphere: a key target belongs to no view (internal error)");
+  if (!vs.time.empty() && vs.time.size() != vs.views) fail("view sphere: one time table per view (internal error)");
+  for (std::size_t i = 0; i < vs.time.size(); ++i) {
+    const std::size_t m = vs.time[i].frames.size();
+    if (m != vs.view_targets[i].size() || vs.time[i].second.size() != m * m)
+      fail("view sphere: view " + std::to_string(i) + "'s time table does not match its targets (internal error)");
+  }
+  if (in.base_animation && vs.time.size() != vs.views) fail("view sphere: an animated input needs its time tables");
+}
+
 void validateInput(const GltfExportInput& in, const std::string& where) {
   const auto fail = [&](const std::string& what) { throw Error(where + ": " + what); };
   const std::size_t v_count = in.base.vertexCount();
@@ -205,6 +241,7 @@ void validateInput(const GltfExportInput& in, const std::string& where) {
     if (target.frame < 0) fail(label + ": the frame is negative");
   }
   if (!std::isfinite(in.sharpness) || in.sharpness <= 0.0) fail("the sharpness must be finite and > 0");
+  validateViewSphere(in, fail);
   if (!in.center.allFinite()) fail("the centre is not finite");
   if (in.base_animation) {
     const GltfBaseAnimation& ba = *in.base_animation;
@@ -291,6 +328,36 @@ int baseAnimationIndex(const GltfExportInput& in) {
   return any ? (in.bake ? 1 : 0) : -1;
 }
 
+OJson vec3Array(std::span<const Eigen::Vector3d> points) {
+  OJson out = OJson::array();
+  for (const Eigen::Vector3d& p : points) out.push_back(vec3Json(p));
+  return out;
+}
+
+// Extras v2 "sphere" (and "time" into `vdg` for an animated model): exactly the built sphere.
+void addSphereJson(const GltfViewSphere& vs, OJson& vdg) {
+  OJson sphere = {{"points", vec3Array(vs.points)}, {"views", vs.views}};
+  OJson triangles = OJson::array(), inverses = OJson::array(), arcs = OJson::array();
+  for (const auto& t : vs.triangles) triangles.push_back({t[0], t[1], t[2]});
+  for (const Eigen::Matrix3d& m : vs.inverses) {
+    OJson row_major = OJson::array();
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) row_major.push_back(m(r, c));
+    inverses.push_back(std::move(row_major));
+  }
+  for (const auto& a : vs.arcs) arcs.push_back({a[0], a[1]});
+  sphere["triangles"] = std::move(triangles);
+  sphere["inverses"] = std::move(inverses);
+  sphere["arcs"] = std::move(arcs);
+  sphere["isolated"] = vs.isolated;
+  sphere["view_targets"] = vs.view_targets;
+  vdg["sphere"] = std::move(sphere);
+  if (vs.time.empty()) return;
+  OJson time = OJson::array();
+  for (const GltfViewTime& t : vs.time) time.push_back({{"frames", t.frames}, {"second", t.second}});
+  vdg["time"] = std::move(time);
+}
+
 // The view-dependent description (mesh.extras.vdg; docs/schema/vdg-gltf-extras.schema.json).
 OJson vdgExtras(const GltfExportInput& in) {
   OJson vdg = {{"version", kGltfExtrasVersion},
@@ -314,6 +381,13 @@ OJson vdgExtras(const GltfExportInput& in) {
     keys.push_back(std::move(key));
   }
   vdg["keys"] = std::move(keys);
+  if (in.view_sphere) {
+    addSphereJson(*in.view_sphere, vdg);
+  } else if (!in.targets.empty()) {  // a hand-made static input: its targets are the keys
+    std::vector<Eigen::Vector3d> views;
+    for (const GltfTarget& t : in.targets) views.push_back(t.view);
+    addSphereJson(gltfViewSphere(ViewSphere::build(views, in.sphere)), vdg);
+  }
   return vdg;
 }
 
@@ -602,7 +676,20 @@ GltfExportInput gltfExportInput(const ViewDependentModel& model) {
   in.sharpness = model.sharpness();
   in.sphere = model.sphere().settings();
   in.center = model.center();
+  in.view_sphere = gltfViewSphere(model.sphere());
   return in;
+}
+
+GltfViewSphere gltfViewSphere(const ViewSphere& sphere) {
+  GltfViewSphere vs;
+  vs.points.assign(sphere.points().begin(), sphere.points().end());
+  vs.views = sphere.keyCount();
+  vs.triangles.assign(sphere.triangles().begin(), sphere.triangles().end());
+  for (std::size_t t = 0; t < vs.triangles.size(); ++t) vs.inverses.push_back(sphere.triangleInverse(t));
+  vs.arcs.assign(sphere.boundaryArcs().begin(), sphere.boundaryArcs().end());
+  vs.isolated.assign(sphere.isolatedKeys().begin(), sphere.isolatedKeys().end());
+  for (std::size_t k = 0; k < vs.views; ++k) vs.view_targets.push_back({static_cast<int>(k)});
+  return vs;
 }
 
 const char* gltfBaseModeName(GltfBaseMode mode) { return mode == GltfBaseMode::kSkin ? "skin" : "frames"; }
@@ -710,6 +797,16 @@ GltfExportInput gltfExportInput(const AnimatedViewDependentModel& model, const R
     }
   if (std::find(filled.begin(), filled.end(), 0) != filled.end())
     throw Error(where + ": the animated model's keys do not match its raw description (internal error)");
+  // Extras v2: the sphere's key points are the views; each view's targets are its raw keys.
+  GltfViewSphere vs = gltfViewSphere(model.sphere());
+  for (std::size_t i = 0; i < model.viewCount(); ++i) {
+    vs.view_targets[i].clear();
+    for (std::size_t j = 0; j < model.keyFrames(i).size(); ++j)
+      vs.view_targets[i].push_back(static_cast<int>(model.keyIndex(i, j)));
+    const auto second = model.secondDerivatives(i);
+    vs.time.push_back({{model.keyFrames(i).begin(), model.keyFrames(i).end()}, {second.begin(), second.end()}});
+  }
+  in.view_sphere = std::move(vs);
   in.base_animation = std::move(ba);
   return in;
 }
@@ -824,6 +921,81 @@ struct Described {
 constexpr std::pair<const char*, GltfBaseMode> kBaseModes[] = {{"skin", GltfBaseMode::kSkin},
                                                                {"frames", GltfBaseMode::kFrames}};
 
+// An array of index tuples (each `width` integers in [0, count)), or of plain indices (width 0).
+std::size_t indexArray(const io::Json& j, const io::Ctx& ctx, std::size_t width, std::size_t count) {
+  if (!j.is_array()) ctx.fail("expected an array, got " + io::describe(j));
+  for (std::size_t i = 0; i < j.size(); ++i) {
+    const io::Ctx ic = ctx.index(i);
+    if (width == 0) {
+      io::integer(j[i], ic, 0, static_cast<std::int64_t>(count) - 1);
+      continue;
+    }
+    if (!j[i].is_array() || j[i].size() != width)
+      ic.fail("expected " + std::to_string(width) + " indices, got " + io::describe(j[i]));
+    for (std::size_t c = 0; c < width; ++c) io::integer(j[i][c], ic.index(c), 0, static_cast<std::int64_t>(count) - 1);
+  }
+  return j.size();
+}
+
+// Extras v2 "sphere" and "time": vdg re-derives the sphere from the keys on reading, but a runtime
+// reads these, so they must be well formed and match the keys in size (one line naming the field).
+void checkSphereDescription(const io::Json& vdg, const io::Ctx& ctx, std::size_t key_count, bool animated) {
+  if (key_count == 0 && !vdg.contains("sphere")) return;
+  const io::Json& sphere = io::required(vdg, "sphere", ctx);
+  const io::Ctx sc = ctx.key("sphere");
+  io::allowKeys(sphere, sc, {"points", "views", "triangles", "inverses", "arcs", "isolated", "view_targets"});
+  const io::Json& points = io::required(sphere, "points", sc);
+  if (!points.is_array() || points.empty())
+    sc.key("points").fail("expected an array of directions, got " + io::describe(points));
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Eigen::Vector3d p = io::vector3(points[i], sc.key("points").index(i));
+    if (!(std::abs(p.norm() - 1.0) <= 1e-6)) sc.key("points").index(i).fail("expected a unit direction");
+  }
+  const auto views = static_cast<std::size_t>(
+      io::integer(io::required(sphere, "views", sc), sc.key("views"), 1, static_cast<std::int64_t>(points.size())));
+  if (views > key_count || (!animated && views != key_count))
+    sc.key("views").fail(std::to_string(views) + " key views for " + std::to_string(key_count) + " keys");
+  const std::size_t triangles =
+      indexArray(io::required(sphere, "triangles", sc), sc.key("triangles"), 3, points.size());
+  const io::Json& inverses = io::required(sphere, "inverses", sc);
+  if (!inverses.is_array() || inverses.size() != triangles)
+    sc.key("inverses")
+        .fail("expected " + std::to_string(triangles) + " matrices (one per triangle), got " + io::describe(inverses));
+  for (std::size_t t = 0; t < triangles; ++t) io::vector(inverses[t], sc.key("inverses").index(t), 9);
+  indexArray(io::required(sphere, "arcs", sc), sc.key("arcs"), 2, points.size());
+  indexArray(io::required(sphere, "isolated", sc), sc.key("isolated"), 0, views);
+  const io::Json& view_targets = io::required(sphere, "view_targets", sc);
+  const io::Ctx vc = sc.key("view_targets");
+  if (!view_targets.is_array() || view_targets.size() != views)
+    vc.fail("expected " + std::to_string(views) + " lists (one per key view), got " + io::describe(view_targets));
+  std::vector<char> seen(key_count, 0);
+  for (std::size_t i = 0; i < views; ++i) {
+    indexArray(view_targets[i], vc.index(i), 0, key_count);
+    if (view_targets[i].empty()) vc.index(i).fail("a key view without targets");
+    for (const io::Json& t : view_targets[i])
+      if (seen[t.get<std::size_t>()]++) vc.index(i).fail("target " + t.dump() + " belongs to two views");
+  }
+  if (std::find(seen.begin(), seen.end(), 0) != seen.end()) vc.fail("a key's target belongs to no view");
+  if (!animated) {
+    if (vdg.contains("time")) ctx.key("time").fail("only an animated model has time tables");
+    return;
+  }
+  const io::Json& time = io::required(vdg, "time", ctx);
+  if (!time.is_array() || time.size() != views)
+    ctx.key("time").fail("expected " + std::to_string(views) + " tables (one per key view), got " + io::describe(time));
+  for (std::size_t i = 0; i < views; ++i) {
+    const io::Ctx tc = ctx.key("time").index(i);
+    io::allowKeys(time[i], tc, {"frames", "second"});
+    const std::size_t m = view_targets[i].size();
+    const io::Json& frames = io::required(time[i], "frames", tc);
+    if (!frames.is_array() || frames.size() != m)
+      tc.key("frames").fail("expected " + std::to_string(m) + " key frames, got " + io::describe(frames));
+    for (std::size_t j = 0; j < m; ++j)
+      io::integer(frames[j], tc.key("frames").index(j), 0, static_cast<std::int64_t>(kMaxBaseFrames));
+    io::vector(io::required(time[i], "second", tc), tc.key("second"), static_cast<long>(m * m));
+  }
+}
+
 Described describedModel(const io::Json& extras, std::size_t target_count, const std::string& where) {
   const io::Ctx top{where + ": mesh extras", ""};
   if (!extras.is_object()) top.fail("expected an object, got " + io::describe(extras));
@@ -833,8 +1005,9 @@ Described describedModel(const io::Json& extras, std::size_t target_count, const
   const io::Json& vdg = extras.at("vdg");
   const io::Ctx ctx = top.key("vdg");
   io::allowKeys(vdg, ctx,
-                {"version", "sharpness", "uncovered", "base_falloff_deg", "center", "offsets", "keys", "animation"});
-  io::formatVersion(vdg, ctx, "view-dependent glTF extras", 1, kGltfExtrasVersion);
+                {"version", "sharpness", "uncovered", "base_falloff_deg", "center", "offsets", "keys", "animation",
+                 "sphere", "time", "dequantize"});
+  const int version = io::formatVersion(vdg, ctx, "view-dependent glTF extras", 1, kGltfExtrasVersion);
   Described d;
   RawViewDependentModel& raw = d.raw;
   raw.source = where;
@@ -897,6 +1070,13 @@ Described describedModel(const io::Json& extras, std::size_t target_count, const
     }
     if (key.contains("camera")) rk.camera = io::cameraFrom(key.at("camera"), kc.key("camera"));
     raw.keys.push_back(std::move(rk));
+  }
+  if (version >= 2) checkSphereDescription(vdg, ctx, raw.keys.size(), d.animation.has_value());
+  if (vdg.contains("dequantize")) {  // quantised exports: the mesh node's transform, for runtimes
+    const io::Ctx qc = ctx.key("dequantize");
+    io::allowKeys(vdg.at("dequantize"), qc, {"scale", "offset"});
+    io::vector3(io::required(vdg.at("dequantize"), "scale", qc), qc.key("scale"));
+    io::vector3(io::required(vdg.at("dequantize"), "offset", qc), qc.key("offset"));
   }
   return d;
 }

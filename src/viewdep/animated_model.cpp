@@ -181,6 +181,11 @@ std::span<const float> AnimatedViewDependentModel::offsets(std::size_t view, std
   return std::span<const float>(views_[view].offsets).subspan(j * size, size);
 }
 
+std::span<const double> AnimatedViewDependentModel::secondDerivatives(std::size_t view) const {
+  if (view >= views_.size()) throwOutOfRange("view", view, views_.size(), "views");
+  return views_[view].second;
+}
+
 std::span<const float> AnimatedViewDependentModel::baseFrame(int frame) const {
   if (frame < 0 || frame >= frameCount())
     throwOutOfRange("frame", static_cast<std::size_t>(std::max(frame, 0)), base_frames_.size(), "frames");

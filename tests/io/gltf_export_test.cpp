@@ -430,8 +430,8 @@ TEST(GltfExport, BadExtrasAreRefusedByTheReader) {
   EXPECT_EQ(refused([](auto& e) { e.erase("vdg"); }),
             "m.glb: mesh extras: no 'vdg' description: this glTF file was not exported by vdg");
   EXPECT_EQ(refused([](auto& e) { e.erase("targetNames"); }), "m.glb: mesh extras: missing key 'targetNames'");
-  EXPECT_EQ(refused([](auto& e) { e["vdg"]["version"] = 2; }),
-            "m.glb: mesh extras: 'vdg'.'version': this vdg reads view-dependent glTF extras version 1, got 2");
+  EXPECT_EQ(refused([](auto& e) { e["vdg"]["version"] = 3; }).rfind("m.glb: mesh extras: 'vdg'.'version': ", 0), 0u);
+  EXPECT_NE(refused([](auto& e) { e["vdg"]["version"] = 3; }).find("got 3"), std::string::npos);
   EXPECT_EQ(
       refused([](auto& e) { e["vdg"]["colour"] = 2; }).rfind("m.glb: mesh extras: 'vdg': unknown key 'colour'", 0), 0u);
   EXPECT_EQ(refused([](auto& e) {
@@ -464,6 +464,117 @@ TEST(GltfExport, BadExtrasAreRefusedByTheReader) {
   short_deltas[1].pop_back();
   EXPECT_EQ(errorOf([&] { (void)rawModelFromGltfExtras(d.extras, d.base, short_deltas, "m.glb"); }),
             "m.glb: mesh extras: 'vdg'.'keys'[1]: morph target 1 has 257 delta values, expected 258");
+}
+
+// Extras v2 (docs/gltf-export.md): "sphere" is exactly the built ViewSphere, so a runtime that
+// repeats view_sphere.cpp's query on it finds the model's triangle and weights.
+TEST(GltfExport, ExtrasV2CarryTheSphereAsBuilt) {
+  // Inverses are written as doubles (17 digits): they invert their corners to double rounding.
+  constexpr double kInverseTol = 1e-12;
+  constexpr double kInsideTol = 1e-9;  // view_sphere.cpp's tolerance for "inside a triangle"
+  for (const Uncovered mode : {Uncovered::Base, Uncovered::Cosine, Uncovered::Cosine2}) {
+    const auto model = ViewDependentModel::build(sphereModel(mode, 2.5));
+    const ViewSphere& sphere = model.sphere();
+    const DecodedModel d = decodeModel(testing::decodeGlb(gltfToGlb(gltfExportInput(model), "t.glb")));
+    const nlohmann::json vdg = nlohmann::json::parse(d.extras).at("vdg");
+    EXPECT_EQ(vdg.at("version"), 2);
+    EXPECT_FALSE(vdg.contains("time"));
+    const nlohmann::json& s = vdg.at("sphere");
+    ASSERT_EQ(s.at("points").size(), sphere.points().size());
+    for (std::size_t i = 0; i < sphere.points().size(); ++i)
+      for (int c = 0; c < 3; ++c) EXPECT_EQ(s.at("points")[i][c].get<double>(), sphere.points()[i][c]);
+    EXPECT_EQ(s.at("views"), 3);
+    EXPECT_EQ(s.at("view_targets"), nlohmann::json::parse("[[0], [1], [2]]"));
+    EXPECT_EQ(s.at("arcs").size(), sphere.boundaryArcs().size());
+    EXPECT_EQ(s.at("isolated").size(), sphere.isolatedKeys().size());
+    ASSERT_EQ(s.at("triangles").size(), sphere.triangles().size());
+    ASSERT_EQ(s.at("inverses").size(), sphere.triangles().size());
+    if (mode == Uncovered::Base) EXPECT_GT(s.at("points").size(), 3u);  // dummy base points
+    std::vector<Eigen::Matrix3d> inverses;
+    for (std::size_t t = 0; t < sphere.triangles().size(); ++t) {
+      Eigen::Matrix3d m, corners;
+      for (int k = 0; k < 9; ++k) m(k / 3, k % 3) = s.at("inverses")[t][k].get<double>();
+      for (int k = 0; k < 3; ++k) corners.col(k) = sphere.points()[s.at("triangles")[t][k].get<std::size_t>()];
+      EXPECT_LT((m * corners - Eigen::Matrix3d::Identity()).norm(), kInverseTol) << "triangle " << t;
+      inverses.push_back(m);
+    }
+    // The model's triangle of a view contains it under the written inverse.
+    for (const Eigen::Vector3d& view : testViews()) {
+      ViewWeights w;
+      ASSERT_TRUE(model.weights(view.normalized(), 0.0, w));
+      if (w.triangle < 0) continue;
+      EXPECT_GE((inverses[static_cast<std::size_t>(w.triangle)] * view.normalized()).minCoeff(), -kInsideTol);
+    }
+  }
+}
+
+TEST(GltfExport, HandMadeStaticInputsGetTheirSphereFromTheTargets) {
+  GltfExportInput input = gltfExportInput(ViewDependentModel::build(sphereModel(Uncovered::Cosine)));
+  const nlohmann::json built = nlohmann::json::parse(decodeModel(testing::decodeGlb(gltfToGlb(input, "t.glb"))).extras);
+  input.view_sphere.reset();
+  const nlohmann::json derived =
+      nlohmann::json::parse(decodeModel(testing::decodeGlb(gltfToGlb(input, "t.glb"))).extras);
+  EXPECT_EQ(derived.at("vdg").at("sphere"), built.at("vdg").at("sphere"));
+}
+
+// Version 1 files (no "sphere") are still read: vdg re-derives the sphere from the keys.
+TEST(GltfExport, ExtrasV1AreStillRead) {
+  const auto model = ViewDependentModel::build(sphereModel(Uncovered::Cosine2, 1.5));
+  const DecodedModel d = decodeModel(testing::decodeGlb(gltfToGlb(gltfExportInput(model), "t.glb")));
+  nlohmann::json v1 = nlohmann::json::parse(d.extras);
+  v1["vdg"].erase("sphere");
+  v1["vdg"]["version"] = 1;
+  const auto back = ViewDependentModel::build(rawModelFromGltfExtras(v1.dump(), d.base, d.deltas, "v1.glb"));
+  expectSameEvaluation(model, back, kRoundTripTol);
+  // A v1 file carries no sphere, and a v2 file must.
+  v1["vdg"]["version"] = 2;
+  EXPECT_EQ(errorOf([&] { (void)rawModelFromGltfExtras(v1.dump(), d.base, d.deltas, "v2.glb"); }),
+            "v2.glb: mesh extras: 'vdg': missing key 'sphere'");
+}
+
+TEST(GltfExport, MalformedExtrasV2AreRefusedNamingTheField) {
+  const auto model = ViewDependentModel::build(sphereModel());
+  const DecodedModel d = decodeModel(testing::decodeGlb(gltfToGlb(gltfExportInput(model), "t.glb")));
+  const nlohmann::json good = nlohmann::json::parse(d.extras);
+  const auto refused = [&](const std::function<void(nlohmann::json&)>& change) {
+    nlohmann::json e = good;
+    change(e);
+    return errorOf([&] { (void)rawModelFromGltfExtras(e.dump(), d.base, d.deltas, "m.glb"); });
+  };
+  const std::string at = "m.glb: mesh extras: 'vdg'.'sphere'";
+  EXPECT_EQ(refused([](auto&) {}), "");
+  EXPECT_EQ(refused([](auto& e) { e["vdg"]["sphere"] = 1; }), at + ": expected an object, got the number 1");
+  EXPECT_EQ(refused([](auto& e) { e["vdg"]["sphere"].erase("inverses"); }), at + ": missing key 'inverses'");
+  EXPECT_EQ(refused([](auto& e) {
+              e["vdg"]["sphere"]["points"][1] = {0, 2, 0};
+            }),
+            at + ".'points'[1]: expected a unit direction");
+  EXPECT_EQ(refused([](auto& e) { e["vdg"]["sphere"]["views"] = 2; }), at + ".'views': 2 key views for 3 keys");
+  EXPECT_EQ(
+      refused([](auto& e) { e["vdg"]["sphere"]["triangles"][0][1] = 1000; }).rfind(at + ".'triangles'[0][1]: ", 0), 0u);
+  EXPECT_EQ(refused([](auto& e) {
+              e["vdg"]["sphere"]["triangles"][0] = {0, 1};
+            }),
+            at + ".'triangles'[0]: expected 3 indices, got an array of 2 items");
+  EXPECT_EQ(refused([](auto& e) { e["vdg"]["sphere"]["inverses"].erase(0); }).rfind(at + ".'inverses': expected ", 0),
+            0u);
+  EXPECT_EQ(refused([](auto& e) {
+              e["vdg"]["sphere"]["inverses"][2] = {1, 2, 3};
+            }).rfind(at + ".'inverses'[2]: ", 0),
+            0u);
+  EXPECT_EQ(refused([](auto& e) { e["vdg"]["sphere"]["arcs"] = {{0, 99}}; }).rfind(at + ".'arcs'[0][1]: ", 0), 0u);
+  EXPECT_EQ(refused([](auto& e) { e["vdg"]["sphere"]["isolated"] = {5}; }).rfind(at + ".'isolated'[0]: ", 0), 0u);
+  EXPECT_EQ(refused([](auto& e) { e["vdg"]["sphere"]["view_targets"][1] = {0}; }),
+            at + ".'view_targets'[1]: target 0 belongs to two views");
+  EXPECT_EQ(refused([](auto& e) { e["vdg"]["sphere"]["view_targets"].erase(2); }).rfind(at + ".'view_targets': ", 0),
+            0u);
+  EXPECT_EQ(refused([](auto& e) { e["vdg"]["time"] = nlohmann::json::array(); }),
+            "m.glb: mesh extras: 'vdg'.'time': only an animated model has time tables");
+  EXPECT_EQ(refused([](auto& e) {
+              e["vdg"]["dequantize"] = {{"scale", {1, 1, 1}}};
+            }),
+            "m.glb: mesh extras: 'vdg'.'dequantize': missing key 'offset'");
+  EXPECT_EQ(refused([](auto& e) { e["vdg"]["dequantize"] = {{"scale", {1, 1, 1}}, {"offset", {0, 0, 0}}}; }), "");
 }
 
 }  // namespace

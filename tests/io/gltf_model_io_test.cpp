@@ -5,6 +5,8 @@
 
 #include <cmath>
 #include <filesystem>
+#include <functional>
+#include <nlohmann/json.hpp>
 #include <numbers>
 
 #include "support/error_of.h"
@@ -71,6 +73,48 @@ TEST(GltfModelIo, StaticExportReadsBackAsTheSameModel) {
       for (std::size_t i = 0; i < pa.size(); ++i) ASSERT_NEAR(pa[i], pb[i], kRoundTripTol) << name << " i " << i;
     }
   }
+}
+
+// Extras v2 of an animated model: per key view its targets and the spline's table, exactly the
+// model's; malformed time tables are refused naming the field.
+TEST(GltfModelIo, AnimatedExtrasV2CarryTheViewsAndTheirTimeTables) {
+  const RawViewDependentModel raw = loadManifest(kWalk);
+  const AnimatedViewDependentModel model = AnimatedViewDependentModel::build(raw);
+  const GltfExportInput input = animatedInput(raw);
+  std::string bin;
+  const std::string json_text = gltfToJson(input, "w.gltf", "w.bin", bin);
+  const nlohmann::json extras = nlohmann::json::parse(json_text).at("meshes").at(0).at("extras");
+  const nlohmann::json& vdg = extras.at("vdg");
+  ASSERT_EQ(vdg.at("sphere").at("views").get<std::size_t>(), model.viewCount());
+  ASSERT_EQ(vdg.at("time").size(), model.viewCount());
+  for (std::size_t i = 0; i < model.viewCount(); ++i) {
+    const nlohmann::json& targets = vdg.at("sphere").at("view_targets")[i];
+    ASSERT_EQ(targets.size(), model.keyFrames(i).size());
+    for (std::size_t j = 0; j < targets.size(); ++j) {
+      EXPECT_EQ(extras.at("targetNames")[targets[j].get<std::size_t>()], model.keyName(i, j));
+      EXPECT_EQ(vdg.at("time")[i].at("frames")[j], model.keyFrames(i)[j]);
+    }
+    const auto second = model.secondDerivatives(i);
+    EXPECT_EQ(vdg.at("time")[i].at("second").get<std::vector<double>>(),
+              std::vector<double>(second.begin(), second.end()));
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(vdg.at("sphere").at("points")[i][c].get<double>(), model.viewDirection(i)[c]);
+  }
+  std::vector<std::vector<float>> deltas(extras.at("targetNames").size(),
+                                         std::vector<float>(model.base().positions.size(), 0.0f));
+  const auto refused = [&](const std::function<void(nlohmann::json&)>& change) {
+    nlohmann::json e = extras;
+    change(e);
+    return errorOf([&] { (void)rawModelFromGltfExtras(e.dump(), model.base(), deltas, "w.glb"); });
+  };
+  // Well-formed: refused only because an animated model needs loadGltfModel.
+  EXPECT_NE(refused([](auto&) {}).find("read it with loadGltfModel"), std::string::npos);
+  EXPECT_EQ(refused([](auto& e) { e["vdg"].erase("time"); }), "w.glb: mesh extras: 'vdg': missing key 'time'");
+  EXPECT_EQ(refused([](auto& e) { e["vdg"]["time"][0]["second"].erase(0); }),
+            "w.glb: mesh extras: 'vdg'.'time'[0].'second': expected 4 numbers, got an array of 3 items");
+  EXPECT_EQ(refused([](auto& e) {
+              e["vdg"]["time"][1]["frames"] = {10};
+            }).rfind("w.glb: mesh extras: 'vdg'.'time'[1].'frames': ", 0),
+            0u);
 }
 
 TEST(GltfModelIo, SkinnedWalkerExportsItsSkinAndReadsBack) {

@@ -18,6 +18,7 @@
 // one target per (key view, key frame), a skinned base and its animation) fill the same struct.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -38,8 +39,35 @@
 
 namespace vdg {
 
-// Version of the mesh.extras.vdg object ("version" field).
-inline constexpr int kGltfExtrasVersion = 1;
+// Version of the mesh.extras.vdg object ("version" field). Version 2 adds "sphere" (the viewing
+// sphere as vdg built it) and, for an animated model, "time" (the key views' spline tables), so
+// that a runtime reproduces `vdg weights` exactly (docs/gltf-export.md); version 1 files still read.
+inline constexpr int kGltfExtrasVersion = 2;
+
+// One key view's time interpolation (mesh.extras.vdg."time"[i]; AnimatedViewDependentModel):
+// its key frames f_1 < ... < f_m and the spline's second-derivative table (m x m, row-major).
+struct GltfViewTime {
+  std::vector<int> frames;
+  std::vector<double> second;
+};
+
+// The viewing sphere written into mesh.extras.vdg."sphere" (version 2): exactly ViewSphere's
+// points (key views first, then the dummy base points), triangles with their cone inverses
+// (row-major), boundary arcs and isolated keys, and per key view the morph target of each of its
+// key frames. `time` is per key view for an animated model, empty for a static one.
+struct GltfViewSphere {
+  std::vector<Eigen::Vector3d> points;
+  std::size_t views = 0;
+  std::vector<std::array<int, 3>> triangles;
+  std::vector<Eigen::Matrix3d> inverses;
+  std::vector<std::array<int, 2>> arcs;
+  std::vector<int> isolated;
+  std::vector<std::vector<int>> view_targets;
+  std::vector<GltfViewTime> time;
+};
+
+// The sphere of a static model (or of hand-made targets): point i is key i = morph target i.
+GltfViewSphere gltfViewSphere(const ViewSphere& sphere);
 
 // One morph target: a key deformation as position deltas from the base.
 struct GltfTarget {
@@ -113,6 +141,10 @@ struct GltfExportInput {
   std::optional<GltfBaseAnimation> base_animation;
   std::optional<GltfBakedAnimation> bake;
   std::string mesh_name = "vdg-model";
+  // The built model's viewing sphere (and time tables), written as extras v2 "sphere" / "time".
+  // gltfExportInput fills it. Left empty on a static input, the writer builds it from the targets'
+  // views and `sphere`; an animated input must carry it.
+  std::optional<GltfViewSphere> view_sphere;
 };
 
 // Fills the input from a built static model: its base, normals computed from the base positions

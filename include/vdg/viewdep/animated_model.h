@@ -87,6 +87,9 @@ class AnimatedViewDependentModel {
   std::size_t keyIndex(std::size_t view, std::size_t j) const;
   // Offsets o_j of key frame j of `view`: #V x 3 floats, in offsetSpace().
   std::span<const float> offsets(std::size_t view, std::size_t j) const;
+  // The spline's second-derivative table of `view` (m x m, row-major, m = keyFrames(view).size()):
+  // M_k = sum_j table[k * m + j] o_j, from which timeCoefficients() computes (for exports).
+  std::span<const double> secondDerivatives(std::size_t view) const;
   // The base at frame f: #V x 3 positions; its skin linear parts (#V x 9, column-major) or an
   // empty span for an unskinned base.
   std::span<const float> baseFrame(int frame) const;

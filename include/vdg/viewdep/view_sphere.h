@@ -141,6 +141,11 @@ class ViewSphere {
   std::span<const std::array<int, 3>> triangles() const { return triangles_; }
   // Cosine modes: great-circle arcs bounding the covered region (indices into points()).
   std::span<const std::array<int, 2>> boundaryArcs() const { return arcs_; }
+  // Cosine modes: keys on no triangle and no arc (the falloff also pulls towards them).
+  std::span<const int> isolatedKeys() const { return isolated_; }
+  // Inverse of the matrix whose columns are triangle t's corners: the cone coordinates of a view v
+  // are inverse * v (section 3.2.1). For exports that let a runtime repeat the query exactly.
+  const Eigen::Matrix3d& triangleInverse(std::size_t t) const { return cones_.at(t).inverse; }
   // Fraction of the sphere's area covered by triangles whose three corners are all real keys.
   double coveredFraction() const { return covered_fraction_; }
   const ViewSphereSettings& settings() const { return settings_; }
