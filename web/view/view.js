@@ -19,7 +19,7 @@ if (params.get('clean') === '1') document.body.classList.add('clean');
 
 /** The background of vdg render (src/render: RenderStyle::background), so that screenshots compare. */
 const BACKGROUND = new THREE.Color(0.97, 0.97, 0.95);
-const OUTLINE_PIXELS = 1.5; // half of vdg render's 3-pixel silhouette stroke
+const OUTLINE_PIXELS = 2.5; // about the outer part of vdg render's silhouette stroke
 
 const renderer = new THREE.WebGLRenderer({ canvas, antialias: true, preserveDrawingBuffer: true });
 renderer.outputColorSpace = THREE.LinearSRGBColorSpace; // colours as vdg render computes them
@@ -109,7 +109,7 @@ function frameCamera() {
   camera.far = distance * 10;
   controls.target.copy(center);
   controls.update();
-  observer.position.copy(center).add(new THREE.Vector3(2.2, 1.2, -0.6).normalize().multiplyScalar(distance * 2.2));
+  observer.position.copy(center).add(new THREE.Vector3(2.2, 1.2, -0.6).normalize().multiplyScalar(distance * 1.7));
   observer.near = distance / 100;
   observer.far = distance * 20;
   observer.lookAt(center);
@@ -301,6 +301,8 @@ const hook = {
   weights() { return model ? Array.from(model.meshes[0].morphTargetInfluences ?? []) : []; },
   /** @param {number|null} s sharpness, null: the model's */
   sharpness(s) { if (model) model.controller.sharpness = s; },
+  /** @returns {number[]} the model's centre (the views' origin) */
+  center() { return model ? model.center.toArray() : [0, 0, 0]; },
   info() { return model ? { keys: model.extras.keys.length, frames: model.frameCount, meshes: model.meshes.length } : null; },
   /** @param {string} url */
   open(url) { return open(url, url); },
