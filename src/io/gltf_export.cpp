@@ -241,7 +241,6 @@ void validateInput(const GltfExportInput& in, const std::string& where) {
     if (target.frame < 0) fail(label + ": the frame is negative");
   }
   if (!std::isfinite(in.sharpness) || in.sharpness <= 0.0) fail("the sharpness must be finite and > 0");
-  validateViewSphere(in, fail);
   if (!in.center.allFinite()) fail("the centre is not finite");
   if (in.base_animation) {
     const GltfBaseAnimation& ba = *in.base_animation;
@@ -308,6 +307,7 @@ void validateInput(const GltfExportInput& in, const std::string& where) {
         fail("bake: expected 0 < yfov < pi, aspect > 0 and 0 < znear < zfar");
     }
   }
+  validateViewSphere(in, fail);
 }
 
 OJson vec3Json(const Eigen::Vector3d& v) { return OJson::array({v.x(), v.y(), v.z()}); }
