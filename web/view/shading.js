@@ -130,6 +130,9 @@ export function outlineMaterial(pixels) {
       void main() {
         ${VERTEX_BODY}
         vec3 n = normalize(transformedNormal);
+        #ifdef FLIP_SIDED
+          n = -n; // three flips the normals of a back-side material; the hull grows outwards
+        #endif
         mvPosition.xyz += n * uPixels * uPixel * max(-mvPosition.z, 0.0);
         gl_Position = projectionMatrix * mvPosition;
       }`,

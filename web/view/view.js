@@ -31,6 +31,7 @@ const camera = new THREE.PerspectiveCamera(30, 1, 0.01, 100);
 const controls = new OrbitControls(camera, canvas);
 controls.enableDamping = false;
 const observer = new THREE.PerspectiveCamera(30, 1, 0.01, 100);
+observer.userData.vdgAuxiliary = true; // shows the shape the main camera sees (web/README.md's rule)
 const mainProxy = new THREE.PerspectiveCamera(30, 1, 0.01, 1);
 const mainHelper = new THREE.CameraHelper(mainProxy);
 mainHelper.visible = false;
@@ -171,14 +172,13 @@ function render() {
 }
 
 /**
- * Figure 6: the model seen from a fixed observer with the weights of the main camera (the inset is
- * an auxiliary view: the runtime's per-camera update is held for it), and the main camera drawn.
+ * Figure 6: the model seen from a fixed observer with the weights of the main camera (the observer
+ * is an auxiliary camera, userData.vdgAuxiliary: the runtime weighs for mainCamera), and the main
+ * camera drawn.
  * @param {number} x @param {number} y @param {number} size
  */
 function renderObserver(x, y, size) {
   if (!model) return;
-  const held = model.meshes.map((m) => m.onBeforeRender);
-  for (const m of model.meshes) m.onBeforeRender = () => {};
   mainProxy.position.copy(camera.position);
   mainProxy.quaternion.copy(camera.quaternion);
   mainProxy.fov = camera.fov;
@@ -193,7 +193,6 @@ function renderObserver(x, y, size) {
   setOutlinePixel(model.outlines, observer, size);
   drawInset(x, y, size, new THREE.Color(0.86, 0.9, 0.97), () => renderer.render(scene, observer));
   mainHelper.visible = false;
-  model.meshes.forEach((m, i) => { m.onBeforeRender = held[i]; });
   const caption = document.getElementById('observer-caption');
   if (caption) Object.assign(caption.style, { right: '14px', bottom: `${y + size - 18}px`, top: '' });
 }
@@ -296,6 +295,10 @@ const hook = {
     if (model?.mixer) model.mixer.update(0);
     render();
   },
+  /** @param {number[]} rgb the main view's background, each in [0, 1] (tests use a colour vdg render is given too) */
+  background(rgb) { BACKGROUND.setRGB(rgb[0], rgb[1], rgb[2]); },
+  /** @param {number} pixels the outline's width outside the silhouette (vdg render's 3-pixel stroke: 1.5) */
+  outline(pixels) { if (model) for (const m of model.outlines) m.uniforms.uPixels.value = pixels; },
   positions: blendedPositions,
   /** @returns {number[]} the main camera's morph weights of the first vdg mesh */
   weights() { return model ? Array.from(model.meshes[0].morphTargetInfluences ?? []) : []; },
