@@ -74,9 +74,13 @@ async function open(url, name) {
   const outlines = styleModel(gltf.scene, OUTLINE_PIXELS);
   scene.add(gltf.scene);
   const controller = attachVdg(gltf.scene, { mainCamera: camera });
-  const box = new THREE.Box3().setFromObject(gltf.scene);
-  const sphere = box.getBoundingSphere(new THREE.Sphere());
-  const center = new THREE.Vector3().fromArray(extras.center ?? sphere.center.toArray());
+  gltf.scene.updateMatrixWorld(true);
+  const center = new THREE.Vector3().fromArray(extras.center ?? [0, 0, 0]);
+  let radius = 0;
+  const v = new THREE.Vector3();
+  for (const mesh of meshes)
+    for (let i = 0; i < mesh.geometry.attributes.position.count; ++i)
+      radius = Math.max(radius, mesh.getVertexPosition(i, v).applyMatrix4(mesh.matrixWorld).distanceTo(center));
   const animation = extras.animation;
   let mixer = null;
   if (animation && animation.base === 'skin' && gltf.animations.length > 0) {
@@ -87,7 +91,7 @@ async function open(url, name) {
     mixer.clipAction(bones).play();
   }
   model = { root: gltf.scene, controller, extras, meshes, outlines, widget: new SphereWidget(extras), mixer, center,
-    radius: Math.max(sphere.radius, 1e-3), frameCount: animation ? animation.frame_count : 0 };
+    radius: Math.max(radius, 1e-3), frameCount: animation ? animation.frame_count : 0 };
   frame = 0;
   frameCamera();
   setupPanel(name);
@@ -104,13 +108,13 @@ function close() {
 function frameCamera() {
   if (!model) return;
   const { center, radius } = model;
-  const distance = radius / Math.sin(THREE.MathUtils.degToRad(camera.fov) / 2);
+  const distance = (1.5 * radius) / Math.sin(THREE.MathUtils.degToRad(camera.fov) / 2); // with a margin
   camera.position.copy(center).add(new THREE.Vector3(0, Math.sin(0.26), Math.cos(0.26)).multiplyScalar(distance));
   camera.near = distance / 100;
   camera.far = distance * 10;
   controls.target.copy(center);
   controls.update();
-  observer.position.copy(center).add(new THREE.Vector3(2.2, 1.2, -0.6).normalize().multiplyScalar(distance * 1.7));
+  observer.position.copy(center).add(new THREE.Vector3(2.2, 1.2, -0.6).normalize().multiplyScalar(distance * 1.3));
   observer.near = distance / 100;
   observer.far = distance * 20;
   observer.lookAt(center);
