@@ -80,7 +80,7 @@ export class SphereWidget {
    */
   update(view, mainCamera, sphereWeights) {
     this.view.position.copy(view).multiplyScalar(1.01);
-    this.camera.position.copy(view).multiplyScalar(4.2);
+    this.camera.position.copy(view).multiplyScalar(4.8);
     this.camera.up.copy(mainCamera.up);
     this.camera.lookAt(0, 0, 0);
     const triangle = sphereWeights ? sphereWeights.triangle : -1;

@@ -30,7 +30,7 @@ const scene = new THREE.Scene();
 const camera = new THREE.PerspectiveCamera(30, 1, 0.01, 100);
 const controls = new OrbitControls(camera, canvas);
 controls.enableDamping = false;
-const observer = new THREE.PerspectiveCamera(30, 1, 0.01, 100);
+const observer = new THREE.PerspectiveCamera(40, 1, 0.01, 100); // wide: the main camera stays in sight
 observer.userData.vdgAuxiliary = true; // shows the shape the main camera sees (web/README.md's rule)
 const mainProxy = new THREE.PerspectiveCamera(30, 1, 0.01, 1);
 const mainHelper = new THREE.CameraHelper(mainProxy);
@@ -114,7 +114,7 @@ function frameCamera() {
   camera.far = distance * 10;
   controls.target.copy(center);
   controls.update();
-  observer.position.copy(center).add(new THREE.Vector3(2.2, 1.2, -0.6).normalize().multiplyScalar(distance * 1.3));
+  observer.position.copy(center).add(new THREE.Vector3(2.2, 1.6, -0.9).normalize().multiplyScalar(distance * 1.6));
   observer.near = distance / 100;
   observer.far = distance * 20;
   observer.lookAt(center);
