@@ -8,6 +8,7 @@
 // draws at each frame (docs/gltf-export.md, "Baked camera paths").
 #include <algorithm>
 #include <cstdio>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -26,6 +27,7 @@ void writeGltfForCli(const std::string& output, const GltfExportInput& input, bo
 void checkGltfOutput(const std::string& output);                                            // cmd_export.cpp
 GltfExportInput exportInputForCli(const OpenedInput& input);                                // cmd_export.cpp
 void checkOutputIsNotInput(const std::string& output, const std::string& model, const OpenedInput& input);  // idem
+void addMaxTargetsOption(CLI::App& sub, std::size_t& max_targets);                                          // idem
 
 namespace {
 
@@ -35,6 +37,7 @@ struct BakeOptions : CameraOptions {
   std::string model, output, size = "512x512";
   double fps = 24.0, sharpness = 0.0;
   bool step = false, quiet = false;
+  std::size_t max_targets = std::numeric_limits<std::size_t>::max();
 };
 
 void run(const BakeOptions& opt) {
@@ -57,6 +60,7 @@ void run(const BakeOptions& opt) {
     return file_cameras.fromFile() ? file_cameras.at(f) : opt.camera.camera(f, center, distance);
   };
   GltfExportInput input = exportInputForCli(opened);
+  checkMaxTargets(input, opt.max_targets, opt.model);
   std::vector<Camera> cameras;
   if (opened.model) {
     const ViewDependentModel& model = *opened.model;
@@ -107,6 +111,7 @@ void addBakeCommand(CLI::App& app) {
   sub->add_flag("--step", opt->step,
                 "STEP interpolation: hold each frame's weights and camera (default LINEAR: blend between frames)");
   sub->add_flag("-q,--quiet", opt->quiet, "Print nothing on success");
+  addMaxTargetsOption(*sub, opt->max_targets);
   sub->callback([opt, sub] {
     opt->noteGiven(*sub);
     run(*opt);

@@ -7,6 +7,7 @@
 // "skinned" offsets, the sampled base frames as morph targets otherwise (docs/gltf-export.md).
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <utility>
@@ -24,10 +25,22 @@ namespace vdg::cli {
 void writeGltfForCli(const std::string& output, const GltfExportInput& input, bool quiet) {
   const GltfExportReport report = writeGltfExport(output, input);
   if (!report.note.empty()) std::fprintf(stderr, "vdg: note: %s\n", report.note.c_str());
-  if (!quiet)
-    std::printf("wrote %s (%zu vertices, %zu triangles, %zu morph target%s, %zu sparse; %zu bytes)\n", output.c_str(),
-                input.base.vertexCount(), input.base.triangleCount(), input.targets.size(),
-                input.targets.size() == 1 ? "" : "s", report.sparse_targets, report.bytes);
+  const std::size_t targets = gltfTargetCount(input);
+  if (const std::string over = morphTargetCapsExceeded(targets); !over.empty())
+    std::fprintf(stderr, "vdg: note: %zu morph targets, more than %s take (docs/gltf-export.md, \"Target count\")\n",
+                 targets, over.c_str());
+  if (quiet) return;
+  std::printf("wrote %s (%zu vertices, %zu triangles, %zu morph target%s, %zu sparse; %zu bytes)\n", output.c_str(),
+              input.base.vertexCount(), input.base.triangleCount(), targets, targets == 1 ? "" : "s",
+              report.sparse_targets, report.bytes);
+  for (const std::string& file : report.files) std::printf("wrote %s\n", file.c_str());
+}
+
+// Shared with cmd_bake.cpp: --max-targets (docs/gltf-export.md, "Target count").
+void addMaxTargetsOption(CLI::App& sub, std::size_t& max_targets) {
+  sub.add_option("--max-targets", max_targets,
+                 "Refuse an export that needs more than N morph targets (engines cap them: Bevy 64, three.js and "
+                 "Filament about 256)");
 }
 
 GltfExportInput exportInputForCli(const OpenedInput& input) {
@@ -70,6 +83,7 @@ void addExportCommand(CLI::App& app) {
   struct Options {
     std::string model, output;
     bool quiet = false;
+    std::size_t max_targets = std::numeric_limits<std::size_t>::max();
   };
   auto opt = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand(
@@ -78,11 +92,14 @@ void addExportCommand(CLI::App& app) {
   sub->add_option("-o,--output", opt->output, "Output OUT.glb, or OUT.gltf with its buffer in OUT.bin beside it")
       ->required();
   sub->add_flag("-q,--quiet", opt->quiet, "Print nothing on success");
+  addMaxTargetsOption(*sub, opt->max_targets);
   sub->callback([opt] {
     checkGltfOutput(opt->output);
     const OpenedInput input = openModel(opt->model);
     checkOutputIsNotInput(opt->output, opt->model, input);
-    writeGltfForCli(opt->output, exportInputForCli(input), opt->quiet);
+    const GltfExportInput export_input = exportInputForCli(input);
+    checkMaxTargets(export_input, opt->max_targets, opt->model);
+    writeGltfForCli(opt->output, export_input, opt->quiet);
   });
 }
 

@@ -21,6 +21,7 @@
 #include "cli.h"
 #include "vdg/geom/error.h"
 #include "vdg/io/gltf.h"
+#include "vdg/io/gltf_export.h"
 #include "vdg/io/mesh.h"
 #include "vdg/io/model.h"
 #include "vdg/viewdep/animated_model.h"
@@ -253,6 +254,26 @@ void printWithSphereFields(const ViewSphere& sphere, const std::vector<std::stri
   std::cout << out.dump(2) << "\n";
 }
 
+// The morph targets a glTF export of the model needs (`keys` targets, plus `frames` base frames of a
+// "world"-offset animated model) and the engines whose cap that exceeds (docs/gltf-export.md,
+// "Target count").
+nlohmann::ordered_json exportTargetsJson(std::size_t keys, std::size_t frames) {
+  nlohmann::ordered_json exceeds = nlohmann::ordered_json::array();
+  for (const MorphTargetCap& cap : kMorphTargetCaps)
+    if (keys + frames > cap.targets) exceeds.push_back(cap.engine);
+  return {{"count", keys + frames}, {"keys", keys}, {"base_frames", frames}, {"exceeds", exceeds}};
+}
+
+void printExportTargets(std::size_t keys, std::size_t frames) {
+  const std::size_t count = keys + frames;
+  std::string parts =
+      frames > 0 ? " (" + std::to_string(keys) + " keys + " + std::to_string(frames) + " base frames)" : std::string();
+  const std::string over = morphTargetCapsExceeded(count);
+  std::printf("export     %zu morph target%s in glTF%s; %s\n", count, count == 1 ? "" : "s", parts.c_str(),
+              over.empty() ? "within every engine's cap (Bevy 64, three.js and Filament 256)"
+                           : ("more than " + over + " take").c_str());
+}
+
 // "  (FILE)" after a key read from a mesh file; nothing for a key stored in a glTF model.
 std::string meshNote(const std::string& mesh_path) { return mesh_path.empty() ? "" : "  (" + mesh_path + ")"; }
 
@@ -287,6 +308,7 @@ void describeAnimated(const std::string& path, const RawViewDependentModel& raw,
     animation["skinned"] = model.skinned();
     out["base_animation"] = animation;
     out["offsets"] = offsetSpaceName(model.offsetSpace());
+    out["export_targets"] = exportTargetsJson(raw.keys.size(), gltfTargetCount(model) - raw.keys.size());
     addShapeFields(model, out);
     out["views"] = nlohmann::ordered_json::array();
     for (std::size_t i = 0; i < model.viewCount(); ++i) {
@@ -329,6 +351,7 @@ void describeAnimated(const std::string& path, const RawViewDependentModel& raw,
   std::printf("hull       %zu triangles, %zu dummy base keys\n", sphere.triangles().size(), dummies);
   std::printf("coverage   %.1f%% of the viewing sphere lies in triangles of real keys\n",
               100.0 * sphere.coveredFraction());
+  printExportTargets(raw.keys.size(), gltfTargetCount(model) - raw.keys.size());
   for (const auto& w : warnings) std::printf("warning: %s\n", w.c_str());
 }
 
@@ -400,6 +423,7 @@ void addInfoCommand(CLI::App& app) {
       nlohmann::ordered_json out;
       out["model"] = opt->model;
       out["base"] = raw.base_path;
+      out["export_targets"] = exportTargetsJson(model.keyCount(), 0);
       addShapeFields(model, out);
       out["keys"] = nlohmann::ordered_json::array();
       for (std::size_t k = 0; k < model.keyCount(); ++k) {
@@ -428,6 +452,7 @@ void addInfoCommand(CLI::App& app) {
     std::printf("hull       %zu triangles, %zu dummy base keys\n", sphere.triangles().size(), dummies);
     std::printf("coverage   %.1f%% of the viewing sphere lies in triangles of real keys\n",
                 100.0 * sphere.coveredFraction());
+    printExportTargets(model.keyCount(), 0);
     for (const auto& w : warnings) std::printf("warning: %s\n", w.c_str());
   });
 }

@@ -147,8 +147,10 @@ void checkRigMesh(const RawRig& r, const RigFail& fail) {
   if (r.mesh.triangles.empty()) fail("mesh: has no triangles");
   validateMesh(r.mesh, p.empty() ? std::string("mesh") : p + "mesh");
   const std::size_t nv = r.mesh.vertexCount();
-  if (!r.mesh.uvs.empty() && (r.mesh.uvs.size() != 2 * nv || r.mesh.uv_triangles != r.mesh.triangles))
-    fail("mesh: TEXCOORD_0 must have one coordinate pair per vertex");
+  // Texture coordinates per corner (validateMesh checks uv_triangles): a vdg export read back keeps
+  // the uvs of its split seam vertices while its vertices are welded (docs/gltf-export.md).
+  if (!r.mesh.uvs.empty() && r.mesh.uv_triangles.size() != r.mesh.triangles.size())
+    fail("mesh: TEXCOORD_0 must have one coordinate pair per triangle corner");
   if (!allFinite(r.mesh.uvs)) fail("mesh: TEXCOORD_0 has a non-finite value");
   if (!r.normals.empty() && r.normals.size() != 3 * nv)
     fail("mesh: NORMAL has " + std::to_string(r.normals.size() / 3) + " entries for " + std::to_string(nv) +

@@ -297,6 +297,12 @@ const Want kWeights{{TINYGLTF_TYPE_VEC4},
                      {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, true},
                      {TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, true}},
                     "VEC4 of FLOAT or normalized UNSIGNED_BYTE / UNSIGNED_SHORT"};
+// _VDG_VERTEX of a vdg export (docs/gltf-export.md): integers, as unsigned bytes or shorts, or as floats.
+const Want kVertexIds{{TINYGLTF_TYPE_SCALAR},
+                      {{TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, false},
+                       {TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, false},
+                       {TINYGLTF_COMPONENT_TYPE_FLOAT, false}},
+                      "SCALAR of UNSIGNED_BYTE, UNSIGNED_SHORT or FLOAT"};
 const Want kIndices{{TINYGLTF_TYPE_SCALAR},
                     {{TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, false},
                      {TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, false},
@@ -1275,6 +1281,7 @@ struct MeshLayout {
   std::string where;               // "meshes[i]"
   std::vector<std::size_t> prims;  // the triangle primitives, concatenated in this order
   bool with_normals = true, with_uvs = true;
+  bool with_vertex_ids = true;  // _VDG_VERTEX on every primitive: a vdg export (weldExportedVertices)
   std::size_t targets = 0;
   std::vector<bool> target_has_normals;
 };
@@ -1292,6 +1299,7 @@ MeshLayout meshLayout(const Gltf& g, const tg::Mesh& mesh, const std::string& wh
     if (attributeOf(prim, "POSITION") < 0) g.fail(ep, "has no POSITION");
     l.with_normals = l.with_normals && attributeOf(prim, "NORMAL") >= 0;
     l.with_uvs = l.with_uvs && attributeOf(prim, "TEXCOORD_0") >= 0;
+    l.with_vertex_ids = l.with_vertex_ids && attributeOf(prim, "_VDG_VERTEX") >= 0;
     if (prim.targets.size() != l.targets)
       g.fail(ep, "has " + std::to_string(prim.targets.size()) + " morph targets, primitives[" +
                      std::to_string(l.prims[0]) + "] has " + std::to_string(l.targets));
@@ -1425,6 +1433,65 @@ void readMeshMaterials(const Gltf& g, const MeshReadOptions& options, const Mesh
   if (raw.mesh.materials.empty()) raw.mesh.face_materials.clear();
 }
 
+// A per-vertex array (`width` values a vertex) keeping the vertices `first` names, in that order.
+template <typename T>
+void keepVertices(std::vector<T>& values, std::size_t width, const std::vector<std::size_t>& first) {
+  if (values.empty()) return;
+  std::vector<T> out(first.size() * width);
+  for (std::size_t m = 0; m < first.size(); ++m)
+    for (std::size_t c = 0; c < width; ++c) out[m * width + c] = values[first[m] * width + c];
+  values = std::move(out);
+}
+
+// A vdg export (_VDG_VERTEX on every primitive; docs/gltf-export.md): the exported vertices are
+// welded back into the model's, so the mesh has the model's vertex count and order whatever the
+// seams split or the primitives repeat. Each model vertex takes its first copy's position, normal,
+// skin and morph target deltas (every copy carries the same); texture coordinates and file normals
+// stay per exported vertex (TriMesh keeps them per corner: uv_triangles, normal_triangles).
+void weldExportedVertices(const Gltf& g, const MeshLayout& l, const std::vector<double>& ids, RawRig& raw) {
+  const std::size_t n = raw.mesh.vertexCount();
+  if (ids.size() != n)
+    g.fail(l.where, "_VDG_VERTEX has " + std::to_string(ids.size()) + " values for " + std::to_string(n) + " vertices");
+  std::size_t v_count = 0;
+  for (std::size_t e = 0; e < n; ++e) {
+    if (!(ids[e] >= 0.0 && ids[e] < static_cast<double>(n) && ids[e] == std::floor(ids[e])))
+      g.fail(l.where, "_VDG_VERTEX[" + std::to_string(e) + "] = " + std::to_string(ids[e]) +
+                          " is not a vertex index below " + std::to_string(n));
+    v_count = std::max(v_count, static_cast<std::size_t>(ids[e]) + 1);
+  }
+  std::vector<std::size_t> first(v_count, n);
+  const std::vector<float>& pos = raw.mesh.positions;
+  for (std::size_t e = 0; e < n; ++e) {
+    const auto m = static_cast<std::size_t>(ids[e]);
+    if (first[m] == n) {
+      first[m] = e;
+    } else if (!std::equal(pos.begin() + static_cast<std::ptrdiff_t>(e * 3),
+                           pos.begin() + static_cast<std::ptrdiff_t>(e * 3 + 3),
+                           pos.begin() + static_cast<std::ptrdiff_t>(first[m] * 3))) {
+      g.fail(l.where, "vertex " + std::to_string(e) + " (_VDG_VERTEX " + std::to_string(m) +
+                          ") lies elsewhere than vertex " + std::to_string(first[m]) + ", the same model vertex");
+    }
+  }
+  for (std::size_t m = 0; m < v_count; ++m)
+    if (first[m] == n) g.fail(l.where, "_VDG_VERTEX names no vertex for model vertex " + std::to_string(m));
+  keepVertices(raw.mesh.positions, 3, first);
+  keepVertices(raw.normals, 3, first);
+  keepVertices(raw.joints, 4, first);
+  keepVertices(raw.weights, 4, first);
+  for (auto& t : raw.target_positions) keepVertices(t, 3, first);
+  for (auto& t : raw.target_normals) keepVertices(t, 3, first);
+  for (std::int32_t& v : raw.mesh.triangles) v = static_cast<std::int32_t>(ids[static_cast<std::size_t>(v)]);
+}
+
+// The plain material of a vdg export (extras.vdg.plain): its faces have no material in vdg.
+bool plainExportMaterial(const tg::Model& m, int material) {
+  if (material < 0 || static_cast<std::size_t>(material) >= m.materials.size()) return false;
+  const tg::Value& extras = m.materials[static_cast<std::size_t>(material)].extras;
+  if (!extras.IsObject() || !extras.Has("vdg") || !extras.Get("vdg").IsObject()) return false;
+  const tg::Value& plain = extras.Get("vdg").Get("plain");
+  return plain.IsBool() && plain.Get<bool>();
+}
+
 // The mesh: its triangle primitives concatenated, with normals, texture coordinates, skin weights,
 // morph targets and materials where all primitives have them.
 void readRigMesh(const Gltf& g, const tg::Mesh& mesh, const MeshLayout& l, bool skinned, const MeshReadOptions& options,
@@ -1434,11 +1501,19 @@ void readRigMesh(const Gltf& g, const tg::Mesh& mesh, const MeshLayout& l, bool 
   std::size_t base = 0;
   std::vector<int> face_material;           // per triangle: the primitive's glTF material (-1: none)
   std::vector<std::size_t> face_primitive;  // per triangle: its primitive
+  std::vector<double> vertex_ids;           // _VDG_VERTEX of every vertex read
   for (std::size_t p : l.prims) {
     const tg::Primitive& prim = mesh.primitives[p];
     const std::size_t triangles_before = raw.mesh.triangles.size() / 3;
     base += appendPrimitive(g, prim, p, l, skinned, base, raw);
-    face_material.insert(face_material.end(), raw.mesh.triangles.size() / 3 - triangles_before, prim.material);
+    if (l.with_vertex_ids) {
+      const int a = attributeOf(prim, "_VDG_VERTEX");
+      const auto ids = g.read(a, kVertexIds, l.where + ": " + idx("primitives", p) + ": _VDG_VERTEX");
+      vertex_ids.insert(vertex_ids.end(), ids.begin(), ids.end());
+    }
+    const bool plain = l.with_vertex_ids && plainExportMaterial(g.model(), prim.material);
+    face_material.insert(face_material.end(), raw.mesh.triangles.size() / 3 - triangles_before,
+                         plain ? -1 : prim.material);
     face_primitive.insert(face_primitive.end(), raw.mesh.triangles.size() / 3 - triangles_before, p);
   }
   if (l.with_uvs) raw.mesh.uv_triangles = raw.mesh.triangles;
@@ -1446,6 +1521,7 @@ void readRigMesh(const Gltf& g, const tg::Mesh& mesh, const MeshLayout& l, bool 
     raw.mesh.normals = raw.normals;
     raw.mesh.normal_triangles = raw.mesh.triangles;
   }
+  if (l.with_vertex_ids) weldExportedVertices(g, l, vertex_ids, raw);
   if (options.materials) readMeshMaterials(g, options, l, face_material, face_primitive, raw);
 }
 

@@ -13,9 +13,11 @@
 #include <cstring>
 #include <filesystem>
 #include <limits>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <numbers>
 #include <set>
+#include <tuple>
 
 #include "camera_fields.h"
 #include "json_reader.h"
@@ -26,6 +28,7 @@
 #include "vdg/io/atomic_file.h"
 #include "vdg/io/file_transaction.h"
 #include "vdg/io/gltf.h"
+#include "vdg/io/image_file.h"
 #include "vdg/io/read_file.h"
 #include "vdg/version.h"
 
@@ -391,27 +394,240 @@ OJson vdgExtras(const GltfExportInput& in) {
   return vdg;
 }
 
-// Per-vertex uvs when every corner of a vertex has the same uv (glTF attributes are per vertex),
-// v flipped to glTF's top-left origin; nullopt and a note otherwise.
-std::optional<std::vector<float>> perVertexUvs(const TriMesh& base, std::string& note) {
-  if (base.uvs.empty() || base.uv_triangles.empty()) return std::nullopt;
+// The exported vertex list. glTF keeps one value of each attribute per vertex (glTF 2.0 section
+// 3.7.2.1), so a model vertex whose corners carry different uvs (a seam) is split: the first copy
+// keeps the model's index (exported vertices 0..#V-1 are the model's vertices in order) and every
+// further (vertex, uv) pair is appended once. Every copy carries the model vertex's position,
+// normal, skin and morph target deltas, and _VDG_VERTEX names its model vertex.
+struct ExportVertices {
+  std::vector<std::uint32_t> model_vertex;  // per exported vertex: its vertex in the model
+  std::vector<std::int32_t> triangles;      // #F x 3 exported vertex indices
+  std::vector<float> uvs;                   // empty, or #E x 2 with glTF's top-left origin (v' = 1 - v)
+  std::size_t count() const { return model_vertex.size(); }
+  bool split() const { return !model_vertex.empty() && model_vertex.back() + 1 != model_vertex.size(); }
+};
+
+ExportVertices exportVertices(const TriMesh& base) {
+  ExportVertices ev;
   const std::size_t v_count = base.vertexCount();
-  std::vector<float> uv(v_count * 2, 0.0f);
+  ev.model_vertex.resize(v_count);
+  for (std::size_t v = 0; v < v_count; ++v) ev.model_vertex[v] = static_cast<std::uint32_t>(v);
+  ev.triangles = base.triangles;
+  if (base.uvs.empty() || base.uv_triangles.size() != base.triangles.size()) return ev;
+  ev.uvs.assign(v_count * 2, 0.0f);
   std::vector<char> seen(v_count, 0);
+  // Split copies by (model vertex, u bits, v bits): equal uvs share one copy.
+  std::map<std::tuple<std::int32_t, std::uint32_t, std::uint32_t>, std::int32_t> copies;
   for (std::size_t c = 0; c < base.triangles.size(); ++c) {
-    const auto v = static_cast<std::size_t>(base.triangles[c]);
+    const std::int32_t v = base.triangles[c];
     const auto t = static_cast<std::size_t>(base.uv_triangles[c]);
     const float u = base.uvs[t * 2], w = 1.0f - base.uvs[t * 2 + 1];
-    if (!seen[v]) {
-      uv[v * 2] = u, uv[v * 2 + 1] = w, seen[v] = 1;
-    } else if (uv[v * 2] != u || uv[v * 2 + 1] != w) {
-      note = "TEXCOORD_0 not written: vertex " + std::to_string(v) +
-             " has different uvs on different triangles (a seam), and glTF keeps one uv per vertex; "
-             "splitting vertices would change the model's vertex count";
-      return std::nullopt;
+    const auto vi = static_cast<std::size_t>(v);
+    if (!seen[vi]) {
+      ev.uvs[vi * 2] = u, ev.uvs[vi * 2 + 1] = w, seen[vi] = 1;
+      continue;
     }
+    if (ev.uvs[vi * 2] == u && ev.uvs[vi * 2 + 1] == w) continue;
+    const auto key = std::make_tuple(v, std::bit_cast<std::uint32_t>(u), std::bit_cast<std::uint32_t>(w));
+    auto it = copies.find(key);
+    if (it == copies.end()) {
+      it = copies.emplace(key, static_cast<std::int32_t>(ev.model_vertex.size())).first;
+      ev.model_vertex.push_back(static_cast<std::uint32_t>(v));
+      ev.uvs.push_back(u);
+      ev.uvs.push_back(w);
+    }
+    ev.triangles[c] = it->second;
   }
-  return uv;
+  return ev;
+}
+
+// A per-model-vertex array (`width` floats a vertex) copied to the exported vertices.
+std::vector<float> gathered(std::span<const float> values, std::size_t width, const ExportVertices& ev) {
+  std::vector<float> out(ev.count() * width);
+  for (std::size_t e = 0; e < ev.count(); ++e)
+    std::copy_n(values.begin() + static_cast<std::ptrdiff_t>(ev.model_vertex[e] * width), width,
+                out.begin() + static_cast<std::ptrdiff_t>(e * width));
+  return out;
+}
+
+// _VDG_VERTEX: each exported vertex's index in the model. Application-specific attributes may not
+// use unsigned int (glTF 2.0 section 3.7.2.1), and vertex attribute elements start on 4-byte
+// boundaries: unsigned shorts with a byte stride of 4 up to 65536 model vertices, else floats (exact
+// below 2^24, kMaxGltfElements).
+int addVertexIds(BufferBuilder& b, const ExportVertices& ev, std::size_t v_count) {
+  if (v_count <= 65536) {
+    std::vector<std::uint16_t> ids(ev.count() * 2, 0);
+    for (std::size_t e = 0; e < ev.count(); ++e) ids[e * 2] = static_cast<std::uint16_t>(ev.model_vertex[e]);
+    const int view = b.addView(ids.data(), ids.size() * 2, kArrayBuffer);
+    b.views()[static_cast<std::size_t>(view)]["byteStride"] = 4;
+    return b.addAccessor(
+        {{"bufferView", view}, {"componentType", kUnsignedShort}, {"count", ev.count()}, {"type", "SCALAR"}});
+  }
+  std::vector<float> ids(ev.model_vertex.begin(), ev.model_vertex.end());
+  return b.addFloats(ids, 1, kArrayBuffer, false);
+}
+
+// One primitive per material (TriMesh::face_materials), in the order of first use so that a mesh
+// whose faces are grouped by material keeps its triangle order; faces without a material (-1, or an
+// index out of range) share the plain material (-1 here).
+struct ExportGroup {
+  int material = -1;
+  std::vector<std::int32_t> indices;  // exported vertex indices, 3 per triangle
+};
+
+std::vector<ExportGroup> exportGroups(const TriMesh& base, const ExportVertices& ev) {
+  std::vector<ExportGroup> groups;
+  std::map<int, std::size_t> group_of;
+  for (std::size_t f = 0; f < base.triangleCount(); ++f) {
+    int m = f < base.face_materials.size() ? base.face_materials[f] : -1;
+    if (m < 0 || static_cast<std::size_t>(m) >= base.materials.size()) m = -1;
+    auto it = group_of.find(m);
+    if (it == group_of.end()) {
+      it = group_of.emplace(m, groups.size()).first;
+      groups.push_back({m, {}});
+    }
+    std::vector<std::int32_t>& idx = groups[it->second].indices;
+    idx.insert(idx.end(), ev.triangles.begin() + static_cast<std::ptrdiff_t>(f * 3),
+               ev.triangles.begin() + static_cast<std::ptrdiff_t>(f * 3 + 3));
+  }
+  return groups;
+}
+
+// Where an export's images go: into the buffer (a .glb: bufferView and mimeType), into files beside
+// a .gltf (uri "STEM-texture-N.png"), or into data: URIs (a .gltf serialised without side files).
+enum class ImageStore { kBuffer, kFiles, kDataUri };
+
+struct ImageOutput {
+  ImageStore store = ImageStore::kBuffer;
+  std::string stem;                             // kFiles: the names' prefix
+  std::vector<GltfImageFile>* files = nullptr;  // kFiles: where the files' bytes go
+};
+
+std::string base64(std::string_view bytes) {
+  static constexpr char kDigits[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  out.reserve((bytes.size() + 2) / 3 * 4);
+  for (std::size_t i = 0; i < bytes.size(); i += 3) {
+    const std::size_t n = std::min<std::size_t>(3, bytes.size() - i);
+    std::uint32_t x = 0;
+    for (std::size_t k = 0; k < 3; ++k) x = (x << 8) | (k < n ? static_cast<std::uint8_t>(bytes[i + k]) : 0u);
+    for (std::size_t k = 0; k < 4; ++k) out += k <= n ? kDigits[(x >> (18 - 6 * k)) & 63] : '=';
+  }
+  return out;
+}
+
+// A PNG without its ancillary chunks but transparency (tRNS): colour-space information (iCCP, cHRM,
+// gAMA, sRGB) must be ignored by glTF clients (glTF 2.0 section 3.8.1, images are sRGB) and the
+// validator warns about it; physical size, text and time mean nothing to a texture. The other
+// chunks are copied byte for byte (their CRCs cover type and data only). Bytes that do not walk as
+// PNG chunks come back as they are.
+std::string pngWithoutAncillaryChunks(const std::string& png) {
+  std::string out = png.substr(0, 8);
+  std::size_t at = 8;
+  while (at + 12 <= png.size()) {
+    const auto byte = [&](std::size_t i) { return static_cast<std::uint32_t>(static_cast<std::uint8_t>(png[i])); };
+    const std::uint32_t length = byte(at) << 24 | byte(at + 1) << 16 | byte(at + 2) << 8 | byte(at + 3);
+    if (length > png.size() - at - 12) return png;
+    const std::string type = png.substr(at + 4, 4);
+    const bool critical = (byte(at + 4) & 0x20) == 0;
+    if (critical || type == "tRNS") out.append(png, at, 12 + length);
+    at += 12 + length;
+  }
+  return at == png.size() ? out : png;
+}
+
+// A texture as a glTF image: the PNG or JPEG file it was decoded from, as it is, or its pixels
+// encoded as PNG when it has no such file. Returns the image's index.
+int addImage(BufferBuilder& b, const TextureImage& texture, const ImageOutput& out, OJson& images,
+             const std::string& where) {
+  const ImageFormat format = imageFormatOf(texture.file_bytes);
+  std::string bytes = format == ImageFormat::kUnknown ? encodePng(texture, where + ": texture")
+                      : format == ImageFormat::kPng   ? pngWithoutAncillaryChunks(texture.file_bytes)
+                                                      : texture.file_bytes;
+  const bool jpeg = format == ImageFormat::kJpeg;
+  const std::string mime = jpeg ? "image/jpeg" : "image/png";
+  OJson image;
+  if (out.store == ImageStore::kBuffer) {
+    image = {{"bufferView", b.addView(bytes.data(), bytes.size(), 0)}, {"mimeType", mime}};
+  } else if (out.store == ImageStore::kFiles) {
+    const std::string name = out.stem + "-texture-" + std::to_string(images.size()) + (jpeg ? ".jpg" : ".png");
+    out.files->push_back({name, std::move(bytes)});
+    image = {{"uri", name}};
+  } else {
+    image = {{"uri", "data:" + mime + ";base64," + base64(bytes)}};
+  }
+  images.push_back(std::move(image));
+  return static_cast<int>(images.size()) - 1;
+}
+
+// Display sRGB to linear (IEC 61966-2-1): vdg's colours are display values (vdg/geom/material.h),
+// glTF's baseColorFactor is linear (glTF 2.0 section 3.9.2); the inverse of the reader's encoding.
+double srgbToLinear(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); }
+
+// Every exported material is dielectric (glTF's default metallicFactor 1 renders a mirror that
+// reflects an empty environment: nearly black) and fairly rough, single-sided as vdg's renderer
+// culls back faces.
+constexpr double kExportRoughness = 0.8;
+
+OJson pbrMaterial(const std::string& name, const std::array<float, 3>& display_rgb) {
+  OJson pbr = OJson::object();
+  if (display_rgb != std::array<float, 3>{1, 1, 1})
+    pbr["baseColorFactor"] = {srgbToLinear(display_rgb[0]), srgbToLinear(display_rgb[1]), srgbToLinear(display_rgb[2]),
+                              1.0};
+  pbr["metallicFactor"] = 0.0;
+  pbr["roughnessFactor"] = kExportRoughness;
+  OJson material = OJson::object();
+  if (!name.empty()) material["name"] = name;
+  material["pbrMetallicRoughness"] = std::move(pbr);
+  return material;
+}
+
+// The glTF materials of the groups (each used vdg material once, the plain one for faces without
+// a material, marked extras.vdg.plain so that vdg reads those faces back without a material), their
+// textures and images; returns each group's glTF material.
+std::vector<int> addMaterials(BufferBuilder& b, const TriMesh& base, const std::vector<ExportGroup>& groups,
+                              bool with_uvs, const ImageOutput& image_out, OJson& doc, GltfExportReport& rep,
+                              const std::string& where) {
+  OJson materials = OJson::array(), textures = OJson::array(), images = OJson::array();
+  std::map<const TextureImage*, int> texture_of;
+  std::map<int, int> material_of;
+  std::vector<int> out;
+  for (const ExportGroup& g : groups) {
+    auto it = material_of.find(g.material);
+    if (it == material_of.end()) {
+      OJson mat;
+      if (g.material < 0) {
+        mat = pbrMaterial("vdg-plain", {1, 1, 1});
+        mat["extras"] = {{"vdg", {{"plain", true}}}};
+      } else {
+        const Material& m = base.materials[static_cast<std::size_t>(g.material)];
+        mat = pbrMaterial(m.name, m.base_color);
+        if (m.texture && with_uvs) {
+          auto ti = texture_of.find(m.texture.get());
+          if (ti == texture_of.end()) {
+            ti = texture_of.emplace(m.texture.get(), addImage(b, *m.texture, image_out, images, where)).first;
+            textures.push_back({{"sampler", 0}, {"source", ti->second}});
+          }
+          mat["pbrMetallicRoughness"]["baseColorTexture"] = {{"index", ti->second}};
+        } else if (m.texture) {
+          rep.note = "material '" + m.name + "': texture not written: the base has no texture coordinates";
+        }
+      }
+      it = material_of.emplace(g.material, static_cast<int>(materials.size())).first;
+      materials.push_back(std::move(mat));
+    }
+    out.push_back(it->second);
+  }
+  rep.materials = materials.size();
+  rep.images = images.size();
+  doc["materials"] = std::move(materials);
+  if (!textures.empty()) {
+    // LINEAR magnification, LINEAR_MIPMAP_LINEAR minification, REPEAT wrapping (the default).
+    doc["samplers"] = OJson::array({OJson{{"magFilter", 9729}, {"minFilter", 9987}}});
+    doc["textures"] = std::move(textures);
+    doc["images"] = std::move(images);
+  }
+  return out;
 }
 
 struct Built {
@@ -421,14 +637,14 @@ struct Built {
 
 // The triangle indices: unsigned short when every index fits below 65535 (the largest value of
 // the type is the primitive restart value, which glTF forbids), else unsigned int.
-int addIndices(BufferBuilder& b, const TriMesh& base) {
-  if (base.vertexCount() <= 65535) {
-    std::vector<std::uint16_t> idx(base.triangles.begin(), base.triangles.end());
+int addIndices(BufferBuilder& b, std::span<const std::int32_t> indices, std::size_t vertex_count) {
+  if (vertex_count <= 65535) {
+    std::vector<std::uint16_t> idx(indices.begin(), indices.end());
     const int view = b.addView(idx.data(), idx.size() * 2, kElementArrayBuffer);
     return b.addAccessor(
         {{"bufferView", view}, {"componentType", kUnsignedShort}, {"count", idx.size()}, {"type", "SCALAR"}});
   } else {
-    std::vector<std::uint32_t> idx(base.triangles.begin(), base.triangles.end());
+    std::vector<std::uint32_t> idx(indices.begin(), indices.end());
     const int view = b.addView(idx.data(), idx.size() * 4, kElementArrayBuffer);
     return b.addAccessor(
         {{"bufferView", view}, {"componentType", kUnsignedInt}, {"count", idx.size()}, {"type", "SCALAR"}});
@@ -437,16 +653,21 @@ int addIndices(BufferBuilder& b, const TriMesh& base) {
 
 // Skin attributes of a kSkin base: JOINTS_0 as unsigned shorts, WEIGHTS_0 normalised to sum 1 (the
 // validator requires it; vdg::Rig normalises the same way, so the pose is unchanged).
-void addSkinAttributes(BufferBuilder& b, const RawRig& rig, std::size_t v_count, OJson& attributes) {
-  const int joints_view = b.addView(rig.joints.data(), rig.joints.size() * sizeof(std::uint16_t), kArrayBuffer);
-  attributes["JOINTS_0"] = b.addAccessor(
-      {{"bufferView", joints_view}, {"componentType", kUnsignedShort}, {"count", v_count}, {"type", "VEC4"}});
-  std::vector<float> weights(rig.weights.size());
-  for (std::size_t v = 0; v < v_count; ++v) {
+void addSkinAttributes(BufferBuilder& b, const RawRig& rig, const ExportVertices& ev, OJson& attributes) {
+  std::vector<std::uint16_t> joints(ev.count() * 4);
+  std::vector<float> weights(ev.count() * 4);
+  for (std::size_t e = 0; e < ev.count(); ++e) {
+    const std::size_t v = ev.model_vertex[e];
     double sum = 0;
-    for (int k = 0; k < 4; ++k) sum += rig.weights[v * 4 + k];
-    for (int k = 0; k < 4; ++k) weights[v * 4 + k] = static_cast<float>(rig.weights[v * 4 + k] / sum);
+    for (std::size_t k = 0; k < 4; ++k) sum += rig.weights[v * 4 + k];
+    for (std::size_t k = 0; k < 4; ++k) {
+      joints[e * 4 + k] = rig.joints[v * 4 + k];
+      weights[e * 4 + k] = static_cast<float>(rig.weights[v * 4 + k] / sum);
+    }
   }
+  const int joints_view = b.addView(joints.data(), joints.size() * sizeof(std::uint16_t), kArrayBuffer);
+  attributes["JOINTS_0"] = b.addAccessor(
+      {{"bufferView", joints_view}, {"componentType", kUnsignedShort}, {"count", ev.count()}, {"type", "VEC4"}});
   attributes["WEIGHTS_0"] = b.addFloats(weights, 4, kArrayBuffer, false);
 }
 
@@ -568,32 +789,18 @@ void addBaseAnimation(BufferBuilder& b, const GltfExportInput& in, std::size_t t
   if (!channels.empty()) animations.push_back({{"name", "base"}, {"channels", channels}, {"samplers", samplers}});
 }
 
-Built build(const GltfExportInput& in, const std::string& where, GltfExportReport* report) {
-  validateInput(in, where);
-  GltfExportReport rep;
-  BufferBuilder b;
-  const std::size_t v_count = in.base.vertexCount();
-
-  OJson attributes = OJson::object();
-  attributes["POSITION"] = b.addFloats(in.base.positions, 3, kArrayBuffer, true);
-  if (!in.normals.empty()) attributes["NORMAL"] = b.addFloats(in.normals, 3, kArrayBuffer, false);
-  if (const auto uvs = perVertexUvs(in.base, rep.note)) {
-    attributes["TEXCOORD_0"] = b.addFloats(*uvs, 2, kArrayBuffer, false);
-    rep.uvs_written = true;
-  }
-  const int indices = addIndices(b, in.base);
-
-  if (skinBase(in)) addSkinAttributes(b, *in.base_animation->rig, v_count, attributes);
-
-  OJson targets = OJson::array(), names = OJson::array();
+// The mesh's morph targets (the keys, then a kFrames base's frames) over the exported vertices, and
+// their names.
+void addTargets(BufferBuilder& b, const GltfExportInput& in, const ExportVertices& ev, OJson& targets, OJson& names,
+                GltfExportReport& rep) {
   const auto addTarget = [&](const std::string& name, std::span<const float> deltas,
                              std::span<const float> normal_deltas) {
     bool sparse = false;
-    OJson target = {{"POSITION", addDeltaAccessor(b, deltas, true, sparse)}};
+    OJson target = {{"POSITION", addDeltaAccessor(b, gathered(deltas, 3, ev), true, sparse)}};
     rep.sparse_targets += sparse ? 1 : 0;
     if (!normal_deltas.empty()) {
       bool normal_sparse = false;
-      target["NORMAL"] = addDeltaAccessor(b, normal_deltas, false, normal_sparse);
+      target["NORMAL"] = addDeltaAccessor(b, gathered(normal_deltas, 3, ev), false, normal_sparse);
     }
     targets.push_back(std::move(target));
     names.push_back(name);
@@ -606,17 +813,50 @@ Built build(const GltfExportInput& in, const std::string& where, GltfExportRepor
                 ba.frame_normal_deltas.empty() ? std::span<const float>()
                                                : std::span<const float>(ba.frame_normal_deltas[i]));
   }
-  const std::size_t target_count = totalTargets(in);
+}
 
-  OJson primitive = {{"attributes", attributes}, {"indices", indices}, {"mode", kTriangles}};
-  if (target_count > 0) primitive["targets"] = targets;
-  OJson mesh = {{"name", in.mesh_name}, {"primitives", OJson::array({primitive})}};
-  if (target_count > 0) mesh["weights"] = std::vector<double>(target_count, 0.0);
-  mesh["extras"] = {{"targetNames", names}, {"vdg", vdgExtras(in)}};
+Built build(const GltfExportInput& in, const std::string& where, GltfExportReport* report,
+            const ImageOutput& image_out = {}) {
+  validateInput(in, where);
+  GltfExportReport rep;
+  BufferBuilder b;
+  const ExportVertices ev = exportVertices(in.base);
+  rep.split_vertices = ev.count() - in.base.vertexCount();
+
+  // The attributes all primitives share (one vertex list; each primitive indexes its faces).
+  OJson attributes = OJson::object();
+  attributes["POSITION"] = b.addFloats(gathered(in.base.positions, 3, ev), 3, kArrayBuffer, true);
+  if (!in.normals.empty()) attributes["NORMAL"] = b.addFloats(gathered(in.normals, 3, ev), 3, kArrayBuffer, false);
+  if (!ev.uvs.empty()) {
+    attributes["TEXCOORD_0"] = b.addFloats(ev.uvs, 2, kArrayBuffer, false);
+    rep.uvs_written = true;
+  }
+  attributes["_VDG_VERTEX"] = addVertexIds(b, ev, in.base.vertexCount());
+  if (skinBase(in)) addSkinAttributes(b, *in.base_animation->rig, ev, attributes);
+
+  OJson targets = OJson::array(), names = OJson::array();
+  addTargets(b, in, ev, targets, names, rep);
+  const std::size_t target_count = totalTargets(in);
 
   OJson doc;
   doc["asset"] = {{"version", "2.0"}, {"generator", std::string("vdg ") + versionString()}};
   doc["scene"] = 0;
+  const std::vector<ExportGroup> groups = exportGroups(in.base, ev);
+  const std::vector<int> group_materials =
+      addMaterials(b, in.base, groups, !ev.uvs.empty(), image_out, doc, rep, where);
+  OJson primitives = OJson::array();
+  for (std::size_t g = 0; g < groups.size(); ++g) {
+    OJson primitive = {{"attributes", attributes},
+                       {"indices", addIndices(b, groups[g].indices, ev.count())},
+                       {"material", group_materials[g]},
+                       {"mode", kTriangles}};
+    if (target_count > 0) primitive["targets"] = targets;
+    primitives.push_back(std::move(primitive));
+  }
+  OJson mesh = {{"name", in.mesh_name}, {"primitives", std::move(primitives)}};
+  if (target_count > 0) mesh["weights"] = std::vector<double>(target_count, 0.0);
+  mesh["extras"] = {{"targetNames", names}, {"vdg", vdgExtras(in)}};
+
   OJson nodes = OJson::array({OJson{{"name", in.mesh_name}, {"mesh", 0}}});
   OJson scene_nodes = OJson::array({0});
   OJson animations = OJson::array();
@@ -690,6 +930,38 @@ GltfViewSphere gltfViewSphere(const ViewSphere& sphere) {
   vs.isolated.assign(sphere.isolatedKeys().begin(), sphere.isolatedKeys().end());
   for (std::size_t k = 0; k < vs.views; ++k) vs.view_targets.push_back({static_cast<int>(k)});
   return vs;
+}
+
+std::size_t gltfTargetCount(const GltfExportInput& input) { return totalTargets(input); }
+
+std::size_t gltfTargetCount(const AnimatedViewDependentModel& model) {
+  std::size_t keys = 0;
+  for (std::size_t i = 0; i < model.viewCount(); ++i) keys += model.keyFrames(i).size();
+  const bool frames = model.offsetSpace() != OffsetSpace::kSkinned;
+  return keys + (frames ? static_cast<std::size_t>(std::max(model.frameCount(), 1) - 1) : 0);
+}
+
+std::string morphTargetCapsExceeded(std::size_t count) {
+  std::string out;
+  for (const MorphTargetCap& cap : kMorphTargetCaps)
+    if (count > cap.targets)
+      out += (out.empty() ? "" : ", ") + std::string(cap.engine) + " (" + std::to_string(cap.targets) + ")";
+  return out;
+}
+
+void checkMaxTargets(const GltfExportInput& input, std::size_t max_targets, const std::string& where) {
+  const std::size_t count = totalTargets(input);
+  if (count <= max_targets) return;
+  const std::size_t frames = count - input.targets.size();
+  std::string what = std::to_string(input.targets.size()) + " keys";
+  if (frames > 0) what += " + " + std::to_string(frames) + " base frames";
+  std::string todo = "use fewer keys or raise --max-targets";
+  if (frames > 0)
+    todo =
+        "a \"world\"-offset animated model needs one target per base frame: use fewer frames, \"skinned\" "
+        "offsets on a skinned glTF base (written with its skin, no frame targets), or raise --max-targets";
+  throw Error(where + ": the export needs " + std::to_string(count) + " morph targets (" + what +
+              "), more than --max-targets " + std::to_string(max_targets) + "; " + todo);
 }
 
 const char* gltfBaseModeName(GltfBaseMode mode) { return mode == GltfBaseMode::kSkin ? "skin" : "frames"; }
@@ -872,8 +1144,16 @@ std::string gltfToGlb(const GltfExportInput& input, const std::string& where, Gl
 }
 
 std::string gltfToJson(const GltfExportInput& input, const std::string& where, const std::string& bin_uri,
-                       std::string& bin, GltfExportReport* report) {
-  Built built = build(input, where, report);
+                       std::string& bin, GltfExportReport* report, std::vector<GltfImageFile>* images) {
+  ImageOutput image_out;
+  if (images) {
+    image_out.store = ImageStore::kFiles;
+    image_out.stem = std::filesystem::path(bin_uri).stem().string();
+    image_out.files = images;
+  } else {
+    image_out.store = ImageStore::kDataUri;
+  }
+  Built built = build(input, where, report, image_out);
   built.doc["buffers"][0]["uri"] = bin_uri;
   std::string json = built.doc.dump(1, ' ', false, OJson::error_handler_t::replace);
   json += '\n';
@@ -895,7 +1175,8 @@ GltfExportReport writeGltfExport(const std::string& path, const GltfExportInput&
   // The buffer's URI is a file name only, so the pair can be moved together.
   const std::string bin_name = p.stem().string() + ".bin";
   std::string bin;
-  std::string json = gltfToJson(input, path, bin_name, bin, &report);
+  std::vector<GltfImageFile> images;
+  std::string json = gltfToJson(input, path, bin_name, bin, &report, &images);
   const fs::path folder = p.parent_path();
   const std::string folder_name = folder.empty() ? "." : folder.string();
   const FolderLock lock(folder_name);
@@ -903,6 +1184,13 @@ GltfExportReport writeGltfExport(const std::string& path, const GltfExportInput&
   (void)recoverFileTransaction(journal);
   FileTransaction transaction(journal);
   transaction.write((folder / bin_name).string(), std::move(bin));
+  // The images beside it (names derived from OUT, listed in the report for the command to print).
+  for (GltfImageFile& image : images) {
+    const std::string image_path = (folder / image.name).string();
+    report.bytes += image.bytes.size();
+    report.files.push_back(image_path);
+    transaction.write(image_path, std::move(image.bytes));
+  }
   transaction.write(path, std::move(json));
   transaction.commit();
   return report;

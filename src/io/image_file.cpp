@@ -9,9 +9,14 @@
 #define STBI_ONLY_PNG
 #define STBI_ONLY_JPEG
 #define STBI_NO_STDIO
+// The PNG encoder of exports (encodePng), static and without stdio the same way.
+#define STB_IMAGE_WRITE_STATIC
+#define STB_IMAGE_WRITE_IMPLEMENTATION
+#define STBI_WRITE_NO_STDIO
 #include "vdg/io/image_file.h"
 
 #include <stb/stb_image.h>
+#include <stb/stb_image_write.h>
 
 #include <algorithm>
 #include <climits>
@@ -78,6 +83,19 @@ TextureImage decodeImage(std::string_view bytes, const std::string& source, cons
 
 TextureImage readImageFile(const std::string& path, const std::string& what, const ImageLimits& limits) {
   return decodeImage(readFileLimited(path, what, limits.max_file_bytes), path, limits);
+}
+
+std::string encodePng(const TextureImage& image, const std::string& source) {
+  if (image.width < 1 || image.height < 1 ||
+      image.rgba.size() != static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height) * 4)
+    throw Error(source + ": the image has no pixels or a wrong buffer size");
+  std::string png;
+  const auto append = [](void* context, void* data, int size) {
+    static_cast<std::string*>(context)->append(static_cast<const char*>(data), static_cast<std::size_t>(size));
+  };
+  if (!stbi_write_png_to_func(append, &png, image.width, image.height, 4, image.rgba.data(), image.width * 4))
+    throw Error(source + ": cannot encode the image as PNG");
+  return png;
 }
 
 }  // namespace vdg

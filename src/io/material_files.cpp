@@ -44,6 +44,7 @@ TextureCache::Entry TextureCache::decode(std::string_view data, const std::strin
   limits.max_pixels = std::min(limits.max_pixels, left);
   try {
     auto image = std::make_shared<TextureImage>(decodeImage(data, source, limits));
+    image->file_bytes = std::string(data);  // kept for exports (vdg/geom/material.h)
     pixels_ += static_cast<std::size_t>(image->width) * static_cast<std::size_t>(image->height);
     return {std::move(image), {}};
   } catch (const Error& e) {

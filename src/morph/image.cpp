@@ -34,7 +34,10 @@ Image imageFromRgba8(const TextureImage& image) {
 
 TextureImage imageToRgba8(const Image& image) {
   validateImage(image, "image");
-  TextureImage out{.width = image.width, .height = image.height, .rgba = std::vector<std::uint8_t>(image.rgba.size())};
+  TextureImage out;
+  out.width = image.width;
+  out.height = image.height;
+  out.rgba.resize(image.rgba.size());
   for (std::size_t i = 0; i < image.rgba.size(); ++i) {
     const float v = image.rgba[i];
     // NaN counts as 0; otherwise rounded to nearest and clamped to [0, 255].

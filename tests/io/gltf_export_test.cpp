@@ -7,6 +7,7 @@
 #include <Eigen/Geometry>
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <functional>
 #include <numbers>
@@ -14,6 +15,8 @@
 #include "gltf_test_decoder.h"
 #include "support/error_of.h"
 #include "support/test_meshes.h"
+#include "vdg/io/gltf.h"
+#include "vdg/io/image_file.h"
 
 namespace vdg {
 namespace {
@@ -237,25 +240,161 @@ TEST(GltfExport, LargeMeshesUseUnsignedIntIndicesAndShortSparseIndices) {
   EXPECT_EQ(toFloats(readAccessor(g, prim.at("targets").at(0).at("POSITION"))), target.deltas);
 }
 
-TEST(GltfExport, UvsAreWrittenWhenOnePerVertexElseLeftOutWithANote) {
+// A unit square of two triangles with one uv per vertex, and a target moving vertex 1.
+GltfExportInput squareInput() {
   GltfExportInput input;
   input.base.positions = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0};
   input.base.triangles = {0, 1, 2, 2, 1, 3};
   input.base.uvs = {0, 0, 1, 0, 0, 1, 1, 1};
   input.base.uv_triangles = {0, 1, 2, 2, 1, 3};
+  GltfTarget target;
+  target.name = "k";
+  target.view = {0, 0, 1};
+  target.deltas = {0, 0, 0, 0, 0, 0.5f, 0, 0, 0, 0, 0, 0};
+  input.targets.push_back(target);
+  return input;
+}
+
+TEST(GltfExport, UvsAreWrittenAndSeamsSplitWithTheSameDeltas) {
+  GltfExportInput input = squareInput();
   GltfExportReport report;
   DecodedGltf g = testing::decodeGlb(gltfToGlb(input, "t.glb", &report));
   EXPECT_TRUE(report.uvs_written);
+  EXPECT_EQ(report.split_vertices, 0u);
   const auto& attrs = g.doc.at("meshes").at(0).at("primitives").at(0).at("attributes");
   // glTF's uv origin is the top-left corner: v becomes 1 - v.
   EXPECT_EQ(readAccessor(g, attrs.at("TEXCOORD_0")), (std::vector<double>{0, 1, 1, 1, 0, 0, 1, 0}));
-  // A seam: vertex 1 has two different uvs.
+  EXPECT_EQ(testing::readVertexIds(g, g.doc.at("meshes").at(0).at("primitives").at(0)), (std::vector<int>{0, 1, 2, 3}));
+  // A seam: vertex 1 has uv (1, 0) in the first triangle and (0.5, 0.5) in the second; it is split
+  // into exported vertex 4 with vertex 1's position and target delta.
   input.base.uvs.insert(input.base.uvs.end(), {0.5f, 0.5f});
   input.base.uv_triangles = {0, 1, 2, 2, 4, 3};
   g = testing::decodeGlb(gltfToGlb(input, "t.glb", &report));
-  EXPECT_FALSE(report.uvs_written);
-  EXPECT_NE(report.note.find("vertex 1 has different uvs"), std::string::npos);
-  EXPECT_FALSE(g.doc.at("meshes").at(0).at("primitives").at(0).at("attributes").contains("TEXCOORD_0"));
+  EXPECT_TRUE(report.uvs_written);
+  EXPECT_EQ(report.split_vertices, 1u);
+  const auto& prim = g.doc.at("meshes").at(0).at("primitives").at(0);
+  EXPECT_EQ(readAccessor(g, prim.at("attributes").at("TEXCOORD_0")),
+            (std::vector<double>{0, 1, 1, 1, 0, 0, 1, 0, 0.5, 0.5}));
+  EXPECT_EQ(readAccessor(g, prim.at("indices")), (std::vector<double>{0, 1, 2, 2, 4, 3}));
+  EXPECT_EQ(testing::readVertexIds(g, prim), (std::vector<int>{0, 1, 2, 3, 1}));
+  const auto positions = readAccessor(g, prim.at("attributes").at("POSITION"));
+  const auto deltas = readAccessor(g, prim.at("targets").at(0).at("POSITION"));
+  ASSERT_EQ(positions.size(), 15u);
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_EQ(positions[12 + c], positions[3 + c]);
+    EXPECT_EQ(deltas[12 + c], deltas[3 + c]);
+  }
+  // Read back: welded to the model's 4 vertices in order, each corner keeping its uv.
+  const RawRig rig = parseGltfRig(gltfToGlb(input, "t.glb"), "t.glb");
+  EXPECT_EQ(rig.mesh.positions, input.base.positions);
+  EXPECT_EQ(rig.mesh.triangles, input.base.triangles);
+  ASSERT_EQ(rig.target_positions.size(), 1u);
+  EXPECT_EQ(rig.target_positions[0], input.targets[0].deltas);
+  for (std::size_t c = 0; c < 6; ++c)
+    for (int k = 0; k < 2; ++k)
+      EXPECT_NEAR(rig.mesh.uvs[static_cast<std::size_t>(rig.mesh.uv_triangles[c]) * 2 + k],
+                  input.base.uvs[static_cast<std::size_t>(input.base.uv_triangles[c]) * 2 + k], 1e-7)
+          << "corner " << c;
+}
+
+TEST(GltfExport, AVertexMapThatDoesNotMatchIsRefusedByTheReader) {
+  GltfExportInput input = squareInput();
+  input.base.uvs.insert(input.base.uvs.end(), {0.5f, 0.5f});
+  input.base.uv_triangles = {0, 1, 2, 2, 4, 3};
+  const std::string glb = gltfToGlb(input, "t.glb");
+  const DecodedGltf g = testing::decodeGlb(glb);
+  const auto& prim = g.doc.at("meshes").at(0).at("primitives").at(0);
+  const auto& a = g.doc.at("accessors").at(prim.at("attributes").at("_VDG_VERTEX").get<int>());
+  const std::size_t json_length = testing::u32At(glb, 12);
+  const std::size_t view_at =
+      20 + json_length + 8 +
+      g.doc.at("bufferViews").at(a.at("bufferView").get<int>()).at("byteOffset").get<std::size_t>();
+  // Exported vertex 4 (the copy of model vertex 1) named as another vertex, or out of range.
+  const auto withId = [&](std::uint16_t id) {
+    std::string bytes = glb;
+    std::memcpy(&bytes[view_at + 4 * 4], &id, 2);
+    return errorOf([&] { (void)parseGltfRig(bytes, "t.glb"); });
+  };
+  EXPECT_NE(withId(3).find("t.glb: meshes[0]: vertex 4 (_VDG_VERTEX 3) lies elsewhere than vertex 3"),
+            std::string::npos)
+      << withId(3);
+  EXPECT_NE(withId(9).find("t.glb: meshes[0]: _VDG_VERTEX[4] = 9"), std::string::npos) << withId(9);
+}
+
+// Display sRGB to linear, the inverse of the reader's encoding (IEC 61966-2-1), for the expectations.
+double linearOf(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); }
+
+TEST(GltfExport, MaterialsArePrimitivesWithLinearColoursAndTheirTextures) {
+  GltfExportInput input = squareInput();
+  auto texture = std::make_shared<TextureImage>();
+  texture->width = 2, texture->height = 1;
+  texture->rgba = {255, 0, 0, 255, 0, 0, 255, 255};
+  Material red{"red", {0.5f, 0.25f, 1.0f}, "red.png", texture};
+  input.base.materials = {red};
+  input.base.face_materials = {-1, 0};  // the first triangle has no material
+  GltfExportReport report;
+  const std::string glb = gltfToGlb(input, "t.glb", &report);
+  const DecodedGltf g = testing::decodeGlb(glb);
+  EXPECT_EQ(report.materials, 2u);
+  EXPECT_EQ(report.images, 1u);
+  const auto& prims = g.doc.at("meshes").at(0).at("primitives");
+  ASSERT_EQ(prims.size(), 2u);
+  EXPECT_EQ(readAccessor(g, prims.at(0).at("indices")), (std::vector<double>{0, 1, 2}));
+  EXPECT_EQ(readAccessor(g, prims.at(1).at("indices")), (std::vector<double>{2, 1, 3}));
+  const auto& plain = g.doc.at("materials").at(prims.at(0).at("material").get<int>());
+  EXPECT_EQ(plain.at("pbrMetallicRoughness").at("metallicFactor"), 0.0);
+  EXPECT_FALSE(plain.at("pbrMetallicRoughness").contains("baseColorFactor"));  // white
+  EXPECT_TRUE(plain.at("extras").at("vdg").at("plain").get<bool>());
+  const auto& mat = g.doc.at("materials").at(prims.at(1).at("material").get<int>());
+  EXPECT_EQ(mat.at("name"), "red");
+  const auto factor = mat.at("pbrMetallicRoughness").at("baseColorFactor");
+  constexpr double kColourTol = 1e-12;
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(factor.at(c).get<double>(), linearOf(red.base_color[c]), kColourTol);
+  EXPECT_EQ(mat.at("pbrMetallicRoughness").at("metallicFactor"), 0.0);
+  // The texture: the pixels encoded as PNG (it has no file bytes) in a bufferView.
+  const int tex = mat.at("pbrMetallicRoughness").at("baseColorTexture").at("index");
+  const auto& image = g.doc.at("images").at(g.doc.at("textures").at(tex).at("source").get<int>());
+  EXPECT_EQ(image.at("mimeType"), "image/png");
+  const auto& view = g.doc.at("bufferViews").at(image.at("bufferView").get<int>());
+  const TextureImage decoded = decodeImage(
+      g.bin.substr(view.at("byteOffset").get<std::size_t>(), view.at("byteLength").get<std::size_t>()), "png");
+  EXPECT_EQ(decoded.rgba, texture->rgba);
+  // Read back: the same faces with the same material, the plain one none; colour to 1e-6.
+  const RawRig rig = parseGltfRig(glb, "t.glb");
+  ASSERT_EQ(rig.mesh.materials.size(), 1u);
+  EXPECT_EQ(rig.mesh.face_materials, input.base.face_materials);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(rig.mesh.materials[0].base_color[c], red.base_color[c], 1e-6);
+  ASSERT_TRUE(rig.mesh.materials[0].texture);
+  EXPECT_EQ(rig.mesh.materials[0].texture->rgba, texture->rgba);
+}
+
+TEST(GltfExport, AGltfWritesItsImagesBesideItInOneTransaction) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "vdg_gltf_images_test";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  GltfExportInput input = squareInput();
+  auto texture = std::make_shared<TextureImage>();
+  texture->width = 1, texture->height = 1;
+  texture->rgba = {10, 20, 30, 255};
+  texture->file_bytes = encodePng(*texture, "t");
+  input.base.materials = {Material{"m", {1, 1, 1}, "m.png", texture}};
+  input.base.face_materials = {0, 0};
+  const GltfExportReport report = writeGltfExport((dir / "out.gltf").string(), input);
+  ASSERT_EQ(report.files.size(), 1u);
+  EXPECT_EQ(report.files[0], (dir / "out-texture-0.png").string());
+  EXPECT_EQ(testing::readText(report.files[0]), texture->file_bytes);  // the file's bytes as they are
+  const DecodedGltf g = testing::decodeGltfFile((dir / "out.gltf").string());
+  EXPECT_EQ(g.doc.at("images").at(0).at("uri"), "out-texture-0.png");
+  EXPECT_EQ(g.doc.at("meshes").at(0).at("primitives").size(), 1u);
+  const TriMesh back = readGltfRig((dir / "out.gltf").string()).mesh;
+  ASSERT_EQ(back.materials.size(), 1u);
+  ASSERT_TRUE(back.materials[0].texture);
+  EXPECT_EQ(back.materials[0].texture->rgba, texture->rgba);
+  // Without side files (gltfToJson with no image list) the image is a data: URI.
+  std::string bin;
+  const auto doc = nlohmann::json::parse(gltfToJson(input, "t.gltf", "t.bin", bin));
+  EXPECT_EQ(doc.at("images").at(0).at("uri").get<std::string>().rfind("data:image/png;base64,", 0), 0u);
+  std::filesystem::remove_all(dir);
 }
 
 std::vector<Camera> orbit(const ViewDependentModel& model, int frames) {

@@ -124,6 +124,28 @@ inline std::vector<double> readAccessor(const DecodedGltf& g, int index) {
   return out;
 }
 
+// _VDG_VERTEX of a vdg export's primitive: unsigned shorts with a byte stride of 4 (which
+// readAccessor does not read), or floats.
+inline std::vector<int> readVertexIds(const DecodedGltf& g, const nlohmann::json& primitive) {
+  const int index = primitive.at("attributes").at("_VDG_VERTEX");
+  const auto& a = g.doc.at("accessors").at(index);
+  std::vector<int> ids;
+  if (a.at("componentType") == 5126) {
+    for (double id : readAccessor(g, index)) ids.push_back(static_cast<int>(id));
+    return ids;
+  }
+  if (a.at("componentType") != 5123) throw std::runtime_error("_VDG_VERTEX: unexpected component type");
+  const auto& view = g.doc.at("bufferViews").at(a.at("bufferView").get<int>());
+  if (view.value("byteStride", 0) != 4) throw std::runtime_error("_VDG_VERTEX: expected a byte stride of 4");
+  const std::size_t start = view.value("byteOffset", std::size_t{0}) + a.value("byteOffset", std::size_t{0});
+  for (std::size_t e = 0; e < a.at("count").get<std::size_t>(); ++e) {
+    std::uint16_t id = 0;
+    std::memcpy(&id, g.bin.data() + start + e * 4, 2);
+    ids.push_back(id);
+  }
+  return ids;
+}
+
 inline std::vector<float> toFloats(const std::vector<double>& v) { return std::vector<float>(v.begin(), v.end()); }
 
 }  // namespace vdg::testing

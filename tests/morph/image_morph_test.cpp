@@ -60,7 +60,7 @@ float maxDifference(const Image& a, const Image& b) { return maxDifference(a, b,
 // ---- images ------------------------------------------------------------------------------
 
 TEST(MorphImage, Rgba8RoundTripsAndClamps) {
-  const TextureImage eight{.width = 2, .height = 1, .rgba = {0, 1, 128, 255, 7, 200, 254, 3}};
+  const TextureImage eight{.width = 2, .height = 1, .rgba = {0, 1, 128, 255, 7, 200, 254, 3}, .file_bytes = {}};
   const Image image = imageFromRgba8(eight);
   EXPECT_FLOAT_EQ(image.pixel(0, 0)[2], 128.0f / 255.0f);
   EXPECT_EQ(imageToRgba8(image).rgba, eight.rgba);
@@ -73,7 +73,7 @@ TEST(MorphImage, Rgba8RoundTripsAndClamps) {
   EXPECT_EQ(clamped.rgba[1], 255);
   EXPECT_EQ(clamped.rgba[2], 0);
   EXPECT_EQ(errorOf([] {
-              imageFromRgba8(TextureImage{.width = 2, .height = 2, .rgba = {1, 2, 3}});
+              imageFromRgba8(TextureImage{.width = 2, .height = 2, .rgba = {1, 2, 3}, .file_bytes = {}});
             }),
             "image: 2 x 2 pixels with 3 bytes is not an RGBA8 image");
 }

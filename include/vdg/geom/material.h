@@ -23,6 +23,9 @@ namespace vdg {
 struct TextureImage {
   int width = 0, height = 0;
   std::vector<std::uint8_t> rgba;
+  // The PNG or JPEG file the pixels were decoded from, when a reader kept it (exports write these
+  // bytes as they are instead of re-encoding the pixels); empty otherwise.
+  std::string file_bytes;
 };
 
 struct Material {

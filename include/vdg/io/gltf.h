@@ -34,7 +34,12 @@
 // TEXCOORD_0 are kept when every primitive has them: NORMAL as TriMesh::normals with
 // normal_triangles = triangles (one normal per vertex), TEXCOORD_0 as uvs with v flipped (glTF's
 // origin is the top-left corner of the image, TriMesh's the bottom-left: v' = 1 - v). Morph target
-// names come from mesh.extras.targetNames when it is an array of one string per target.
+// names come from mesh.extras.targetNames when it is an array of one string per target. A vdg
+// export (every primitive has _VDG_VERTEX, docs/gltf-export.md) is welded back to the model's
+// vertices: vertex _VDG_VERTEX[e] takes exported vertex e's position, normal, skin and target deltas
+// (every copy must lie at the same position), triangles are renumbered, uvs and file normals stay per
+// exported vertex (uv_triangles, normal_triangles), and faces of its plain material
+// (extras.vdg.plain) get no material.
 //
 // Materials (MeshReadOptions::materials, vdg/io/mesh_read_options.h): each primitive's material
 // gives its triangles' face_materials (-1: a primitive without one); TriMesh::materials holds the

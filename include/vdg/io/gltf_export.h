@@ -2,8 +2,10 @@
 // extras in docs/schema/vdg-gltf-extras.schema.json), and the reader of vdg's own description
 // back from a glTF file.
 //
-// What is written: one mesh (one triangle primitive) whose attributes are the base model
-// (POSITION, NORMAL, TEXCOORD_0 when the base's uvs map one to one onto its vertices), and one
+// What is written: one mesh whose attributes are the base model (POSITION, NORMAL, TEXCOORD_0 with
+// the vertices split on uv seams, _VDG_VERTEX naming each exported vertex's model vertex), one
+// triangle primitive per material (base colour factor and texture; a plain dielectric material for
+// faces without one; docs/gltf-export.md, "Materials"), and one
 // morph target per key (per key view and key frame; Rademacher 99, section 3.2.3 writes the blend
 // as base + sum_i w_i (key_i - base), which is exactly glTF's morph target formula with the key
 // deltas as targets and the view's weights as morph weights). mesh.weights are all zero (the
@@ -176,27 +178,60 @@ RawRig readBaseRig(const RawViewDependentModel& raw);
 // when the samples' weights do not match input's targets, or a kSkin base's samples carry no frames.
 GltfBakedAnimation gltfBakedAnimation(CameraPathBake samples, const GltfExportInput& input);
 
-// What an export left out, for the command line to tell the user.
+// Morph target caps of engines (docs/gltf-export.md, "Target count"): Bevy takes 64 targets a mesh,
+// three.js and Filament about 256 (three.js packs them into a texture; Filament's limit).
+struct MorphTargetCap {
+  const char* engine;
+  std::size_t targets;
+};
+inline constexpr MorphTargetCap kMorphTargetCaps[] = {{"Bevy", 64}, {"three.js", 256}, {"Filament", 256}};
+
+// Morph targets an export writes: the keys, then a kFrames base's frames 1..N-1.
+std::size_t gltfTargetCount(const GltfExportInput& input);
+// The same for an animated model without building its export: one target per raw key (per key view
+// and key frame), plus frameCount() - 1 base frames for "world" offsets (a kFrames base; "skinned"
+// offsets are written with the skin, which needs no targets).
+std::size_t gltfTargetCount(const AnimatedViewDependentModel& model);
+// The engines whose cap `count` exceeds, as "Bevy (64), three.js (256)"; empty when none.
+std::string morphTargetCapsExceeded(std::size_t count);
+// Throws vdg::Error "WHERE: the export needs N morph targets (K keys + F base frames), more than
+// --max-targets M; ..." (what to do) when gltfTargetCount(input) > max_targets.
+void checkMaxTargets(const GltfExportInput& input, std::size_t max_targets, const std::string& where);
+
+// What an export wrote and left out, for the command line to tell the user.
 struct GltfExportReport {
   bool uvs_written = false;
-  std::string note;                // empty, or one line (for instance why the uvs were not written)
-  std::size_t bytes = 0;           // size of the .glb, or of the .gltf plus its .bin
+  std::string note;                // empty, or one line (for instance why a texture was not written)
+  std::size_t bytes = 0;           // size of the .glb, or of the .gltf plus its .bin and images
   std::size_t sparse_targets = 0;  // targets whose POSITION deltas went into sparse accessors
+  std::size_t materials = 0;       // glTF materials written (one primitive per material)
+  std::size_t images = 0;          // images written (embedded, or files beside a .gltf)
+  std::size_t split_vertices = 0;  // vertices added by splitting uv seams (exported = model + these)
+  std::vector<std::string> files;  // writeGltfExport of a .gltf: the image files written beside it
 };
 
-// Serialises `input` in memory: the GLB bytes (12-byte header, JSON chunk, BIN chunk), or for the
-// .gltf form the JSON text with the buffer's "uri" set to `bin_uri` and the buffer returned in
-// `bin`. Names that are not valid UTF-8 are written with U+FFFD in place of the bad bytes (JSON
-// is UTF-8). Throws vdg::Error naming `where` and the element for an inconsistent input: an empty
-// base, array sizes that do not match #V, a triangle index out of range, non-finite values, normals
-// that are not unit length, empty or duplicate target names, a zero target view, a bake whose
-// arrays do not match its times or #targets, times not strictly increasing.
+// An image file beside a .gltf: its name (a file name, the uri) and its PNG or JPEG bytes.
+struct GltfImageFile {
+  std::string name;
+  std::string bytes;
+};
+
+// Serialises `input` in memory: the GLB bytes (12-byte header, JSON chunk, BIN chunk; images in
+// bufferViews), or for the .gltf form the JSON text with the buffer's "uri" set to `bin_uri` and the
+// buffer returned in `bin`, and the images returned in `images` (named "STEM-texture-N.png" or
+// ".jpg" after bin_uri's stem), or, when `images` is null, written as data: URIs. Names that are not valid UTF-8 are
+// written with U+FFFD in place of the bad bytes (JSON is UTF-8). Throws vdg::Error naming `where` and the element for
+// an inconsistent input: an empty base, array sizes that do not match #V, a triangle index out of range, non-finite
+// values, normals that are not unit length, empty or duplicate target names, a zero target view, a bake whose arrays do
+// not match its times or #targets, times not strictly increasing.
 std::string gltfToGlb(const GltfExportInput& input, const std::string& where, GltfExportReport* report = nullptr);
 std::string gltfToJson(const GltfExportInput& input, const std::string& where, const std::string& bin_uri,
-                       std::string& bin, GltfExportReport* report = nullptr);
+                       std::string& bin, GltfExportReport* report = nullptr,
+                       std::vector<GltfImageFile>* images = nullptr);
 
 // Writes `path`: a .glb, or a .gltf with its buffer in a file beside it named after the .gltf's
-// stem ("out.gltf" -> "out.bin"); the two are replaced together as one step (a FileTransaction
+// stem ("out.gltf" -> "out.bin") and its images beside it ("out-texture-0.png", listed in the
+// report's `files`); all are replaced together as one step (a FileTransaction
 // with its journal ".vdg-journal" in the output folder, under that folder's lock). Any other
 // extension is an error. Throws vdg::Error naming `path`.
 GltfExportReport writeGltfExport(const std::string& path, const GltfExportInput& input);

@@ -47,4 +47,9 @@ TextureImage decodeImage(std::string_view bytes, const std::string& source, cons
 // Throws vdg::Error "PATH: ..." as readFileLimited and decodeImage do.
 TextureImage readImageFile(const std::string& path, const std::string& what = "image", const ImageLimits& limits = {});
 
+// Encodes RGBA8 pixels (top row first) as a PNG file in memory (stb_image_write's encoder; exports
+// of textures that have no file of their own). Throws vdg::Error "SOURCE: ..." for an image with no
+// pixels or a buffer that does not match its size.
+std::string encodePng(const TextureImage& image, const std::string& source);
+
 }  // namespace vdg
