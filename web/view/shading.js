@@ -68,7 +68,8 @@ export function hueConstants(base) {
  * @returns {THREE.ShaderMaterial}
  */
 export function warmCoolMaterial(source) {
-  const base = source.color ? source.color.clone() : new THREE.Color(0.8, 0.8, 0.8);
+  // glTF's baseColorFactor is linear; vdg render shades display (sRGB-encoded) values.
+  const base = source.color ? source.color.clone().convertLinearToSRGB() : new THREE.Color(0.8, 0.8, 0.8);
   const map = source.map ?? null;
   if (map) map.colorSpace = THREE.NoColorSpace; // shade the texture's values as vdg render does
   const material = new THREE.ShaderMaterial({
