@@ -54,10 +54,11 @@ struct WebFile {
 };
 
 // What the page needs besides the files of web/view/ (copied to the folder's top).
-constexpr std::array<WebFile, 8> kWebFiles{{
+constexpr std::array<WebFile, 9> kWebFiles{{
     {"vdg-three.js", "vdg-three.js"},
     {"node_modules/three/build/three.module.js", "three/three.module.js"},
     {"node_modules/three/build/three.core.js", "three/three.core.js"},
+    {"node_modules/three/LICENSE", "three/LICENSE"},  // three.js's MIT licence travels with its files
     {"node_modules/three/examples/jsm/loaders/GLTFLoader.js", "three/addons/loaders/GLTFLoader.js"},
     {"node_modules/three/examples/jsm/utils/BufferGeometryUtils.js", "three/addons/utils/BufferGeometryUtils.js"},
     {"node_modules/three/examples/jsm/utils/SkeletonUtils.js", "three/addons/utils/SkeletonUtils.js"},
