@@ -56,7 +56,6 @@ const kInsideTol = 1e-9;
  * @property {Float64Array} arcFrames per arc: normal, b x normal, normal x a (9 numbers)
  * @property {Int32Array} isolated
  * @property {number} targetCount morph targets of the mesh (keys, then base frames)
- * @property {Float64Array} scratch slot weights etc.
  */
 
 /** @type {WeakMap<object, Prepared>} */
@@ -104,7 +103,6 @@ function prepare(extras) {
     extras, points, views: s.views, triangles, inverses, arcs, arcFrames,
     isolated: new Int32Array(s.isolated),
     targetCount: extras.keys.length + frameTargets,
-    scratch: new Float64Array(16),
   };
   preparedCache.set(extras, p);
   return p;
@@ -293,7 +291,8 @@ export function vdgTimeCoefficients(extras, i, frame, out) {
   for (let k = 0; k < m; ++k) out[k] += ca * s[j * m + k] + cb * s[next * m + k];
 }
 
-const tmpCoef = new Float64Array(64);
+/** Coefficients of one view's key frames (vdg allows 256 key frames per view: kMaxKeyFramesPerView). */
+const tmpCoef = new Float64Array(256);
 
 /**
  * Morph weights of a view into `out` (length: the mesh's targets), allocation-free.
@@ -432,7 +431,11 @@ function controllerFrame(extras, frame, time) {
  * @param {{mainCamera?: import('three').Camera|null, sharpness?: number|null, frame?: number}} [options]
  */
 export function attachVdg(root, { mainCamera = null, sharpness = null, frame = 0 } = {}) {
-  /** @type {Map<VdgExtras, VdgModel & {weights: Float64Array, sphere: SphereWeights|null, hint: number}>} */
+  /**
+   * Per model: its last view's morph weights and sphere weights (kept without allocating per frame).
+   * @type {Map<VdgExtras, VdgModel & {weights: Float64Array, hint: number, drawn: boolean, triangle: number,
+   *   slots: Int32Array, slotWeights: Float64Array}>}
+   */
   const byExtras = new Map();
   root.traverse((object) => {
     const mesh = /** @type {any} */ (object);
@@ -441,7 +444,10 @@ export function attachVdg(root, { mainCamera = null, sharpness = null, frame = 0
     prepare(extras);  // throws for a version 1 export, naming the problem
     let model = byExtras.get(extras);
     if (!model) {
-      model = { meshes: [], extras, weights: new Float64Array(prepare(extras).targetCount), sphere: null, hint: -1 };
+      model = {
+        meshes: [], extras, weights: new Float64Array(prepare(extras).targetCount), hint: -1,
+        drawn: false, triangle: -1, slots: new Int32Array(3), slotWeights: new Float64Array(4),
+      };
       byExtras.set(extras, model);
     }
     model.meshes.push(mesh);
@@ -472,7 +478,12 @@ export function attachVdg(root, { mainCamera = null, sharpness = null, frame = 0
      * Its sphere weights (vdgSphereWeights' form), or null before the first render.
      * @param {VdgModel} model
      */
-    lastSphereWeights(model) { return /** @type {any} */ (byExtras.get(model.extras)).sphere; },
+    lastSphereWeights(model) {
+      const m = /** @type {any} */ (byExtras.get(model.extras));
+      if (!m.drawn) return null;
+      const w = m.slotWeights;
+      return { triangle: m.triangle, points: Array.from(m.slots), weights: [w[0], w[1], w[2]], base: w[3] };
+    },
     /** Restores the meshes' hooks and zero weights (the base). */
     dispose() {
       for (const { mesh, before, shadow } of hooked) {
@@ -498,7 +509,10 @@ export function attachVdg(root, { mainCamera = null, sharpness = null, frame = 0
     const influences = mesh.morphTargetInfluences;
     for (let i = 0; i < influences.length && i < out.length; ++i) influences[i] = out[i];
     if (record) {
-      model.sphere = { triangle: model.hint, points: Array.from(slots), weights: [w[0], w[1], w[2]], base: w[3] };
+      model.drawn = true;
+      model.triangle = model.hint;
+      model.slots.set(slots);
+      model.slotWeights.set(w);
     }
   }
 

@@ -21,7 +21,7 @@
 
 #include "cli.h"
 #include "vdg/geom/error.h"
-#include "vdg/geom/normalize.h"
+#include "vdg/io/camera_json.h"
 #include "vdg/io/model.h"
 #include "vdg/io/read_file.h"
 #include "vdg/viewdep/animated_model.h"
@@ -91,51 +91,13 @@ void animatedWeights(const AnimatedViewDependentModel& model, const ViewOptions&
   std::printf("  %-20s %.6f\n", "(base)", w.base);
 }
 
-// The items of a --views file as view directions from `center`; one line naming the file and item
-// for anything else.
-std::vector<Eigen::Vector3d> readViews(const std::string& path, const Eigen::Vector3d& center) {
-  const std::string text = readFileLimited(path, "views file", kMaxJsonFileBytes);
-  constexpr int kMaxDepth = 3;  // [ {"eye": [x, y, z]} ]
-  nlohmann::json doc;
-  try {
-    doc = nlohmann::json::parse(text, [&](int depth, nlohmann::json::parse_event_t, nlohmann::json&) {
-      if (depth > kMaxDepth) throw Error(path + ": --views: nested deeper than a list of [x, y, z] items");
-      return true;
-    });
-  } catch (const nlohmann::json::exception& e) {
-    throw Error(path + ": --views: not valid JSON (" + std::string(e.what()).substr(0, 120) + ")");
-  }
-  if (!doc.is_array()) throw Error(path + ": --views: expected a JSON array of [x, y, z] directions");
-  std::vector<Eigen::Vector3d> views;
-  for (std::size_t i = 0; i < doc.size(); ++i) {
-    const std::string where = path + ": --views: item " + std::to_string(i);
-    const nlohmann::json& item = doc[i];
-    const bool eye = item.is_object() && item.size() == 1 && item.contains("eye");
-    const nlohmann::json* xyz = &item;
-    if (item.is_object()) {
-      if (item.size() != 1 || !(eye || item.contains("view")))
-        throw Error(where + ": expected [x, y, z], {\"view\": [x, y, z]} or {\"eye\": [x, y, z]}");
-      xyz = eye ? &item.at("eye") : &item.at("view");
-    }
-    Eigen::Vector3d v;
-    bool ok = xyz->is_array() && xyz->size() == 3;
-    for (int c = 0; ok && c < 3; ++c) {
-      ok = (*xyz)[c].is_number() && std::isfinite((*xyz)[c].get<double>());
-      if (ok) v[c] = (*xyz)[c].get<double>();
-    }
-    if (!ok) throw Error(where + ": expected 3 finite numbers");
-    const std::optional<Eigen::Vector3d> unit = normalizedOrNone(eye ? Eigen::Vector3d(v - center) : v);
-    if (!unit) throw Error(where + (eye ? ": the eye is at the model centre" : ": the direction is zero"));
-    views.push_back(*unit);
-  }
-  return views;
-}
-
 void batchWeights(const OpenedInput& input, const std::string& path, double sharpness) {
   const Eigen::Vector3d center = input.animated ? input.animated->center() : input.model->center();
   nlohmann::ordered_json out = nlohmann::ordered_json::array();
   int hint = -1;
-  for (const Eigen::Vector3d& view : readViews(path, center)) {
+  const std::vector<Eigen::Vector3d> views =
+      parseViewList(readFileLimited(path, "views file", kMaxJsonFileBytes), path + ": --views", center);
+  for (const Eigen::Vector3d& view : views) {
     ViewWeights w;
     if (input.animated) {
       if (!input.animated->weights(view, sharpness, w, &hint)) refused(view);

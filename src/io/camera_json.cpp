@@ -1,6 +1,7 @@
 #include "vdg/io/camera_json.h"
 
 #include "camera_fields.h"
+#include "vdg/geom/normalize.h"
 #include "vdg/io/atomic_file.h"
 #include "vdg/io/json_text.h"
 #include "vdg/io/read_file.h"
@@ -66,6 +67,34 @@ void writeCameraFile(const std::string& path, const Camera& camera) {
   j.update(io::cameraJson(camera));
   const std::string text = compactScalarArrays(j.dump(2)) + "\n";
   writeFileAtomically(path, [&](std::ostream& out) { out << text; });
+}
+
+std::vector<Eigen::Vector3d> parseViewList(const std::string& text, const std::string& where,
+                                           const Eigen::Vector3d& center) {
+  const io::Json doc = io::parseJson(text, where);
+  const io::Ctx top{where, ""};
+  if (!doc.is_array()) top.fail("expected an array of views [x, y, z], got " + io::describe(doc));
+  std::vector<Eigen::Vector3d> views;
+  views.reserve(doc.size());
+  for (std::size_t i = 0; i < doc.size(); ++i) {
+    const io::Ctx ctx = top.index(i);
+    const io::Json& item = doc[i];
+    bool eye = false;
+    Eigen::Vector3d v;
+    if (item.is_object()) {
+      io::allowKeys(item, ctx, {"view", "eye"});
+      eye = item.contains("eye");
+      if (eye == item.contains("view")) ctx.fail("expected one of 'view' or 'eye'");
+      v = io::vector3(item.at(eye ? "eye" : "view"), ctx.key(eye ? "eye" : "view"));
+    } else {
+      v = io::vector3(item, ctx);
+    }
+    const Eigen::Vector3d d = eye ? Eigen::Vector3d(v - center) : v;
+    const std::optional<Eigen::Vector3d> unit = d.allFinite() ? normalizedOrNone(d) : std::nullopt;
+    if (!unit) ctx.fail(eye ? "the eye is at the model centre (or too far from it)" : "the view direction is zero");
+    views.push_back(*unit);
+  }
+  return views;
 }
 
 }  // namespace vdg

@@ -181,6 +181,14 @@ template <typename Fail>
 void validateViewSphere(const GltfExportInput& in, const Fail& fail) {
   if (!in.view_sphere) {
     if (in.base_animation && !in.targets.empty()) fail("an animated input needs its view sphere (internal error)");
+    if (in.base_animation || in.targets.empty()) return;
+    std::vector<Eigen::Vector3d> views;  // the writer builds the sphere from the targets: can it?
+    for (const GltfTarget& t : in.targets) views.push_back(t.view);
+    try {
+      (void)ViewSphere::build(views, in.sphere);
+    } catch (const Error& e) {
+      fail(e.what());
+    }
     return;
   }
   const GltfViewSphere& vs = *in.view_sphere;

@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
 
 #include "support/test_meshes.h"
 
@@ -66,6 +68,35 @@ TEST(Cli, WeightsJsonIsOneObjectSummingToOne) {
   // Far below the cow, no key is near: the base model alone.
   const auto below = nlohmann::json::parse(run("weights " + kSpot + " --view 0,-1,0 --json").out);
   EXPECT_NEAR(below["base"].get<double>(), 1.0, kSumTol);
+}
+
+// Batch mode: one JSON array, item n equal to the single --json call at that view (or eye).
+TEST(Cli, WeightsViewsFileGivesTheSingleResultsInOrder) {
+  vdg::testing::TempDir dir;
+  const std::vector<std::string> views = {"0,0.15,-1", "1,1,1", "0,-1,0", "0.3,0.2,-0.9"};
+  vdg::testing::writeText(dir.file("v.json"),
+                          R"([[0, 0.15, -1], {"view": [1, 1, 1]}, [0, -1, 0], [0.3, 0.2, -0.9], {"eye": [5, 1, 2]}])");
+  const Result r = run("weights " + kSpot + " --views " + dir.file("v.json"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(lineCount(r.out), 1);
+  const auto all = nlohmann::json::parse(r.out);
+  ASSERT_EQ(all.size(), 5u);
+  for (std::size_t i = 0; i < views.size(); ++i)
+    EXPECT_EQ(all[i], nlohmann::json::parse(run("weights " + kSpot + " --json --view " + views[i]).out)) << i;
+  EXPECT_EQ(all[4], nlohmann::json::parse(run("weights " + kSpot + " --json --eye 5,1,2").out));
+  const auto animated = run("weights examples/walk/walker.vdg.json --views " + dir.file("v.json"));
+  ASSERT_EQ(animated.code, 0) << animated.err;
+  EXPECT_EQ(nlohmann::json::parse(animated.out).at(1),
+            nlohmann::json::parse(run("weights examples/walk/walker.vdg.json --json --view 1,1,1").out));
+  // A bad file: one line naming the file and the item, exit 1; with --view: a usage error.
+  vdg::testing::writeText(dir.file("bad.json"), "[[0, 0, 1], [0, 0]]");
+  const Result bad = run("weights " + kSpot + " --views " + dir.file("bad.json"));
+  EXPECT_EQ(bad.code, 1);
+  EXPECT_EQ(bad.err,
+            "vdg: error: " + dir.file("bad.json") + ": --views: [1]: expected 3 numbers, got an array of 2 items\n");
+  EXPECT_EQ(run("weights " + kSpot + " --views " + dir.file("missing.json")).code, 1);
+  EXPECT_EQ(run("weights " + kSpot + " --views " + dir.file("v.json") + " --view 0,0,1").code, 2);
+  EXPECT_NE(run("weights --help").out.find("--views"), std::string::npos);
 }
 
 TEST(Cli, EyeIsMeasuredFromTheModelCentre) {

@@ -87,7 +87,7 @@ TEST(GltfCli, ExportWritesGlbAndGltfWithTheSameContents) {
             readText(dir.file("spot-texture-0.png")));
   EXPECT_EQ(glb.doc.at("meshes").at(0).at("extras").at("targetNames"),
             nlohmann::json({"front", "left", "right", "back", "top"}));
-  EXPECT_EQ(glb.doc.at("meshes").at(0).at("extras").at("vdg").at("version"), 1);
+  EXPECT_EQ(glb.doc.at("meshes").at(0).at("extras").at("vdg").at("version"), 2);  // extras v2 (with "sphere")
   EXPECT_FALSE(glb.doc.contains("animations"));
 }
 
@@ -397,8 +397,9 @@ TEST(GltfCli, EveryKindOfExportPassesTheKhronosValidator) {
 
 namespace {
 
-// The extras of an export, and of a model with a camera key, against docs/schema (needs python3's
-// jsonschema; skipped without it).
+// The extras of an export, and of a model with a camera key, against docs/schema (version 2; an
+// animated export without its "time" or sphere fails it; the version 1 schema still describes a
+// version 1 description; needs python3's jsonschema; skipped without it).
 TEST(GltfCli, ExtrasFollowTheirJsonSchema) {
   if (runShell("python3 -c 'import jsonschema'").code != 0) GTEST_SKIP() << "python3 jsonschema is not installed";
   vdg::testing::TempDir dir;
@@ -417,13 +418,26 @@ TEST(GltfCli, ExtrasFollowTheirJsonSchema) {
       "jsonschema.Draft202012Validator.check_schema(schema)\n"
       "for f in sys.argv[2:]:\n"
       "    jsonschema.validate(json.load(open(f))[\"meshes\"][0][\"extras\"], schema)\n"
-      "bad = json.load(open(sys.argv[2]))[\"meshes\"][0][\"extras\"]\n"
-      "bad[\"vdg\"][\"uncovered\"] = \"nowhere\"\n"
-      "try:\n"
-      "    jsonschema.validate(bad, schema)\n"
-      "    sys.exit(3)\n"
-      "except jsonschema.ValidationError:\n"
-      "    pass' docs/schema/vdg-gltf-extras.schema.json '" +
+      "def refused(change):\n"
+      "    bad = json.load(open(sys.argv[4]))[\"meshes\"][0][\"extras\"]\n"
+      "    change(bad[\"vdg\"])\n"
+      "    try:\n"
+      "        jsonschema.validate(bad, schema)\n"
+      "        sys.exit(3)\n"
+      "    except jsonschema.ValidationError:\n"
+      "        pass\n"
+      "refused(lambda v: v.update(uncovered=\"nowhere\"))\n"
+      "refused(lambda v: v.pop(\"sphere\"))\n"
+      "refused(lambda v: v.pop(\"time\"))\n"
+      "refused(lambda v: v[\"sphere\"][\"inverses\"].append([1, 2]))\n"
+      "refused(lambda v: v.update(version=1))\n"
+      "v1 = json.load(open(sys.argv[1].replace(\"extras.schema\", \"extras-v1.schema\")))\n"
+      "jsonschema.Draft202012Validator.check_schema(v1)\n"
+      "old = json.load(open(sys.argv[2]))[\"meshes\"][0][\"extras\"]\n"
+      "old[\"vdg\"].update(version=1)\n"
+      "old[\"vdg\"].pop(\"sphere\")\n"
+      "jsonschema.validate(old, v1)\n"
+      "' docs/schema/vdg-gltf-extras.schema.json '" +
       dir.file("m.gltf") + "' '" + dir.file("b.gltf") + "' '" + dir.file("w.gltf") + "' '" + dir.file("ww.gltf") + "'";
   const Result r = runShell(check);
   EXPECT_EQ(r.code, 0) << r.err;

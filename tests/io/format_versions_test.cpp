@@ -10,6 +10,7 @@
 #include "vdg/io/anim_json.h"
 #include "vdg/io/camera_json.h"
 #include "vdg/io/edit_script.h"
+#include "vdg/io/gltf_export.h"
 #include "vdg/io/manifest.h"
 #include "vdg/viewdep/animated_model.h"
 #include "vdg/viewdep/model.h"
@@ -50,6 +51,26 @@ TEST(FormatVersions, ManifestVersion2AnimatedBase) {
   ASSERT_TRUE(model.evaluate(2, Eigen::Vector3d(0, 1, 0), 0.0, positions));
   EXPECT_NEAR(positions[3 * 2], 2.0, 1e-6);
   EXPECT_NEAR(positions[3 * 2 + 1], 1.5, 1e-6);
+}
+
+// glTF exports' mesh.extras.vdg: version 1 (no "sphere" / "time") and version 2, static and animated.
+TEST(FormatVersions, GltfExtrasVersions1And2) {
+  for (const char* file : {"tetra_extras_v1.gltf", "tetra_extras_v2.gltf"}) {
+    const ViewDependentModel model = ViewDependentModel::build(loadGltfModel(formats(file)));
+    ASSERT_EQ(model.keyCount(), 1u) << file;
+    EXPECT_EQ(model.keyName(0), "up");
+    std::vector<float> positions(3 * model.vertexCount());
+    ASSERT_TRUE(model.evaluate(Eigen::Vector3d(0, 1, 0), 0.0, positions));
+    EXPECT_NEAR(positions[3 * 2 + 1], 1.5, 1e-6) << file;  // the key mesh, as the manifest's
+  }
+  for (const char* file : {"tetra_walk_extras_v1.gltf", "tetra_walk_extras_v2.gltf"}) {
+    const AnimatedViewDependentModel model = AnimatedViewDependentModel::build(loadGltfModel(formats(file)));
+    ASSERT_EQ(model.frameCount(), 3) << file;
+    std::vector<float> positions(3 * model.vertexCount());
+    ASSERT_TRUE(model.evaluate(2, Eigen::Vector3d(0, 1, 0), 0.0, positions));
+    EXPECT_NEAR(positions[3 * 2], 2.0, 1e-6) << file;
+    EXPECT_NEAR(positions[3 * 2 + 1], 1.5, 1e-6) << file;
+  }
 }
 
 TEST(FormatVersions, CameraFiles) {

@@ -2,6 +2,8 @@
 // round trip through mesh.extras.vdg, sparse targets, uvs, the camera bake, and every bad input.
 #include "vdg/io/gltf_export.h"
 
+#include "vdg/io/camera_json.h"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -661,6 +663,11 @@ TEST(GltfExport, HandMadeStaticInputsGetTheirSphereFromTheTargets) {
   input.view_sphere.reset();
   const nlohmann::json derived =
       nlohmann::json::parse(decodeModel(testing::decodeGlb(gltfToGlb(input, "t.glb"))).extras);
+  // Targets whose views cannot make a sphere are refused naming the file.
+  GltfExportInput twice = input;
+  twice.targets[1].view = twice.targets[0].view;
+  EXPECT_EQ(errorOf([&] { (void)gltfToGlb(twice, "t.glb"); }),
+            "t.glb: key 1: same view direction as key 0 (within 1e-6 rad)");
   // The same sphere: the targets' views are the model's unit views, normalised again (an ulp).
   constexpr double kUlpTol = 1e-14;
   const nlohmann::json& a = derived.at("vdg").at("sphere");
@@ -733,6 +740,30 @@ TEST(GltfExport, MalformedExtrasV2AreRefusedNamingTheField) {
             }),
             "m.glb: mesh extras: 'vdg'.'dequantize': missing key 'offset'");
   EXPECT_EQ(refused([](auto& e) { e["vdg"]["dequantize"] = {{"scale", {1, 1, 1}}, {"offset", {0, 0, 0}}}; }), "");
+}
+
+// The views list of `vdg weights --views` (vdg/io/camera_json.h), which runtimes' parity tests use.
+TEST(ViewList, DirectionsViewsAndEyesBecomeUnitViews) {
+  const Eigen::Vector3d center(1, 2, 3);
+  const auto views =
+      parseViewList(R"([[0, 0, 2], {"view": [1e-300, 0, 0]}, {"eye": [1, 2, 13]}, [3, 4, 0]])", "v.json", center);
+  ASSERT_EQ(views.size(), 4u);
+  EXPECT_EQ(views[0], Eigen::Vector3d(0, 0, 1));
+  EXPECT_EQ(views[1], Eigen::Vector3d(1, 0, 0));
+  EXPECT_EQ(views[2], Eigen::Vector3d(0, 0, 1));  // eye - centre
+  EXPECT_EQ(views[3], Eigen::Vector3d(0.6, 0.8, 0));
+  EXPECT_TRUE(parseViewList("[]", "v.json", center).empty());
+  const auto error = [&](const std::string& text) {
+    return errorOf([&] { (void)parseViewList(text, "v.json", center); });
+  };
+  EXPECT_EQ(error("{}"), "v.json: expected an array of views [x, y, z], got an object");
+  EXPECT_EQ(error("[[0, 0]]"), "v.json: [0]: expected 3 numbers, got an array of 2 items");
+  EXPECT_EQ(error("[[0, 0, 1], [0, 0, 0]]"), "v.json: [1]: the view direction is zero");
+  EXPECT_EQ(error(R"([{"eye": [1, 2, 3]}])"), "v.json: [0]: the eye is at the model centre (or too far from it)");
+  EXPECT_EQ(error(R"([{"eye": [1, 2, 3], "view": [0, 0, 1]}])"), "v.json: [0]: expected one of 'view' or 'eye'");
+  EXPECT_EQ(error(R"([{"look": [0, 0, 1]}])").rfind("v.json: [0]: unknown key 'look'", 0), 0u);
+  EXPECT_EQ(error("[[0, 0, 1e999]]").rfind("v.json: ", 0), 0u);
+  EXPECT_EQ(error("[[").rfind("v.json: not valid JSON", 0), 0u);
 }
 
 }  // namespace

@@ -5,6 +5,9 @@
 #pragma once
 
 #include <string>
+#include <vector>
+
+#include <Eigen/Core>
 
 #include "vdg/geom/camera.h"
 
@@ -23,5 +26,13 @@ std::string cameraToJson(const Camera& camera);
 // Camera files: read with the limits of vdg/io/read_file.h; written atomically with "version".
 Camera readCameraFile(const std::string& path);
 void writeCameraFile(const std::string& path, const Camera& camera);
+
+// A list of views (`vdg weights --views FILE`): a JSON array whose items are directions [x, y, z]
+// (towards the eye) or objects {"view": [x, y, z]} or {"eye": [x, y, z]} (an eye position, whose view
+// is eye - center). Returns one unit direction per item. Throws vdg::Error "WHERE: [I]: ..." naming
+// the item for bad JSON, an item of another shape, non-finite numbers, a zero direction or an eye
+// at the centre (and a too-long or too-deep document, as every vdg JSON reader).
+std::vector<Eigen::Vector3d> parseViewList(const std::string& text, const std::string& where,
+                                           const Eigen::Vector3d& center);
 
 }  // namespace vdg

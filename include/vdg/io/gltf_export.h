@@ -244,7 +244,9 @@ GltfExportReport writeGltfExport(const std::string& path, const GltfExportInput&
 // view, camera and name from the extras) that ViewDependentModel::build accepts. Throws vdg::Error
 // "WHERE: mesh extras: 'vdg'.'keys'[2].'view': ..." for a missing or malformed description, a version this vdg
 // does not read, a key count that differs from the target count, names that differ from
-// targetNames, an animated description (key frames other than 0 or an "animation"; it needs the
+// targetNames, a version 2 "sphere" / "time" that is malformed or does not match the keys in size
+// (vdg re-derives the sphere from the keys; the written one is for runtimes), an animated
+// description (key frames other than 0 or an "animation"; it needs the
 // file's skin and animation: loadGltfModel), and everything RawViewDependentModel::validate checks.
 RawViewDependentModel rawModelFromGltfExtras(std::string_view mesh_extras_json, const TriMesh& base,
                                              std::span<const std::vector<float>> target_deltas,

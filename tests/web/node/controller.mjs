@@ -3,7 +3,8 @@
 // GLTFLoader, the rendering camera mapped into model space (root transforms, dequantize,
 // orthographic cameras), the multi-camera rule (shadow and depth passes use mainCamera), frames and
 // time, multi-primitive models, dispose, and crowds (InstancedMesh, 1,000 instances: every row
-// equals vdg weights at that instance's eye, and the update time).
+// equals vdg weights at that instance's eye, and the update time), and animated models played by
+// three's AnimationMixer (three's own morph and skinning equal vdg eval at several frames).
 // Usage: node controller.mjs VDG_BINARY SOURCE_DIR WEB_DIR WORK_DIR
 import { execFileSync } from 'node:child_process';
 import { existsSync, mkdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
@@ -68,6 +69,41 @@ function render(mesh, camera, material = mesh.material) {
   camera.updateMatrixWorld();
   mesh.onBeforeRender(null, null, camera, mesh.geometry, material, null);
   return Array.from(mesh.morphTargetInfluences);
+}
+
+const kPosTol = 1e-5;  // float positions, float bone matrices
+/** @param {string} path @returns {number[][]} the "v" lines of an OBJ */
+function objVertices(path) {
+  return readFileSync(path, 'utf8').split('\n').filter((l) => l.startsWith('v '))
+    .map((l) => l.slice(2).trim().split(/\s+/).slice(0, 3).map(Number));
+}
+/**
+ * Plays the file's "base" clip with an AnimationMixer at `frame`, lets the controller's hook set the
+ * weights for `camera` (after the mixer, as in a render loop), and compares three's own CPU morph and
+ * skinning (Mesh.getVertexPosition) with `vdg eval --frame` at the camera's model-space eye.
+ * @param {any} gltf @param {any} controller @param {string} manifest @param {any} camera @param {number} frame
+ */
+function animatedPositions(gltf, controller, manifest, camera, frame) {
+  const mesh = controller.models[0].meshes[0];
+  const extras = controller.models[0].extras;
+  const mixer = new THREE.AnimationMixer(gltf.scene);
+  mixer.clipAction(gltf.animations.find((/** @type {any} */ a) => a.name === 'base')).play();
+  mixer.setTime(frame / extras.animation.fps);
+  controller.time = frame / extras.animation.fps;
+  gltf.scene.updateMatrixWorld(true);
+  render(mesh, camera);
+  const eye = camera.position.clone().applyMatrix4(mesh.matrixWorld.clone().invert()).toArray();
+  const obj = join(workDir, 'eval.obj');
+  execFileSync(vdg, ['eval', manifest, '-q', '--eye', eye.join(','), '--frame', String(frame), '-o', obj]);
+  const want = objVertices(obj);
+  const v = new THREE.Vector3();
+  let worst = want.length === mesh.geometry.attributes.position.count ? 0 : Infinity;
+  for (let i = 0; i < want.length; ++i) {
+    mesh.getVertexPosition(i, v);
+    worst = Math.max(worst, Math.abs(v.x - want[i][0]), Math.abs(v.y - want[i][1]), Math.abs(v.z - want[i][2]));
+  }
+  mixer.stopAllAction();
+  return worst;
 }
 
 // ---- A static model under a transformed root: the rendering camera decides ----
@@ -198,7 +234,7 @@ function render(mesh, camera, material = mesh.material) {
 
 // ---- Animated: frames, time and the "frames" base; a skinned base's key targets ----
 {
-  const { gltf } = await load('examples/walk/walker-world.vdg.json', 'walker-world');
+  const { gltf, manifest: world } = await load('examples/walk/walker-world.vdg.json', 'walker-world');
   const controller = attachVdg(gltf.scene);
   const model = controller.models[0];
   const mesh = model.meshes[0];
@@ -215,8 +251,12 @@ function render(mesh, camera, material = mesh.material) {
   check(frameTarget >= 0 && Math.abs(w[frameTarget] - 1) < 1e-12, 'walker-world: base frame 24 has weight 1');
   controller.time = 40 / 24 + 0.5;  // looping: wraps to frame 12
   check(maxDiff(render(mesh, cam), vdgWeights(extras, view, { frame: 12 })) <= 1e-9, 'walker-world: time wraps');
+  // The base clip's weights track is overridden by the hook: three's morphed positions = vdg eval.
+  let worst = 0;
+  for (const frame of [0, 13, 30]) worst = Math.max(worst, animatedPositions(gltf, controller, world, cam, frame));
+  check(worst <= kPosTol, `walker-world: positions differ from vdg eval by ${worst}`);
   controller.dispose();
-  console.log('ok walker-world: frame, time, base frames');
+  console.log(`ok walker-world: frame, time, base frames; positions = vdg eval within ${worst.toExponential(2)}`);
 
   const skinned = await load('examples/walk/walker.vdg.json', 'walker');
   const sc = attachVdg(skinned.gltf.scene);
@@ -227,8 +267,39 @@ function render(mesh, camera, material = mesh.material) {
   const sv = vdgWeights(sc.models[0].extras, cam.position.toArray().map((x, i) => x - sc.models[0].extras.center[i]),
     { frame: 20 });
   check(maxDiff(sw, sv) <= kSameTol && sw.length === sc.models[0].extras.keys.length, 'walker: key targets only');
+  // The skeleton played by three's AnimationMixer, the key targets by the hook: three's morph then
+  // skin (glTF's order) equals vdg eval of the skinned offsets.
+  let skinWorst = 0;
+  for (const frame of [0, 9, 25]) {
+    skinWorst = Math.max(skinWorst, animatedPositions(skinned.gltf, sc, skinned.manifest, cam, frame));
+  }
+  check(skinWorst <= kPosTol, `walker: skinned positions differ from vdg eval by ${skinWorst}`);
   sc.dispose();
-  console.log('ok walker: skinned base, key targets');
+  console.log(`ok walker: skinned base, key targets; three's morph + skin = vdg eval within ${skinWorst.toExponential(2)}`);
+}
+
+// ---- Bad input: one clear error, nothing half-done ----
+{
+  const { gltf } = await load('examples/figure13/head/head.vdg.json', 'head');
+  let extras = null;
+  gltf.scene.traverse((/** @type {any} */ o) => { if (o.userData.vdg) extras = o.userData.vdg; });
+  const thrown = (/** @type {() => void} */ f) => { try { f(); return ''; } catch (e) { return String(e); } };
+  check(thrown(() => vdgWeights(extras, [0, 0, 0])).includes('finite and non-zero'), 'a zero view is refused');
+  check(thrown(() => vdgWeights(extras, [NaN, 0, 1])).includes('finite and non-zero'), 'a NaN view is refused');
+  check(thrown(() => vdgWeights(extras, [0, 0, 1], { sharpness: 0 })).includes('sharpness'), 'sharpness 0 is refused');
+  check(thrown(() => vdgWeights(extras, [1e-300, 0, 0])) === '', 'a 1e-300 long view is a direction');
+  check(maxDiff(vdgWeights(extras, [1e300, 1e300, 0]), vdgWeights(extras, [1, 1, 0])) <= kSameTol, 'a 1e300 view');
+  const v1 = { ...extras, version: 1 };
+  delete v1.sphere;
+  check(thrown(() => vdgWeights(v1, [0, 0, 1])).includes('re-export'), 'a version 1 description asks for a re-export');
+  const root = new THREE.Group();
+  const mesh = new THREE.Mesh(new THREE.BufferGeometry(), new THREE.MeshBasicMaterial());
+  mesh.morphTargetInfluences = [0, 0, 0];
+  mesh.userData = { vdg: v1 };
+  root.add(mesh);
+  check(thrown(() => attachVdg(root)).includes('re-export'), 'attachVdg refuses a version 1 export');
+  check(mesh.onBeforeRender === THREE.Mesh.prototype.onBeforeRender, 'a refused attach leaves no hook');
+  console.log('ok bad input');
 }
 
 console.log(failures === 0 ? 'PASS' : `FAIL: ${failures} failures`);
