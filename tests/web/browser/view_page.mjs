@@ -8,6 +8,7 @@
 //     POSITION_TOLERANCE (static Spot, and the animated walker at given frames);
 //   - a screenshot of the clean page matches `vdg render` of the same camera: the intersection over
 //     union of the non-background masks is at least SILHOUETTE_MIN_IOU;
+//   - the walker with "world" offsets (its walk as frame targets) equals vdg eval too;
 //   - a plain export with a texture (when the export writes one) has a map on its three.js material.
 // Usage: node view_page.mjs VDG SOURCE_DIR WEB_DIR WORK_DIR. Exit 77 (skip) when Chromium or
 // web/node_modules is missing, unless VDG_REQUIRE_WEB=1.
@@ -173,6 +174,7 @@ fs.rmSync(workDir, { recursive: true, force: true });
 fs.mkdirSync(workDir, { recursive: true });
 const spot = path.join(sourceDir, 'examples/spot/spot.vdg.json');
 const walker = path.join(sourceDir, 'examples/walk/walker.vdg.json');
+const walkerWorld = path.join(sourceDir, 'examples/walk/walker-world.vdg.json');
 runVdg('view', spot, '-o', path.join(workDir, 'spot'), '-q');
 check(fs.existsSync(path.join(workDir, 'spot/.vdg-view')), 'vdg view -o writes the folder with its marker');
 const servers = [];
@@ -196,6 +198,14 @@ try {
   await checkParity(w.page, walker, 'walker', [{ eye: [0.5, 1.2, 4], frame: 10 }, { eye: [3.5, 1.5, 1.5], frame: 23 }], walkerCenter);
   await checkSilhouette(w.page, walker, 'walker', [2.5, 1.6, 3.5], walkerCenter, 10);
   check(w.errors.length === 0, `walker: no console error (${w.errors.join(' | ')})`);
+
+  // The walker with "world" offsets: its base animation exported as frame targets, which the
+  // runtime weighs as the glTF animation plays them, next to the key targets.
+  const worldServer = await serve(walkerWorld, path.join(workDir, 'walker-world'));
+  servers.push(worldServer.child);
+  const ww = await openPage(browser, worldServer.url);
+  await checkParity(ww.page, walkerWorld, 'walker-world', [{ eye: [3.5, 1.5, 1.5], frame: 17 }], walkerCenter);
+  check(ww.errors.length === 0, `walker-world: no console error (${ww.errors.join(' | ')})`);
 } finally {
   await browser.close();
   for (const child of servers) child.kill('SIGINT');
