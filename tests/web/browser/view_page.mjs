@@ -9,7 +9,8 @@
 //   - a screenshot of the clean page matches `vdg render` of the same camera: the intersection over
 //     union of the non-background masks is at least SILHOUETTE_MIN_IOU;
 //   - the walker with "world" offsets (its walk as frame targets) equals vdg eval too;
-//   - a plain export with a texture (when the export writes one) has a map on its three.js material.
+//   - a plain export with a texture (when the export writes one) has a map on its three.js material;
+//   - a vdg .glb dropped on the page opens; the sharpness set on the page is vdg eval's --sharpness.
 // Usage: node view_page.mjs VDG SOURCE_DIR WEB_DIR WORK_DIR. Exit 77 (skip) when Chromium or
 // web/node_modules is missing, unless VDG_REQUIRE_WEB=1.
 import { spawn, spawnSync } from 'node:child_process';
@@ -102,16 +103,23 @@ async function openPage(browser, url) {
 }
 
 async function checkParity(page, model, name, cameras, center) {
-  for (const [i, { eye, frame }] of cameras.entries()) {
-    const got = await page.evaluate(([e, c, f]) => { window.vdgView.view(e, c, 30, f); return window.vdgView.positions(); }, [eye, center, frame]);
+  for (const [i, { eye, frame, sharpness }] of cameras.entries()) {
+    const got = await page.evaluate(([e, c, f, s]) => {
+      window.vdgView.sharpness(s ?? null);
+      window.vdgView.view(e, c, 30, f);
+      return window.vdgView.positions();
+    }, [eye, center, frame, sharpness]);
     const obj = path.join(workDir, `${name}_eval_${i}.obj`);
-    runVdg('eval', model, '--eye', eye.join(','), ...(frame === undefined ? [] : ['--frame', String(frame)]), '-o', obj, '-q');
+    runVdg('eval', model, '--eye', eye.join(','), ...(frame === undefined ? [] : ['--frame', String(frame)]),
+      ...(sharpness === undefined ? [] : ['--sharpness', String(sharpness)]), '-o', obj, '-q');
     const want = objVertices(obj);
     let worst = got.length === want.length ? 0 : Infinity;
     for (let k = 0; k < want.length && worst < Infinity; ++k) worst = Math.max(worst, Math.abs(got[k] - want[k]));
-    check(worst <= POSITION_TOLERANCE, `${name}: positions at eye ${eye}${frame === undefined ? '' : ` frame ${frame}`} ` +
+    check(worst <= POSITION_TOLERANCE, `${name}: positions at eye ${eye}${frame === undefined ? '' : ` frame ${frame}`}` +
+      `${sharpness === undefined ? '' : ` sharpness ${sharpness}`} ` +
       `equal vdg eval (max error ${worst.toExponential(2)} <= ${POSITION_TOLERANCE})`);
   }
+  await page.evaluate(() => window.vdgView.sharpness(null));
 }
 
 /** IoU of the non-background masks of two PNGs (decoded in the page). */
@@ -176,6 +184,7 @@ const spot = path.join(sourceDir, 'examples/spot/spot.vdg.json');
 const walker = path.join(sourceDir, 'examples/walk/walker.vdg.json');
 const walkerWorld = path.join(sourceDir, 'examples/walk/walker-world.vdg.json');
 runVdg('view', spot, '-o', path.join(workDir, 'spot'), '-q');
+runVdg('export', walker, '-o', path.join(workDir, 'walker-export.glb'), '-q');
 check(fs.existsSync(path.join(workDir, 'spot/.vdg-view')), 'vdg view -o writes the folder with its marker');
 const servers = [];
 const browser = await chromium.launch({ executablePath: CHROMIUM,
@@ -186,9 +195,21 @@ try {
   await checkServer(spotServer.url, path.join(workDir, 'spot'));
   const s = await openPage(browser, spotServer.url);
   const spotCenter = await s.page.evaluate(() => window.vdgView.center());
-  await checkParity(s.page, spot, 'spot', [{ eye: [0, 0.3, 3] }, { eye: [2.2, 0.8, -1.5] }, { eye: [-1.9, -0.6, 1.2] }], spotCenter);
+  await checkParity(s.page, spot, 'spot', [{ eye: [0, 0.3, 3] }, { eye: [2.2, 0.8, -1.5] }, { eye: [-1.9, -0.6, 1.2] },
+    { eye: [1.7, 0.4, 2.1], sharpness: 4 }], spotCenter);
   await checkSilhouette(s.page, spot, 'spot', [1.6, 0.7, 2.4], spotCenter);
   await checkTexture(s.page, path.join(workDir, 'spot'));
+  // Dropping another vdg .glb on the page opens it: the walker's export, dropped as a file.
+  fs.copyFileSync(path.join(workDir, 'walker-export.glb'), path.join(workDir, 'spot', 'dropped-walker.glb'));
+  const dropped = await s.page.evaluate(async () => {
+    const bytes = await (await fetch('dropped-walker.glb')).blob();
+    const data = new DataTransfer();
+    data.items.add(new File([bytes], 'dropped-walker.glb'));
+    dispatchEvent(new DragEvent('drop', { dataTransfer: data, cancelable: true }));
+    for (let i = 0; i < 200 && window.vdgView.info()?.frames !== 40; ++i) await new Promise((r) => setTimeout(r, 50));
+    return { info: window.vdgView.info(), title: document.getElementById('title').textContent };
+  });
+  check(dropped.info?.frames === 40 && dropped.title === 'dropped-walker.glb', `spot: a dropped walker .glb opens (${JSON.stringify(dropped)})`);
   check(s.errors.length === 0, `spot: no console error (${s.errors.join(' | ')})`);
 
   const walkerServer = await serve(walker, path.join(workDir, 'walker'));
