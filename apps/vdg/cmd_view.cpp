@@ -213,7 +213,7 @@ void addViewCommand(CLI::App& app) {
         std::printf("serving %s at http://127.0.0.1:%d/ (Ctrl-C stops)\n", dir.c_str(), port);
         std::fflush(stdout);
       });
-      std::printf("stopped serving\n");
+      if (!opt->quiet) std::printf("stopped serving\n");
     }
     std::error_code ec;
     if (!temporary.empty()) fs::remove_all(temporary, ec);
