@@ -123,6 +123,7 @@ void addRunCommand(CLI::App& app);
 void addMorphCommand(CLI::App& app);     // 2D: image morphs and inbetweened drawings
 void addMorph3dCommand(CLI::App& app);   // 3D shape interpolation
 void addImplicitCommand(CLI::App& app);  // blobby objects polygonised
+void addViewCommand(CLI::App& app);      // a web page showing the model live (docs/web.md)
 void addStudioCommand(CLI::App& app);    // only in a build with GLFW and Dear ImGui (VDG_WITH_STUDIO)
 
 }  // namespace vdg::cli

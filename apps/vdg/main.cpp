@@ -62,6 +62,7 @@ int run(int argc, char** argv) {
   vdg::cli::addMorphCommand(app);
   vdg::cli::addMorph3dCommand(app);
   vdg::cli::addImplicitCommand(app);
+  vdg::cli::addViewCommand(app);
 #ifdef VDG_WITH_STUDIO
   vdg::cli::addStudioCommand(app);
 #endif
