@@ -10,6 +10,7 @@ import { execFileSync } from 'node:child_process';
 import { existsSync, mkdirSync, readFileSync, rmSync } from 'node:fs';
 import { join } from 'node:path';
 import { pathToFileURL } from 'node:url';
+import { nodeGltfLoader } from '../node/three_node.mjs';
 
 const [vdg, sourceDir, webDir, workDir] = process.argv.slice(2);
 const threeDir = join(webDir, 'node_modules', 'three');
@@ -42,7 +43,7 @@ function check(ok, what) {
 function parse(path) {
   const bytes = readFileSync(path);
   const buffer = bytes.buffer.slice(bytes.byteOffset, bytes.byteOffset + bytes.byteLength);
-  const loader = new GLTFLoader();
+  const loader = nodeGltfLoader(GLTFLoader);
   loader.setMeshoptDecoder(MeshoptDecoder);
   return new Promise((resolve, reject) => loader.parse(buffer, '', resolve, reject));
 }

@@ -10,6 +10,7 @@ import { execFileSync } from 'node:child_process';
 import { existsSync, mkdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { pathToFileURL } from 'node:url';
+import { nodeGltfLoader } from './three_node.mjs';
 
 const kWeightTol = 1e-6;  // against the CLI (7 printed digits)
 const kSameTol = 1e-12;  // the runtime against itself through another path
@@ -48,7 +49,7 @@ async function load(relative, name) {
   const path = join(workDir, `${name}.glb`);
   execFileSync(vdg, ['export', manifest, '-q', '-o', path]);
   const bytes = readFileSync(path);
-  const gltf = await new GLTFLoader().parseAsync(bytes.buffer.slice(bytes.byteOffset, bytes.byteOffset + bytes.length), '');
+  const gltf = await nodeGltfLoader(GLTFLoader).parseAsync(bytes.buffer.slice(bytes.byteOffset, bytes.byteOffset + bytes.length), '');
   return { manifest, gltf };
 }
 

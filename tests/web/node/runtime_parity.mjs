@@ -140,6 +140,26 @@ function morphed(glb, weights) {
     const d = readAccessor(glb, t.POSITION);
     for (let k = 0; k < out.length; ++k) out[k] += weights[i] * d[k];
   });
+  return modelOrder(glb, prim, out);
+}
+
+/**
+ * Exported vertices back in the model's order through `_VDG_VERTEX` (docs/gltf-export.md: a
+ * vertex split on a uv seam has several copies; every copy must have moved to the same place).
+ * @param {{json: any, bin: Buffer}} glb @param {any} prim @param {Float64Array} exported
+ */
+function modelOrder(glb, prim, exported) {
+  const map = readAccessor(glb, prim.attributes._VDG_VERTEX);
+  let count = 0;
+  for (const v of map) count = Math.max(count, v + 1);
+  const out = new Float64Array(count * 3).fill(NaN);
+  map.forEach((v, i) => {
+    for (let c = 0; c < 3; ++c) {
+      const x = exported[i * 3 + c];
+      check(Number.isNaN(out[v * 3 + c]) || out[v * 3 + c] === x, `copies of vertex ${v} differ`);
+      out[v * 3 + c] = x;
+    }
+  });
   return out;
 }
 
