@@ -308,6 +308,10 @@ TEST(GltfExport, BaseFrameTargetsAreSplitLikeTheKeys) {
   ba.frame_deltas = {{0, 0, 0, 0.25f, 0, 0, 0, 0, 0, 0, 0, 0}};  // frame 1 moves vertex 1
   input.base_animation = ba;
   input.offsets = OffsetSpace::kWorld;
+  // An animated input carries its sphere (extras v2): the one key view, keyed at frame 0.
+  const Eigen::Vector3d key_view = input.targets[0].view;
+  input.view_sphere = gltfViewSphere(ViewSphere::build(std::span(&key_view, 1)));
+  input.view_sphere->time = {GltfViewTime{{0}, {0.0}}};
   const DecodedGltf g = testing::decodeGlb(gltfToGlb(input, "t.glb"));
   const auto& prim = g.doc.at("meshes").at(0).at("primitives").at(0);
   ASSERT_EQ(prim.at("targets").size(), 2u);  // the key, then base frame 1
