@@ -1877,13 +1877,16 @@ RawRig readGltfRig(const std::string& path, const GltfSelect& select, const Mesh
 TriMesh readGltfMesh(const std::string& path, const GltfSelect& select, const MeshReadOptions& options) {
   const Rig rig = Rig::build(readGltfRig(path, select, options));
   TriMesh mesh = rig.mesh();
-  // The file's normals posed with the positions (per vertex: normal_triangles = triangles).
+  // The file's normals posed with the positions, one a vertex: the rig's normals are welded like
+  // its positions (a vdg export's split copies share their model vertex's normal), so they are
+  // indexed by the triangles, not by the per-exported-vertex normal_triangles the mesh read with.
   std::vector<float> normals(mesh.normals.empty() ? 0 : mesh.positions.size());
   if (!rig.evaluate(-1, 0.0, mesh.positions, normals)) throw Error(path + ": the rest pose could not be evaluated");
   if (!mesh.normals.empty()) {
     for (float& c : normals)
       if (!std::isfinite(c)) c = 0.0f;  // a transform that overflows a normal leaves no direction
     mesh.normals = std::move(normals);
+    mesh.normal_triangles = mesh.triangles;
   }
   validateMesh(mesh, path);
   return mesh;

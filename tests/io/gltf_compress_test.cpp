@@ -164,14 +164,36 @@ TEST(GltfCompress, StaticExportsReadBackWithinTheGrid) {
     }
 }
 
+// The bytes of the images a .glb embeds in bufferViews.
+std::size_t embeddedImageBytes(const std::string& path) {
+  const nlohmann::json doc = fileJson(path);
+  std::size_t n = 0;
+  if (doc.contains("images"))
+    for (const auto& image : doc["images"])
+      if (image.contains("bufferView"))
+        n += doc.at("bufferViews").at(image["bufferView"].get<std::size_t>()).at("byteLength").get<std::size_t>();
+  return n;
+}
+
+// Compression shrinks the geometry; the embedded texture (a PNG, already compressed) is copied as it
+// is, so the ratios hold for the file less its image bytes, which must be the same in all three.
 TEST(GltfCompress, CompressedExportsAreSmaller) {
   testing::TempDir dir;
   const ViewDependentModel model = ViewDependentModel::build(loadManifest(kSpot));
-  std::size_t bytes[3];
-  for (const GltfCompression c : {GltfCompression::kNone, GltfCompression::kQuantize, GltfCompression::kMeshopt})
-    bytes[static_cast<int>(c)] = writeGltfExport(dir.file("s.glb"), withCompression(gltfExportInput(model), c)).bytes;
-  EXPECT_LT(bytes[1], bytes[0] * 2 / 3);
-  EXPECT_LT(bytes[2], bytes[1] * 3 / 4);
+  std::size_t bytes[3], images[3];
+  for (const GltfCompression c : {GltfCompression::kNone, GltfCompression::kQuantize, GltfCompression::kMeshopt}) {
+    const int k = static_cast<int>(c);
+    const std::string path = dir.file(std::string(gltfCompressionName(c)) + ".glb");
+    bytes[k] = writeGltfExport(path, withCompression(gltfExportInput(model), c)).bytes;
+    images[k] = embeddedImageBytes(path);
+    ASSERT_LT(images[k], bytes[k]);
+  }
+  EXPECT_GT(images[0], 0u);  // the textured Spot embeds its texture
+  EXPECT_EQ(images[1], images[0]);
+  EXPECT_EQ(images[2], images[0]);
+  const std::size_t geometry[3] = {bytes[0] - images[0], bytes[1] - images[1], bytes[2] - images[2]};
+  EXPECT_LT(geometry[1], geometry[0] * 2 / 3);
+  EXPECT_LT(geometry[2], geometry[1] * 3 / 4);
 }
 
 TEST(GltfCompress, NormalsComeBackWithinAByteStep) {
@@ -252,8 +274,10 @@ TEST(GltfCompress, AnimatedExportsReadBackWithinTheGrid) {
 }
 
 // A document as the materials work writes it: two primitives with their own POSITION, indices
-// (8- and 16-bit), TEXCOORD_0 (one in [0, 1], one not), a custom `_VDG_VERTEX` attribute of
-// unsigned ints, one morph target each, and an image in a bufferView.
+// (8- and 16-bit), TEXCOORD_0 (one in [0, 1], one not), the custom `_VDG_VERTEX` attribute in the
+// exporter's two layouts (unsigned shorts with byteStride 4, floats above 65536 model vertices: glTF
+// 2.0 section 3.7.2.1 allows no UNSIGNED_INT there), one morph target each, and an image in a
+// bufferView.
 struct Handmade {
   nlohmann::ordered_json doc;
   std::string bin;
@@ -299,10 +323,19 @@ struct Handmade {
     const std::uint16_t i16[3] = {0, 1, 2};
     for (int p = 0; p < 2; ++p) {
       positions.insert(positions.end(), pos[p].begin(), pos[p].end());
-      const std::uint32_t ids[3] = {7u + p, 70000u, 3u};
+      // Each exported vertex its own model vertex (0..5): the reader welds nothing.
+      const std::uint16_t short_ids[6] = {0, 0, 1, 0, 2, 0};
+      const float float_ids[3] = {3.0f, 4.0f, 5.0f};
+      int ids = 0;
+      if (p == 0) {
+        ids = accessor(add(short_ids, sizeof short_ids, 34962), 5123, 3, "SCALAR");
+        doc["bufferViews"][doc["accessors"][ids]["bufferView"].get<std::size_t>()]["byteStride"] = 4;
+      } else {
+        ids = accessor(add(float_ids, sizeof float_ids, 34962), 5126, 3, "SCALAR");
+      }
       nlohmann::ordered_json attributes = {{"POSITION", floats(pos[p], "VEC3", 3, true)},
                                            {"TEXCOORD_0", floats(uvs[p], "VEC2", 2, false)},
-                                           {"_VDG_VERTEX", accessor(add(ids, 12, 34962), 5125, 3, "SCALAR")}};
+                                           {"_VDG_VERTEX", ids}};
       const int indices =
           p == 0 ? accessor(add(i8, 3, 34963), 5121, 3, "SCALAR") : accessor(add(i16, 6, 34963), 5123, 3, "SCALAR");
       prims.push_back({{"attributes", attributes},
@@ -351,8 +384,11 @@ TEST(GltfCompress, SeveralPrimitivesCustomAttributesAndImages) {
     const auto& prims = doc["meshes"][0]["primitives"];
     for (int p = 0; p < 2; ++p) {
       const auto& custom = doc["accessors"][prims[p]["attributes"]["_VDG_VERTEX"].get<std::size_t>()];
-      EXPECT_EQ(custom["componentType"], 5125);
+      EXPECT_EQ(custom["componentType"], p == 0 ? 5123 : 5126);  // kept in a type the spec allows
       EXPECT_FALSE(custom.contains("normalized"));
+      if (p == 0) {
+        EXPECT_EQ(doc["bufferViews"][custom["bufferView"].get<std::size_t>()]["byteStride"], 4);
+      }
       const auto& uv = doc["accessors"][prims[p]["attributes"]["TEXCOORD_0"].get<std::size_t>()];
       EXPECT_EQ(uv["componentType"], p == 0 ? 5123 : 5126);  // 1.5 does not fit a normalized value
     }
@@ -364,10 +400,10 @@ TEST(GltfCompress, SeveralPrimitivesCustomAttributesAndImages) {
       // Without meshopt the custom attribute's bytes are read as they are.
       const auto& custom = doc["accessors"][prims[1]["attributes"]["_VDG_VERTEX"].get<std::size_t>()];
       const auto& cv = doc["bufferViews"][custom["bufferView"].get<std::size_t>()];
-      std::uint32_t ids[3];
+      float ids[3];
       std::memcpy(ids, bin.data() + cv["byteOffset"].get<std::size_t>(), 12);
-      EXPECT_EQ(ids[0], 8u);
-      EXPECT_EQ(ids[1], 70000u);
+      EXPECT_EQ(ids[0], 3.0f);
+      EXPECT_EQ(ids[2], 5.0f);
     }
   }
 }
@@ -375,15 +411,23 @@ TEST(GltfCompress, SeveralPrimitivesCustomAttributesAndImages) {
 // The meshopt .gltf of a small model with its JSON edited by `edit`, read by vdg: the error.
 std::string editedMeshoptError(const std::function<void(nlohmann::json&)>& edit);
 
-// The first bufferView of that file in mode ATTRIBUTES.
-std::size_t attributesView() {
-  std::size_t found = 0;
+// The first bufferView of that file in mode ATTRIBUTES and the one in mode TRIANGLES (the exporter
+// writes the shared vertex attributes first, then each material primitive's indices).
+struct MeshoptViews {
+  std::size_t attributes = 0, triangles = 0;
+  bool found_attributes = false, found_triangles = false;
+};
+
+MeshoptViews meshoptViews() {
+  MeshoptViews found;
   (void)editedMeshoptError([&](nlohmann::json& d) {
-    for (std::size_t i = d["bufferViews"].size(); i-- > 0;)
-      if (d["bufferViews"][i].contains("extensions") &&
-          d["bufferViews"][i]["extensions"]["EXT_meshopt_compression"]["mode"] == "ATTRIBUTES")
-        found = i;
-    d["bufferViews"][0]["extensions"]["EXT_meshopt_compression"]["mode"] = "LINES";
+    for (std::size_t i = 0; i < d["bufferViews"].size(); ++i) {
+      if (!d["bufferViews"][i].contains("extensions")) continue;
+      const auto& mode = d["bufferViews"][i]["extensions"]["EXT_meshopt_compression"]["mode"];
+      if (mode == "ATTRIBUTES" && !found.found_attributes) found.attributes = i, found.found_attributes = true;
+      if (mode == "TRIANGLES" && !found.found_triangles) found.triangles = i, found.found_triangles = true;
+    }
+    d["extensionsRequired"].push_back("KHR_draco_mesh_compression");  // editedMeshoptError wants an error
   });
   return found;
 }
@@ -419,29 +463,32 @@ nlohmann::json& ext(nlohmann::json& doc, std::size_t view) {
 }
 
 TEST(GltfCompress, MalformedMeshoptIsOneLineNamingTheBufferView) {
-  const std::size_t a = attributesView();
-  ASSERT_NE(a, 0u);  // view 0 holds the triangles
-  const std::string e = "m.gltf: bufferViews[0]: EXT_meshopt_compression: ";
+  const MeshoptViews views = meshoptViews();
+  ASSERT_TRUE(views.found_attributes);
+  ASSERT_TRUE(views.found_triangles);
+  const std::size_t a = views.attributes, t = views.triangles;
+  const std::string e = "m.gltf: bufferViews[" + std::to_string(t) + "]: EXT_meshopt_compression: ";
   const std::string ea = "m.gltf: bufferViews[" + std::to_string(a) + "]: EXT_meshopt_compression: ";
   EXPECT_TRUE(startsWith(editedMeshoptError([&](nlohmann::json& d) { ext(d, a)["byteLength"] = 3; }),
                          ea + "the ATTRIBUTES data does not decode (meshoptimizer error"));
-  EXPECT_TRUE(startsWith(editedMeshoptError([](nlohmann::json& d) { ext(d, 0)["byteLength"] = 3; }),
+  EXPECT_TRUE(startsWith(editedMeshoptError([&](nlohmann::json& d) { ext(d, t)["byteLength"] = 3; }),
                          e + "the TRIANGLES data does not decode (meshoptimizer error"));
   EXPECT_TRUE(
-      startsWith(editedMeshoptError([](nlohmann::json& d) { ext(d, 0)["count"] = ext(d, 0)["count"].get<int>() + 3; }),
+      startsWith(editedMeshoptError([&](nlohmann::json& d) { ext(d, t)["count"] = ext(d, t)["count"].get<int>() + 3; }),
                  e + "count "));
-  EXPECT_EQ(editedMeshoptError([](nlohmann::json& d) { ext(d, 0)["mode"] = "LINES"; }),
+  EXPECT_EQ(editedMeshoptError([&](nlohmann::json& d) { ext(d, t)["mode"] = "LINES"; }),
             e + "mode 'LINES' is not ATTRIBUTES, TRIANGLES or INDICES");
   EXPECT_EQ(editedMeshoptError([&](nlohmann::json& d) { ext(d, a)["byteStride"] = 6; }),
             ea + "byteStride 6 is not allowed in mode ATTRIBUTES (a multiple of 4 up to 256)");
-  EXPECT_TRUE(startsWith(editedMeshoptError([](nlohmann::json& d) { ext(d, 0)["byteOffset"] = 1 << 30; }),
+  EXPECT_TRUE(startsWith(editedMeshoptError([&](nlohmann::json& d) { ext(d, t)["byteOffset"] = 1 << 30; }),
                          e + "bytes 1073741824 + "));
-  EXPECT_EQ(editedMeshoptError([](nlohmann::json& d) { ext(d, 0)["buffer"] = 1; }),
+  EXPECT_EQ(editedMeshoptError([&](nlohmann::json& d) { ext(d, t)["buffer"] = 1; }),
             e + "buffer 1 is a fallback buffer without data");
-  EXPECT_EQ(editedMeshoptError([](nlohmann::json& d) { ext(d, 0)["filter"] = "QUATERNION"; }),
+  EXPECT_EQ(editedMeshoptError([&](nlohmann::json& d) { ext(d, t)["filter"] = "QUATERNION"; }),
             e + "filter 'QUATERNION' does not apply to mode TRIANGLES, byteStride 2");
-  EXPECT_EQ(editedMeshoptError([](nlohmann::json& d) { d["bufferViews"][0].erase("extensions"); }),
-            "m.gltf: bufferViews[0]: lies in fallback buffer 1, which has no data, and is not compressed");
+  EXPECT_EQ(editedMeshoptError([&](nlohmann::json& d) { d["bufferViews"][t].erase("extensions"); }),
+            "m.gltf: bufferViews[" + std::to_string(t) +
+                "]: lies in fallback buffer 1, which has no data, and is not compressed");
   EXPECT_EQ(
       editedMeshoptError([](nlohmann::json& d) { d["extensionsRequired"].push_back("KHR_draco_mesh_compression"); }),
       "m.gltf: extensionsRequired: 'KHR_draco_mesh_compression' is an extension vdg does not implement");
