@@ -134,7 +134,10 @@ std::optional<std::string> decodeMeshoptViews(const io::Json& doc, const std::st
   auto compressed = [](const io::Json& v) {
     return v.contains("extensions") && v["extensions"].is_object() && v["extensions"].contains(kExt);
   };
-  const io::Json& buffers = doc["buffers"];
+  // checkJson has checked the shapes; a file may still have views (an empty list) and no buffers.
+  static const io::Json kNoBuffers = io::Json::array();
+  const auto found = doc.find("buffers");
+  const io::Json& buffers = found == doc.end() ? kNoBuffers : *found;
   if (std::none_of(views->begin(), views->end(), compressed) &&
       std::none_of(buffers.begin(), buffers.end(), [](const io::Json& b) { return isMeshoptFallback(b); }))
     return std::nullopt;
