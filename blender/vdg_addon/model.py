@@ -3,7 +3,6 @@ import hashlib
 import math
 from typing import Any, Dict, List, Optional, Tuple
 
-import bpy
 import numpy as np
 from mathutils import Vector
 

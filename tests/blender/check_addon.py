@@ -1,0 +1,280 @@
+"""The vdg Blender add-on, installed from its zip, against the vdg tool (run by run_addon_check.sh).
+
+blender -b --factory-startup --python check_addon.py -- CASE VDG SOURCE_DIR ADDON_ZIP OUT_DIR
+
+CASE preview:   examples/spot imported (manifest, and its .glb export), the object moved, rotated and
+                scaled; the camera at random positions; the live preview's shape-key values equal
+                `vdg weights --views --json` (WEIGHT_TOL) and the evaluated mesh `vdg eval` (POSITION_TOL).
+CASE roundtrip: a key made from the camera on Spot, a few of its vertices moved, exported as a manifest
+                and a .glb: `vdg info` opens both, `vdg weights` at the key's view gives it weight 1 and
+                `vdg eval` there the sculpted shape; re-importing keeps names, views, frames and shapes.
+CASE walker:    the animated walker (section 4) imported; at random views and frames the preview's values
+                equal vdg.Model.weights(view, frame)["keys"] and a value outside [0, 1] widens the slider.
+Every check prints a "check:" line; a failure raises (Blender exits 1). "check: done" ends a run.
+"""
+import json
+import os
+import random
+import subprocess
+import sys
+import time
+
+import bpy
+import numpy as np
+from mathutils import Euler, Vector
+
+WEIGHT_TOL = 1e-6    # shape-key values against vdg's float weights
+POSITION_TOL = 1e-5  # float32 blended positions of a model about 1 unit across
+SHAPE_TOL = 1e-6     # float32 positions through the axis swap (exact) and a file round trip
+VIEW_TOL = 1e-6      # unit view directions through files
+CAMERAS = 20
+
+
+def arguments():
+    argv = sys.argv[sys.argv.index("--") + 1:]
+    if len(argv) != 5:
+        raise SystemExit("usage: blender -b --python check_addon.py -- CASE VDG SOURCE_DIR ADDON_ZIP OUT_DIR")
+    return argv
+
+
+def install(zip_path):
+    """Installs and enables the add-on from the zip (into BLENDER_USER_SCRIPTS), as an artist does."""
+    bpy.ops.preferences.addon_install(filepath=zip_path, overwrite=True)
+    bpy.ops.preferences.addon_enable(module="vdg_addon")
+    import vdg_addon  # noqa: F401  (installed above)
+    folder = os.path.dirname(vdg_addon.__file__)
+    if not folder.startswith(os.environ.get("BLENDER_USER_SCRIPTS", "/nonexistent")):
+        raise AssertionError(f"the add-on was loaded from {folder}, not from the zip's install")
+    from vdg_addon import vdgmodule
+    vdg = vdgmodule.get()
+    if not os.path.dirname(vdg.__file__) == folder:
+        raise AssertionError(f"import vdg found {vdg.__file__}, not the zip's copy in {folder}")
+    print(f"check: add-on installed from the zip into {folder}, vdg {vdg.__version__} from it")
+    for name in [o.name for o in bpy.data.objects if o.type != "CAMERA"]:
+        bpy.data.objects.remove(bpy.data.objects[name])
+    return vdg
+
+
+def run(cmd):
+    out = subprocess.run(cmd, capture_output=True, text=True)
+    if out.returncode != 0:
+        raise AssertionError(f"{' '.join(cmd)} failed: {out.stderr.strip()}")
+    return out.stdout
+
+
+def import_model(path):
+    before = set(bpy.data.objects)
+    if bpy.ops.vdg.import_model(filepath=path) != {"FINISHED"}:
+        raise AssertionError(f"vdg.import_model({path}) did not finish")
+    new = [o for o in bpy.data.objects if o not in before]
+    if len(new) != 1 or new[0].type != "MESH":
+        raise AssertionError(f"importing {path} made {new}, not one mesh object")
+    return new[0]
+
+
+def to_vdg(p):
+    p = np.asarray(p, dtype=np.float64).reshape(-1, 3)
+    return np.stack([p[:, 0], p[:, 2], -p[:, 1]], axis=1)
+
+
+def eye_of(obj, cam):
+    """The camera's position in the object's local space, vdg axes, computed here independently."""
+    m = np.array(obj.matrix_world, dtype=np.float64)
+    c = np.append(np.array(cam.matrix_world.translation, dtype=np.float64), 1.0)
+    return to_vdg(np.linalg.solve(m, c)[:3])[0]
+
+
+def random_camera(rng, cam, obj, radius):
+    """The camera somewhere around the object (any direction, 2-4 radii away)."""
+    d = Vector([rng.gauss(0.0, 1.0) for _ in range(3)]).normalized()
+    cam.location = obj.matrix_world.translation + d * radius * rng.uniform(2.0, 4.0)
+    bpy.context.view_layer.update()  # depsgraph_update_post: the live preview sets the values
+
+
+def values(obj):
+    return {b.name: b.value for b in obj.data.shape_keys.key_blocks[1:]}
+
+
+def evaluated_vdg(obj):
+    deps = bpy.context.evaluated_depsgraph_get()
+    ev = obj.evaluated_get(deps)
+    mesh = ev.to_mesh()
+    co = np.empty(len(mesh.vertices) * 3, dtype=np.float32)
+    mesh.vertices.foreach_get("co", co)
+    ev.to_mesh_clear()
+    return to_vdg(co)
+
+
+def obj_positions(path):
+    with open(path, encoding="utf-8") as f:
+        return np.array([[float(x) for x in line.split()[1:4]] for line in f if line.startswith("v ")])
+
+
+def compare_preview(vdg_tool, model_path, obj, cam, rng, out, count, label):
+    radius = max(obj.dimensions) / 2.0
+    eyes, seen = [], []
+    for _ in range(count):
+        random_camera(rng, cam, obj, radius)
+        eyes.append(eye_of(obj, cam).tolist())
+        seen.append((values(obj), evaluated_vdg(obj)))
+    views_file = os.path.join(out, f"{label}_eyes.json")
+    with open(views_file, "w", encoding="utf-8") as f:
+        json.dump([{"eye": e} for e in eyes], f)
+    expected = json.loads(run([vdg_tool, "weights", model_path, "--views", views_file, "--json"]))
+    worst_w = worst_p = 0.0
+    moved = 0
+    for i, (eye, (vals, positions)) in enumerate(zip(eyes, seen)):
+        keys = expected[i]["keys"]
+        for name, value in vals.items():
+            worst_w = max(worst_w, abs(value - keys.get(name, 0.0)))
+        moved += sum(1 for v in vals.values() if v > 0.0)
+        mesh_file = os.path.join(out, f"{label}_eval.obj")
+        run([vdg_tool, "eval", model_path, "--eye=" + ",".join(repr(c) for c in eye), "-o", mesh_file, "-q"])
+        ref = obj_positions(mesh_file)
+        if ref.shape != positions.shape:
+            raise AssertionError(f"{label}: vdg eval has {ref.shape[0]} vertices, Blender {positions.shape[0]}")
+        worst_p = max(worst_p, float(np.abs(ref - positions).max()))
+    if moved == 0:
+        raise AssertionError(f"{label}: the preview set no shape-key value above 0")
+    if worst_w > WEIGHT_TOL:
+        raise AssertionError(f"{label}: a shape-key value differs from vdg weights by {worst_w:.3g}")
+    if worst_p > POSITION_TOL:
+        raise AssertionError(f"{label}: the evaluated mesh differs from vdg eval by {worst_p:.3g}")
+    print(f"check: {label}: {count} cameras, values = vdg weights (worst {worst_w:.2g}), "
+          f"evaluated mesh = vdg eval (worst {worst_p:.2g})")
+
+
+def case_preview(vdg_tool, src, out):
+    manifest = os.path.join(src, "examples", "spot", "spot.vdg.json")
+    rng = random.Random(26)
+    scene = bpy.context.scene
+    scene.vdg_live_preview = True
+    obj = import_model(manifest)
+    # Moved, rotated and scaled: the view is the camera carried into the object's space.
+    obj.location = (0.7, -0.3, 0.2)
+    obj.rotation_euler = Euler((0.3, -0.2, 1.1))
+    obj.scale = (1.3, 1.3, 1.3)
+    names = [b.name for b in obj.data.shape_keys.key_blocks]
+    with open(manifest, encoding="utf-8") as f:
+        expected = ["Basis"] + [k["name"] for k in json.load(f)["keys"]]
+    if names != expected:
+        raise AssertionError(f"shape keys {names}, expected {expected}")
+    start = time.time()
+    compare_preview(vdg_tool, manifest, obj, scene.camera, rng, out, CAMERAS, "spot manifest")
+    print(f"check: (20 cameras in {time.time() - start:.1f} s)")
+    # A crowd member: a second copy elsewhere, blending for its own view.
+    glb = os.path.join(out, "spot.glb")
+    run([vdg_tool, "export", manifest, "-o", glb, "-q"])
+    other = import_model(glb)
+    other.location = (-2.5, 1.0, 0.0)
+    other.rotation_euler = Euler((0.0, 0.0, -0.8))
+    compare_preview(vdg_tool, glb, other, scene.camera, rng, out, 5, "spot glb (second object)")
+    compare_preview(vdg_tool, manifest, obj, scene.camera, rng, out, 3, "spot manifest (with the crowd)")
+
+
+def case_roundtrip(vdg_tool, src, out):
+    vdg_mod = sys.modules["vdg"]
+    manifest = os.path.join(src, "examples", "spot", "spot.vdg.json")
+    scene = bpy.context.scene
+    scene.vdg_live_preview = True
+    obj = import_model(manifest)
+    bpy.context.view_layer.objects.active = obj
+    cam = scene.camera
+    cam.location = (1.8, -2.2, 1.4)
+    bpy.context.view_layer.update()
+    if bpy.ops.vdg.key_from_camera(name="mine") != {"FINISHED"}:
+        raise AssertionError("vdg.key_from_camera did not finish")
+    key = obj.vdg.keys[-1]
+    expected_view = eye_of(obj, cam) - np.array(obj.vdg.center)
+    expected_view /= np.linalg.norm(expected_view)
+    if key.name != "mine" or not key.has_camera or np.abs(np.array(key.view) - expected_view).max() > VIEW_TOL:
+        raise AssertionError(f"key {key.name} view {tuple(key.view)}, expected 'mine' at {expected_view}")
+    block = obj.data.shape_keys.key_blocks["mine"]
+    for i in range(0, 200, 10):  # the artist's sculpt: a few vertices pulled out
+        block.data[i].co += Vector((0.0, 0.0, 0.08))
+    bpy.context.view_layer.update()
+    if abs(block.value - 1.0) > WEIGHT_TOL:
+        raise AssertionError(f"at the key's own camera the preview gives 'mine' {block.value}, not 1")
+    print(f"check: key 'mine' from the camera at view {tuple(round(c, 4) for c in key.view)}; preview gives it 1")
+    sculpt = to_vdg([b.co for b in block.data])
+    for name in ("mine.vdg.json", "mine.glb"):
+        path = os.path.join(out, name)
+        if bpy.ops.vdg.export_model(filepath=path) != {"FINISHED"}:
+            raise AssertionError(f"vdg.export_model({path}) did not finish")
+        run([vdg_tool, "info", path])
+        view = ",".join(repr(float(c)) for c in key.view)
+        w = json.loads(run([vdg_tool, "weights", path, "--view=" + view, "--json"]))["keys"]
+        if abs(w.get("mine", 0.0) - 1.0) > WEIGHT_TOL:
+            raise AssertionError(f"{name}: vdg weights at the key's view gives 'mine' {w.get('mine')}")
+        run([vdg_tool, "eval", path, "--view=" + view, "-o", os.path.join(out, "mine_eval.obj"), "-q"])
+        worst = float(np.abs(obj_positions(os.path.join(out, "mine_eval.obj")) - sculpt).max())
+        if worst > POSITION_TOL:
+            raise AssertionError(f"{name}: vdg eval at the key's view is {worst:.3g} from the sculpted key")
+        again = import_model(path)
+        for a, b in zip(obj.vdg.keys, again.vdg.keys):
+            if a.name != b.name or a.frame != b.frame or np.abs(np.array(a.view) - np.array(b.view)).max() > VIEW_TOL:
+                raise AssertionError(f"{name}: key {a.name} {tuple(a.view)} f{a.frame} came back as "
+                                     f"{b.name} {tuple(b.view)} f{b.frame}")
+        if len(obj.vdg.keys) != len(again.vdg.keys):
+            raise AssertionError(f"{name}: {len(obj.vdg.keys)} keys went out, {len(again.vdg.keys)} came back")
+        back = again.vdg.keys["mine"]
+        if not back.has_camera or np.abs(np.array(back.camera.eye) - np.array(key.camera.eye)).max() > 1e-5:
+            raise AssertionError(f"{name}: key 'mine' lost its camera")
+        shape = to_vdg([b.co for b in again.data.shape_keys.key_blocks["mine"].data])
+        if shape.shape == sculpt.shape and float(np.abs(shape - sculpt).max()) > SHAPE_TOL:
+            raise AssertionError(f"{name}: the re-imported key 'mine' moved")
+        model = vdg_mod.load(path)
+        print(f"check: {name}: vdg info opens it, 'mine' weighs 1 at its view, vdg eval there = the sculpt "
+              f"(worst {worst:.2g}); re-import keeps {len(model.keys)} names, views, frames and the camera")
+        bpy.data.objects.remove(again)
+    # Errors reach the user as one report line, never a traceback.
+    try:
+        bpy.ops.vdg.export_model(filepath=os.path.join(out, "bad.txt"))
+        raise AssertionError("exporting to bad.txt did not fail")
+    except RuntimeError as e:
+        if "Traceback" in str(e) or ".vdg.json" not in str(e):
+            raise AssertionError(f"the export error is not one clear line: {e}") from None
+        print(f"check: a wrong file name is one report line: {str(e).strip()}")
+
+
+def case_walker(vdg_tool, src, out):
+    vdg_mod = sys.modules["vdg"]
+    manifest = os.path.join(src, "examples", "walk", "walker-world.vdg.json")
+    model = vdg_mod.load(manifest)
+    scene = bpy.context.scene
+    scene.vdg_live_preview = True
+    obj = import_model(manifest)
+    frames = [k.frame for k in obj.vdg.keys]
+    if frames != [k.frame for k in model.keys] or (scene.frame_start, scene.frame_end) != (0, model.frame_count - 1):
+        raise AssertionError(f"key frames {frames}, scene {scene.frame_start}..{scene.frame_end}")
+    rng = random.Random(4)
+    cam = scene.camera
+    worst, outside = 0.0, 0
+    for i in range(CAMERAS):
+        frame = rng.randrange(model.frame_count)
+        scene.frame_set(frame)
+        random_camera(rng, cam, obj, max(obj.dimensions) / 2.0)
+        expected = model.weights(model.view_from_eye(eye_of(obj, cam)), frame=float(frame))["keys"]
+        for name, value in values(obj).items():
+            worst = max(worst, abs(value - expected[name]))
+            block = obj.data.shape_keys.key_blocks[name]
+            if not block.slider_min <= expected[name] <= block.slider_max:
+                raise AssertionError(f"key {name} weight {expected[name]} outside its slider")
+            outside += not 0.0 <= expected[name] <= 1.0
+    if worst > WEIGHT_TOL:
+        raise AssertionError(f"walker: a shape-key value differs from vdg.Model.weights by {worst:.3g}")
+    print(f"check: walker imported with key frames {frames}; {CAMERAS} views and frames: values = "
+          f"vdg.Model.weights(view, frame) (worst {worst:.2g}); {outside} outside [0, 1] within the sliders")
+
+
+def main():
+    case, vdg_tool, src, zip_path, out = arguments()
+    install(zip_path)
+    cases = {"preview": case_preview, "roundtrip": case_roundtrip, "walker": case_walker}
+    if case not in cases:
+        raise SystemExit(f"unknown case {case}")
+    cases[case](vdg_tool, src, out)
+    print("check: done")
+
+
+main()
