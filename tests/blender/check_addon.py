@@ -8,6 +8,8 @@ CASE preview:   examples/spot imported (manifest, and its .glb export), the obje
 CASE roundtrip: a key made from the camera on Spot, a few of its vertices moved, exported as a manifest
                 and a .glb: `vdg info` opens both, `vdg weights` at the key's view gives it weight 1 and
                 `vdg eval` there the sculpted shape; re-importing keeps names, views, frames and shapes.
+CASE armature:  a small armature-animated column keyed at frame 5 and exported: `vdg eval --frame 5` at
+                the key's view equals Blender's posed mesh with that key at 1 (ARMATURE_TOL).
 CASE walker:    the animated walker (section 4) imported; at random views and frames the preview's values
                 equal vdg.Model.weights(view, frame)["keys"] and a value outside [0, 1] widens the slider.
 Every check prints a "check:" line; a failure raises (Blender exits 1). "check: done" ends a run.
@@ -27,6 +29,7 @@ WEIGHT_TOL = 1e-6    # shape-key values against vdg's float weights
 POSITION_TOL = 1e-5  # float32 blended positions of a model about 1 unit across
 SHAPE_TOL = 1e-6     # float32 positions through the axis swap (exact) and a file round trip
 VIEW_TOL = 1e-6      # unit view directions through files
+ARMATURE_TOL = 1e-4  # posed positions through Blender's and vdg's float32 paths
 CAMERAS = 20
 
 
@@ -267,10 +270,82 @@ def case_walker(vdg_tool, src, out):
           f"vdg.Model.weights(view, frame) (worst {worst:.2g}); {outside} outside [0, 1] within the sliders")
 
 
+def rigged_column():
+    """A 2-bone armature bending a subdivided column over frames 0..10 (a small animated character)."""
+    bpy.ops.mesh.primitive_cylinder_add(vertices=8, radius=0.2, depth=2.0, location=(0.0, 0.0, 1.0))
+    column = bpy.context.active_object
+    bpy.ops.object.mode_set(mode="EDIT")
+    bpy.ops.mesh.subdivide(number_cuts=6)
+    bpy.ops.object.mode_set(mode="OBJECT")
+    arm_data = bpy.data.armatures.new("rig")
+    rig = bpy.data.objects.new("rig", arm_data)
+    bpy.context.collection.objects.link(rig)
+    bpy.context.view_layer.objects.active = rig
+    bpy.ops.object.mode_set(mode="EDIT")
+    lower = arm_data.edit_bones.new("lower")
+    lower.head, lower.tail = (0.0, 0.0, 0.0), (0.0, 0.0, 1.0)
+    upper = arm_data.edit_bones.new("upper")
+    upper.head, upper.tail, upper.parent = (0.0, 0.0, 1.0), (0.0, 0.0, 2.0), lower
+    bpy.ops.object.mode_set(mode="OBJECT")
+    for name in ("lower", "upper"):
+        group = column.vertex_groups.new(name=name)
+        for v in column.data.vertices:
+            w = min(1.0, max(0.0, v.co.z - 0.5)) if name == "upper" else 1.0 - min(1.0, max(0.0, v.co.z - 0.5))
+            if w > 0.0:
+                group.add([v.index], w, "REPLACE")
+    modifier = column.modifiers.new("Armature", "ARMATURE")
+    modifier.object = rig
+    bone = rig.pose.bones["upper"]
+    bone.rotation_mode = "XYZ"
+    for frame, angle in ((0, 0.0), (5, 0.6), (10, 0.0)):
+        bone.rotation_euler = (angle, 0.0, 0.0)
+        bone.keyframe_insert("rotation_euler", frame=frame)
+    scene = bpy.context.scene
+    scene.frame_start, scene.frame_end = 0, 10
+    bpy.context.view_layer.objects.active = column
+    return column
+
+
+def case_armature(vdg_tool, src, out):
+    """Keys at frame 5 of an armature-animated mesh, exported (section 4, world offsets): vdg eval at the key's
+    view and frame equals Blender's posed mesh with that shape key alone at 1."""
+    scene = bpy.context.scene
+    column = rigged_column()
+    scene.frame_set(5)
+    for name, view in (("front", (0.0, 0.0, 1.0)), ("side", (1.0, 0.0, 0.0)), ("top", (0.0, 1.0, 0.2))):
+        if bpy.ops.vdg.key_from_view(name=name, direction=view) != {"FINISHED"}:
+            raise AssertionError(f"vdg.key_from_view({name}) did not finish")
+    frames = [k.frame for k in column.vdg.keys]
+    if frames != [5, 5, 5]:
+        raise AssertionError(f"keys made at frame 5 store frames {frames}")
+    block = column.data.shape_keys.key_blocks["front"]
+    for v in block.data:
+        if v.co.z > 1.5:
+            v.co.y -= 0.15  # the upper part pushed towards the front key's eye
+    path = os.path.join(out, "column.vdg.json")
+    if bpy.ops.vdg.export_model(filepath=path) != {"FINISHED"}:
+        raise AssertionError("vdg.export_model did not finish")
+    info = run([vdg_tool, "info", path])
+    for b in column.data.shape_keys.key_blocks[1:]:
+        b.value = 0.0
+    block.value = 1.0
+    column.vdg.preview = False
+    scene.frame_set(5)
+    posed = evaluated_vdg(column)
+    run([vdg_tool, "eval", path, "--view=0,0,1", "--frame", "5", "-o", os.path.join(out, "column_eval.obj"), "-q"])
+    worst = float(np.abs(obj_positions(os.path.join(out, "column_eval.obj")) - posed).max())
+    if worst > ARMATURE_TOL:
+        raise AssertionError(f"vdg eval --frame 5 at 'front' is {worst:.3g} from Blender's posed key mesh")
+    moved = float(np.abs(posed - to_vdg([v.co for v in column.data.vertices])).max())
+    print(f"check: rigged column keyed at frame 5, exported ({info.count(chr(10))} info lines); vdg eval --frame 5 "
+          f"at 'front' = Blender's posed key mesh (worst {worst:.2g}; the pose moves it {moved:.2f})")
+
+
 def main():
     case, vdg_tool, src, zip_path, out = arguments()
     install(zip_path)
-    cases = {"preview": case_preview, "roundtrip": case_roundtrip, "walker": case_walker}
+    cases = {"preview": case_preview, "roundtrip": case_roundtrip, "walker": case_walker,
+             "armature": case_armature}
     if case not in cases:
         raise SystemExit(f"unknown case {case}")
     cases[case](vdg_tool, src, out)
