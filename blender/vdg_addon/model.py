@@ -109,17 +109,20 @@ def key_block(obj: Any, name: str) -> Any:
     return block
 
 
-def key_dicts(obj: Any, positions: Dict[str, np.ndarray], first_frame: int = 0) -> List[Dict[str, Any]]:
-    """vdg.build's key list: name, positions (vdg axes), view, camera when stored, frame."""
+def key_dicts(obj: Any, positions: Dict[str, np.ndarray], first_frame: int = 0) -> List[Any]:
+    """vdg.build's key list as vdg.Key objects: name, positions (vdg axes), view, camera when stored, frame."""
+    vdg = vdgmodule.get()
     out = []
     for k in obj.vdg.keys:
-        d: Dict[str, Any] = {"name": k.name, "positions": positions[k.name],
-                             "view": np.array(k.view, dtype=np.float64), "frame": int(k.frame) - first_frame}
+        camera = None
         if k.has_camera:
-            d["camera"] = {"eye": np.array(k.camera.eye, dtype=np.float64),
-                           "target": np.array(k.camera.target, dtype=np.float64),
-                           "up": np.array(k.camera.up, dtype=np.float64), "fov_deg": float(k.camera.fov_deg)}
-        out.append(d)
+            camera = vdg.Camera(np.array(k.camera.eye, dtype=np.float64), np.array(k.camera.target, dtype=np.float64),
+                                np.array(k.camera.up, dtype=np.float64), float(k.camera.fov_deg))
+        try:
+            out.append(vdg.Key(k.name, positions[k.name], view=np.array(k.view, dtype=np.float64), camera=camera,
+                               frame=int(k.frame) - first_frame))
+        except (vdg.Error, ValueError, TypeError) as e:
+            raise AddonError(f"object '{obj.name}': key '{k.name}': {e}") from e
     return out
 
 
@@ -139,9 +142,7 @@ def build_static(obj: Any, with_uvs: bool = False) -> Any:
     if not obj.vdg.keys:
         raise AddonError(f"object '{obj.name}' has no vdg keys")
     positions = {k.name: axes.to_vdg(shape_key_positions(key_block(obj, k.name))) for k in obj.vdg.keys}
-    keys = key_dicts(obj, positions)
-    for d in keys:
-        d["frame"] = 0
+    keys = key_dicts(obj, positions, first_frame=0)
     extra = {}
     if with_uvs:
         extra["uvs"] = vertex_uvs(obj.data)

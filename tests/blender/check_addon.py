@@ -202,6 +202,7 @@ def case_roundtrip(vdg_tool, src, out):
     sculpt = to_vdg([b.co for b in block.data])
     for name in ("mine.vdg.json", "mine.glb"):
         path = os.path.join(out, name)
+        bpy.context.view_layer.objects.active = obj
         if bpy.ops.vdg.export_model(filepath=path) != {"FINISHED"}:
             raise AssertionError(f"vdg.export_model({path}) did not finish")
         run([vdg_tool, "info", path])
@@ -231,6 +232,7 @@ def case_roundtrip(vdg_tool, src, out):
               f"(worst {worst:.2g}); re-import keeps {len(model.keys)} names, views, frames and the camera")
         bpy.data.objects.remove(again)
     # Errors reach the user as one report line, never a traceback.
+    bpy.context.view_layer.objects.active = obj
     try:
         bpy.ops.vdg.export_model(filepath=os.path.join(out, "bad.txt"))
         raise AssertionError("exporting to bad.txt did not fail")
@@ -252,7 +254,7 @@ def case_walker(vdg_tool, src, out):
         raise AssertionError(f"key frames {frames}, scene {scene.frame_start}..{scene.frame_end}")
     rng = random.Random(4)
     cam = scene.camera
-    worst, outside = 0.0, 0
+    worst, outside, positive = 0.0, 0, 0
     for i in range(CAMERAS):
         frame = rng.randrange(model.frame_count)
         scene.frame_set(frame)
@@ -260,10 +262,13 @@ def case_walker(vdg_tool, src, out):
         expected = model.weights(model.view_from_eye(eye_of(obj, cam)), frame=float(frame))["keys"]
         for name, value in values(obj).items():
             worst = max(worst, abs(value - expected[name]))
+            positive += value > 0.0
             block = obj.data.shape_keys.key_blocks[name]
             if not block.slider_min <= expected[name] <= block.slider_max:
                 raise AssertionError(f"key {name} weight {expected[name]} outside its slider")
             outside += not 0.0 <= expected[name] <= 1.0
+    if positive == 0:
+        raise AssertionError("walker: the preview set no shape-key value above 0")
     if worst > WEIGHT_TOL:
         raise AssertionError(f"walker: a shape-key value differs from vdg.Model.weights by {worst:.3g}")
     print(f"check: walker imported with key frames {frames}; {CAMERAS} views and frames: values = "
