@@ -11,12 +11,11 @@ class VDG_UL_keys(bpy.types.UIList):
 
     def draw_item(self, context: Any, layout: Any, data: Any, item: Any, icon: Any, active_data: Any,
                   active_propname: str, index: int = 0) -> None:
-        row = layout.row(align=True)
-        row.label(text=item.name, icon="CAMERA_DATA" if item.has_camera else "ORIENTATION_VIEW")
+        split = layout.split(factor=0.5, align=True)
+        split.label(text=item.name, icon="CAMERA_DATA" if item.has_camera else "ORIENTATION_VIEW")
+        row = split.row(align=True)
         v = item.view
-        row.label(text=f"({v[0]:+.2f}, {v[1]:+.2f}, {v[2]:+.2f})")
-        if item.frame:
-            row.label(text=f"f {item.frame}")
+        row.label(text=f"{v[0]:.1f},{v[1]:.1f},{v[2]:.1f}" + (f" f{item.frame}" if item.frame else ""))
         op = row.operator("vdg.look_through", text="", icon="HIDE_OFF")
         op.index = index
 
