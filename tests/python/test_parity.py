@@ -15,9 +15,13 @@ from conftest import MODELS, cli_weights, random_views, run_vdg
 WEIGHT_TOL = 1e-6
 # `vdg eval` writes positions in the shortest form that round-trips a float: equal to float rounding.
 POSITION_TOL = 1e-5
-NORMAL_TOL = 1e-5
+# `vdg eval` writes no normals: the reference is recomputed here in float64 from its positions,
+# while vdg sums float32 cross products; on the walkers' small triangles the two differ by up to
+# about 1.1e-5 (measured), so the normals get a tolerance of 1e-4 and a unit-length check of 1e-5.
+NORMAL_TOL = 1e-4
+UNIT_TOL = 1e-5
 VIEW_COUNT = 50
-EVAL_VIEW_COUNT = 4
+EVAL_VIEW_COUNT = 50
 
 
 def check_static_weights(ours: dict[str, Any], theirs: dict[str, Any]) -> None:
@@ -105,7 +109,7 @@ def test_evaluate_matches_cli_eval(name: str, models: dict[str, vdg.Model], tmp_
         # The OBJ holds no normals: recompute them from its positions where no seam is welded.
         reference = area_weighted_normals(expected, model.triangles)
         np.testing.assert_allclose(normals[single], reference[single], atol=NORMAL_TOL, rtol=0)
-        np.testing.assert_allclose(np.linalg.norm(normals[single], axis=1), 1.0, atol=NORMAL_TOL)
+        np.testing.assert_allclose(np.linalg.norm(normals[single], axis=1), 1.0, atol=UNIT_TOL)
 
 
 def test_export_gltf_is_vdg_export(models: dict[str, vdg.Model], exported: dict[str, pathlib.Path],
