@@ -118,7 +118,8 @@ def test_build_static_round_trip(models: dict[str, vdg.Model], tmp_path: pathlib
     built = vdg.build(spot.base, spot.triangles, spot_keys(spot), sharpness=spot.sharpness,
                       uncovered=spot.uncovered, center=spot.center, comment="from Python")
     assert [k.name for k in built.keys] == [k.name for k in spot.keys]
-    assert built.comment == "from Python" and not built.animated
+    assert built.comment == "from Python" and not built.animated and built.source == ""
+    assert repr(built) == f"<vdg.Model (built): {spot.vertex_count} vertices, {len(spot.keys)} keys, static>"
     for view in random_views(20, 12):
         ours, theirs = built.weights(view), spot.weights(view)
         for name in ours["keys"]:
