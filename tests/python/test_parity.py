@@ -2,6 +2,7 @@
 `vdg eval`, on every shipped model and on its glTF export (issue 26, part 1)."""
 from __future__ import annotations
 
+import json
 import pathlib
 from typing import Any
 
@@ -123,3 +124,20 @@ def test_export_gltf_is_vdg_export(models: dict[str, vdg.Model], exported: dict[
 
 def test_version_is_the_tool_s() -> None:
     assert run_vdg("--version").split()[-1] == vdg.__version__
+
+
+@pytest.mark.parametrize("name", ["spot", "walker"])
+def test_weights_from_eye_match_cli(name: str, models: dict[str, vdg.Model], tmp_path: pathlib.Path) -> None:
+    """weights_from_eye(eye) against the batch's {"eye": [x, y, z]} items (`vdg weights --eye`)."""
+    model = models[name]
+    rng = np.random.default_rng(21)
+    eyes = model.center + random_views(VIEW_COUNT, 22) * rng.uniform(0.5, 20.0, size=(VIEW_COUNT, 1))
+    views_file = tmp_path / "eyes.json"
+    views_file.write_text(json.dumps([{"eye": e.tolist()} for e in eyes]))
+    theirs = json.loads(run_vdg("weights", str(MODELS[name]), "--views", str(views_file)))
+    for eye, expected in zip(eyes, theirs):
+        ours = model.weights_from_eye(eye)
+        if model.animated:
+            check_animated_weights(ours, expected)
+        else:
+            check_static_weights(ours, expected)
