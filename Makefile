@@ -15,7 +15,7 @@ FUZZ_JOBS ?= $(JOBS)
 # make test's tests must not skip: it installs the glTF validator, Slurm + munge, Xvfb, ffmpeg,
 # Node with web/node_modules + Chromium, and Blender.
 REQUIRE := VDG_REQUIRE_GLTF_VALIDATOR=1 VDG_REQUIRE_SLURM=1 VDG_REQUIRE_XVFB=1 VDG_REQUIRE_FFMPEG=1 \
-           VDG_REQUIRE_WEB=1 VDG_REQUIRE_BLENDER=1
+           VDG_REQUIRE_WEB=1 VDG_REQUIRE_BLENDER=1 VDG_REQUIRE_PYTHON=1
 
 .PHONY: deps demo-deps build demo test test-release test-asan fuzz bench format clean \
         ci-build ci-ctest asan-build asan-ctest fuzz-build fuzz-run
@@ -32,10 +32,14 @@ $(BUILD)/CMakeCache.txt:
 build: deps $(BUILD)/CMakeCache.txt
 	cmake --build $(BUILD) -j $(JOBS)
 
-# The demo needs the tool alone: no tests, benchmarks or example generators are compiled for it.
+# The demo needs the tool and the Python module (import vdg, docs/python.md): no tests, benchmarks
+# or example generators are compiled for it. The module is for Debian's python3 (Blender's Python).
 demo: demo-deps $(BUILD)/CMakeCache.txt
-	cmake --build $(BUILD) -j $(JOBS) --target vdg
+	cmake --build $(BUILD) -j $(JOBS) --target vdg vdg_python
 	scripts/demo $(BUILD)/bin/vdg out/demo
+	@echo "== import vdg (PYTHONPATH=$(BUILD)/python /usr/bin/python3; docs/python.md)"
+	PYTHONPATH=$(BUILD)/python /usr/bin/python3 -c \
+	  "import vdg; m = vdg.load('examples/spot/spot.vdg.json'); print(m); print(m.weights([0.7, 0.2, 0.7]))"
 
 # The stages of make test, each also a target of its own.
 ci-build:

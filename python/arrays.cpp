@@ -86,18 +86,24 @@ Eigen::Vector3d viewVector(py::handle obj, const std::string& what) {
 }
 
 double finiteNumber(py::handle obj, const std::string& what) {
-  if (PyBool_Check(obj.ptr()) || !(PyFloat_Check(obj.ptr()) || PyIndex_Check(obj.ptr()) ||
-                                   py::isinstance(obj, py::module_::import("numpy").attr("floating"))))
+  // Python's int and float, and numpy's scalars (np.float32(1), np.int64(2)); not bool, not arrays.
+  const bool number = !PyBool_Check(obj.ptr()) && (PyFloat_Check(obj.ptr()) || PyLong_Check(obj.ptr()) ||
+                                                   py::isinstance(obj, py::module_::import("numpy").attr("number")));
+  if (!number)
     throw py::type_error(what + ": expected a number, got " + py::str(py::type::of(obj)).cast<std::string>());
-  const double value = obj.cast<double>();
+  const double value = PyFloat_AsDouble(obj.ptr());
+  if (PyErr_Occurred()) throw py::error_already_set();
   if (!std::isfinite(value)) throw py::value_error(what + ": expected a finite number, got " + std::to_string(value));
   return value;
 }
 
 long long integerArg(py::handle obj, const std::string& what) {
-  if (PyBool_Check(obj.ptr()) || !PyIndex_Check(obj.ptr()))
-    throw py::type_error(what + ": expected an int, got " + py::str(py::type::of(obj)).cast<std::string>());
-  const py::int_ value = py::reinterpret_steal<py::int_>(PyNumber_Index(obj.ptr()));
+  const bool integer = !PyBool_Check(obj.ptr()) &&
+                       (PyLong_Check(obj.ptr()) || py::isinstance(obj, py::module_::import("numpy").attr("integer")));
+  if (!integer) throw py::type_error(what + ": expected an int, got " + py::str(py::type::of(obj)).cast<std::string>());
+  PyObject* index = PyNumber_Index(obj.ptr());
+  if (index == nullptr) throw py::error_already_set();
+  const py::int_ value = py::reinterpret_steal<py::int_>(index);
   int overflow = 0;
   const long long out = PyLong_AsLongLongAndOverflow(value.ptr(), &overflow);
   if (overflow != 0) throw py::value_error(what + ": " + py::repr(value).cast<std::string>() + " is out of range");

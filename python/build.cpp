@@ -45,7 +45,8 @@ Key keyFrom(py::handle item, std::size_t index) {
     if (py::isinstance<py::dict>(camera))
       camera = py::cast(cameraFromDict(py::reinterpret_borrow<py::dict>(camera), what + ".camera"));
   }
-  return makeKey(d["name"].cast<std::string>(), d["positions"], d.contains("view") ? d["view"] : py::none(), camera,
+  return makeKey(d["name"].cast<std::string>(), d["positions"],
+                 d.contains("view") ? py::object(d["view"]) : py::object(py::none()), camera,
                  d.contains("frame") ? py::object(d["frame"]) : py::object(py::int_(0)));
 }
 

@@ -223,8 +223,8 @@ py::object modelBaseFrames(const Model& m) {
 std::string modelRepr(const Model& m) {
   std::string name = m.source;
   if (const std::size_t slash = name.find_last_of('/'); slash != std::string::npos) name = name.substr(slash + 1);
-  return "<vdg.Model '" + name + "': " + std::to_string(m.vertexCount()) + " vertices, " +
-         std::to_string(m.raw.keys.size()) + " keys, " +
+  const std::string what = name.empty() ? std::string("<vdg.Model (built): ") : "<vdg.Model '" + name + "': ";
+  return what + std::to_string(m.vertexCount()) + " vertices, " + std::to_string(m.raw.keys.size()) + " keys, " +
          (m.animated ? "animated, " + std::to_string(m.animated->frameCount()) + " frames" : std::string("static")) +
          ">";
 }
