@@ -331,6 +331,23 @@ def case_armature(vdg_tool, src, out):
     if bpy.ops.vdg.export_model(filepath=path) != {"FINISHED"}:
         raise AssertionError("vdg.export_model did not finish")
     info = run([vdg_tool, "info", path])
+    # The live preview on the rigged mesh: values = the exported model's weights at the scene's frame.
+    exported = sys.modules["vdg"].load(path)
+    scene.vdg_live_preview = True
+    rng = random.Random(7)
+    worst, positive = 0.0, 0
+    for frame in (0, 3, 5, 8):
+        scene.frame_set(frame)
+        random_camera(rng, scene.camera, column, 1.0)
+        expected = exported.weights(exported.view_from_eye(eye_of(column, scene.camera)), frame=float(frame))["keys"]
+        worst = max(worst, max(abs(v - expected[n]) for n, v in values(column).items()))
+        positive += sum(1 for v in values(column).values() if v > 0.0)
+    if positive == 0:
+        raise AssertionError("rigged column: the preview set no shape-key value above 0")
+    if worst > WEIGHT_TOL:
+        raise AssertionError(f"rigged column: a preview value differs from the exported model's weight by {worst:.3g}")
+    print(f"check: rigged column: preview values at frames 0, 3, 5, 8 = the exported model's weights (worst {worst:.2g}, {positive} values > 0)")
+    scene.vdg_live_preview = False
     for b in column.data.shape_keys.key_blocks[1:]:
         b.value = 0.0
     block.value = 1.0
