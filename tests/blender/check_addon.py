@@ -113,7 +113,7 @@ def obj_positions(path):
         return np.array([[float(x) for x in line.split()[1:4]] for line in f if line.startswith("v ")])
 
 
-def compare_preview(vdg_tool, model_path, obj, cam, rng, out, count, label):
+def compare_preview(vdg_tool, model_path, obj, cam, rng, out, count, label, options=()):
     radius = max(obj.dimensions) / 2.0
     eyes, seen = [], []
     for _ in range(count):
@@ -123,7 +123,7 @@ def compare_preview(vdg_tool, model_path, obj, cam, rng, out, count, label):
     views_file = os.path.join(out, f"{label}_eyes.json")
     with open(views_file, "w", encoding="utf-8") as f:
         json.dump([{"eye": e} for e in eyes], f)
-    expected = json.loads(run([vdg_tool, "weights", model_path, "--views", views_file, "--json"]))
+    expected = json.loads(run([vdg_tool, "weights", model_path, "--views", views_file, "--json", *options]))
     worst_w = worst_p = 0.0
     moved = 0
     for i, (eye, (vals, positions)) in enumerate(zip(eyes, seen)):
@@ -132,7 +132,7 @@ def compare_preview(vdg_tool, model_path, obj, cam, rng, out, count, label):
             worst_w = max(worst_w, abs(value - keys.get(name, 0.0)))
         moved += sum(1 for v in vals.values() if v > 0.0)
         mesh_file = os.path.join(out, f"{label}_eval.obj")
-        run([vdg_tool, "eval", model_path, "--eye=" + ",".join(repr(c) for c in eye), "-o", mesh_file, "-q"])
+        run([vdg_tool, "eval", model_path, "--eye=" + ",".join(repr(c) for c in eye), "-o", mesh_file, "-q", *options])
         ref = obj_positions(mesh_file)
         if ref.shape != positions.shape:
             raise AssertionError(f"{label}: vdg eval has {ref.shape[0]} vertices, Blender {positions.shape[0]}")
@@ -173,6 +173,9 @@ def case_preview(vdg_tool, src, out):
     other.rotation_euler = Euler((0.0, 0.0, -0.8))
     compare_preview(vdg_tool, glb, other, scene.camera, rng, out, 5, "spot glb (second object)")
     compare_preview(vdg_tool, manifest, obj, scene.camera, rng, out, 3, "spot manifest (with the crowd)")
+    obj.vdg.sharpness = 2.5  # a setting change rebuilds the object's model and refreshes the values
+    compare_preview(vdg_tool, manifest, obj, scene.camera, rng, out, 3, "spot manifest (sharpness 2.5)",
+                    ("--sharpness", "2.5"))
 
 
 def case_roundtrip(vdg_tool, src, out):
@@ -240,6 +243,17 @@ def case_roundtrip(vdg_tool, src, out):
         if "Traceback" in str(e) or ".vdg.json" not in str(e):
             raise AssertionError(f"the export error is not one clear line: {e}") from None
         print(f"check: a wrong file name is one report line: {str(e).strip()}")
+    bpy.ops.preferences.addon_disable(module="vdg_addon")
+    left = [n for n in ("vdg", "vdg_live_preview") if hasattr(bpy.types.Object, n) or hasattr(bpy.types.Scene, n)]
+    handlers = [h.__name__ for h in bpy.app.handlers.depsgraph_update_post + bpy.app.handlers.frame_change_post
+                if h.__module__.startswith("vdg_addon")]
+    left += [c for c in ("VDG_OT_key_from_camera", "VDG_PT_panel", "VdgObjectSettings") if hasattr(bpy.types, c)]
+    if left or handlers:
+        raise AssertionError(f"disabling the add-on left {left} {handlers}")
+    bpy.ops.preferences.addon_enable(module="vdg_addon")
+    if not hasattr(bpy.types.Object, "vdg") or len(obj.vdg.keys) != 6:
+        raise AssertionError("re-enabling the add-on did not bring the keys back")
+    print("check: disable removes the properties and handlers; enable again finds the keys stored on the object")
 
 
 def case_walker(vdg_tool, src, out):
@@ -269,6 +283,14 @@ def case_walker(vdg_tool, src, out):
             outside += not 0.0 <= expected[name] <= 1.0
     if positive == 0:
         raise AssertionError("walker: the preview set no shape-key value above 0")
+    from vdg_addon import preview
+    block = obj.data.shape_keys.key_blocks["front_f10"]
+    preview.apply_weights(obj, {"front_f10": 1.3, "side_f10": -0.4})
+    side = obj.data.shape_keys.key_blocks["side_f10"]
+    if abs(block.value - 1.3) > WEIGHT_TOL or abs(side.value + 0.4) > WEIGHT_TOL:
+        raise AssertionError(f"values 1.3 and -0.4 were written as {block.value} and {side.value}")
+    print(f"check: time-coefficient values outside [0, 1] widen the sliders: front_f10 = {block.value:.2f} "
+          f"(max {block.slider_max}), side_f10 = {side.value:.2f} (min {side.slider_min})")
     if worst > WEIGHT_TOL:
         raise AssertionError(f"walker: a shape-key value differs from vdg.Model.weights by {worst:.3g}")
     print(f"check: walker imported with key frames {frames}; {CAMERAS} views and frames: values = "
