@@ -140,6 +140,9 @@ def export_model(context: Any, obj: Any, path: str) -> Any:
         raise model.AddonError(f"{path}: the file name must end in .vdg.json, .gltf or .glb")
     if model.armature_animated(obj):
         m = _build_animated(context, obj)
+    elif any(k.frame != 0 for k in obj.vdg.keys):
+        raise model.AddonError(f"object '{obj.name}': its keys have frames but no Armature modifier poses the "
+                               "mesh; add the rig (docs/blender.md, animated characters) or set the frames to 0")
     else:
         m = model.build_static(obj, with_uvs=True)
     vdg = vdgmodule.get()
