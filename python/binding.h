@@ -95,6 +95,13 @@ Eigen::Vector3d modelViewFromEye(const Model& m, py::handle eye);
 py::list modelKeys(const Model& m);
 SphereView modelSphere(const Model& m);
 py::object modelUvs(const Model& m);
+// Texture coordinates per triangle corner, (T, 3, 2) float32, or None: what a seam cannot lose.
+py::object modelCornerUvs(const Model& m);
+// The base's material per triangle, (T,) int32 (-1: none), or None without materials.
+py::object modelFaceMaterials(const Model& m);
+// The base's materials: dicts {"name", "base_color" (display sRGB r, g, b), "texture_path",
+// "texture" (the PNG or JPEG file's bytes, or None)}.
+py::list modelMaterials(const Model& m);
 py::object modelBaseFrames(const Model& m);
 std::string modelRepr(const Model& m);
 // The sharpness argument: None -> 0 (the model's own), else finite and > 0 (ValueError).
@@ -105,7 +112,7 @@ Camera makeCamera(py::handle eye, py::handle target, py::handle up, double fov_d
 Key makeKey(const std::string& name, py::handle positions, py::handle view, py::handle camera, py::handle frame);
 // vdg.build's keyword arguments, as Python passed them.
 struct BuildArgs {
-  py::object base, triangles, keys, center, frames, uvs;
+  py::object base, triangles, keys, center, frames, uvs, corner_uvs, materials, face_materials;
   double sharpness = 1.0, base_falloff_deg = 60.0, fps = 24.0;
   std::string uncovered = "base", comment;
   bool loop = false;

@@ -2,9 +2,12 @@
 // section 3.1: a base mesh, key deformations and their key views; section 4.1: keys at frames of an
 // animated base). The arrays become a RawViewDependentModel, which the library validates and builds
 // exactly as it does a manifest's (RawViewDependentModel::validate's messages become vdg.Error).
+#include <cmath>
+
 #include "binding.h"
 #include "vdg/geom/error.h"
 #include "vdg/geom/normalize.h"
+#include "vdg/io/image_file.h"
 #include "vdg/io/manifest.h"
 #include "vdg/viewdep/view_sphere.h"
 
@@ -132,6 +135,78 @@ void buildRuntime(Model& m) {
     m.model = std::make_shared<const ViewDependentModel>(ViewDependentModel::build(m.raw));
 }
 
+namespace {
+// corner_uvs (T, 3, 2) into base.uvs / uv_triangles (one uv per corner).
+void setCornerUvs(TriMesh& base, py::handle corner_uvs) {
+  const py::array a = py::module_::import("numpy").attr("asarray")(corner_uvs);
+  const auto t = static_cast<py::ssize_t>(base.triangleCount());
+  if (a.ndim() != 3 || a.shape(0) != t || a.shape(1) != 3 || a.shape(2) != 2)
+    throw py::value_error("corner_uvs: expected shape (" + std::to_string(t) +
+                          ", 3, 2) (one (u, v) per triangle corner)");
+  base.uvs = floatRows(a.attr("reshape")(-1, 2), 3 * t, 2, "corner_uvs");
+  for (float value : base.uvs)
+    if (!std::isfinite(value)) throw py::value_error("corner_uvs: expected finite values");
+  base.uv_triangles.resize(base.triangles.size());
+  for (std::size_t c = 0; c < base.uv_triangles.size(); ++c) base.uv_triangles[c] = static_cast<std::int32_t>(c);
+}
+
+// One of vdg.build's materials: a dict {"name", "base_color", "texture", "texture_path"}.
+Material materialFrom(py::handle item, std::size_t index) {
+  const std::string what = "materials[" + std::to_string(index) + "]";
+  if (!py::isinstance<py::dict>(item)) throw py::type_error(what + ": expected a dict");
+  const py::dict d = py::reinterpret_borrow<py::dict>(item);
+  Material m;
+  m.name = d.contains("name") ? py::str(d["name"]).cast<std::string>() : "material" + std::to_string(index);
+  if (d.contains("base_color")) {
+    const std::vector<double> c = doubleRows(d["base_color"], 3, -1, what + ".base_color");
+    for (std::size_t k = 0; k < 3; ++k) {
+      if (!(c[k] >= 0.0 && c[k] <= 1.0))
+        throw py::value_error(what + ".base_color: expected display RGB values in [0, 1]");
+      m.base_color[k] = static_cast<float>(c[k]);
+    }
+  }
+  if (d.contains("texture") && !d["texture"].is_none()) {
+    if (!py::isinstance<py::bytes>(d["texture"]))
+      throw py::type_error(what + ".texture: expected the bytes of a PNG or JPEG file, or None");
+    const std::string bytes = d["texture"].cast<std::string>();
+    auto image = std::make_shared<TextureImage>(decodeImage(bytes, what + ".texture"));
+    image->file_bytes = bytes;
+    m.texture_path = imageFormatOf(bytes) == ImageFormat::kPng ? "texture.png" : "texture.jpg";
+    m.texture = std::move(image);
+  }
+  if (d.contains("texture_path") && !d["texture_path"].is_none() && m.texture)
+    m.texture_path = py::str(d["texture_path"]).cast<std::string>();
+  return m;
+}
+
+// materials and face_materials into the base (both or neither).
+void setMaterials(TriMesh& base, py::handle materials, py::handle face_materials) {
+  if (materials.is_none() != face_materials.is_none())
+    throw py::value_error("materials, face_materials: give both or neither");
+  if (materials.is_none()) return;
+  if (!py::isinstance<py::list>(materials) && !py::isinstance<py::tuple>(materials))
+    throw py::type_error("materials: expected a list of dicts");
+  std::size_t index = 0;
+  for (const py::handle item : materials) base.materials.push_back(materialFrom(item, index++));
+  // Integers of any width, -1 allowed (intRows takes indices >= 0): checked as int64 first.
+  const py::array a = py::module_::import("numpy").attr("asarray")(face_materials);
+  const auto t_count = static_cast<py::ssize_t>(base.triangleCount());
+  if (a.dtype().kind() != 'i' && a.dtype().kind() != 'u')
+    throw py::type_error("face_materials: expected integers, got dtype " + py::str(a.dtype()).cast<std::string>());
+  if (a.ndim() != 1 || a.shape(0) != t_count)
+    throw py::value_error("face_materials: expected shape (" + std::to_string(t_count) + ",)");
+  const auto values = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(a);
+  if (!values) throw py::type_error("face_materials: cannot convert the array's values");
+  for (py::ssize_t t = 0; t < t_count; ++t) {
+    const std::int64_t v = values.data()[t];
+    if (v < -1 || v >= static_cast<std::int64_t>(base.materials.size()))
+      throw py::value_error("face_materials[" + std::to_string(t) + "]: expected -1 (none) or a material index below " +
+                            std::to_string(base.materials.size()) + ", got " + std::to_string(v));
+    base.face_materials.push_back(static_cast<std::int32_t>(v));
+  }
+}
+}  // namespace
+
 Model buildModel(const BuildArgs& args) {
   Model m;
   RawViewDependentModel& raw = m.raw;
@@ -145,6 +220,11 @@ Model buildModel(const BuildArgs& args) {
     raw.base.uvs = floatRows(args.uvs, n, 2, "uvs");
     raw.base.uv_triangles = raw.base.triangles;
   }
+  if (!args.corner_uvs.is_none()) {
+    if (!args.uvs.is_none()) throw py::value_error("uvs, corner_uvs: give one of them, not both");
+    setCornerUvs(raw.base, args.corner_uvs);
+  }
+  setMaterials(raw.base, args.materials, args.face_materials);
   validateMesh(raw.base, "build: base");
   raw.sharpness = args.sharpness;
   raw.sphere.uncovered = uncoveredFrom(args.uncovered);

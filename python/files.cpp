@@ -13,6 +13,7 @@
 #include "vdg/io/file_transaction.h"
 #include "vdg/io/gltf_compress.h"
 #include "vdg/io/gltf_export.h"
+#include "vdg/io/image_file.h"
 #include "vdg/io/manifest.h"
 #include "vdg/io/model.h"
 #include "vdg/io/obj.h"
@@ -62,7 +63,31 @@ std::vector<fs::path> makeFolders(const fs::path& folder) {
 RawViewDependentModel queueFiles(const Model& m, const fs::path& folder, const std::string& mesh_folder,
                                  FileTransaction& transaction) {
   RawViewDependentModel out = m.raw;
+  // The base's materials: one MTL and each texture's original bytes beside the base's OBJ files.
+  std::vector<std::string> textures(out.base.materials.size());
+  const bool materials = !out.base.face_materials.empty() && !out.base.materials.empty();
+  if (materials) {
+    for (std::size_t i = 0; i < textures.size(); ++i) {
+      const Material& material = out.base.materials[i];
+      if (!material.texture || material.texture->file_bytes.empty()) continue;
+      const bool png = imageFormatOf(material.texture->file_bytes) == ImageFormat::kPng;
+      textures[i] = "base-texture-" + std::to_string(i) + (png ? ".png" : ".jpg");
+      const std::string relative = mesh_folder + "/" + textures[i];
+      transaction.write((folder / relative).string(), material.texture->file_bytes, relative);
+    }
+  }
+  bool mtl_written = false;
   const auto queue = [&](const std::string& relative, const TriMesh& mesh, const std::string& header) {
+    if (!materials) {
+      transaction.write((folder / relative).string(), formatObj(mesh, header), relative);
+      return;
+    }
+    ObjWithMaterials text = formatObjWithMaterials(mesh, header, "base.mtl", textures);
+    transaction.write((folder / relative).string(), std::move(text.obj), relative);
+    if (!mtl_written) transaction.write((folder / mesh_folder / "base.mtl").string(), std::move(text.mtl), "base.mtl");
+    mtl_written = true;
+  };
+  const auto queueKey = [&](const std::string& relative, const TriMesh& mesh, const std::string& header) {
     transaction.write((folder / relative).string(), formatObj(mesh, header), relative);
   };
   if (out.animated()) {
@@ -84,10 +109,10 @@ RawViewDependentModel queueFiles(const Model& m, const fs::path& folder, const s
     out.base_path = mesh_folder + "/base.obj";
     queue(out.base_path, out.base, "vdg (Python): base");
   }
-  std::set<std::string> used{"base"};
+  std::set<std::string> used{"base", "base-texture"};
   for (RawKey& key : out.keys) {
     key.mesh_path = mesh_folder + "/" + meshFileStem(key.name, used) + ".obj";
-    queue(key.mesh_path, key.mesh, "vdg (Python): key '" + key.name + "'");
+    queueKey(key.mesh_path, key.mesh, "vdg (Python): key '" + key.name + "'");
   }
   return out;
 }

@@ -208,6 +208,44 @@ py::object modelUvs(const Model& m) {
   return floatArray(uvs.data(), static_cast<py::ssize_t>(n), 2);
 }
 
+py::object modelCornerUvs(const Model& m) {
+  const TriMesh& base = m.raw.base;
+  if (base.uvs.empty() || base.uv_triangles.size() != base.triangles.size()) return py::none();
+  const auto corners = static_cast<py::ssize_t>(base.uv_triangles.size());
+  py::array_t<float> out({corners / 3, py::ssize_t{3}, py::ssize_t{2}});
+  float* data = out.mutable_data();
+  for (std::size_t c = 0; c < base.uv_triangles.size(); ++c) {
+    const auto t = static_cast<std::size_t>(base.uv_triangles[c]);
+    data[2 * c] = base.uvs[2 * t];
+    data[2 * c + 1] = base.uvs[2 * t + 1];
+  }
+  return out;
+}
+
+py::object modelFaceMaterials(const Model& m) {
+  const TriMesh& base = m.raw.base;
+  if (base.face_materials.empty()) return py::none();
+  py::array_t<std::int32_t> out(static_cast<py::ssize_t>(base.face_materials.size()));
+  std::copy(base.face_materials.begin(), base.face_materials.end(), out.mutable_data());
+  return out;
+}
+
+py::list modelMaterials(const Model& m) {
+  py::list out;
+  for (const Material& material : m.raw.base.materials) {
+    py::dict d;
+    d["name"] = material.name;
+    d["base_color"] = py::make_tuple(material.base_color[0], material.base_color[1], material.base_color[2]);
+    d["texture_path"] = material.texture_path;
+    if (material.texture && !material.texture->file_bytes.empty())
+      d["texture"] = py::bytes(material.texture->file_bytes);
+    else
+      d["texture"] = py::none();
+    out.append(std::move(d));
+  }
+  return out;
+}
+
 py::object modelBaseFrames(const Model& m) {
   if (!m.animated) return py::none();
   const auto frames = static_cast<py::ssize_t>(m.animated->frameCount());

@@ -132,6 +132,14 @@ void bindModelProperties(py::class_<Model>& c) {
       .def_property_readonly("uvs", &modelUvs,
                              "Per-vertex texture coordinates, (V, 2) float32, or None (no uvs, or a seam that "
                              "gives one vertex two).")
+      .def_property_readonly("corner_uvs", &modelCornerUvs,
+                             "Texture coordinates per triangle corner, (T, 3, 2) float32, or None without uvs "
+                             "(what a mesh with seams needs; Blender's uv layers are per corner).")
+      .def_property_readonly("materials", &modelMaterials,
+                             "The base's materials: a list of dicts {'name', 'base_color' (display sRGB r, g, b), "
+                             "'texture_path', 'texture' (the PNG or JPEG file's bytes, or None)}.")
+      .def_property_readonly("face_materials", &modelFaceMaterials,
+                             "Each triangle's material index, (T,) int32 (-1: none), or None without materials.")
       .def_property_readonly("base_frames", &modelBaseFrames, "(F, V, 3) float32 base frames, or None when static.")
       .def_property_readonly("keys", &modelKeys, "The keys (list of vdg.Key) in the model's order.")
       .def_property_readonly("sphere", &modelSphere, "The viewing sphere (vdg.ViewSphere).");
@@ -180,7 +188,7 @@ void bindFunctions(py::module_& m) {
       "build",
       [](py::object base, py::object triangles, py::object keys, double sharpness, std::string uncovered,
          double base_falloff_deg, py::object center, py::object frames, bool loop, double fps, py::object uvs,
-         std::string comment) {
+         std::string comment, py::object corner_uvs, py::object materials, py::object face_materials) {
         BuildArgs args;
         args.base = std::move(base);
         args.triangles = std::move(triangles);
@@ -194,15 +202,21 @@ void bindFunctions(py::module_& m) {
         args.fps = fps;
         args.uvs = std::move(uvs);
         args.comment = std::move(comment);
+        args.corner_uvs = std::move(corner_uvs);
+        args.materials = std::move(materials);
+        args.face_materials = std::move(face_materials);
         return buildModel(args);
       },
       py::arg("base"), py::arg("triangles"), py::arg("keys"), py::kw_only(), py::arg("sharpness") = 1.0,
       py::arg("uncovered") = "base", py::arg("base_falloff_deg") = 60.0, py::arg("center") = py::none(),
       py::arg("frames") = py::none(), py::arg("loop") = false, py::arg("fps") = 24.0, py::arg("uvs") = py::none(),
-      py::arg("comment") = "",
+      py::arg("comment") = "", py::arg("corner_uvs") = py::none(), py::arg("materials") = py::none(),
+      py::arg("face_materials") = py::none(),
       R"(A model from arrays: base (V, 3), triangles (T, 3), keys (vdg.Key or dicts {"name",
 "positions", "view" or "camera", "frame"}). frames (F, V, 3) makes an animated model (section 4; base
-must be frames[0] or None). Raises vdg.Error with vdg's validation message for an invalid model
+must be frames[0] or None). Texture coordinates per vertex (uvs, (V, 2)) or per corner (corner_uvs,
+(T, 3, 2)); materials (dicts {"name", "base_color" display RGB in [0, 1], "texture" PNG or JPEG
+bytes, "texture_path"}) with face_materials ((T,) indices, -1 none), both or neither. Raises vdg.Error with vdg's validation message for an invalid model
 (duplicate names or views, non-finite coordinates, key frames out of range ...).)");
 }
 

@@ -650,6 +650,71 @@ std::string formatObj(const TriMesh& mesh, const std::string& header) {
   return text;
 }
 
+namespace {
+// Unique MTL names for `materials` (see formatObjWithMaterials), never "vdg-plain".
+std::vector<std::string> mtlNames(const std::vector<Material>& materials) {
+  std::vector<std::string> names;
+  std::set<std::string> used{"vdg-plain"};
+  for (const Material& m : materials) {
+    std::string stem;
+    for (const char c : m.name)
+      stem += (std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.') ? c : '_';
+    if (stem.empty()) stem = "material";
+    std::string name = stem;
+    for (int i = 2; used.count(name); ++i) name = stem + "_" + std::to_string(i);
+    used.insert(name);
+    names.push_back(std::move(name));
+  }
+  return names;
+}
+}  // namespace
+
+ObjWithMaterials formatObjWithMaterials(const TriMesh& mesh, const std::string& header, const std::string& mtl_name,
+                                        const std::vector<std::string>& texture_files) {
+  ObjWithMaterials out;
+  if (mesh.face_materials.empty() || mesh.materials.empty()) {
+    out.obj = formatObj(mesh, header);
+    return out;
+  }
+  const std::vector<std::string> names = mtlNames(mesh.materials);
+  bool plain = false;
+  for (std::size_t i = 0; i < mesh.materials.size(); ++i) {
+    const Material& m = mesh.materials[i];
+    out.mtl += "newmtl " + names[i] + "\nKd ";
+    for (int c = 0; c < 3; ++c) {
+      appendFloat(out.mtl, m.base_color[static_cast<std::size_t>(c)]);
+      out.mtl += c < 2 ? ' ' : '\n';
+    }
+    if (i < texture_files.size() && !texture_files[i].empty()) out.mtl += "map_Kd " + texture_files[i] + "\n";
+  }
+  // formatObj's lines, with usemtl before each run of faces of one material.
+  const std::string body = formatObj(mesh, header);
+  std::istringstream lines(body);
+  std::size_t face = 0;
+  int current = -1;
+  bool started = false, library = false;
+  for (std::string line; std::getline(lines, line);) {
+    if (!line.empty() && line[0] == 'f') {
+      const int material = mesh.face_materials[face++];
+      if (!started || material != current) {
+        if (started || material >= 0) {
+          plain = plain || material < 0;
+          out.obj +=
+              "usemtl " + (material < 0 ? std::string("vdg-plain") : names[static_cast<std::size_t>(material)]) + "\n";
+        }
+        current = material;
+        started = true;
+      }
+    } else if (!library && !line.empty() && line[0] != '#') {
+      out.obj += "mtllib " + mtl_name + "\n";
+      library = true;
+    }
+    out.obj += line + "\n";
+  }
+  if (plain) out.mtl += "newmtl vdg-plain\nKd 1 1 1\n";
+  return out;
+}
+
 void writeObj(const std::string& path, const TriMesh& mesh, const std::string& header) {
   writeFileAtomically(path, formatObj(mesh, header));
 }

@@ -118,6 +118,21 @@ def test_build_shape_and_dtype_errors() -> None:
         (lambda: vdg.build(base, tris, [dict(key, positions=np.full((4, 3), np.nan))]), vdg.Error, "finite"),
         (lambda: vdg.build(base, tris, [key], center=[0, 0]), ValueError, r"center: expected shape \(3,\)"),
         (lambda: vdg.build(base, tris, [key], uvs=np.zeros((3, 2))), ValueError, r"uvs: expected shape \(4, 2\)"),
+        (lambda: vdg.build(base, tris, [key], corner_uvs=np.zeros((4, 2))), ValueError,
+         r"corner_uvs: expected shape \(4, 3, 2\)"),
+        (lambda: vdg.build(base, tris, [key], uvs=np.zeros((4, 2)), corner_uvs=np.zeros((4, 3, 2))), ValueError,
+         "give one of them"),
+        (lambda: vdg.build(base, tris, [key], materials=[{}]), ValueError, "materials, face_materials: give both"),
+        (lambda: vdg.build(base, tris, [key], materials=[{}], face_materials=[0, 0, 1, 0]), ValueError,
+         r"face_materials\[2\]: expected -1 \(none\) or a material index below 1, got 1"),
+        (lambda: vdg.build(base, tris, [key], materials=[{"base_color": (2, 0, 0)}], face_materials=[0] * 4),
+         ValueError, r"materials\[0\].base_color: expected display RGB values in \[0, 1\]"),
+        (lambda: vdg.build(base, tris, [key], materials=[{"texture": b"not an image"}], face_materials=[0] * 4),
+         vdg.Error, r"materials\[0\].texture"),
+        (lambda: vdg.build(base, tris, [key], materials=[{"texture": "a.png"}], face_materials=[0] * 4),
+         TypeError, r"materials\[0\].texture: expected the bytes"),
+        (lambda: vdg.build(base, tris, [key], materials=["red"], face_materials=[0] * 4), TypeError,
+         r"materials\[0\]: expected a dict"),
     ]
     for call, exception, message in cases:
         with pytest.raises(exception, match=message):

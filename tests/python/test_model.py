@@ -204,3 +204,41 @@ def test_evaluate_releases_the_gil(models: dict[str, vdg.Model]) -> None:
         assert len(slot) == 5
         for batch in slot:
             np.testing.assert_array_equal(batch, np.stack(expected))
+
+
+def test_materials_and_corner_uvs_round_trip(models: dict[str, vdg.Model], tmp_path: pathlib.Path) -> None:
+    """Spot's texture, base colour and per-corner uvs survive build -> save_manifest -> load (the OBJ + MTL
+    + texture bytes) and build -> export_gltf -> load (the glTF material), as a DCC tool hands them over."""
+    spot = models["spot"]
+    assert spot.corner_uvs is not None and spot.corner_uvs.shape == (len(spot.triangles), 3, 2)
+    assert spot.uvs is None  # Spot's seams give some vertices two (u, v): only corners hold them
+    (material,) = spot.materials
+    assert material["texture"][:8] == b"\x89PNG\r\n\x1a\n" and material["name"] == "spot"
+    built = vdg.build(spot.base, spot.triangles, spot.keys, corner_uvs=spot.corner_uvs,
+                      materials=spot.materials, face_materials=spot.face_materials)
+    built.save_manifest(tmp_path / "spot.vdg.json")
+    saved = vdg.load(tmp_path / "spot.vdg.json")
+    np.testing.assert_array_equal(saved.corner_uvs, spot.corner_uvs)
+    np.testing.assert_array_equal(saved.face_materials, spot.face_materials)
+    assert saved.materials[0]["texture"] == material["texture"]  # the file's own bytes
+    assert saved.materials[0]["base_color"] == material["base_color"]
+    built.export_gltf(tmp_path / "spot.glb")
+    exported = vdg.load(tmp_path / "spot.glb")
+    assert exported.materials[0]["texture"][:8] == b"\x89PNG\r\n\x1a\n"
+    np.testing.assert_allclose(exported.materials[0]["base_color"], material["base_color"], atol=1e-6)
+    np.testing.assert_allclose(exported.corner_uvs, spot.corner_uvs, atol=1e-6, rtol=0)
+
+
+def test_colour_without_texture_and_faces_without_material(tmp_path: pathlib.Path) -> None:
+    """A base colour alone, and faces without a material after faces with one, save and load."""
+    base = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], np.float32)
+    tris = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]], np.int32)
+    keys = [{"name": "k", "positions": base * 1.5, "view": [0, 0, 1]}]
+    model = vdg.build(base, tris, keys, materials=[{"name": "red paint", "base_color": (1.0, 0.25, 0.0)}],
+                      face_materials=[0, 0, -1, 0])
+    model.save_manifest(tmp_path / "m.vdg.json")
+    loaded = vdg.load(tmp_path / "m.vdg.json")
+    names = [m["name"] for m in loaded.materials]
+    assert names[0] == "red_paint" and loaded.materials[0]["base_color"] == (1.0, 0.25, 0.0)
+    assert loaded.materials[0]["texture"] is None
+    assert [names[i] for i in loaded.face_materials] == ["red_paint", "red_paint", "vdg-plain", "red_paint"]

@@ -66,4 +66,18 @@ std::string formatObj(const TriMesh& mesh, const std::string& header = {});
 // Writes `mesh` to `path` atomically. `header` (may be empty) becomes leading comment lines.
 void writeObj(const std::string& path, const TriMesh& mesh, const std::string& header = {});
 
+// A mesh's materials as OBJ + MTL texts (what vdg.Model.save_manifest writes for a base with
+// materials): the OBJ is formatObj's with "mtllib MTL_NAME" and a "usemtl" line wherever the face
+// material changes; the MTL defines each material once, by a unique name made from its own
+// (characters other than letters, digits, '-', '_' and '.' become '_'; repeats get "_2", "_3", ...),
+// with Kd its display base colour and, when it has a texture, "map_Kd TEXTURE_FILES[i]" (the file
+// names the caller writes the textures' original bytes to, empty for none). Faces without a material
+// (-1) after faces with one use a white material "vdg-plain" (OBJ cannot end a material). Without
+// face_materials the OBJ is formatObj's alone and the MTL is empty.
+struct ObjWithMaterials {
+  std::string obj, mtl;
+};
+ObjWithMaterials formatObjWithMaterials(const TriMesh& mesh, const std::string& header, const std::string& mtl_name,
+                                        const std::vector<std::string>& texture_files);
+
 }  // namespace vdg
