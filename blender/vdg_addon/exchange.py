@@ -1,6 +1,7 @@
 """Import a vdg model as a mesh object with shape keys; export an object to a manifest or glTF."""
 import os
-from typing import Any, Dict, List
+import tempfile
+from typing import Any, Dict, List, Optional, Tuple
 
 import bpy
 import numpy as np
@@ -20,12 +21,128 @@ def _mesh_from_model(name: str, m: Any) -> Any:
     mesh.polygons.add(len(tris))
     mesh.polygons.foreach_set("loop_start", np.arange(0, len(tris) * 3, 3, dtype=np.int32))
     mesh.polygons.foreach_set("loop_total", np.full(len(tris), 3, dtype=np.int32))
-    if m.uvs is not None:
+    corner_uvs = getattr(m, "corner_uvs", None)
+    if corner_uvs is not None:  # per triangle corner: the loops are the triangles' corners in order
+        layer = mesh.uv_layers.new(name="UVMap")
+        layer.data.foreach_set("uv", np.asarray(corner_uvs, dtype=np.float32).ravel())
+    elif m.uvs is not None:
         layer = mesh.uv_layers.new(name="UVMap")
         layer.data.foreach_set("uv", np.asarray(m.uvs, dtype=np.float32)[tris.ravel()].ravel())
     mesh.update(calc_edges=True)
     mesh.polygons.foreach_set("use_smooth", np.ones(len(tris), dtype=bool))
+    _import_materials(mesh, m)
     return mesh
+
+
+def _srgb_to_linear(c: float) -> float:
+    return c / 12.92 if c <= 0.04045 else ((c + 0.055) / 1.055) ** 2.4
+
+
+def _linear_to_srgb(c: float) -> float:
+    c = min(max(c, 0.0), 1.0)
+    return c * 12.92 if c <= 0.0031308 else 1.055 * c ** (1.0 / 2.4) - 0.055
+
+
+def _import_image(texture: bytes, path: str) -> Any:
+    """A Blender image packed from the texture file's bytes (nothing is left on disk)."""
+    name = os.path.basename(path) or "texture.png"
+    with tempfile.TemporaryDirectory() as folder:
+        file = os.path.join(folder, name)
+        with open(file, "wb") as f:
+            f.write(texture)
+        image = bpy.data.images.load(file)
+        image.pack()
+    image.filepath = "//" + name
+    return image
+
+
+def _import_materials(mesh: Any, m: Any) -> None:
+    """The model's materials as Principled BSDF materials (base colour, image texture) on the mesh."""
+    materials = getattr(m, "materials", None) or []
+    for spec in materials:
+        mat = bpy.data.materials.new(spec.get("name") or "vdg")
+        mat.use_nodes = True
+        bsdf = next(n for n in mat.node_tree.nodes if n.type == "BSDF_PRINCIPLED")
+        colour = [_srgb_to_linear(float(c)) for c in spec.get("base_color", (1.0, 1.0, 1.0))[:3]]
+        bsdf.inputs["Base Color"].default_value = (*colour, 1.0)
+        mat.diffuse_color = (*colour, 1.0)
+        if spec.get("texture"):
+            node = mat.node_tree.nodes.new("ShaderNodeTexImage")
+            node.image = _import_image(bytes(spec["texture"]), spec.get("texture_path") or "")
+            node.location = (bsdf.location.x - 300, bsdf.location.y)
+            mat.node_tree.links.new(node.outputs["Color"], bsdf.inputs["Base Color"])
+        mesh.materials.append(mat)
+    faces = getattr(m, "face_materials", None)
+    if materials and faces is not None:
+        mesh.polygons.foreach_set("material_index", np.maximum(np.asarray(faces, dtype=np.int32), 0))
+
+
+def _texture_of(mat: Any) -> Tuple[Optional[bytes], str]:
+    """The PNG or JPEG bytes and file name of the image feeding the Principled BSDF's Base Color."""
+    if not mat.use_nodes:
+        return None, ""
+    bsdf = next((n for n in mat.node_tree.nodes if n.type == "BSDF_PRINCIPLED"), None)
+    links = bsdf.inputs["Base Color"].links if bsdf is not None else []
+    node = links[0].from_node if links else None
+    if node is None or node.type != "TEX_IMAGE" or node.image is None:
+        return None, ""
+    image = node.image
+    data: Optional[bytes] = None
+    if image.packed_file is not None:
+        data = bytes(image.packed_file.data)
+    else:
+        path = bpy.path.abspath(image.filepath)
+        if os.path.isfile(path):
+            with open(path, "rb") as f:
+                data = f.read()
+    if data is None or not (data.startswith(b"\x89PNG") or data.startswith(b"\xff\xd8")):
+        return None, ""
+    return data, os.path.basename(image.filepath) or image.name
+
+
+def material_arguments(obj: Any) -> Dict[str, Any]:
+    """vdg.build's materials and face_materials from the mesh's material slots (empty without any)."""
+    mesh = obj.data
+    if not mesh.materials or all(mat is None for mat in mesh.materials):
+        return {}
+    specs = []
+    for i, mat in enumerate(mesh.materials):
+        if mat is None:
+            specs.append({"name": f"material{i}", "base_color": (1.0, 1.0, 1.0)})
+            continue
+        colour = mat.diffuse_color
+        if mat.use_nodes:
+            bsdf = next((n for n in mat.node_tree.nodes if n.type == "BSDF_PRINCIPLED"), None)
+            if bsdf is not None:
+                colour = bsdf.inputs["Base Color"].default_value
+        spec: Dict[str, Any] = {"name": mat.name, "base_color": tuple(_linear_to_srgb(float(c)) for c in colour[:3])}
+        data, name = _texture_of(mat)
+        if data is not None:
+            spec["texture"], spec["texture_path"] = data, name
+        specs.append(spec)
+    mesh.calc_loop_triangles()
+    polys = np.empty(len(mesh.loop_triangles), dtype=np.int32)
+    mesh.loop_triangles.foreach_get("polygon_index", polys)
+    index = np.empty(len(mesh.polygons), dtype=np.int32)
+    mesh.polygons.foreach_get("material_index", index)
+    return {"materials": specs, "face_materials": np.ascontiguousarray(index[polys])}
+
+
+def uv_arguments(obj: Any) -> Dict[str, Any]:
+    """vdg.build's uvs (one per vertex) when the UV map allows, else corner_uvs (T, 3, 2); {} without a map."""
+    mesh = obj.data
+    uvs = model.vertex_uvs(mesh)
+    if uvs is not None:
+        return {"uvs": uvs}
+    layer = mesh.uv_layers.active
+    if layer is None:
+        return {}
+    loop_uv = np.empty(len(mesh.loops) * 2, dtype=np.float32)
+    layer.data.foreach_get("uv", loop_uv)
+    mesh.calc_loop_triangles()
+    loops = np.empty(len(mesh.loop_triangles) * 3, dtype=np.int32)
+    mesh.loop_triangles.foreach_get("loops", loops)
+    return {"corner_uvs": np.ascontiguousarray(loop_uv.reshape(-1, 2)[loops].reshape(-1, 3, 2))}
 
 
 def _key_positions(m: Any, key: Any) -> np.ndarray:
@@ -128,7 +245,7 @@ def _build_animated(context: Any, obj: Any) -> Any:
     stack = np.ascontiguousarray(np.stack(frames))
     return model.build_call(obj, stack[0], model.key_dicts(obj, positions, first), frames=stack,
                             loop=bool(obj.vdg.loop), fps=float(scene.render.fps / scene.render.fps_base),
-                            uvs=model.vertex_uvs(obj.data))
+                            **uv_arguments(obj), **material_arguments(obj))
 
 
 def export_model(context: Any, obj: Any, path: str) -> Any:
@@ -144,7 +261,7 @@ def export_model(context: Any, obj: Any, path: str) -> Any:
         raise model.AddonError(f"object '{obj.name}': its keys have frames but no Armature modifier poses the "
                                "mesh; add the rig (docs/blender.md, animated characters) or set the frames to 0")
     else:
-        m = model.build_static(obj, with_uvs=True)
+        m = model.build_static(obj, **uv_arguments(obj), **material_arguments(obj))
     vdg = vdgmodule.get()
     try:
         if lower.endswith(".json"):

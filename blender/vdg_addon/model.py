@@ -137,15 +137,13 @@ def build_call(obj: Any, base: np.ndarray, keys: List[Dict[str, Any]], **extra: 
         raise AddonError(f"object '{obj.name}': {e}") from e
 
 
-def build_static(obj: Any, with_uvs: bool = False) -> Any:
-    """The vdg model of a static object: Basis and shape keys (their positions) in vdg axes."""
+def build_static(obj: Any, **extra: Any) -> Any:
+    """The vdg model of a static object: Basis and shape keys (their positions) in vdg axes; `extra` goes to
+    vdg.build (uvs or corner_uvs, materials and face_materials on export)."""
     if not obj.vdg.keys:
         raise AddonError(f"object '{obj.name}' has no vdg keys")
     positions = {k.name: axes.to_vdg(shape_key_positions(key_block(obj, k.name))) for k in obj.vdg.keys}
     keys = key_dicts(obj, positions, first_frame=0)
-    extra = {}
-    if with_uvs:
-        extra["uvs"] = vertex_uvs(obj.data)
     return build_call(obj, axes.to_vdg(base_positions(obj)), keys, **extra)
 
 

@@ -184,6 +184,11 @@ def case_roundtrip(vdg_tool, src, out):
     scene = bpy.context.scene
     scene.vdg_live_preview = True
     obj = import_model(manifest)
+    original = vdg_mod.load(manifest)
+    images = [n.image for mat in obj.data.materials for n in mat.node_tree.nodes if n.type == "TEX_IMAGE"]
+    if len(images) != 1 or tuple(images[0].size) != (1024, 1024):
+        raise AssertionError(f"Spot imported with images {[tuple(i.size) for i in images]}, not its 1024x1024 texture")
+    print(f"check: Spot imported with its material '{obj.data.materials[0].name}' and its 1024x1024 texture")
     bpy.context.view_layer.objects.active = obj
     cam = scene.camera
     cam.location = (1.8, -2.2, 1.4)
@@ -208,7 +213,14 @@ def case_roundtrip(vdg_tool, src, out):
         bpy.context.view_layer.objects.active = obj
         if bpy.ops.vdg.export_model(filepath=path) != {"FINISHED"}:
             raise AssertionError(f"vdg.export_model({path}) did not finish")
-        run([vdg_tool, "info", path])
+        info = run([vdg_tool, "info", path])
+        if "texture" not in info:
+            raise AssertionError(f"{name}: vdg info shows no texture:\n{info}")
+        exported = vdg_mod.load(path)
+        if original.corner_uvs is not None:
+            uv_error = float(np.abs(np.asarray(exported.corner_uvs) - np.asarray(original.corner_uvs)).max())
+            if uv_error > SHAPE_TOL:
+                raise AssertionError(f"{name}: the corner uvs moved by {uv_error:.3g}")
         view = ",".join(repr(float(c)) for c in key.view)
         w = json.loads(run([vdg_tool, "weights", path, "--view=" + view, "--json"]))["keys"]
         if abs(w.get("mine", 0.0) - 1.0) > WEIGHT_TOL:
@@ -231,7 +243,7 @@ def case_roundtrip(vdg_tool, src, out):
         if shape.shape == sculpt.shape and float(np.abs(shape - sculpt).max()) > SHAPE_TOL:
             raise AssertionError(f"{name}: the re-imported key 'mine' moved")
         model = vdg_mod.load(path)
-        print(f"check: {name}: vdg info opens it, 'mine' weighs 1 at its view, vdg eval there = the sculpt "
+        print(f"check: {name}: vdg info opens it (texture, corner uvs kept), 'mine' weighs 1 at its view, vdg eval there = the sculpt "
               f"(worst {worst:.2g}); re-import keeps {len(model.keys)} names, views, frames and the camera")
         bpy.data.objects.remove(again)
     # Errors reach the user as one report line, never a traceback.
