@@ -208,6 +208,23 @@ def case_roundtrip(vdg_tool, src, out):
         raise AssertionError(f"at the key's own camera the preview gives 'mine' {block.value}, not 1")
     print(f"check: key 'mine' from the camera at view {tuple(round(c, 4) for c in key.view)}; preview gives it 1")
     sculpt = to_vdg([b.co for b in block.data])
+    # Look through: the key camera comes back; a direction key puts the camera on its view.
+    key_camera = cam.matrix_world.copy()
+    cam.location = (-3.0, 1.0, 0.5)
+    bpy.context.view_layer.update()
+    for index in (len(obj.vdg.keys) - 1, 0):
+        bpy.context.view_layer.objects.active = obj
+        if bpy.ops.vdg.look_through(index=index) != {"FINISHED"}:
+            raise AssertionError(f"vdg.look_through({index}) did not finish")
+        k = obj.vdg.keys[index]
+        seen = eye_of(obj, cam) - np.array(obj.vdg.center)
+        seen /= np.linalg.norm(seen)
+        value = obj.data.shape_keys.key_blocks[k.name].value
+        if np.abs(seen - np.array(k.view)).max() > VIEW_TOL or abs(value - 1.0) > WEIGHT_TOL:
+            raise AssertionError(f"looking through '{k.name}' sees {seen} (key {tuple(k.view)}), value {value}")
+        if k.has_camera and (cam.matrix_world.translation - key_camera.translation).length > 1e-5:
+            raise AssertionError(f"looking through '{k.name}' puts the camera at {cam.matrix_world.translation}")
+    print("check: look through 'mine' (its key camera) and 'front' (its direction): the view is the key's, its value 1")
     for name in ("mine.vdg.json", "mine.glb"):
         path = os.path.join(out, name)
         bpy.context.view_layer.objects.active = obj
