@@ -76,6 +76,12 @@ function(vdg_add_module name)
   add_library(vdg_${name} STATIC ${ARG_SOURCES})
   add_library(vdg::${name} ALIAS vdg_${name})
   set_target_properties(vdg_${name} PROPERTIES EXPORT_NAME ${name})
+  if(VDG_BUILD_PYTHON)
+    # The Python module (python/) is a shared object that links these static libraries: their code
+    # must be position-independent. Only the libraries: the executables keep the compiler's default
+    # (PIE), which the tests' precompiled header was built with.
+    set_target_properties(vdg_${name} PROPERTIES POSITION_INDEPENDENT_CODE ON)
+  endif()
   target_include_directories(vdg_${name} PUBLIC $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/include>
                                                 $<BUILD_INTERFACE:${PROJECT_BINARY_DIR}/include>
                                                 $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
