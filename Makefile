@@ -32,10 +32,11 @@ $(BUILD)/CMakeCache.txt:
 build: deps $(BUILD)/CMakeCache.txt
 	cmake --build $(BUILD) -j $(JOBS)
 
-# The demo needs the tool and the Python module (import vdg, docs/python.md): no tests, benchmarks
-# or example generators are compiled for it. The module is for Debian's python3 (Blender's Python).
+# The demo needs the tool, the Python module (import vdg, docs/python.md) and the Blender add-on's
+# zip (docs/blender.md): no tests, benchmarks or example generators are compiled for it. The module
+# is for Debian's python3 (Blender's Python).
 demo: demo-deps $(BUILD)/CMakeCache.txt
-	cmake --build $(BUILD) -j $(JOBS) --target vdg vdg_python
+	cmake --build $(BUILD) -j $(JOBS) --target vdg vdg_python vdg_blender_addon
 	scripts/demo $(BUILD)/bin/vdg out/demo
 	@echo "== import vdg (PYTHONPATH=$(BUILD)/python /usr/bin/python3; docs/python.md)"
 	PYTHONPATH=$(BUILD)/python /usr/bin/python3 -c \
