@@ -10,6 +10,7 @@
 #include <map>
 
 #include "preview.h"
+#include "timeline.h"
 #include "vdg/geom/error.h"
 #include "vdg/io/image_file.h"
 #include "vdg/studio/navigation.h"
@@ -48,6 +49,8 @@ const char* kShortcuts[][2] = {
     {"C", "Align: pick 2D-3D pairs (vertex, then its place on the drawing)"},
     {"P", "Preview panel (Figure 6)"},
     {"I", "view-sphere inset (click a key to jump to its camera)"},
+    {"Left / Right", "animated model: previous / next frame (the base is posed there)"},
+    {"[ / ]", "animated model: previous / next frame with keys"},
     {"Escape", "cancel the stroke or the pending pair"},
     {"F1", "this help"},
 };
@@ -146,8 +149,10 @@ struct Studio::Impl {
     }
   }
 
+  // Fits the shape shown; an animated base's box over all its frames (its pose), so the walker
+  // stays in view as the timeline moves.
   void frameModel() {
-    const Bounds b = computeBounds(session->positions());
+    const Bounds b = session->animated() ? session->poseBounds() : computeBounds(session->positions());
     const Eigen::Vector3d lo(b.min[0], b.min[1], b.min[2]), hi(b.max[0], b.max[1], b.max[2]);
     session->camera =
         frameBox(session->camera, lo, hi, static_cast<double>(session->image_width) / session->image_height);
@@ -203,11 +208,13 @@ struct Studio::Impl {
         redo();
       else if (k == "S")
         saveKey();
-      else if (k == "N" && !session->animated())
+      else if (k == "N")
         newKey(nextKeyName());
       return;
     }
-    if (k == "F1")
+    if (const auto f = timelineShortcut(*session, k))
+      goToFrame(*f);
+    else if (k == "F1")
       show_help = !show_help;
     else if (k == "F")
       frameModel();
@@ -261,10 +268,6 @@ struct Studio::Impl {
       return;
     }
     if (e.button == 0 && mode == Mode::kDeform) {
-      if (session->animated()) {
-        status = "an animated model is shown, not edited";
-        return;
-      }
       const std::optional<std::int32_t> v = session->pick(px);
       if (!v) return;
       if (session->currentKey() < 0) newKey(nextKeyName());
@@ -320,7 +323,17 @@ struct Studio::Impl {
     session->camera = dolly(session->camera, std::pow(kDollyPerScroll, e.scroll_y));
   }
 
+  // The timeline: pose the base at `f` (an edited key of another frame is left, unless unsaved).
+  void goToFrame(int f) {
+    if (f == session->frame()) return;
+    attempt("frame", [&] {
+      session->setFrame(f);
+      status = "frame " + std::to_string(f) + (session->currentKey() < 0 ? ": a stroke makes this frame's key" : "");
+    });
+  }
+
   void jumpToKey(std::size_t index) {
+    if (session->animated()) goToFrame(session->model().keys.at(index).frame);
     const RawKey& key = session->model().keys.at(index);
     if (key.camera) {
       session->camera = *key.camera;
@@ -444,6 +457,10 @@ struct Studio::Impl {
     ImGui::RadioButton("Deform (2)", &m, 1);
     mode = static_cast<Mode>(m);
 
+    // An animated model's timeline first: the frame is what every tool edits at.
+    const TimelineRequest timeline = drawTimeline(*session);
+    if (timeline.frame) goToFrame(*timeline.frame);
+    if (timeline.key) attempt("edit key", [&] { session->editKey(*timeline.key); });
     viewSection();
     alignSection();
     deformSection();
@@ -565,32 +582,27 @@ struct Studio::Impl {
     for (std::size_t i = 0; i < keys.size(); ++i) {
       ImGui::PushID(static_cast<int>(i));
       const bool current = static_cast<int>(i) == session->currentKey();
-      if (session->animated())  // an animated model's keys deform the base at their frames (section 4)
-        ImGui::Text("  %s (frame %d)", keys[i].name.c_str(), keys[i].frame);
-      else
-        ImGui::Text("%s %s%s", current ? ">" : " ", keys[i].name.c_str(),
-                    current && session->dirty() ? " *" : (current && session->currentKeyIsNew() ? " (new)" : ""));
+      // An animated model's keys deform the base at their frames (section 4): the frame is shown.
+      const std::string frame = session->animated() ? " f" + std::to_string(keys[i].frame) : "";
+      ImGui::Text("%s %s%s%s", current ? ">" : " ", keys[i].name.c_str(), frame.c_str(),
+                  current && session->dirty() ? " *" : (current && session->currentKeyIsNew() ? " (new)" : ""));
       ImGui::SameLine(190);
       if (ImGui::SmallButton("view")) jumpToKey(i);
-      if (!session->animated()) {
-        ImGui::SameLine();
-        if (ImGui::SmallButton("edit")) attempt("edit key", [&] { session->editKey(i); });
-      }
+      ImGui::SameLine();
+      if (ImGui::SmallButton("edit")) attempt("edit key", [&] { session->editKey(i); });
       ImGui::PopID();
     }
     keyViewWarnings();
-    if (!session->animated()) {
-      ImGui::SetNextItemWidth(150);
-      ImGui::InputTextWithHint("##name", nextKeyName().c_str(), new_key_name, sizeof new_key_name);
-      ImGui::SameLine();
-      if (ImGui::Button("New key")) {
-        newKey(new_key_name[0] != '\0' ? std::string(new_key_name) : nextKeyName());
-        new_key_name[0] = '\0';
-      }
-      ImGui::BeginDisabled(session->currentKey() < 0);
-      if (ImGui::Button("Save key (Ctrl+S)")) saveKey();
-      ImGui::EndDisabled();
+    ImGui::SetNextItemWidth(150);
+    ImGui::InputTextWithHint("##name", nextKeyName().c_str(), new_key_name, sizeof new_key_name);
+    ImGui::SameLine();
+    if (ImGui::Button("New key")) {
+      newKey(new_key_name[0] != '\0' ? std::string(new_key_name) : nextKeyName());
+      new_key_name[0] = '\0';
     }
+    ImGui::BeginDisabled(session->currentKey() < 0);
+    if (ImGui::Button("Save key (Ctrl+S)")) saveKey();
+    ImGui::EndDisabled();
   }
 
   // ---- viewport ----------------------------------------------------------------------------
@@ -641,7 +653,7 @@ struct Studio::Impl {
   void drawOverlays(ImDrawList* dl) {
     dl->PushClipRect(ImVec2(rect.x, rect.y), ImVec2(rect.x + rect.w, rect.y + rect.h), true);
     const std::span<const float> pos = session->positions();
-    if (mode == Mode::kDeform && !session->animated()) {
+    if (mode == Mode::kDeform) {
       std::optional<std::int32_t> v = hover_vertex;
       if (session->stroking()) v = stroke_vertex;
       if (v) {
@@ -674,7 +686,7 @@ struct Studio::Impl {
       }
     }
     if (mode == Mode::kAlign) {
-      const std::span<const float> base = session->baseMesh().positions;
+      const std::span<const float> base = session->basePositions();
       for (const Session::Pair& pair : session->pairs) {
         const ImVec2 target = toWindow(pair.pixel);
         dl->AddLine(ImVec2(target.x - 5, target.y - 5), ImVec2(target.x + 5, target.y + 5), rgb(20, 120, 40), 2.0f);
@@ -716,7 +728,7 @@ Studio::Studio(const StudioOptions& options) : impl_(std::make_unique<Impl>()) {
   }
   // Start from the front, framed; the keys' own cameras are a click away.
   Camera c;
-  const Bounds b = computeBounds(m.session->baseMesh().positions);
+  const Bounds b = m.session->poseBounds();
   const Eigen::Vector3d center(b.center()[0], b.center()[1], b.center()[2]);
   c.target = center;
   c.eye = center + Eigen::Vector3d(0, 0, std::max(1e-3, static_cast<double>(b.diagonal())) * 2.0);
@@ -814,7 +826,6 @@ Studio::BenchmarkResult Studio::benchmark(int frames, int viewport_width, int vi
 
   // A drag across the image plane from the image centre: each step is a mouse move, the stroke's
   // update and the deformed mesh drawn.
-  if (s.animated()) return result;
   const Eigen::Vector2d c(s.image_width / 2.0, s.image_height / 2.0);
   const std::optional<std::int32_t> v = s.pick(c);
   if (!v) throw Error("studio: --benchmark: the ray through the image centre misses the model");
