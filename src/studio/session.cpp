@@ -26,6 +26,7 @@
 #include "vdg/io/obj.h"
 #include "vdg/io/studio_recovery.h"
 #include "vdg/studio/navigation.h"
+#include "vdg/viewdep/animated_model.h"
 #include "vdg/viewdep/view_sphere.h"
 
 namespace vdg::studio {
@@ -202,6 +203,16 @@ Session Session::open(const std::string& path, const OpenOptions& options) {
     for (int a = 0; a < 3; ++a)
       m.pose_bounds.min[a] = std::min(m.pose_bounds.min[a], bf.min[a]),
       m.pose_bounds.max[a] = std::max(m.pose_bounds.max[a], bf.max[a]);
+  }
+  if (m.raw.animated() && !m.raw.keys.empty()) {
+    // The animated model's extent: the base and every view's pose at every frame (what it draws).
+    try {
+      const Bounds e = AnimatedViewDependentModel::build(m.raw).extent();
+      for (int a = 0; a < 3; ++a)
+        m.pose_bounds.min[a] = std::min(m.pose_bounds.min[a], e.min[a]),
+        m.pose_bounds.max[a] = std::max(m.pose_bounds.max[a], e.max[a]);
+    } catch (const Error&) {  // loadManifest validated it; the base's frames alone still frame it
+    }
   }
   if (m.raw.animated()) {
     // Symmetric about the model's centre: a camera framing it looks at the centre, so the view it

@@ -482,5 +482,26 @@ TEST_F(Walker, TheAutosaveOfANewKeyKeepsItsFrame) {
   EXPECT_EQ(maxDiff(s.positions(), expected), 0.0);
 }
 
+// Framing fits the pose: every frame of the base and every key's pose lie in poseBounds(), which is
+// centred on the model's centre (so the framed front view is the manifest's front view).
+TEST_F(Walker, FramingFitsTheAnimatedPoseAboutTheModelCentre) {
+  const Session s = Session::open(manifest);
+  const RawViewDependentModel raw = loadManifest(manifest);
+  const Bounds& b = s.poseBounds();
+  const auto inside = [&](const std::vector<float>& p) {
+    for (std::size_t i = 0; i < p.size(); ++i)
+      if (p[i] < b.min[i % 3] || p[i] > b.max[i % 3]) return false;
+    return true;
+  };
+  for (std::size_t f = 0; f < raw.base_frames.size(); ++f) EXPECT_TRUE(inside(raw.base_frames[f])) << "frame " << f;
+  for (const RawKey& k : raw.keys) EXPECT_TRUE(inside(k.mesh.positions)) << k.name;
+  const Eigen::Vector3d c = raw.resolvedCenter();
+  constexpr double kFloatCentre = 1e-6;  // the box is in floats
+  for (int a = 0; a < 3; ++a) EXPECT_NEAR(0.5 * (double(b.min[a]) + b.max[a]), c[a], kFloatCentre) << a;
+  // Wider than frame 0 alone: the swing of the walk.
+  const Bounds b0 = computeBounds(raw.base_frames[0]);
+  EXPECT_GT(b.max[2] - b.min[2], b0.max[2] - b0.min[2]);
+}
+
 }  // namespace
 }  // namespace vdg::studio

@@ -70,8 +70,9 @@ class Session {
   std::span<const float> basePositions() const;
   double baseDiagonal() const;  // of the base's bounding box at frame 0 (> 0)
   // What framing fits: the base's box for a static model; for an animated one the box around the
-  // base at every frame (its pose), grown to be symmetric about the model's centre, so that a
-  // camera framing it looks at the centre and a key made from it has the view it was seen from.
+  // base at every frame and, when it has keys, the model's extent() (every view's pose), grown to be symmetric about
+  // the model's centre, so that a camera framing it looks at the centre and a key made from it has the view it was seen
+  // from.
   const Bounds& poseBounds() const;
 
   // Timeline (section 4: keys at (frame, view)). The frame the base is posed at and new keys are
