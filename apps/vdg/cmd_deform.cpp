@@ -1,5 +1,6 @@
 // vdg deform MODEL --key NAME --ops EDITS.json [--camera CAMERA.json | --view X,Y,Z] [--dry-run]
 // vdg deform MODEL --key NAME --undo
+// vdg deform ANIMATED_MODEL --frame F --key NAME ... (a key at (frame, view), Rademacher 99, section 4)
 //
 // Applies image-plane and attenuated deformations (Rademacher 99, 3.1.2; Parent 4.10) to one key
 // of a model, in the key's camera, and appends the run to the key's edit log (KEY.edits.json) so
@@ -10,6 +11,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "cli.h"
@@ -38,6 +40,7 @@ std::string counted(std::size_t n, const char* noun) { return std::to_string(n) 
 
 struct DeformOptions {
   std::string model, key, ops, camera, view, mesh;
+  std::optional<int> frame;  // --frame: the base animation's frame of the key
   bool dry_run = false, undo = false, quiet = false;
 };
 
@@ -105,8 +108,9 @@ std::string keyFile(const RawKey& key, const char* role, const fs::path& path) {
   return "key '" + key.name + "': its " + role + " " + path.string();
 }
 
-TriMesh originMesh(const RawViewDependentModel& raw, const EditLog& log, const fs::path& log_path) {
-  if (log.origin == "base") return raw.base;
+// What the key's log replays from: the base posed at the key's frame, or the log's snapshot.
+TriMesh originMesh(const RawViewDependentModel& raw, const RawKey& key, const EditLog& log, const fs::path& log_path) {
+  if (log.origin == "base") return posedBase(raw, key.frame);
   TriMesh m = raw.base;
   const TriMesh snapshot = readObj((log_path.parent_path() / log.origin).string());
   if (snapshot.vertexCount() != raw.base.vertexCount())
@@ -125,7 +129,7 @@ void runUndo(const DeformOptions& opt, RawViewDependentModel& raw, RawKey& key, 
   if (log.entries.empty())
     throw Error("key '" + key.name + "': nothing to undo (the edit log " + log_path.string() + " is empty)");
   const std::size_t undone_ops = log.entries.back().ops.size();
-  key.mesh.positions = undoLastStep(originMesh(raw, log, log_path), log, log_path.string());
+  key.mesh.positions = undoLastStep(originMesh(raw, key, log, log_path), log, log_path.string());
   raw.validate();
   if (opt.dry_run) {
     std::printf("would undo the last step of key '%s' (%s); %s would remain\n", key.name.c_str(),
@@ -142,6 +146,27 @@ void runUndo(const DeformOptions& opt, RawViewDependentModel& raw, RawKey& key, 
                 counted(undone_ops, "operation").c_str(), counted(log.entries.size(), "step").c_str());
 }
 
+// --frame against the model (section 4: an animated model's key is made at a frame of its base
+// animation): in range; 0 (or left out) for a static model; required for a new key of an animated
+// model; for an existing key, its own frame (or left out).
+void checkFrameOption(const DeformOptions& opt, const RawViewDependentModel& raw, const RawKey* existing) {
+  if (opt.frame) {
+    const int f = *opt.frame;
+    if (!raw.animated() && f != 0)
+      throw Error("--frame " + std::to_string(f) + ": " + opt.model +
+                  " has a static base (no 'base_animation'), whose only frame is 0");
+    if (f < 0 || static_cast<std::size_t>(f) >= raw.frameCount())
+      throw Error("--frame " + std::to_string(f) + ": outside the base animation of " + opt.model + " (frames 0.." +
+                  std::to_string(raw.frameCount() - 1) + ")");
+    if (existing && existing->frame != f)
+      throw Error("--frame " + std::to_string(f) + ": key '" + existing->name + "' is the key of frame " +
+                  std::to_string(existing->frame) + " (leave out --frame, or name a new key)");
+  } else if (raw.animated() && !existing && !opt.undo) {
+    throw UsageError("--frame: " + opt.model + " has an animated base; give the frame of the new key '" + opt.key +
+                     "' (0.." + std::to_string(raw.frameCount() - 1) + ")");
+  }
+}
+
 void runDeform(const DeformOptions& opt) {
   const fs::path folder = fs::path(opt.model).parent_path();
   const std::string journal = (folder / kJournalName).string();
@@ -151,14 +176,11 @@ void runDeform(const DeformOptions& opt) {
   FileTransaction transaction(journal);
 
   RawViewDependentModel raw = loadManifest(opt.model);
-  if (raw.animated())
-    throw Error(opt.model +
-                ": vdg deform works on static models, and this one has an animated base ('base_animation'); make an "
-                "animated model's key as a mesh posed at its frame and list it in the manifest with its \"frame\"");
   std::size_t key_index = raw.keys.size();
   for (std::size_t k = 0; k < raw.keys.size(); ++k)
     if (raw.keys[k].name == opt.key) key_index = k;
   const bool new_key = key_index == raw.keys.size();
+  checkFrameOption(opt, raw, new_key ? nullptr : &raw.keys[key_index]);
 
   if (opt.undo) {
     if (!opt.ops.empty() || !opt.camera.empty() || !opt.view.empty() || !opt.mesh.empty())
@@ -198,7 +220,7 @@ void runDeform(const DeformOptions& opt) {
     if (!given_camera && !given_view)
       throw Error("key '" + opt.key + "' is new: give its camera or view (\"camera\"/\"view\" in " + opt.ops +
                   ", --camera CAMERA.json or --view X,Y,Z)");
-    key_index = addKey(raw, {opt.key, opt.mesh, given_camera, given_view});
+    key_index = addKey(raw, {opt.key, opt.mesh, given_camera, given_view, opt.frame.value_or(0)});
     const fs::path target = meshFile(folder, raw.keys[key_index].mesh_path);
     for (const RawKey& other : raw.keys)
       if (&other != &raw.keys[key_index] && sameFile(target, meshFile(folder, other.mesh_path)))
@@ -262,6 +284,9 @@ void addDeformCommand(CLI::App& app) {
   sub->add_option("--camera", opt->camera, "Key camera JSON for a new key (as written by 'vdg align')");
   sub->add_option("--view", opt->view, "View direction X,Y,Z for a new key without a camera");
   sub->add_option("--mesh", opt->mesh, "Mesh path for a new key, relative to the manifest (default KEY.obj)");
+  sub->add_option("--frame", opt->frame,
+                  "Animated model: the base animation's frame of the key (required for a new key; the base is "
+                  "posed there and the key stored as the manifest's (frame, view) key)");
   sub->add_flag("--dry-run", opt->dry_run, "Report what each operation moves; write nothing");
   sub->add_flag("--undo", opt->undo, "Undo the key's last logged step (rebuilds it from its edit log)");
   sub->add_flag("-q,--quiet", opt->quiet, "Print nothing on success");

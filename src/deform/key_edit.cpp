@@ -100,6 +100,17 @@ void checkKeyMeshPath(std::string_view mesh_path) {
     throw Error(at + "a key mesh must be an OBJ file (NAME.obj)");
 }
 
+TriMesh posedBase(const RawViewDependentModel& model, int frame) {
+  const std::size_t frames = model.frameCount();
+  if (frame < 0 || static_cast<std::size_t>(frame) >= frames)
+    throw Error("frame " + std::to_string(frame) + " is outside the base animation's frames 0.." +
+                std::to_string(frames - 1) + (model.animated() ? "" : " (the base is static)"));
+  if (!model.animated()) return model.base;
+  TriMesh posed = model.base;
+  posed.positions = model.base_frames[static_cast<std::size_t>(frame)];
+  return posed;
+}
+
 std::size_t addKey(RawViewDependentModel& model, const NewKey& key) {
   checkKeyName(key.name);
   for (const RawKey& k : model.keys)
@@ -117,18 +128,20 @@ std::size_t addKey(RawViewDependentModel& model, const NewKey& key) {
   RawKey k;
   k.name = key.name;
   k.mesh_path = mesh_path;
-  k.mesh = model.base;
+  k.mesh = posedBase(model, key.frame);
   k.camera = key.camera;
+  k.frame = key.frame;
   if (key.view) k.view = key.view->normalized();
   updated.keys.push_back(std::move(k));
   updated.resolveViews();
+  updated.validate();  // a (frame, view) that another key has is refused here, naming both keys
   model = std::move(updated);
   return model.keys.size() - 1;
 }
 
 Camera keyEditCamera(const RawViewDependentModel& model, const RawKey& key) {
   if (key.camera) return *key.camera;
-  const Bounds b = computeBounds(model.base.positions);
+  const Bounds b = computeBounds(posedBase(model, key.frame).positions);
   const double size = std::max(static_cast<double>(b.diagonal()), 1e-6);
   return cameraFromView(model.resolvedCenter(), key.view, 2.0 * size, 1.1 * size);
 }
@@ -136,7 +149,7 @@ Camera keyEditCamera(const RawViewDependentModel& model, const RawKey& key) {
 EditLog startEditLog(const RawViewDependentModel& model, const RawKey& key, const std::string& snapshot_name) {
   EditLog log;
   log.key = key.name;
-  log.origin = key.mesh.positions == model.base.positions ? "base" : snapshot_name;
+  log.origin = key.mesh.positions == posedBase(model, key.frame).positions ? "base" : snapshot_name;
   return log;
 }
 

@@ -31,7 +31,7 @@ StudioRecovery recoveryFrom(const Json& doc, const std::string& source) {
   const Ctx ctx{source, ""};
   io::formatVersion(doc, ctx, "studio recovery files", kStudioRecoveryVersion, kStudioRecoveryVersion);
   io::allowKeys(doc, ctx,
-                {"version", "model", "manifest", "key", "new_key", "mesh", "key_camera", "logged", "strokes"});
+                {"version", "model", "manifest", "key", "new_key", "mesh", "key_camera", "frame", "logged", "strokes"});
   StudioRecovery r;
   r.model = absolutePath(doc, "model", ctx);
   r.manifest = absolutePath(doc, "manifest", ctx);
@@ -47,6 +47,10 @@ StudioRecovery recoveryFrom(const Json& doc, const std::string& source) {
     r.mesh_path = io::string(doc.at("mesh"), ctx.key("mesh"));
     if (r.mesh_path.empty()) ctx.key("mesh").fail("expected a mesh file name, got an empty string");
     r.key_camera = io::cameraFrom(doc.at("key_camera"), ctx.key("key_camera"));
+    if (doc.contains("frame"))
+      r.key_frame = static_cast<int>(io::integer(doc.at("frame"), ctx.key("frame"), 0, kMaxRecoveryFrame));
+  } else if (doc.contains("frame")) {
+    ctx.key("frame").fail("only with 'new_key': true");
   }
   if (doc.contains("logged"))
     r.logged = static_cast<std::size_t>(io::integer(doc.at("logged"), ctx.key("logged"), 0, kMaxLoggedEntries));
@@ -71,6 +75,7 @@ std::string formatStudioRecovery(const StudioRecovery& r) {
   j["new_key"] = r.new_key;
   if (r.new_key || !r.mesh_path.empty()) j["mesh"] = r.mesh_path;
   if (r.key_camera) j["key_camera"] = io::cameraJson(*r.key_camera);
+  if (r.new_key && r.key_frame != 0) j["frame"] = r.key_frame;
   if (r.logged > 0) j["logged"] = r.logged;
   j["strokes"] = OJson::array();
   for (std::size_t s = 0; s < r.strokes.size(); ++s)

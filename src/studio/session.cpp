@@ -26,6 +26,7 @@
 #include "vdg/io/obj.h"
 #include "vdg/io/studio_recovery.h"
 #include "vdg/studio/navigation.h"
+#include "vdg/viewdep/animated_model.h"
 #include "vdg/viewdep/view_sphere.h"
 
 namespace vdg::studio {
@@ -70,6 +71,9 @@ struct Session::Impl {
   fs::path folder;  // the manifest's folder
   bool manifest_exists = false;
   double diagonal = 1.0;
+  Bounds pose_bounds;        // the base at every frame
+  int frame = 0;             // the timeline's frame
+  std::vector<float> posed;  // an animated base at `frame` (shown when no key is current)
   std::uint64_t revision = 1;
 
   // The current key (-1: none) and its history in this session.
@@ -100,9 +104,13 @@ struct Session::Impl {
   std::optional<StudioRecovery> recovery;
   std::size_t recovery_unsaved = 0;  // its strokes not in the key's log on disk
 
-  std::vector<float>& shown() { return current >= 0 ? raw.keys[current].mesh.positions : raw.base.positions; }
-  const std::vector<float>& shown() const {
-    return current >= 0 ? raw.keys[current].mesh.positions : raw.base.positions;
+  std::vector<float>& shown() { return current >= 0 ? raw.keys[current].mesh.positions : baseShown(); }
+  const std::vector<float>& shown() const { return current >= 0 ? raw.keys[current].mesh.positions : baseShown(); }
+  std::vector<float>& baseShown() { return raw.animated() ? posed : raw.base.positions; }
+  const std::vector<float>& baseShown() const { return raw.animated() ? posed : raw.base.positions; }
+  void poseAt(int f) {
+    frame = f;
+    if (raw.animated()) posed = raw.base_frames[static_cast<std::size_t>(f)];
   }
   fs::path keyMeshFile(const RawKey& key) const { return meshFile(folder, key.mesh_path); }
   bool dirty() const { return !saved_valid || cursor != saved; }
@@ -145,7 +153,7 @@ struct Session::Impl {
     r.manifest = manifest_path;
     r.key = key.name;
     r.new_key = is_new;
-    if (is_new) r.mesh_path = key.mesh_path, r.key_camera = key.camera;
+    if (is_new) r.mesh_path = key.mesh_path, r.key_camera = key.camera, r.key_frame = key.frame;
     r.logged = base_log.entries.size();
     r.strokes.assign(strokes.begin(), strokes.begin() + static_cast<std::ptrdiff_t>(cursor));
     try {
@@ -186,10 +194,40 @@ Session Session::open(const std::string& path, const OpenOptions& options) {
   m.folder = fs::path(m.manifest_path).parent_path();
   m.recovery_path =
       (m.folder / kRecoveryFolder / (fs::path(m.manifest_path).filename().string() + ".recovery.json")).string();
-  const Bounds b = computeBounds(m.raw.base.positions);
-  m.diagonal = std::max(static_cast<double>(b.diagonal()), 1e-9);
+  const Bounds b0 = computeBounds(m.raw.base.positions);
+  m.diagonal = std::max(static_cast<double>(b0.diagonal()), 1e-9);
   s.falloff = Falloff{kDefaultRadiusShare * m.diagonal, 2.0, FalloffShape::kPower};
-  // A front view framing the base.
+  m.pose_bounds = b0;
+  for (const std::vector<float>& f : m.raw.base_frames) {
+    const Bounds bf = computeBounds(f);
+    for (int a = 0; a < 3; ++a)
+      m.pose_bounds.min[a] = std::min(m.pose_bounds.min[a], bf.min[a]),
+      m.pose_bounds.max[a] = std::max(m.pose_bounds.max[a], bf.max[a]);
+  }
+  if (m.raw.animated() && !m.raw.keys.empty()) {
+    // The animated model's extent: the base and every view's pose at every frame (what it draws).
+    try {
+      const Bounds e = AnimatedViewDependentModel::build(m.raw).extent();
+      for (int a = 0; a < 3; ++a)
+        m.pose_bounds.min[a] = std::min(m.pose_bounds.min[a], e.min[a]),
+        m.pose_bounds.max[a] = std::max(m.pose_bounds.max[a], e.max[a]);
+    } catch (const Error&) {  // loadManifest validated it; the base's frames alone still frame it
+    }
+  }
+  if (m.raw.animated()) {
+    // Symmetric about the model's centre: a camera framing it looks at the centre, so the view it
+    // keys is the direction the manifest stores (front is exactly +Z, one view at every frame).
+    const Eigen::Vector3d c = m.raw.resolvedCenter();
+    for (int a = 0; a < 3; ++a) {
+      const float r =
+          static_cast<float>(std::max(std::abs(m.pose_bounds.min[a] - c[a]), std::abs(m.pose_bounds.max[a] - c[a])));
+      m.pose_bounds.min[a] = static_cast<float>(c[a]) - r;
+      m.pose_bounds.max[a] = static_cast<float>(c[a]) + r;
+    }
+  }
+  m.poseAt(0);
+  const Bounds& b = m.pose_bounds;
+  // A front view framing the base (an animated base at every frame).
   const Eigen::Vector3d lo(b.min[0], b.min[1], b.min[2]), hi(b.max[0], b.max[1], b.max[2]);
   const Eigen::Vector3d center = 0.5 * (lo + hi);
   Camera c;
@@ -225,6 +263,10 @@ const std::string& Session::manifestPath() const { return impl_->manifest_path; 
 bool Session::animated() const { return impl_->raw.animated(); }
 const TriMesh& Session::baseMesh() const { return impl_->raw.base; }
 double Session::baseDiagonal() const { return impl_->diagonal; }
+const Bounds& Session::poseBounds() const { return impl_->pose_bounds; }
+std::span<const float> Session::basePositions() const { return impl_->baseShown(); }
+int Session::frame() const { return impl_->frame; }
+int Session::frameCount() const { return static_cast<int>(impl_->raw.frameCount()); }
 int Session::currentKey() const { return impl_->current; }
 bool Session::currentKeyIsNew() const { return impl_->current >= 0 && impl_->is_new; }
 std::span<const float> Session::positions() const { return impl_->shown(); }
@@ -280,10 +322,9 @@ void requireIdle(const Session& s, const char* what) {
 void Session::newKey(const std::string& name) {
   Impl& m = *impl_;
   requireIdle(*this, "new key");
-  if (m.raw.animated())
-    throw Error(m.model_path + ": the editor makes keys of static models; this one has an animated base");
   RawViewDependentModel raw = m.raw;
-  const std::size_t index = addKey(raw, {name, "", camera, std::nullopt});
+  if (m.current >= 0 && m.is_new) raw.keys.erase(raw.keys.begin() + m.current);  // an unstroked draft
+  const std::size_t index = addKey(raw, {name, "", camera, std::nullopt, m.frame});
   const fs::path target = m.keyMeshFile(raw.keys[index]);
   if (fs::exists(fs::symlink_status(target)) || fs::exists(fs::symlink_status(editLogPath(target.string()))))
     throw Error("key '" + name + "': " + target.string() + " (or its edit log) already exists; choose another name");
@@ -303,8 +344,6 @@ void Session::editKey(std::size_t index) {
   if (index >= m.raw.keys.size())
     throw Error("key " + std::to_string(index) + " is out of range (the model has " +
                 std::to_string(m.raw.keys.size()) + " keys)");
-  if (m.raw.animated())
-    throw Error(m.model_path + ": the editor edits keys of static models; this one has an animated base");
   if (static_cast<int>(index) == m.current && m.is_new) {  // the draft itself: back to its camera
     camera = keyEditCamera(m.raw, m.raw.keys[index]);
     ++m.revision;
@@ -331,10 +370,37 @@ void Session::editKey(std::size_t index) {
   m.base_log = std::move(log);
   m.current = static_cast<int>(index);
   m.is_new = false;
+  m.poseAt(m.raw.keys[index].frame);
   m.origin = m.raw.keys[index].mesh.positions;
   m.resetHistory();
   camera = keyEditCamera(m.raw, m.raw.keys[index]);
   ++m.revision;
+}
+
+void Session::setFrame(int f) {
+  Impl& m = *impl_;
+  if (f < 0 || f >= frameCount())
+    throw Error("frame " + std::to_string(f) + " is outside the base animation's frames 0.." +
+                std::to_string(frameCount() - 1));
+  if (f == m.frame) return;
+  if (m.current >= 0 && m.raw.keys[m.current].frame != f) {
+    requireIdle(*this, "frame");
+    if (m.is_new) m.raw.keys.erase(m.raw.keys.begin() + m.current);
+    m.current = -1;
+    m.is_new = false;
+    m.origin.clear();
+    m.resetHistory();
+  }
+  m.poseAt(f);
+  ++m.revision;
+}
+
+std::vector<int> Session::keyFrames() const {
+  std::vector<int> frames;
+  for (const RawKey& k : impl_->raw.keys) frames.push_back(k.frame);
+  std::sort(frames.begin(), frames.end());
+  frames.erase(std::unique(frames.begin(), frames.end()), frames.end());
+  return frames;
 }
 
 void Session::setKeyCamera(const Camera& key_camera) {
@@ -513,7 +579,7 @@ void Session::redo() {
 AlignResult Session::solveAlignment(bool ortho) const {
   std::vector<Eigen::Vector3d> points;
   std::vector<Eigen::Vector2d> pixels;
-  const std::vector<float>& base = impl_->raw.base.positions;
+  const std::vector<float>& base = impl_->raw.animated() ? impl_->posed : impl_->raw.base.positions;
   for (const Pair& pair : pairs) {
     if (pair.vertex < 0 || static_cast<std::size_t>(pair.vertex) >= base.size() / 3)
       throw Error("alignment: vertex " + std::to_string(pair.vertex) + " is out of range");
@@ -551,7 +617,9 @@ void Session::saveKey() {
   recoverFileTransaction(journal, key_files);
   FileTransaction transaction(journal);
   // No write may land on the base or another key's files through another name (a link).
-  transaction.protect((m.folder / m.raw.base_path).string(), "the base mesh " + m.raw.base_path);
+  // (An OBJ sequence's frames are many files; the glTF of an animated base is one.)
+  const std::string base_file = m.raw.base_animation ? m.raw.base_animation->gltf : m.raw.base_path;
+  if (!base_file.empty()) transaction.protect((m.folder / base_file).string(), "the base mesh " + base_file);
   for (const RawKey& other : m.raw.keys)
     if (&other != &key) transaction.protect(m.keyMeshFile(other).string(), "the mesh of key '" + other.name + "'");
   if (!m.log_existed && log.origin != "base") {
@@ -587,6 +655,7 @@ void Session::recover() {
     if (!r.key_camera) throw Error(where + ": the new key has no camera");
     const Camera keep = camera;
     camera = *r.key_camera;
+    setFrame(r.key_frame);
     newKey(r.key);
     camera = keep;
   } else {
@@ -598,7 +667,7 @@ void Session::recover() {
     if (m.base_log.entries.size() > r.logged) {
       m.base_log.entries.resize(r.logged);
       const RawKey& key = m.raw.keys[m.current];
-      TriMesh origin = m.raw.base;
+      TriMesh origin = posedBase(m.raw, key.frame);
       if (m.base_log.origin != "base") {
         const fs::path mesh = m.keyMeshFile(key);
         origin.positions = readObj((mesh.parent_path() / m.base_log.origin).string()).positions;

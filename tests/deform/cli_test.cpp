@@ -5,6 +5,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <Eigen/LU>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -19,6 +20,7 @@
 #include "vdg/io/edit_script.h"
 #include "vdg/io/manifest.h"
 #include "vdg/io/obj.h"
+#include "vdg/viewdep/animated_model.h"
 #include "vdg/viewdep/model.h"
 
 namespace vdg {
@@ -324,6 +326,166 @@ TEST_F(DeformCli, AlignRecoversCameraFromDrawing) {
       1);
   EXPECT_NE(output_.find("at least 6"), std::string::npos) << output_;
   EXPECT_FALSE(fs::exists(dir_ / "cam2.json"));
+}
+
+// --- Keys on animated models (Rademacher 99, section 4): vdg deform --frame F -------------------
+
+// OBJ files hold positions to float precision (9 significant digits); a key written and read back,
+// and the same float computation made twice, agree to this.
+constexpr double kObjRoundTrip = 1e-6;
+// Skinning an offset through two float 3x3 products (L(f) L(F)^-1 o): a few float ulps of a
+// walker-sized (2 m) model.
+constexpr double kSkinRounding = 2e-5;
+// The frame the keys are made at, and the view (no shipped key has it, so it carries one key frame).
+constexpr int kKeyFrame = 20;
+const Eigen::Vector3d kBackView(0.0, 0.0, -1.0);
+
+double maxDifference(std::span<const float> a, std::span<const float> b) {
+  EXPECT_EQ(a.size(), b.size());
+  double d = 0;
+  for (std::size_t i = 0; i < a.size() && i < b.size(); ++i) d = std::max(d, std::abs(double(a[i]) - b[i]));
+  return d;
+}
+
+Eigen::Matrix3d skinAt(const RawViewDependentModel& raw, int frame, std::size_t v) {
+  return Eigen::Map<const Eigen::Matrix3f>(&raw.base_skin[static_cast<std::size_t>(frame)][9 * v]).cast<double>();
+}
+
+// The vertex whose skin turns most between frame 0 and kKeyFrame (on a swinging limb), so a
+// skinned offset visibly turns with it; `raw` is the skinned walker (both manifests share its base).
+std::int32_t mostTurningVertex(const RawViewDependentModel& raw) {
+  std::int32_t best = 0;
+  double turn = -1;
+  for (std::size_t v = 0; v < raw.base.vertexCount(); ++v) {
+    const double t = (skinAt(raw, 0, v) * skinAt(raw, kKeyFrame, v).inverse() - Eigen::Matrix3d::Identity()).norm();
+    if (t > turn) turn = t, best = static_cast<std::int32_t>(v);
+  }
+  return best;
+}
+
+class AnimatedDeformCli : public DeformCli, public ::testing::WithParamInterface<const char*> {
+ protected:
+  // Copies the shipped walker (glTF base, keys, both manifests) into the test folder.
+  void copyWalker() {
+    const fs::path walk = fs::path(VDG_SOURCE_DIR) / "examples" / "walk";
+    for (const char* f : {"walker.glb", "walker.vdg.json", "walker-world.vdg.json"}) fs::copy_file(walk / f, dir_ / f);
+    fs::copy(walk / "keys", dir_ / "keys");
+  }
+};
+
+// A key made at (frame 20, back) on the walker: `vdg eval` at that frame and view gives exactly the
+// key mesh, which equals the base posed at frame 20 (base_frames[20]) with the same drag applied by
+// hand in the same camera; the manifest lists it as the (20, back) key.
+TEST_P(AnimatedDeformCli, AKeyAtAFrameReproducesThereAndEqualsTheHandMadeKey) {
+  copyWalker();
+  const std::string manifest = GetParam();
+  RawViewDependentModel raw = loadManifest((dir_ / manifest).string());
+  const std::int32_t vertex = mostTurningVertex(loadManifest((dir_ / "walker.vdg.json").string()));
+  const std::string ops =
+      R"([{"op": "drag", "vertex": )" + std::to_string(vertex) + R"(, "radius": 0.25, "delta": [0.12, 0.05]}])";
+  spit(dir_ / "e.json", R"({"ops": )" + ops + "}");
+  ASSERT_EQ(vdg("deform " + path(manifest) + " --frame 20 --key back_f20 --view 0,0,-1 --ops " + path("e.json")), 0)
+      << output_;
+
+  const RawViewDependentModel after = loadManifest((dir_ / manifest).string());
+  ASSERT_EQ(after.keys.size(), raw.keys.size() + 1);
+  const RawKey& key = after.keys.back();
+  EXPECT_EQ(key.name, "back_f20");
+  EXPECT_EQ(key.frame, kKeyFrame);
+  EXPECT_LT((key.view - kBackView).norm(), 1e-12);
+
+  // By hand: the base posed at frame 20, the drag in the key's edit camera.
+  RawKey hand;
+  hand.frame = kKeyFrame;
+  hand.view = kBackView;
+  std::vector<float> expected = raw.base_frames[kKeyFrame];
+  const std::vector<EditOp> parsed = parseEditScript(R"({"ops": )" + ops + "}", "e.json").ops;
+  applyEdits(keyEditCamera(raw, hand), raw.base.triangles, expected, parsed, std::nullopt, "by hand");
+  EXPECT_GT(maxDifference(expected, raw.base_frames[kKeyFrame]), 0.05);  // the drag moved the limb
+  EXPECT_LT(maxDifference(key.mesh.positions, expected), kObjRoundTrip);
+
+  ASSERT_EQ(vdg("eval " + path(manifest) + " --frame 20 --view 0,0,-1 -q -o " + path("e20.obj")), 0) << output_;
+  EXPECT_LT(maxDifference(readObj((dir_ / "e20.obj").string()).positions, key.mesh.positions), kObjRoundTrip);
+
+  // The edit log starts from the posed base and replays to the key; undo gives the posed base back.
+  const EditLog log = readEditLog((dir_ / "back_f20.edits.json").string());
+  EXPECT_EQ(log.origin, "base");
+  ASSERT_EQ(log.entries.size(), 1u);
+  EXPECT_LT(maxDifference(replayEditLog(posedBase(after, kKeyFrame), log, "log"), key.mesh.positions), kObjRoundTrip);
+  ASSERT_EQ(vdg("deform " + path(manifest) + " --key back_f20 --undo"), 0) << output_;
+  EXPECT_LT(maxDifference(readObj((dir_ / "back_f20.obj").string()).positions, raw.base_frames[kKeyFrame]),
+            kObjRoundTrip);
+}
+
+// At other frames the key's offset follows the model's offset mode (animated_model.h): skinned, it
+// turns with the limb, o(f) = L_v(f) L_v(F)^-1 o(F); world, it stays the same vector (one key frame
+// on the view: a constant offset over time).
+TEST_P(AnimatedDeformCli, TheKeyOffsetFollowsTheOffsetModeAtOtherFrames) {
+  copyWalker();
+  const std::string manifest = GetParam();
+  const RawViewDependentModel raw = loadManifest((dir_ / manifest).string());
+  spit(dir_ / "e.json", R"({"ops": [{"op": "drag", "vertex": )" +
+                            std::to_string(mostTurningVertex(loadManifest((dir_ / "walker.vdg.json").string()))) +
+                            R"(, "radius": 0.25, "delta": [0.12, 0.05]}]})");
+  ASSERT_EQ(vdg("deform " + path(manifest) + " --frame 20 --key back_f20 --view 0,0,-1 -q --ops " + path("e.json")), 0)
+      << output_;
+  const RawViewDependentModel after = loadManifest((dir_ / manifest).string());
+  const AnimatedViewDependentModel model = AnimatedViewDependentModel::build(after);
+  const std::vector<float>& key = after.keys.back().mesh.positions;
+  const std::vector<float>& posed = after.base_frames[kKeyFrame];
+  const bool skinned = after.offsets == OffsetSpace::kSkinned;
+  std::vector<float> out(key.size());
+  for (const int f : {0, 7, 33}) {
+    ASSERT_TRUE(model.evaluate(f, kBackView, 0.0, out));
+    const std::vector<float>& base = after.base_frames[static_cast<std::size_t>(f)];
+    double worst = 0, turned = 0;
+    for (std::size_t v = 0; v < model.vertexCount(); ++v) {
+      const Eigen::Vector3d at_key(key[3 * v] - posed[3 * v], key[3 * v + 1] - posed[3 * v + 1],
+                                   key[3 * v + 2] - posed[3 * v + 2]);
+      const Eigen::Vector3d expected =
+          skinned ? Eigen::Vector3d(skinAt(after, f, v) * skinAt(after, kKeyFrame, v).inverse() * at_key) : at_key;
+      const Eigen::Vector3d got(out[3 * v] - base[3 * v], out[3 * v + 1] - base[3 * v + 1],
+                                out[3 * v + 2] - base[3 * v + 2]);
+      worst = std::max(worst, (got - expected).norm());
+      turned = std::max(turned, (expected - at_key).norm());
+    }
+    EXPECT_LT(worst, kSkinRounding) << "frame " << f;
+    if (skinned) {
+      EXPECT_GT(turned, 0.01) << "frame " << f << ": the limb's offset should turn";
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Walker, AnimatedDeformCli, ::testing::Values("walker.vdg.json", "walker-world.vdg.json"),
+                         [](const ::testing::TestParamInfo<const char*>& p) {
+                           return std::string(p.index == 0 ? "Skinned" : "World");
+                         });
+
+// Bad --frame: out of range, non-zero on a static model, another frame than an existing key's,
+// missing for a new key of an animated model. One line each, nothing written.
+TEST_F(AnimatedDeformCli, BadFramesAreRefusedAndChangeNothing) {
+  copyWalker();
+  spit(dir_ / "e.json", R"({"ops": [{"op": "drag", "vertex": 3, "radius": 0.2, "delta": [0.1, 0]}]})");
+  const std::string walker_before = slurp(dir_ / "walker.vdg.json"), static_before = slurp(dir_ / "m.vdg.json");
+  const std::string e = " --ops " + path("e.json");
+  EXPECT_EQ(vdg("deform " + path("walker.vdg.json") + " --frame 40 --key k --view 0,0,-1" + e), 1);
+  EXPECT_NE(output_.find("--frame 40: outside the base animation"), std::string::npos) << output_;
+  EXPECT_NE(output_.find("(frames 0..39)"), std::string::npos) << output_;
+  EXPECT_EQ(vdg("deform " + path("walker.vdg.json") + " --frame -1 --key k --view 0,0,-1" + e), 1);
+  EXPECT_EQ(vdg("deform " + path("m.vdg.json") + " --frame 2 --key k --view 0,1,0" + e), 1);
+  EXPECT_NE(output_.find("--frame 2: "), std::string::npos) << output_;
+  EXPECT_NE(output_.find("static base"), std::string::npos) << output_;
+  EXPECT_EQ(vdg("deform " + path("walker.vdg.json") + " --frame 30 --key front_f10" + e), 1);
+  EXPECT_NE(output_.find("key 'front_f10' is the key of frame 10"), std::string::npos) << output_;
+  EXPECT_EQ(vdg("deform " + path("walker.vdg.json") + " --frame 10 --key k --view 0,0,1" + e), 1);
+  EXPECT_NE(output_.find("same frame 10 as key 'front_f10'"), std::string::npos) << output_;
+  EXPECT_EQ(vdg("deform " + path("walker.vdg.json") + " --key k --view 0,0,-1" + e), 2);
+  EXPECT_NE(output_.find("give the frame of the new key 'k'"), std::string::npos) << output_;
+  EXPECT_EQ(slurp(dir_ / "walker.vdg.json"), walker_before);
+  EXPECT_EQ(slurp(dir_ / "m.vdg.json"), static_before);
+  EXPECT_FALSE(fs::exists(dir_ / "k.obj"));
+  // Static models keep working, with --frame 0 or without it.
+  EXPECT_EQ(vdg("deform " + path("m.vdg.json") + " --frame 0 --key k --view 0,1,0 -q" + e), 0) << output_;
 }
 
 }  // namespace

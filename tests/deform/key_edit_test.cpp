@@ -143,6 +143,45 @@ RawViewDependentModel twoKeyModel() {
   return m;
 }
 
+// Section 4: a key of an animated model starts from the base posed at its frame, is framed there,
+// and its log's origin "base" means that pose; frames out of range are refused, naming them.
+TEST(KeyEdit, AKeyOfAnAnimatedModelStartsFromTheBasePosedAtItsFrame) {
+  RawViewDependentModel m;
+  m.base = test::grid(5, 0.25);
+  m.base_path = "";
+  m.base_animation = BaseAnimationSpec{};
+  m.base_animation->obj_sequence = "f%d.obj";
+  std::vector<float> moved = m.base.positions;
+  for (std::size_t i = 0; i < moved.size(); i += 3) moved[i] += 2.0f;  // frame 1: 2 along +X
+  m.base_frames = {m.base.positions, moved};
+  m.keys.push_back({"front0", "front0.obj", m.base, Eigen::Vector3d(0, 0, 1), std::nullopt, 0});
+  m.validate();
+
+  EXPECT_EQ(posedBase(m, 1).positions, moved);
+  EXPECT_EQ(posedBase(m, 1).triangles, m.base.triangles);
+  const std::size_t k = addKey(m, {"side1", "", std::nullopt, Eigen::Vector3d(1, 0, 0), 1});
+  EXPECT_EQ(m.keys[k].frame, 1);
+  EXPECT_EQ(m.keys[k].mesh.positions, moved);
+  EXPECT_EQ(startEditLog(m, m.keys[k], "side1.origin.obj").origin, "base");
+  // The same frame and view as another key, a frame out of range: refused, the model unchanged.
+  const std::size_t keys = m.keys.size();
+  EXPECT_NE(errorOf([&] {
+              addKey(m, {"again", "", std::nullopt, Eigen::Vector3d(1, 0, 0), 1});
+            }).find("same frame 1 as key 'side1'"),
+            std::string::npos);
+  EXPECT_NE(errorOf([&] {
+              addKey(m, {"late", "", std::nullopt, Eigen::Vector3d(0, 1, 0), 2});
+            }).find("frame 2 is outside the base animation's frames 0..1"),
+            std::string::npos);
+  EXPECT_EQ(m.keys.size(), keys);
+  // A static model has frame 0 only.
+  RawViewDependentModel still = twoKeyModel();
+  EXPECT_NE(errorOf([&] {
+              addKey(still, {"late", "", std::nullopt, Eigen::Vector3d(0, 1, 1), 1});
+            }).find("(the base is static)"),
+            std::string::npos);
+}
+
 TEST(KeyEdit, AddKeyChecksEverythingAndLeavesTheModelAloneOnError) {
   RawViewDependentModel m = twoKeyModel();
   const std::size_t keys = m.keys.size();

@@ -86,6 +86,7 @@ void expectSame(const StudioRecovery& a, const StudioRecovery& b) {
   EXPECT_EQ(a.new_key, b.new_key);
   EXPECT_EQ(a.mesh_path, b.mesh_path);
   EXPECT_EQ(a.logged, b.logged);
+  EXPECT_EQ(a.key_frame, b.key_frame);
   ASSERT_EQ(a.key_camera.has_value(), b.key_camera.has_value());
   if (a.key_camera) expectSameCamera(*a.key_camera, *b.key_camera);
   ASSERT_EQ(a.strokes.size(), b.strokes.size());
@@ -101,8 +102,11 @@ void expectSame(const StudioRecovery& a, const StudioRecovery& b) {
 TEST(StudioRecovery, RoundTripsNewAndExistingKeys) {
   StudioRecovery after_log = existingKey();
   after_log.logged = 7;  // the strokes follow the first 7 entries of the key's log
+  StudioRecovery at_frame = newKey();
+  at_frame.key_frame = 20;  // a new key of an animated model, at frame 20
+  EXPECT_NE(formatStudioRecovery(at_frame).find("\"frame\": 20"), std::string::npos);
   for (const StudioRecovery& r :
-       {newKey(), existingKey(), after_log, StudioRecovery{"/m", "/m", "k", false, "", {}, 0, {}}}) {
+       {newKey(), existingKey(), after_log, at_frame, StudioRecovery{"/m", "/m", "k", false, "", {}, 0, {}}}) {
     const std::string text = formatStudioRecovery(r);
     const StudioRecovery back = parseStudioRecovery(text, "rec.json");
     expectSame(back, r);
@@ -147,7 +151,8 @@ TEST(StudioRecovery, EveryRefusalNamesItsKeyPath) {
       {R"({"version": 3})", "REC: 'version': this vdg reads studio recovery files version 1, got 3"},
       {"{" + head + R"("new_key": false, "strokes": [], "undo": []})",
        "REC: unknown key 'undo' (expected one of 'version', 'model', 'manifest', 'key', 'new_key', 'mesh', "
-       "'key_camera', 'logged', 'strokes')"},
+       "'key_camera', 'frame', 'logged', 'strokes')"},
+      {"{" + head + R"("new_key": false, "frame": 3, "strokes": []})", "REC: 'frame': only with 'new_key': true"},
       {R"({"version": 1, "model": "m.obj", "manifest": "/a", "key": "k", "new_key": false, "strokes": []})",
        "REC: 'model': expected an absolute path, got \"m.obj\""},
       {R"({"version": 1, "model": "/a", "manifest": "", "key": "k", "new_key": false, "strokes": []})",

@@ -14,6 +14,7 @@
 #include "vdg/io/obj.h"
 #include "vdg/studio/navigation.h"
 #include "vdg/studio/session.h"
+#include "vdg/viewdep/animated_model.h"
 
 namespace vdg::studio {
 namespace {
@@ -358,6 +359,148 @@ TEST_F(Fixture, AlignmentRecoversTheCameraThatMadeThePairs) {
   EXPECT_LT((r.camera.eye - truth.eye).norm(), 1e-6);
   s.pairs.resize(3);
   EXPECT_NE(errorOf([&] { s.solveAlignment(false); }), "");
+}
+
+// ---- keys on an animated model (Rademacher 99, section 4): the timeline ---------------------------
+
+// The walker of examples/walk (glTF base of 40 frames, skinned offsets, keys at frames 10 and 30).
+struct Walker : ::testing::Test {
+  TempDir dir;
+  std::string manifest;
+  void SetUp() override {
+    const fs::path walk = fs::path(VDG_SOURCE_DIR) / "examples" / "walk";
+    for (const char* f : {"walker.glb", "walker.vdg.json"}) fs::copy_file(walk / f, dir.path() / f);
+    fs::copy(walk / "keys", dir.path() / "keys");
+    manifest = dir.file("walker.vdg.json");
+  }
+  // A vertex near the image centre of the session's camera: on the walker, whatever its pose.
+  static std::int32_t centerVertex(const Session& s) {
+    return *s.pick(Eigen::Vector2d(s.image_width / 2.0, s.image_height / 2.0));
+  }
+  static DragOp drag(std::int32_t v, double dx, double dy) {
+    DragOp op;
+    op.pick.vertex = v;
+    op.pick.falloff = Falloff{0.3, 2.0, FalloffShape::kPower};
+    op.delta_px = Eigen::Vector2d(dx, dy);
+    return op;
+  }
+};
+
+// The key made at frame 20 from the back: strokes on the base posed at 20, undo and redo exact,
+// saved as the manifest's (20, back) key, equal to the posed base with the same ops applied by
+// hand, and the animated model gives it back at its frame and view.
+TEST_F(Walker, AKeyAtAFrameIsMadeOnThePosedBaseUndoneAndSaved) {
+  Session s = Session::open(manifest);
+  ASSERT_TRUE(s.animated());
+  EXPECT_EQ(s.frameCount(), 40);
+  EXPECT_EQ(s.keyFrames(), (std::vector<int>{10, 30}));
+  s.setFrame(20);
+  const RawViewDependentModel raw = loadManifest(manifest);
+  EXPECT_EQ(maxDiff(s.positions(), raw.base_frames[20]), 0.0);
+  s.camera = orbit(s.camera, 180, 0);  // from the back
+  s.newKey("back_f20");
+  EXPECT_EQ(s.model().keys.back().frame, 20);
+  EXPECT_EQ(maxDiff(s.positions(), raw.base_frames[20]), 0.0);
+  const std::int32_t v = centerVertex(s);
+  const std::vector<EditOp> ops1{drag(v, 25, -10)}, ops2{drag(v, -5, 30)};
+  s.applyOps(ops1);
+  const std::vector<float> after1(s.positions().begin(), s.positions().end());
+  s.applyOps(ops2);
+  const std::vector<float> after2(s.positions().begin(), s.positions().end());
+  EXPECT_GT(maxDiff(after2, raw.base_frames[20]), 0.01);
+  s.undo();
+  EXPECT_EQ(maxDiff(s.positions(), after1), 0.0);
+  s.undo();
+  EXPECT_EQ(maxDiff(s.positions(), raw.base_frames[20]), 0.0);
+  s.redo();
+  s.redo();
+  EXPECT_EQ(maxDiff(s.positions(), after2), 0.0);
+  s.saveKey();
+
+  // By hand: the base posed at frame 20, the two ops in the key's camera and image size.
+  std::vector<float> expected = raw.base_frames[20];
+  const std::array<int, 2> size{s.image_width, s.image_height};
+  const Camera key_camera = *s.model().keys.back().camera;
+  applyEdits(key_camera, raw.base.triangles, expected, ops1, size, "ops1");
+  applyEdits(key_camera, raw.base.triangles, expected, ops2, size, "ops2");
+  const RawViewDependentModel saved = loadManifest(manifest);
+  ASSERT_EQ(saved.keys.size(), 5u);
+  EXPECT_EQ(saved.keys.back().frame, 20);
+  EXPECT_LT(maxDiff(saved.keys.back().mesh.positions, expected), kFileTol);
+  const EditLog log = readEditLog(dir.file("back_f20.edits.json"));
+  EXPECT_EQ(log.origin, "base");
+  EXPECT_LT(maxDiff(replayEditLog(posedBase(saved, 20), log, "log"), expected), kFileTol);
+  // At its frame and view the animated model is the key.
+  const AnimatedViewDependentModel model = AnimatedViewDependentModel::build(saved);
+  std::vector<float> out(expected.size());
+  ASSERT_TRUE(model.evaluate(20, saved.keys.back().view, 0.0, out));
+  EXPECT_LT(maxDiff(out, expected), kFileTol);
+  EXPECT_EQ(s.keyFrames(), (std::vector<int>{10, 20, 30}));
+}
+
+// Jumping to a key moves the timeline to its frame and the camera to its view; moving the timeline
+// away leaves it (the base is shown, posed), unless it has unsaved strokes.
+TEST_F(Walker, TheTimelineJumpsToKeysAndLeavesThemAtOtherFrames) {
+  Session s = Session::open(manifest);
+  const RawViewDependentModel raw = loadManifest(manifest);
+  EXPECT_EQ(maxDiff(s.positions(), raw.base_frames[0]), 0.0);
+  s.editKey(3);  // side_f30
+  EXPECT_EQ(s.frame(), 30);
+  EXPECT_EQ(s.currentKey(), 3);
+  EXPECT_LT((s.camera.eye - keyEditCamera(raw, raw.keys[3]).eye).norm(), 1e-9);
+  EXPECT_EQ(maxDiff(s.positions(), raw.keys[3].mesh.positions), 0.0);
+  s.applyOps(std::vector<EditOp>{drag(centerVertex(s), 10, 0)});
+  EXPECT_NE(errorOf([&] { s.setFrame(5); }).find("unsaved strokes"), std::string::npos);
+  s.undo();
+  s.setFrame(5);
+  EXPECT_EQ(s.currentKey(), -1);
+  EXPECT_EQ(maxDiff(s.positions(), raw.base_frames[5]), 0.0);
+  EXPECT_NE(errorOf([&] { s.setFrame(40); }).find("frame 40 is outside the base animation's frames 0..39"),
+            std::string::npos);
+  // A new key at a frame and view another key has is refused, naming it.
+  s.setFrame(10);
+  s.camera = keyEditCamera(raw, raw.keys[0]);  // front_f10's view
+  EXPECT_NE(errorOf([&] { s.newKey("again"); }).find("as key 'front_f10'"), std::string::npos);
+}
+
+// The autosave of a new key at a frame brings it back at that frame.
+TEST_F(Walker, TheAutosaveOfANewKeyKeepsItsFrame) {
+  std::vector<float> expected;
+  {
+    Session s = Session::open(manifest);
+    s.setFrame(25);
+    s.camera = orbit(s.camera, 180, 0);
+    s.newKey("back_f25");
+    s.applyOps(std::vector<EditOp>{drag(centerVertex(s), 20, 5)});
+    expected.assign(s.positions().begin(), s.positions().end());
+  }
+  Session s = Session::open(manifest);
+  ASSERT_EQ(s.recoverableStrokes(), 1u);
+  s.recover();
+  EXPECT_EQ(s.frame(), 25);
+  EXPECT_EQ(s.model().keys.back().frame, 25);
+  EXPECT_EQ(maxDiff(s.positions(), expected), 0.0);
+}
+
+// Framing fits the pose: every frame of the base and every key's pose lie in poseBounds(), which is
+// centred on the model's centre (so the framed front view is the manifest's front view).
+TEST_F(Walker, FramingFitsTheAnimatedPoseAboutTheModelCentre) {
+  const Session s = Session::open(manifest);
+  const RawViewDependentModel raw = loadManifest(manifest);
+  const Bounds& b = s.poseBounds();
+  const auto inside = [&](const std::vector<float>& p) {
+    for (std::size_t i = 0; i < p.size(); ++i)
+      if (p[i] < b.min[i % 3] || p[i] > b.max[i % 3]) return false;
+    return true;
+  };
+  for (std::size_t f = 0; f < raw.base_frames.size(); ++f) EXPECT_TRUE(inside(raw.base_frames[f])) << "frame " << f;
+  for (const RawKey& k : raw.keys) EXPECT_TRUE(inside(k.mesh.positions)) << k.name;
+  const Eigen::Vector3d c = raw.resolvedCenter();
+  constexpr double kFloatCentre = 1e-6;  // the box is in floats
+  for (int a = 0; a < 3; ++a) EXPECT_NEAR(0.5 * (double(b.min[a]) + b.max[a]), c[a], kFloatCentre) << a;
+  // Wider than frame 0 alone: the swing of the walk.
+  const Bounds b0 = computeBounds(raw.base_frames[0]);
+  EXPECT_GT(b.max[2] - b.min[2], b0.max[2] - b0.min[2]);
 }
 
 }  // namespace

@@ -7,7 +7,9 @@
 #   (c) a missing model, a corrupt model, a corrupt drawing, a save into a read-only folder: a
 #       message on stderr, exit status 1, no file changed;
 #   (d) a crash (VDG_STUDIO_ABORT_AT_FRAME) after a stroke, then --recover and Ctrl+S: the same key
-#       as without the crash.
+#       as without the crash;
+#   (g) a key on the animated walker at frame 20 (timeline keys, a drag, Ctrl+S): the manifest's
+#       (20, view) key, equal to `vdg deform --frame 20` with the same op and to `vdg eval` there.
 # Without Xvfb the test is skipped (exit 77), unless VDG_REQUIRE_XVFB=1.
 set -u
 VDG=$(realpath "$1")
@@ -171,16 +173,42 @@ else
   fail "(e) vdg studio on Spot failed: $(cat "$TMP/e.err")"
 fi
 
-# ---- (f) an animated model (the walker) opens with the Preview and its timeline; it is not editable --
+# ---- (f) an animated model (the walker) opens with the Preview and its timeline; orbiting saves nothing --
 mkdir -p "$TMP/f" && cp -r "$SRC"/examples/walk "$TMP/f/"
 $TOOL events "$TMP/preview.json" $W $H "1:key_down:P" "2:key_up:P" "3:mouse_down:$CX:$CY" "4:mouse_move:$((CX + 30)):$CY" \
   "5:mouse_up:$((CX + 30)):$CY" "6:key_down:S:ctrl" "7:key_up:S:ctrl"
 before=$(snapshot "$TMP/f")
 if studio "$TMP/f/walk/walker.vdg.json" --replay "$TMP/preview.json" --screenshot "$TMP/f.png" 2>"$TMP/f.err" &&
   [ -s "$TMP/f.png" ] && [ "$before" = "$(snapshot "$TMP/f")" ]; then
-  pass "(f) the walker opens with its timeline; a stroke and Ctrl+S change no file"
+  pass "(f) the walker opens with its timeline; an orbit and Ctrl+S (no key) change no file"
 else
   fail "(f) animated model: $(cat "$TMP/f.err")"
+fi
+
+# ---- (g) a key on the walker at a frame: Right x 20 on the timeline, Deform, a drag, Ctrl+S ----------
+mkdir -p "$TMP/g" "$TMP/g_deform" && cp -r "$SRC"/examples/walk "$TMP/g/" && cp -r "$SRC"/examples/walk "$TMP/g_deform/"
+G=()
+n=1
+for _ in $(seq 20); do G+=("$n:key_down:Right" "$((n + 1)):key_up:Right"); n=$((n + 2)); done
+G+=("$n:key_down:2" "$((n + 1)):key_up:2" "$((n + 2)):mouse_move:$CX:$CY" "$((n + 3)):mouse_down:$CX:$CY"
+  "$((n + 4)):mouse_move:$((CX + 10)):$((CY - 6))" "$((n + 5)):mouse_move:$((CX + DX)):$((CY + DY))"
+  "$((n + 7)):mouse_up:$((CX + DX)):$((CY + DY))" "$((n + 9)):key_down:S:ctrl" "$((n + 10)):key_up:S:ctrl")
+$TOOL events "$TMP/walker_key.json" $W $H "${G[@]}"
+WG="$TMP/g/walk/walker.vdg.json"
+if studio "$WG" --replay "$TMP/walker_key.json" 2>"$TMP/g.err"; then
+  if [ "$($TOOL keyframe "$WG" key1)" = 20 ] && $TOOL logcheck "$WG" key1 $DX $DY $IW $IH; then
+    $TOOL ops "$WG" key1 "$TMP/g_ops.json" &&
+      "$VDG" deform "$TMP/g_deform/walk/walker.vdg.json" --frame 20 --key key1 --ops "$TMP/g_ops.json" -q &&
+      $TOOL objclose "$TMP/g/walk/key1.obj" "$TMP/g_deform/walk/key1.obj" 1e-5 &&
+      "$VDG" eval "$WG" --frame 20 --eye "$($TOOL eye "$WG" key1)" -q -o "$TMP/g_eval.obj" &&
+      $TOOL objclose "$TMP/g/walk/key1.obj" "$TMP/g_eval.obj" 1e-5 &&
+      pass "(g) the walker's key at frame 20 is vdg deform --frame 20's and vdg eval gives it back there" ||
+      fail "(g) the walker's key at frame 20 differs from vdg deform's or from vdg eval's"
+  else
+    fail "(g) the saved key is not one drag at frame 20: $(grep -A4 key1 "$WG")"
+  fi
+else
+  fail "(g) vdg studio --replay on the walker failed: $(cat "$TMP/g.err")"
 fi
 
 # ---- usage --------------------------------------------------------------------------------------------

@@ -11,6 +11,8 @@ events files, edit scripts and OBJ comparison.
                                               the key camera the manifest saved
   studio_tool.py objclose A.obj B.obj EPS     same vertex count, every coordinate within EPS
   studio_tool.py logcheck MANIFEST KEY DX DY W H   the key's log: one drag, delta_px (DX, DY), image W x H
+  studio_tool.py keyframe MANIFEST KEY        prints the key's frame (0 when the manifest has none)
+  studio_tool.py eye MANIFEST KEY             prints the key camera's eye as X,Y,Z
 
 SPEC: "3:key_down:2", "3:key_down:S:ctrl", "4:mouse_down:630:300", "5:mouse_move:640:290",
 "9:mouse_up:670:275".
@@ -157,6 +159,13 @@ def main(argv):
             fail(f"key {argv[3]}: expected a drag by {want} px, got {json.dumps(op)}")
         if list(e.get("image_size", [])) != [int(argv[6]), int(argv[7])]:
             fail(f"key {argv[3]}: expected image_size [{argv[6]}, {argv[7]}], got {e.get('image_size')}")
+    elif cmd == "keyframe":
+        print(key_entry(argv[2], argv[3])[1].get("frame", 0))
+    elif cmd == "eye":
+        k = key_entry(argv[2], argv[3])[1]
+        if "camera" not in k:
+            fail(f"{argv[2]}: key {argv[3]} has no camera")
+        print(",".join(repr(float(v)) for v in k["camera"]["eye"]))
     elif cmd == "ops":
         log, k = edit_log(argv[2], argv[3])
         if "camera" not in k:

@@ -10,6 +10,7 @@
 #include <map>
 
 #include "preview.h"
+#include "timeline.h"
 #include "vdg/geom/error.h"
 #include "vdg/io/image_file.h"
 #include "vdg/studio/navigation.h"
@@ -48,9 +49,42 @@ const char* kShortcuts[][2] = {
     {"C", "Align: pick 2D-3D pairs (vertex, then its place on the drawing)"},
     {"P", "Preview panel (Figure 6)"},
     {"I", "view-sphere inset (click a key to jump to its camera)"},
+    {"Left / Right", "animated model: previous / next frame (the base is posed there)"},
+    {"[ / ]", "animated model: previous / next frame with keys"},
     {"Escape", "cancel the stroke or the pending pair"},
     {"F1", "this help"},
 };
+
+// Widgets that do nothing now are disabled, and say why when hovered: `reason` null means enabled.
+void beginDisabledFor(const char* reason) { ImGui::BeginDisabled(reason != nullptr); }
+void endDisabledFor(const char* reason) {
+  ImGui::EndDisabled();
+  if (reason != nullptr && ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) ImGui::SetTooltip("%s", reason);
+}
+
+// `text` on one line of at most `width` pixels: when longer, its middle becomes "...", so a file
+// name keeps its start and its end (cut at UTF-8 character boundaries).
+std::string elideMiddle(const std::string& text, float width) {
+  if (ImGui::CalcTextSize(text.c_str()).x <= width) return text;
+  const auto continuation = [&](std::size_t i) { return i < text.size() && (text[i] & 0xC0) == 0x80; };
+  for (std::size_t keep = text.size(); keep-- > 0;) {
+    std::size_t head = keep / 2, tail_start = text.size() - (keep - head);
+    while (head > 0 && continuation(head)) --head;
+    while (continuation(tail_start)) ++tail_start;
+    const std::string s = text.substr(0, head) + "..." + text.substr(tail_start);
+    if (ImGui::CalcTextSize(s.c_str()).x <= width) return s;
+  }
+  return "...";
+}
+
+// One line, elided in the middle to the panel's width; the whole text as its tooltip.
+void oneLine(const std::string& text) {
+  const std::string shown = elideMiddle(text, ImGui::GetContentRegionAvail().x);
+  ImGui::TextUnformatted(shown.c_str());
+  if (shown != text && ImGui::IsItemHovered()) ImGui::SetTooltip("%s", text.c_str());
+}
+
+constexpr std::size_t kMinAlignPairs = 6;  // alignCamera's minimum (vdg/deform/align.h)
 
 }  // namespace
 
@@ -93,6 +127,7 @@ struct Studio::Impl {
   bool recovery_asked = false;
   Preview preview;
   char new_key_name[64] = "";
+  bool align_hint = false;  // a drawing was opened: align first (cleared by Deform mode or a solve)
   std::uint64_t sphere_revision = ~std::uint64_t{0};
 
   void error(const std::string& message) {
@@ -146,8 +181,10 @@ struct Studio::Impl {
     }
   }
 
+  // Fits the shape shown; an animated base's box over all its frames (its pose), so the walker
+  // stays in view as the timeline moves.
   void frameModel() {
-    const Bounds b = computeBounds(session->positions());
+    const Bounds b = session->animated() ? session->poseBounds() : computeBounds(session->positions());
     const Eigen::Vector3d lo(b.min[0], b.min[1], b.min[2]), hi(b.max[0], b.max[1], b.max[2]);
     session->camera =
         frameBox(session->camera, lo, hi, static_cast<double>(session->image_width) / session->image_height);
@@ -203,11 +240,13 @@ struct Studio::Impl {
         redo();
       else if (k == "S")
         saveKey();
-      else if (k == "N" && !session->animated())
+      else if (k == "N")
         newKey(nextKeyName());
       return;
     }
-    if (k == "F1")
+    if (const auto f = timelineShortcut(*session, k))
+      goToFrame(*f);
+    else if (k == "F1")
       show_help = !show_help;
     else if (k == "F")
       frameModel();
@@ -219,10 +258,14 @@ struct Studio::Impl {
       mode = Mode::kAlign;
     else if (k == "2")
       mode = Mode::kDeform;
+    else if (k == "C" && pairsDisabled())
+      status = pairsDisabled();
     else if (k == "C")
       pick_pairs = !pick_pairs;
     else if (k == "P")
       show_preview = !show_preview;
+    else if (k == "I" && sphereDisabled())
+      status = sphereDisabled();
     else if (k == "I")
       style.sphere_inset = !style.sphere_inset;
     else if (k == "Escape") {
@@ -261,10 +304,6 @@ struct Studio::Impl {
       return;
     }
     if (e.button == 0 && mode == Mode::kDeform) {
-      if (session->animated()) {
-        status = "an animated model is shown, not edited";
-        return;
-      }
       const std::optional<std::int32_t> v = session->pick(px);
       if (!v) return;
       if (session->currentKey() < 0) newKey(nextKeyName());
@@ -320,7 +359,27 @@ struct Studio::Impl {
     session->camera = dolly(session->camera, std::pow(kDollyPerScroll, e.scroll_y));
   }
 
+  // Why a tool does nothing for this model (null: it works).
+  const char* sphereDisabled() const {
+    return session->animated() ? "the sphere inset shows a static model's key views; the Preview (P) shows this "
+                                 "animated model's keys by frame and view"
+                               : nullptr;
+  }
+  const char* pairsDisabled() const {
+    return drawing ? nullptr : "no drawing to align to: open one with vdg studio MODEL --drawing IMAGE";
+  }
+
+  // The timeline: pose the base at `f` (an edited key of another frame is left, unless unsaved).
+  void goToFrame(int f) {
+    if (f == session->frame()) return;
+    attempt("frame", [&] {
+      session->setFrame(f);
+      status = "frame " + std::to_string(f) + (session->currentKey() < 0 ? ": a stroke makes this frame's key" : "");
+    });
+  }
+
   void jumpToKey(std::size_t index) {
+    if (session->animated()) goToFrame(session->model().keys.at(index).frame);
     const RawKey& key = session->model().keys.at(index);
     if (key.camera) {
       session->camera = *key.camera;
@@ -437,13 +496,25 @@ struct Studio::Impl {
       ImGui::End();
       return;
     }
-    ImGui::TextWrapped("%s", std::filesystem::path(session->modelPath()).filename().string().c_str());
+    oneLine(std::filesystem::path(session->modelPath()).filename().string());
     int m = static_cast<int>(mode);
     ImGui::RadioButton("Align (1)", &m, 0);
     ImGui::SameLine();
     ImGui::RadioButton("Deform (2)", &m, 1);
     mode = static_cast<Mode>(m);
+    if (mode == Mode::kDeform) align_hint = false;
+    if (align_hint) {
+      ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.1f, 0.35f, 0.75f, 1.0f));
+      ImGui::TextWrapped(
+          "Align first (3.1.1): turn the camera until the model sits on the drawing, or pick pairs (C) and "
+          "Solve camera; then Deform (2).");
+      ImGui::PopStyleColor();
+    }
 
+    // An animated model's timeline first: the frame is what every tool edits at.
+    const TimelineRequest timeline = drawTimeline(*session);
+    if (timeline.frame) goToFrame(*timeline.frame);
+    if (timeline.key) attempt("edit key", [&] { session->editKey(*timeline.key); });
     viewSection();
     alignSection();
     deformSection();
@@ -452,7 +523,7 @@ struct Studio::Impl {
     ImGui::SameLine();
     ImGui::Checkbox("Help (F1)", &show_help);
     ImGui::Separator();
-    ImGui::TextWrapped("%s", status.c_str());
+    oneLine(status);
     ImGui::End();
   }
 
@@ -467,7 +538,9 @@ struct Studio::Impl {
     }
     ImGui::Checkbox("wireframe (W)", &style.wireframe);
     ImGui::SameLine();
+    beginDisabledFor(sphereDisabled());
     ImGui::Checkbox("sphere (I)", &style.sphere_inset);
+    endDisabledFor(sphereDisabled());
     Camera& c = session->camera;
     bool ortho = c.isOrtho();
     if (ImGui::Checkbox("orthographic", &ortho)) {
@@ -494,21 +567,30 @@ struct Studio::Impl {
   // The "Align" section (section 3.1.1): point pairs and the camera solve.
   void alignSection() {
     if (!(mode == Mode::kAlign && ImGui::CollapsingHeader("Align (3.1.1)", ImGuiTreeNodeFlags_DefaultOpen))) return;
+    beginDisabledFor(pairsDisabled());
     ImGui::Checkbox("pick pairs (C)", &pick_pairs);
+    endDisabledFor(pairsDisabled());
     ImGui::TextWrapped("%zu pairs%s", session->pairs.size(),
                        pending_vertex ? "; now click the vertex's place on the drawing" : "");
     if (ImGui::Button("Remove last") && !session->pairs.empty()) session->pairs.pop_back();
     ImGui::SameLine();
     if (ImGui::Button("Clear")) session->pairs.clear();
     ImGui::Checkbox("orthographic camera", &ortho_solve);
+    const std::string too_few = "needs at least " + std::to_string(kMinAlignPairs) + " pairs (" +
+                                std::to_string(session->pairs.size()) + " so far)";
+    const char* solve_off =
+        pairsDisabled() ? pairsDisabled() : (session->pairs.size() < kMinAlignPairs ? too_few.c_str() : nullptr);
+    beginDisabledFor(solve_off);
     if (ImGui::Button("Solve camera")) {
       try {
         align_result = session->solveAlignment(ortho_solve);
         session->camera = align_result->camera;
+        align_hint = false;
       } catch (const std::exception& e) {
         status = std::string("solve: ") + e.what();
       }
     }
+    endDisabledFor(solve_off);
     if (align_result) ImGui::Text("reprojection: rms %.2f px, max %.2f px", align_result->rms_px, align_result->max_px);
   }
 
@@ -536,13 +618,15 @@ struct Studio::Impl {
     float power = static_cast<float>(session->falloff.power);
     ImGui::SetNextItemWidth(160);
     if (ImGui::SliderFloat("power", &power, 0.0f, 6.0f, "%.2f")) session->falloff.power = power;
-    ImGui::BeginDisabled(!session->canUndo());
+    const char* no_undo = session->canUndo() ? nullptr : "nothing to undo: no stroke of this key in this session";
+    beginDisabledFor(no_undo);
     if (ImGui::Button("Undo")) undo();
-    ImGui::EndDisabled();
+    endDisabledFor(no_undo);
     ImGui::SameLine();
-    ImGui::BeginDisabled(!session->canRedo());
+    const char* no_redo = session->canRedo() ? nullptr : "nothing to redo";
+    beginDisabledFor(no_redo);
     if (ImGui::Button("Redo")) redo();
-    ImGui::EndDisabled();
+    endDisabledFor(no_redo);
   }
 
   // The "Keys" section: each key's view and edit buttons, a new key, saving the current one.
@@ -565,32 +649,29 @@ struct Studio::Impl {
     for (std::size_t i = 0; i < keys.size(); ++i) {
       ImGui::PushID(static_cast<int>(i));
       const bool current = static_cast<int>(i) == session->currentKey();
-      if (session->animated())  // an animated model's keys deform the base at their frames (section 4)
-        ImGui::Text("  %s (frame %d)", keys[i].name.c_str(), keys[i].frame);
-      else
-        ImGui::Text("%s %s%s", current ? ">" : " ", keys[i].name.c_str(),
-                    current && session->dirty() ? " *" : (current && session->currentKeyIsNew() ? " (new)" : ""));
+      // An animated model's keys deform the base at their frames (section 4): the frame is shown.
+      const std::string frame = session->animated() ? " f" + std::to_string(keys[i].frame) : "";
+      ImGui::Text("%s %s%s%s", current ? ">" : " ", keys[i].name.c_str(), frame.c_str(),
+                  current && session->dirty() ? " *" : (current && session->currentKeyIsNew() ? " (new)" : ""));
       ImGui::SameLine(190);
       if (ImGui::SmallButton("view")) jumpToKey(i);
-      if (!session->animated()) {
-        ImGui::SameLine();
-        if (ImGui::SmallButton("edit")) attempt("edit key", [&] { session->editKey(i); });
-      }
+      ImGui::SameLine();
+      if (ImGui::SmallButton("edit")) attempt("edit key", [&] { session->editKey(i); });
       ImGui::PopID();
     }
     keyViewWarnings();
-    if (!session->animated()) {
-      ImGui::SetNextItemWidth(150);
-      ImGui::InputTextWithHint("##name", nextKeyName().c_str(), new_key_name, sizeof new_key_name);
-      ImGui::SameLine();
-      if (ImGui::Button("New key")) {
-        newKey(new_key_name[0] != '\0' ? std::string(new_key_name) : nextKeyName());
-        new_key_name[0] = '\0';
-      }
-      ImGui::BeginDisabled(session->currentKey() < 0);
-      if (ImGui::Button("Save key (Ctrl+S)")) saveKey();
-      ImGui::EndDisabled();
+    ImGui::SetNextItemWidth(150);
+    ImGui::InputTextWithHint("##name", nextKeyName().c_str(), new_key_name, sizeof new_key_name);
+    ImGui::SameLine();
+    if (ImGui::Button("New key")) {
+      newKey(new_key_name[0] != '\0' ? std::string(new_key_name) : nextKeyName());
+      new_key_name[0] = '\0';
     }
+    const char* no_key =
+        session->currentKey() < 0 ? "no key to save: a stroke in Deform mode (2) or New key makes one" : nullptr;
+    beginDisabledFor(no_key);
+    if (ImGui::Button("Save key (Ctrl+S)")) saveKey();
+    endDisabledFor(no_key);
   }
 
   // ---- viewport ----------------------------------------------------------------------------
@@ -641,7 +722,7 @@ struct Studio::Impl {
   void drawOverlays(ImDrawList* dl) {
     dl->PushClipRect(ImVec2(rect.x, rect.y), ImVec2(rect.x + rect.w, rect.y + rect.h), true);
     const std::span<const float> pos = session->positions();
-    if (mode == Mode::kDeform && !session->animated()) {
+    if (mode == Mode::kDeform) {
       std::optional<std::int32_t> v = hover_vertex;
       if (session->stroking()) v = stroke_vertex;
       if (v) {
@@ -674,7 +755,7 @@ struct Studio::Impl {
       }
     }
     if (mode == Mode::kAlign) {
-      const std::span<const float> base = session->baseMesh().positions;
+      const std::span<const float> base = session->basePositions();
       for (const Session::Pair& pair : session->pairs) {
         const ImVec2 target = toWindow(pair.pixel);
         dl->AddLine(ImVec2(target.x - 5, target.y - 5), ImVec2(target.x + 5, target.y + 5), rgb(20, 120, 40), 2.0f);
@@ -716,13 +797,17 @@ Studio::Studio(const StudioOptions& options) : impl_(std::make_unique<Impl>()) {
   }
   // Start from the front, framed; the keys' own cameras are a click away.
   Camera c;
-  const Bounds b = computeBounds(m.session->baseMesh().positions);
+  const Bounds b = m.session->poseBounds();
   const Eigen::Vector3d center(b.center()[0], b.center()[1], b.center()[2]);
   c.target = center;
   c.eye = center + Eigen::Vector3d(0, 0, std::max(1e-3, static_cast<double>(b.diagonal())) * 2.0);
   c.fov_deg = 35.0;
   m.session->camera = c;  // framed on the first frame, in the viewport's aspect
-  if (m.drawing) m.status = "drawing " + std::to_string(m.drawing->width) + "x" + std::to_string(m.drawing->height);
+  if (m.drawing) {
+    m.status = "drawing " + std::to_string(m.drawing->width) + "x" + std::to_string(m.drawing->height) +
+               ": align the model to it first";
+    m.align_hint = true;
+  }
 }
 
 Studio::~Studio() = default;
@@ -755,7 +840,10 @@ void Studio::frame(Window& window, int frame, const std::vector<Event>& events) 
   m.helpPanel();
   if (m.session) {
     if (m.show_preview) {
-      ImGui::SetNextWindowPos(ImVec2(kPanelWidth + 20, m.area.h - 380), ImGuiCond_Appearing);
+      // Anchored at the bottom left of the viewport and never taller than it: the panel fits the
+      // window (1280x800 included) and its content scrolls when it cannot.
+      ImGui::SetNextWindowPos(ImVec2(kPanelWidth + 20, m.area.h - 10), ImGuiCond_Appearing, ImVec2(0.0f, 1.0f));
+      ImGui::SetNextWindowSizeConstraints(ImVec2(0, 0), ImVec2(m.area.w - 40, m.area.h - 20));
       if (ImGui::Begin("Preview (Figure 6)", &m.show_preview, ImGuiWindowFlags_AlwaysAutoResize))
         m.preview.draw(window, m.session->model(), m.session->revision(), frame);
       ImGui::End();
@@ -814,7 +902,6 @@ Studio::BenchmarkResult Studio::benchmark(int frames, int viewport_width, int vi
 
   // A drag across the image plane from the image centre: each step is a mouse move, the stroke's
   // update and the deformed mesh drawn.
-  if (s.animated()) return result;
   const Eigen::Vector2d c(s.image_width / 2.0, s.image_height / 2.0);
   const std::optional<std::int32_t> v = s.pick(c);
   if (!v) throw Error("studio: --benchmark: the ray through the image centre misses the model");

@@ -16,6 +16,7 @@ namespace vdg::studio::app {
 namespace {
 constexpr double kTurnDegPerFrame = 1.5;  // the rotating camera's azimuth step
 constexpr int kPanelSide = 256;           // pixels of each half of the preview
+constexpr float kWeightLines = 4.2f;      // lines of the weight list shown (more scroll)
 }  // namespace
 
 struct Preview::Impl {
@@ -136,6 +137,9 @@ void Preview::draw(Window& window, const RawViewDependentModel& raw, std::uint64
   }
   ImGui::Image(m.texture.id(), ImVec2(static_cast<float>(m.image.width), static_cast<float>(m.image.height)));
   ImGui::TextUnformatted("left: turning camera; right: fixed observer (Figure 6)");
+  // The weights in a list of its own height that scrolls, so the panel keeps its size in a small
+  // window (1280x800) whatever the list holds.
+  ImGui::BeginChild("weights", ImVec2(2.0f * kPanelSide, kWeightLines * ImGui::GetTextLineHeightWithSpacing()), false);
   for (int i = 0; i < 3; ++i) {
     const int k = m.weights.key[static_cast<std::size_t>(i)];
     if (k < 0) continue;
@@ -143,6 +147,7 @@ void Preview::draw(Window& window, const RawViewDependentModel& raw, std::uint64
     ImGui::Text("key %-16s weight %.3f", name.c_str(), m.weights.weight[static_cast<std::size_t>(i)]);
   }
   ImGui::Text("base                 weight %.3f", m.weights.base);
+  ImGui::EndChild();
 }
 
 }  // namespace vdg::studio::app

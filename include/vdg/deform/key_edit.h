@@ -34,25 +34,35 @@ void checkKeyName(std::string_view name);
 // ".obj" (any letter case). Throws vdg::Error "--mesh PATH: ..." naming the rule broken.
 void checkKeyMeshPath(std::string_view mesh_path);
 
-// What a new key starts from: the base shape, with a camera or a view (exactly one).
+// The base as a key at `frame` deforms it (Rademacher 99, section 4.1: a key of an animated model
+// is drawn over the base posed at its frame): the base's triangles with base_frames[frame]'s
+// positions for an animated model, the base itself for a static one. Throws vdg::Error "frame F is
+// outside the base animation's frames 0..N-1" (a static model has only frame 0).
+TriMesh posedBase(const RawViewDependentModel& model, int frame);
+
+// What a new key starts from: the base shape (posed at `frame` for an animated base), with a camera
+// or a view (exactly one).
 struct NewKey {
   std::string name;
   std::string mesh_path;  // empty: NAME.obj
   std::optional<Camera> camera;
   std::optional<Eigen::Vector3d> view;  // model space, towards the eye; need not be unit
+  int frame = 0;                        // the base animation's frame; 0 for a static model
 };
-// Appends the key to `model` (its mesh a copy of the base, its view resolved) and returns its
-// index. Throws vdg::Error for a name breaking the rule or already used, a bad mesh path or one
-// another key uses, and neither or both of camera and view.
+// Appends the key to `model` (its mesh a copy of posedBase(model, key.frame), its view resolved)
+// and returns its index. Throws vdg::Error for a name breaking the rule or already used, a bad mesh
+// path or one another key uses, neither or both of camera and view, a frame out of range, and a
+// (frame, view) another key already has (section 4.2: one key per view and frame).
 std::size_t addKey(RawViewDependentModel& model, const NewKey& key);
 
 // The camera a key is edited through: its own camera, or for a key known only by its view a
 // parallel camera looking at the model's centre along the view (Y up, Z when the view is
-// vertical; cameraFromView) from twice the base's diagonal, framing the base.
+// vertical; cameraFromView) from twice the diagonal of the base posed at the key's frame.
 Camera keyEditCamera(const RawViewDependentModel& model, const RawKey& key);
 
-// The log a key's first logged step starts: origin "base" when the key's shape is the base's,
-// else `snapshot_name` (the caller saves the key's current shape under that name, beside the log).
+// The log a key's first logged step starts: origin "base" when the key's shape is the base's at
+// its frame (posedBase), else `snapshot_name` (the caller saves the key's current shape under that
+// name, beside the log). A log's origin "base" always means the base posed at the key's frame.
 EditLog startEditLog(const RawViewDependentModel& model, const RawKey& key, const std::string& snapshot_name);
 
 // One step: applies `ops` in order to key `key_index` in its edit camera, validates the model and

@@ -31,7 +31,10 @@ struct StudioRecovery {
   // some of the strokes to the log; recovery truncates the log to `logged` and replays the strokes.
   std::size_t logged = 0;
   std::vector<EditLogEntry> strokes{};  // unsaved strokes in order, each with its camera and image size
+  int key_frame = 0;                    // new key: its frame of an animated base ("frame"; 0 when absent)
 };
+// The largest "frame" (an animated base has at most kMaxBaseFrames = 100000 frames, vdg/viewdep/model.h).
+inline constexpr std::int64_t kMaxRecoveryFrame = 99'999;
 // The most edit log entries `logged` may count.
 inline constexpr std::int64_t kMaxLoggedEntries = 1'000'000'000;
 

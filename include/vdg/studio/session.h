@@ -64,9 +64,27 @@ class Session {
   const RawViewDependentModel& model() const;  // the keys as saved, plus the key being edited
   const std::string& modelPath() const;        // the file opened
   const std::string& manifestPath() const;     // the manifest saveKey() writes
-  bool animated() const;                       // animated base: shown, not edited (no key strokes)
+  bool animated() const;                       // animated base (Rademacher 99, section 4)
   const TriMesh& baseMesh() const;
-  double baseDiagonal() const;  // of the base's bounding box (> 0)
+  // The base's positions at frame() (#V x 3): what alignment pairs and a new key start from.
+  std::span<const float> basePositions() const;
+  double baseDiagonal() const;  // of the base's bounding box at frame 0 (> 0)
+  // What framing fits: the base's box for a static model; for an animated one the box around the
+  // base at every frame and, when it has keys, the model's extent() (every view's pose), grown to be symmetric about
+  // the model's centre, so that a camera framing it looks at the centre and a key made from it has the view it was seen
+  // from.
+  const Bounds& poseBounds() const;
+
+  // Timeline (section 4: keys at (frame, view)). The frame the base is posed at and new keys are
+  // made at: always 0 for a static model. setFrame poses the base at `frame` (0 <= frame <
+  // frameCount(), else vdg::Error); when the current key belongs to another frame it is left (the
+  // base is shown; an unsaved new key is dropped), refused (vdg::Error) while it has unsaved
+  // strokes or a stroke is in progress. editKey() moves to the key's frame.
+  int frame() const;
+  int frameCount() const;
+  void setFrame(int frame);
+  // The frames that have keys, ascending, each once.
+  std::vector<int> keyFrames() const;
 
   // The key being edited (an index into model().keys), or -1: the base is shown, nothing to edit.
   int currentKey() const;
@@ -94,10 +112,12 @@ class Session {
   // Falloff weights (#V, in [0, 1]) of a stroke picked at `vertex` with the current settings.
   std::vector<double> selectionWeights(std::int32_t vertex) const;
 
-  // Keys. newKey: a key `name` (checkKeyName) starting from the base, its camera the current one,
-  // mesh NAME.obj; throws vdg::Error for a bad or used name or an animated model. editKey: makes
-  // key `index` current (its shape, its saved edit log) and sets the camera to its edit camera.
-  // Either refuses (vdg::Error) while the current key has unsaved strokes.
+  // Keys. newKey: a key `name` (checkKeyName) starting from the base posed at frame(), its camera
+  // the current one, mesh NAME.obj, its frame frame() (the manifest's (frame, view) key of an
+  // animated model); throws vdg::Error for a bad or used name, or a (frame, view) another key
+  // has when saved. editKey: makes key `index` current (its shape, its saved edit log), moves to
+  // its frame and sets the camera to its edit camera (the timeline's jump to a key). Either
+  // refuses (vdg::Error) while the current key has unsaved strokes.
   void newKey(const std::string& name);
   void editKey(std::size_t index);
   bool dirty() const;  // the current key has strokes not saved
@@ -129,7 +149,7 @@ class Session {
     Eigen::Vector2d pixel = Eigen::Vector2d::Zero();
   };
   std::vector<Pair> pairs;
-  // alignCamera on the pairs (base positions) in image_width x image_height; throws vdg::Error.
+  // alignCamera on the pairs (the base posed at frame()) in image_width x image_height; throws vdg::Error.
   AlignResult solveAlignment(bool ortho) const;
 
   // Crash recovery. The file lives in a ".vdg-studio" folder beside the manifest.
