@@ -80,6 +80,7 @@ Eigen::Vector2d featureLineMotion(const Eigen::Vector2d& x, std::span<const Feat
   double weight_sum = 0;
   double nearest = std::numeric_limits<double>::infinity();
   bool any_motion = false;
+  Eigen::Vector2d nearest_motion = Eigen::Vector2d::Zero();
   for (const FeatureLinePair& pair : pairs) {
     // Beier and Neely 92, section 3.1: u along the line, v the perpendicular distance (pixels).
     const Eigen::Vector2d d = pair.model_q - pair.model_p;
@@ -88,17 +89,24 @@ Eigen::Vector2d featureLineMotion(const Eigen::Vector2d& x, std::span<const Feat
     const double v = (x - pair.model_p).dot(perp(d)) / len;
     // Section 3.3: dist is |v| beside the segment, else the distance to the nearer endpoint.
     const double dist = u < 0 ? (x - pair.model_p).norm() : u > 1 ? (x - pair.model_q).norm() : std::abs(v);
+    const bool is_nearest = dist < nearest;
     nearest = std::min(nearest, dist);
     const double weight = std::pow(std::pow(len, s.p) / (s.a + dist), s.b);
     weight_sum += weight;
-    if (pair.model_p == pair.drawing_p && pair.model_q == pair.drawing_q) continue;  // D_i = 0 exactly
+    if (pair.model_p == pair.drawing_p && pair.model_q == pair.drawing_q) {  // D_i = 0 exactly
+      if (is_nearest) nearest_motion = Eigen::Vector2d::Zero();
+      continue;
+    }
     const Eigen::Vector2d e = pair.drawing_q - pair.drawing_p;
     const Eigen::Vector2d mapped = pair.drawing_p + u * e + v * perp(e) / e.norm();
     sum += weight * (mapped - x);
+    if (is_nearest) nearest_motion = mapped - x;
     any_motion = true;
   }
-  if (!any_motion || !(nearest < s.falloff_px) || !(weight_sum > 0)) return Eigen::Vector2d::Zero();
+  if (!any_motion || !(nearest < s.falloff_px)) return Eigen::Vector2d::Zero();
   const double t = 1.0 - nearest / s.falloff_px;  // Rademacher 99, 3.1.2: (1 - d/r)^2
+  // A tiny a with a large b can overflow the weights: the nearest line then dominates (the limit).
+  if (!(weight_sum > 0) || !std::isfinite(weight_sum) || !sum.allFinite()) return t * t * nearest_motion;
   return (t * t / weight_sum) * sum;
 }
 
