@@ -7,7 +7,8 @@
 #   (c) a missing model, a corrupt model, a corrupt drawing, a save into a read-only folder: a
 #       message on stderr, exit status 1, no file changed;
 #   (d) a crash (VDG_STUDIO_ABORT_AT_FRAME) after a stroke, then --recover and Ctrl+S: the same key
-#       as without the crash.
+#       as without the crash;
+#   (g) feature lines drawn in the window and applied: the key vdg deform makes from the logged op.
 # Without Xvfb the test is skipped (exit 77), unless VDG_REQUIRE_XVFB=1.
 set -u
 VDG=$(realpath "$1")
@@ -181,6 +182,26 @@ if studio "$TMP/f/walk/walker.vdg.json" --replay "$TMP/preview.json" --screensho
   pass "(f) the walker opens with its timeline; a stroke and Ctrl+S change no file"
 else
   fail "(f) animated model: $(cat "$TMP/f.err")"
+fi
+
+# ---- (g) feature lines: L, the model's line then the drawing's, Enter, Ctrl+S == vdg deform's lines op ----
+building "$TMP/g"
+LX0=$((CX - 40)) LX1=$((CX + 40)) LY=$((CY - 30))
+$TOOL events "$TMP/lines.json" $W $H "${ORBIT[@]}" "5:key_down:2" "6:key_up:2" "7:key_down:L" "8:key_up:L" \
+  "9:mouse_move:$LX0:$LY" "10:mouse_down:$LX0:$LY" "11:mouse_move:$LX1:$LY" "12:mouse_up:$LX1:$LY" \
+  "13:mouse_move:$LX0:$((LY - 14))" "14:mouse_down:$LX0:$((LY - 14))" "15:mouse_move:$LX1:$((LY - 10))" \
+  "16:mouse_up:$LX1:$((LY - 10))" "17:key_down:Enter" "18:key_up:Enter" "19:key_down:S:ctrl" "20:key_up:S:ctrl"
+if studio "$TMP/g/building.vdg.json" --replay "$TMP/lines.json" 2>"$TMP/g.err" && [ -s "$TMP/g/key1.edits.json" ]; then
+  building "$TMP/g_deform"
+  python3 -c 'import json, sys; e = json.load(open(sys.argv[1]))["entries"]; sys.exit(not (len(e) == 1 and [o["op"] for o in e[0]["ops"]] == ["lines"] and len(e[0]["ops"][0]["lines"]) == 1))' \
+    "$TMP/g/key1.edits.json" &&
+    $TOOL ops "$TMP/g/building.vdg.json" key1 "$TMP/g_ops.json" &&
+    "$VDG" deform "$TMP/g_deform/building.vdg.json" --key key1 --ops "$TMP/g_ops.json" -q >/dev/null &&
+    ! $TOOL objclose "$TMP/g/key1.obj" "$TMP/g/base.obj" 1e-4 >/dev/null 2>&1 &&
+    $TOOL objclose "$TMP/g/key1.obj" "$TMP/g_deform/key1.obj" 1e-5 &&
+    pass "(g) feature lines drawn in the window give vdg deform's lines key" || fail "(g) the lines key differs or was not logged"
+else
+  fail "(g) vdg studio --replay of feature lines failed: $(cat "$TMP/g.err")"
 fi
 
 # ---- usage --------------------------------------------------------------------------------------------
