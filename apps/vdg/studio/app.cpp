@@ -739,7 +739,6 @@ struct Studio::Impl {
   void linesSection() {
     ImGui::Checkbox("feature lines (L)", &lines_tool);
     if (!lines_tool) return;
-    ImGui::SameLine();
     ImGui::Checkbox("snap to silhouette", &snap_lines);
     float falloff = static_cast<float>(session->line_settings.falloff_px);
     ImGui::SetNextItemWidth(160);
