@@ -30,13 +30,14 @@
 #include <string>
 #include <vector>
 
+#include "vdg/io/line_pairs.h"
 #include "vdg/morph/image_morph.h"
 #include "vdg/morph/inbetween.h"
 
 namespace vdg {
 
 inline constexpr int kMorphGridVersion = 1;
-inline constexpr int kMorphLinesVersion = 1;
+inline constexpr int kMorphLinesVersion = kLinePairsVersion;  // one file with vdg deform --lines
 inline constexpr int kKeyDrawingsVersion = 1;
 
 // Limits of what the files may ask for (each far beyond any hand-made file).
