@@ -44,7 +44,7 @@ struct DeformOptions {
   bool dry_run = false, undo = false, quiet = false;
   std::string lines, size;  // --lines PAIRS.json in pixels of a --size WxH image
   bool snap_silhouette = false;
-  double lines_falloff = FeatureLineSettings{}.falloff_px;
+  double lines_falloff = 0;  // --lines-falloff PX; 0: not given (FeatureLineSettings' default)
 };
 
 fs::path meshFile(const fs::path& folder, const std::string& mesh_path) {
@@ -120,7 +120,7 @@ void appendLinesOp(const DeformOptions& opt, const RawViewDependentModel& raw, c
   if (!script.image_size) throw UsageError("--lines: give --size WxH, the drawing's size in pixels");
   const LinePairsFile file = readLinePairs(opt.lines);
   LinesOp op;
-  op.settings = {file.a, file.b, file.p, opt.lines_falloff};
+  op.settings = {file.a, file.b, file.p, opt.lines_falloff > 0 ? opt.lines_falloff : op.settings.falloff_px};
   for (const LinePair& pair : file.pairs) op.pairs.push_back({pair.src_p, pair.src_q, pair.dst_p, pair.dst_q});
   if (auto problem = checkFeatureLines(op.pairs, op.settings))
     throw Error(opt.lines + ": " + problem->field + ": " + problem->message);
@@ -201,8 +201,8 @@ void runDeform(const DeformOptions& opt) {
     return;
   }
   if (opt.ops.empty() && opt.lines.empty()) throw UsageError("give --ops EDITS.json or --lines PAIRS.json (or --undo)");
-  if (opt.lines.empty() && (!opt.size.empty() || opt.snap_silhouette))
-    throw UsageError("--size and --snap-silhouette go with --lines PAIRS.json");
+  if (opt.lines.empty() && (!opt.size.empty() || opt.snap_silhouette || opt.lines_falloff > 0))
+    throw UsageError("--size, --snap-silhouette and --lines-falloff go with --lines PAIRS.json");
   EditScript script = opt.ops.empty() ? EditScript{} : readEditScript(opt.ops);
 
   // The camera of this run: the key's own, or for a new key the one given here.
