@@ -235,6 +235,12 @@ TEST(FeatureLines, BadPairsFilesGiveOneLineNamingTheFile) {
         "E.json");
   });
   EXPECT_EQ(falloff, "E.json: 'ops'[0] (lines).'falloff_px': must be > 0 and finite, got -1");
+  // More pairs than the warp's cost allows (#V x pairs).
+  const std::vector<FeatureLinePair> many(kMaxFeatureLinePairs + 1, FeatureLinePair{{0, 0}, {1, 0}, {0, 1}, {1, 1}});
+  const auto too_many = checkFeatureLines(many, {});
+  ASSERT_TRUE(too_many);
+  EXPECT_EQ(too_many->field, "'lines'");
+  EXPECT_FALSE(checkFeatureLines(std::span(many).first(kMaxFeatureLinePairs), {}));
   // Without the image size the op cannot place its pixels.
   const TriMesh mesh = test::grid(3, 1);
   std::vector<float> positions = mesh.positions;

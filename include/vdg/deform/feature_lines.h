@@ -57,9 +57,9 @@ struct FeatureLineSettings {
 
 inline constexpr double kMaxFeatureLineA = 1e6;
 inline constexpr double kMaxFeatureLineB = 16.0;
-inline constexpr double kMaxFeatureLinePixel = 1e7;    // |x|, |y| of every endpoint, pixels
-inline constexpr double kMinFeatureLinePixels = 1e-6;  // shorter lines are refused (no direction)
-inline constexpr std::size_t kMaxFeatureLinePairs = 4096;
+inline constexpr double kMaxFeatureLinePixel = 1e7;        // |x|, |y| of every endpoint, pixels
+inline constexpr double kMinFeatureLinePixels = 1e-6;      // shorter lines are refused (no direction)
+inline constexpr std::size_t kMaxFeatureLinePairs = 1024;  // the warp costs #V x pairs; hand-drawn sets are far smaller
 
 // What is out of range: `field` is the JSON form's key path ("'a'", "'lines'[2].'src'"), `message`
 // what is wrong. Nothing when the pairs (1..kMaxFeatureLinePairs of them) and settings are valid.
