@@ -1,4 +1,5 @@
 // vdg deform MODEL --key NAME --ops EDITS.json [--camera CAMERA.json | --view X,Y,Z] [--dry-run]
+// vdg deform MODEL --key NAME --lines PAIRS.json --size WxH [--snap-silhouette] [--lines-falloff PX]
 // vdg deform MODEL --key NAME --undo
 // vdg deform ANIMATED_MODEL --frame F --key NAME ... (a key at (frame, view), Rademacher 99, section 4)
 //
@@ -16,12 +17,14 @@
 
 #include "cli.h"
 #include "vdg/deform/edits.h"
+#include "vdg/deform/feature_lines.h"
 #include "vdg/deform/key_edit.h"
 #include "vdg/geom/error.h"
 #include "vdg/geom/normalize.h"
 #include "vdg/io/camera_json.h"
 #include "vdg/io/edit_script.h"
 #include "vdg/io/file_transaction.h"
+#include "vdg/io/line_pairs.h"
 #include "vdg/io/manifest.h"
 #include "vdg/io/obj.h"
 #include "vdg/io/read_file.h"
@@ -42,6 +45,9 @@ struct DeformOptions {
   std::string model, key, ops, camera, view, mesh;
   std::optional<int> frame;  // --frame: the base animation's frame of the key
   bool dry_run = false, undo = false, quiet = false;
+  std::string lines, size;  // --lines PAIRS.json in pixels of a --size WxH image
+  bool snap_silhouette = false;
+  double lines_falloff = 0;  // --lines-falloff PX; 0: not given (FeatureLineSettings' default)
 };
 
 fs::path meshFile(const fs::path& folder, const std::string& mesh_path) {
@@ -101,6 +107,32 @@ void protectInputs(FileTransaction& transaction, const RawViewDependentModel& ra
   if (!writes_manifest) transaction.protect(opt.model, "the manifest " + opt.model);
   if (!opt.ops.empty()) transaction.protect(opt.ops, "the edit script " + opt.ops);
   if (!opt.camera.empty()) transaction.protect(opt.camera, "the camera file " + opt.camera);
+  if (!opt.lines.empty()) transaction.protect(opt.lines, "the line pairs " + opt.lines);
+}
+
+// --lines: one "lines" op after the script's ops (vdg/deform/feature_lines.h), in pixels of the
+// --size image (or the script's image_size); with --snap-silhouette its model side is snapped to
+// the silhouette of the key as it is before this step, in its edit camera.
+void appendLinesOp(const DeformOptions& opt, const RawViewDependentModel& raw, const RawKey& key, EditScript& script) {
+  if (!opt.size.empty()) {
+    const ImageSize size = parseImageSize(opt.size, 'x', kMaxEditImageSide, "--size");
+    if (script.image_size && *script.image_size != std::array<int, 2>{size.width, size.height})
+      throw UsageError("--size: " + opt.ops + " already gives another \"image_size\"");
+    script.image_size = std::array<int, 2>{size.width, size.height};
+  }
+  if (!script.image_size) throw UsageError("--lines: give --size WxH, the drawing's size in pixels");
+  const LinePairsFile file = readLinePairs(opt.lines);
+  LinesOp op;
+  op.settings = {file.a, file.b, file.p, opt.lines_falloff > 0 ? opt.lines_falloff : op.settings.falloff_px};
+  for (const LinePair& pair : file.pairs) op.pairs.push_back({pair.src_p, pair.src_q, pair.dst_p, pair.dst_q});
+  if (auto problem = checkFeatureLines(op.pairs, op.settings))
+    throw Error(opt.lines + ": " + problem->field + ": " + problem->message);
+  if (opt.snap_silhouette) {
+    const auto [w, h] = *script.image_size;
+    const auto silhouette = projectedSilhouette(keyEditCamera(raw, key), w, h, key.mesh.positions, raw.base.triangles);
+    op.pairs = snapToSilhouette(op.pairs, silhouette);
+  }
+  script.ops.push_back(std::move(op));
 }
 
 // "key 'front': its mesh front.obj", naming a file the step writes.
@@ -183,15 +215,17 @@ void runDeform(const DeformOptions& opt) {
   checkFrameOption(opt, raw, new_key ? nullptr : &raw.keys[key_index]);
 
   if (opt.undo) {
-    if (!opt.ops.empty() || !opt.camera.empty() || !opt.view.empty() || !opt.mesh.empty())
-      throw UsageError("--undo takes no --ops, --camera, --view or --mesh");
+    if (!opt.ops.empty() || !opt.camera.empty() || !opt.view.empty() || !opt.mesh.empty() || !opt.lines.empty())
+      throw UsageError("--undo takes no --ops, --lines, --camera, --view or --mesh");
     if (new_key) throw Error(opt.model + ": no key named '" + opt.key + "'");
     checkMeshNotShared(raw, raw.keys[key_index], folder);
     runUndo(opt, raw, raw.keys[key_index], folder, transaction);
     return;
   }
-  if (opt.ops.empty()) throw UsageError("give --ops EDITS.json (or --undo)");
-  const EditScript script = readEditScript(opt.ops);
+  if (opt.ops.empty() && opt.lines.empty()) throw UsageError("give --ops EDITS.json or --lines PAIRS.json (or --undo)");
+  if (opt.lines.empty() && (!opt.size.empty() || opt.snap_silhouette || opt.lines_falloff > 0))
+    throw UsageError("--size, --snap-silhouette and --lines-falloff go with --lines PAIRS.json");
+  EditScript script = opt.ops.empty() ? EditScript{} : readEditScript(opt.ops);
 
   // The camera of this run: the key's own, or for a new key the one given here.
   std::optional<Camera> given_camera = script.camera;
@@ -231,6 +265,7 @@ void runDeform(const DeformOptions& opt) {
   }
 
   RawKey& key = raw.keys[key_index];
+  if (!opt.lines.empty()) appendLinesOp(opt, raw, key, script);
   const fs::path mesh_path = meshFile(folder, key.mesh_path);
   const fs::path log_path = editLogPath(mesh_path.string());
   const fs::path snapshot_path = mesh_path.parent_path() / (mesh_path.stem().string() + ".origin.obj");
@@ -252,7 +287,8 @@ void runDeform(const DeformOptions& opt) {
   stage({}, {}, {}, {});
   transaction.check();
 
-  const auto reports = deformKey(raw, key_index, log, script.ops, script.image_size, opt.ops);
+  const auto reports =
+      deformKey(raw, key_index, log, script.ops, script.image_size, opt.ops.empty() ? opt.lines : opt.ops);
   if (!opt.quiet || opt.dry_run) {
     for (std::size_t i = 0; i < reports.size(); ++i)
       std::printf("ops[%zu] %-14s moves %zu vertices, at most %.6g\n", i, editKindName(script.ops[i]), reports[i].moved,
@@ -287,6 +323,15 @@ void addDeformCommand(CLI::App& app) {
   sub->add_option("--frame", opt->frame,
                   "Animated model: the base animation's frame of the key (required for a new key; the base is "
                   "posed there and the key stored as the manifest's (frame, view) key)");
+  sub->add_option("--lines", opt->lines,
+                  "Feature-line pairs PAIRS.json (as 'vdg morph --lines': \"src\" on the model's image, \"dst\" on "
+                  "the drawing), applied after --ops as one \"lines\" op: Beier-Neely's warp in the image plane");
+  sub->add_option("--size", opt->size, "With --lines: the drawing's size WxH in pixels (the lines' image)");
+  sub->add_flag("--snap-silhouette", opt->snap_silhouette,
+                "With --lines: snap each model-side endpoint to the key's silhouette in its camera");
+  sub->add_option("--lines-falloff", opt->lines_falloff,
+                  "With --lines: pixels from every model-side line beyond which nothing moves (default 64)")
+      ->check(positiveNumber());
   sub->add_flag("--dry-run", opt->dry_run, "Report what each operation moves; write nothing");
   sub->add_flag("--undo", opt->undo, "Undo the key's last logged step (rebuilds it from its edit log)");
   sub->add_flag("-q,--quiet", opt->quiet, "Print nothing on success");

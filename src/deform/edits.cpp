@@ -35,6 +35,8 @@ const char* editKindName(EditKind kind) {
       return "affine";
     case EditKind::kSkeleton:
       return "skeleton";
+    case EditKind::kLines:
+      return "lines";
   }
   return "?";
 }
@@ -165,6 +167,10 @@ std::optional<EditOpProblem> checkFields(const SkeletonOp& o) {
   }
   return std::nullopt;
 }
+std::optional<EditOpProblem> checkFields(const LinesOp& o) {
+  if (auto p = checkFeatureLines(o.pairs, o.settings)) return EditOpProblem{p->field, p->message};
+  return std::nullopt;
+}
 
 // The seed vertex of `pick`: its index, or the vertex its point or pixel names on `positions`.
 std::int32_t pickedVertex(const VertexPick& pick, const Camera& camera, std::span<const std::int32_t> triangles,
@@ -293,6 +299,12 @@ std::vector<EditReport> applyEdits(const Camera& camera, std::span<const std::in
         const SkeletonBinding binding = bindSkeleton(o.rest, positions, o.vertices, o.falloff);
         // checkEditOp (validateEdits above) has checked both wires, so the contract holds.
         if (!binding.apply(o.posed, positions)) throw Error(at + ": the posed wire was refused");
+        break;
+      }
+      case EditKind::kLines: {
+        const LinesOp& o = std::get<LinesOp>(op);
+        if (!image_size) throw Error(at + ": needs the drawing's size: give \"image_size\": [w, h]");
+        warpByFeatureLines(camera, (*image_size)[0], (*image_size)[1], positions, o.pairs, o.settings);
         break;
       }
     }

@@ -9,6 +9,7 @@
 #include "camera_fields.h"
 #include "edit_fields.h"
 #include "json_reader.h"
+#include "line_pair_fields.h"
 #include "vdg/geom/error.h"
 #include "vdg/io/atomic_file.h"
 #include "vdg/io/json_text.h"
@@ -31,7 +32,8 @@ constexpr std::pair<const char*, EditKind> kKinds[] = {{"drag", EditKind::kDrag}
                                                        {"ffd", EditKind::kFfd},
                                                        {"squash_stretch", EditKind::kSquashStretch},
                                                        {"affine", EditKind::kAffine},
-                                                       {"skeleton", EditKind::kSkeleton}};
+                                                       {"skeleton", EditKind::kSkeleton},
+                                                       {"lines", EditKind::kLines}};
 constexpr std::pair<const char*, DistanceMetric> kMetrics[] = {{"euclidean", DistanceMetric::kEuclidean},
                                                                {"edges", DistanceMetric::kEdges},
                                                                {"geodesic", DistanceMetric::kGeodesic}};
@@ -145,6 +147,20 @@ FfdOp readFfd(const Json& j, const Ctx& ctx) {
   return o;
 }
 
+// A lines op: the pairs as a lines file holds them ("src" the model side, "dst" the drawing side)
+// and the settings of vdg/deform/feature_lines.h.
+LinesOp readLines(const Json& j, const Ctx& ctx) {
+  io::allowKeys(j, ctx, {"op", "lines", "a", "b", "p", "falloff_px"});
+  LinesOp o;
+  for (const LinePair& pair : io::linePairListFrom(io::required(j, "lines", ctx), ctx.key("lines")))
+    o.pairs.push_back({pair.src_p, pair.src_q, pair.dst_p, pair.dst_q});
+  o.settings.a = io::numberOr(j, "a", o.settings.a, ctx);
+  o.settings.b = io::numberOr(j, "b", o.settings.b, ctx);
+  o.settings.p = io::numberOr(j, "p", o.settings.p, ctx);
+  o.settings.falloff_px = io::numberOr(j, "falloff_px", o.settings.falloff_px, ctx);
+  return o;
+}
+
 #define VDG_PICK_KEYS "op", "vertex", "point", "pixel", "radius", "power", "falloff", "distance"
 
 EditOp readOpFields(const Json& j, EditKind kind, const Ctx& ctx) {
@@ -245,6 +261,8 @@ EditOp readOpFields(const Json& j, EditKind kind, const Ctx& ctx) {
       }
       return o;
     }
+    case EditKind::kLines:
+      return readLines(j, ctx);
   }
   ctx.fail("unknown op");
 }
@@ -396,6 +414,17 @@ OJson writeOp(const EditOp& op, const std::string& at) {
         j["power"] = o.falloff->power;
         j["falloff"] = nameOf(kShapes, o.falloff->shape);
       }
+      break;
+    }
+    case EditKind::kLines: {
+      const auto& o = std::get<LinesOp>(op);
+      std::vector<LinePair> pairs;
+      for (const FeatureLinePair& p : o.pairs) pairs.push_back({p.model_p, p.model_q, p.drawing_p, p.drawing_q});
+      j["lines"] = io::linePairListJson(pairs);
+      j["a"] = o.settings.a;
+      j["b"] = o.settings.b;
+      j["p"] = o.settings.p;
+      j["falloff_px"] = o.settings.falloff_px;
       break;
     }
   }

@@ -5,18 +5,13 @@
 #include <cmath>
 
 #include "json_reader.h"
+#include "line_pair_fields.h"
 #include "vdg/io/atomic_file.h"
 #include "vdg/io/json_text.h"
 #include "vdg/io/read_file.h"
 
 namespace vdg {
 namespace {
-
-// Feature-line weight parameters (Beier and Neely): a > 0 keeps the weight finite on a line; b and
-// p as their paper uses them (b in [0.5, 2], p in [0, 1]); b is capped so that (length^p / a)^b
-// stays far from overflow for any image vdg reads.
-constexpr double kMaxWeightA = 1e6;
-constexpr double kMaxWeightB = 16.0;
 
 // [x, y]: each coordinate named by its index in messages ("'dst'[3][1]: expected a number, ...").
 Eigen::Vector2d point(const io::Json& j, const io::Ctx& ctx) {
@@ -107,31 +102,15 @@ MorphGridFile gridFileFrom(const io::Json& doc, const io::Ctx& top) {
 
 // ---- lines ---------------------------------------------------------------------------------------
 
-morph::FeatureLine lineFrom(const io::Json& j, const io::Ctx& ctx) {
-  const std::vector<Eigen::Vector2d> pq = points(j, ctx, 2);
-  return {pq[0], pq[1]};
-}
-
 MorphLinesFile linesFileFrom(const io::Json& doc, const io::Ctx& top) {
-  io::formatVersion(doc, top, "morph lines files", 1, kMorphLinesVersion);
-  io::allowKeys(doc, top, {"version", "a", "b", "p", "lines"});
-  MorphLinesFile file;
-  if (doc.contains("a")) {
-    file.params.a = io::number(doc.at("a"), top.key("a"));
-    if (!(file.params.a > 0.0 && file.params.a <= kMaxWeightA))
-      top.key("a").fail("expected a number above 0 and at most 1000000, got " + shownNumber(file.params.a));
-  }
-  if (doc.contains("b")) file.params.b = io::numberIn(doc.at("b"), top.key("b"), 0.0, kMaxWeightB);
-  if (doc.contains("p")) file.params.p = io::numberIn(doc.at("p"), top.key("p"), 0.0, 1.0);
+  // The shape and ranges are the shared lines file's (vdg/io/line_pairs.h, also read by vdg deform).
+  const LinePairsFile pairs = io::linePairsFrom(doc, top, "morph lines files");
   const io::Ctx lctx = top.key("lines");
-  const io::Json& lines = io::required(doc, "lines", top);
-  if (!lines.is_array() || lines.empty())
-    lctx.fail("expected a non-empty array of {\"src\", \"dst\"} line pairs, got " + io::describe(lines));
-  for (std::size_t i = 0; i < lines.size(); ++i) {
-    const io::Ctx c = lctx.index(i);
-    io::allowKeys(lines[i], c, {"src", "dst"});
-    file.src.push_back(lineFrom(io::required(lines[i], "src", c), c.key("src")));
-    file.dst.push_back(lineFrom(io::required(lines[i], "dst", c), c.key("dst")));
+  MorphLinesFile file;
+  file.params = {pairs.a, pairs.b, pairs.p};
+  for (const LinePair& pair : pairs.pairs) {
+    file.src.push_back({pair.src_p, pair.src_q});
+    file.dst.push_back({pair.dst_p, pair.dst_q});
   }
   morph::validateFeatureParams(file.params, top.prefix());
   morph::validateFeatureLines(file.src, file.dst, lctx.prefix());

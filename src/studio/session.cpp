@@ -550,6 +550,17 @@ void Session::applyOps(std::span<const EditOp> ops) {
   m.pushStroke({camera, size, std::vector<EditOp>(ops.begin(), ops.end())});
 }
 
+void Session::applyLines(bool snap_silhouette) {
+  if (line_pairs.empty()) throw Error("no feature lines: drag the model's line, then the drawing's");
+  LinesOp op{line_pairs, line_settings};
+  if (snap_silhouette)
+    op.pairs = snapToSilhouette(
+        op.pairs, projectedSilhouette(camera, image_width, image_height, positions(), baseMesh().triangles));
+  const EditOp edit = std::move(op);
+  applyOps(std::span<const EditOp>(&edit, 1));
+  line_pairs.clear();
+}
+
 bool Session::canUndo() const { return !impl_->stroking && impl_->cursor > impl_->undo_floor; }
 bool Session::canRedo() const { return !impl_->stroking && impl_->cursor < impl_->strokes.size(); }
 

@@ -504,4 +504,28 @@ TEST_F(Walker, FramingFitsTheAnimatedPoseAboutTheModelCentre) {
 }
 
 }  // namespace
+TEST_F(Fixture, FeatureLinesAreOneUndoableStrokeEqualToTheLinesOp) {
+  Session s = withKey();
+  EXPECT_NE(errorOf([&] { s.applyLines(); }).find("no feature lines"), std::string::npos);
+  const Eigen::Vector2d c(s.image_width / 2.0, s.image_height / 2.0);
+  s.line_pairs = {{c - Eigen::Vector2d(0, 60), c + Eigen::Vector2d(0, 60), c - Eigen::Vector2d(-12, 60),
+                   c + Eigen::Vector2d(12, 60)}};
+  const LinesOp op{s.line_pairs, s.line_settings};
+  s.applyLines();
+  EXPECT_TRUE(s.line_pairs.empty());
+  EXPECT_EQ(s.strokeCount(), 1u);
+  RawViewDependentModel raw = s.model();
+  raw.keys[0].mesh.positions = raw.base.positions;
+  EditLog log;
+  deformKey(raw, 0, log, std::vector<EditOp>{op}, std::array<int, 2>{s.image_width, s.image_height}, "test");
+  EXPECT_EQ(maxDiff(s.positions(), raw.keys[0].mesh.positions), 0.0);
+  EXPECT_GT(maxDiff(s.positions(), s.baseMesh().positions), 0.01);
+  s.undo();
+  EXPECT_EQ(maxDiff(s.positions(), s.baseMesh().positions), 0.0);
+  // Snapped: the model side lands on the sphere's outline, away from the centre line drawn.
+  s.line_pairs = {{c, c + Eigen::Vector2d(0, 40), c + Eigen::Vector2d(5, 0), c + Eigen::Vector2d(5, 40)}};
+  s.applyLines(true);
+  ASSERT_EQ(s.strokeCount(), 1u);
+}
+
 }  // namespace vdg::studio

@@ -10,6 +10,7 @@
 #       as without the crash;
 #   (g) a key on the animated walker at frame 20 (timeline keys, a drag, Ctrl+S): the manifest's
 #       (20, view) key, equal to `vdg deform --frame 20` with the same op and to `vdg eval` there.
+#   (h) feature lines drawn in the window and applied: the key vdg deform makes from the logged op.
 # Without Xvfb the test is skipped (exit 77), unless VDG_REQUIRE_XVFB=1.
 set -u
 VDG=$(realpath "$1")
@@ -209,6 +210,26 @@ if studio "$WG" --replay "$TMP/walker_key.json" 2>"$TMP/g.err"; then
   fi
 else
   fail "(g) vdg studio --replay on the walker failed: $(cat "$TMP/g.err")"
+fi
+
+# ---- (h) feature lines: L, the model's line then the drawing's, Enter, Ctrl+S == vdg deform's lines op ----
+building "$TMP/h"
+LX0=$((CX - 40)) LX1=$((CX + 40)) LY=$((CY - 30))
+$TOOL events "$TMP/lines.json" $W $H "${ORBIT[@]}" "5:key_down:2" "6:key_up:2" "7:key_down:L" "8:key_up:L" \
+  "9:mouse_move:$LX0:$LY" "10:mouse_down:$LX0:$LY" "11:mouse_move:$LX1:$LY" "12:mouse_up:$LX1:$LY" \
+  "13:mouse_move:$LX0:$((LY - 14))" "14:mouse_down:$LX0:$((LY - 14))" "15:mouse_move:$LX1:$((LY - 10))" \
+  "16:mouse_up:$LX1:$((LY - 10))" "17:key_down:Enter" "18:key_up:Enter" "19:key_down:S:ctrl" "20:key_up:S:ctrl"
+if studio "$TMP/h/building.vdg.json" --replay "$TMP/lines.json" 2>"$TMP/h.err" && [ -s "$TMP/h/key1.edits.json" ]; then
+  building "$TMP/h_deform"
+  python3 -c 'import json, sys; e = json.load(open(sys.argv[1]))["entries"]; sys.exit(not (len(e) == 1 and [o["op"] for o in e[0]["ops"]] == ["lines"] and len(e[0]["ops"][0]["lines"]) == 1))' \
+    "$TMP/h/key1.edits.json" &&
+    $TOOL ops "$TMP/h/building.vdg.json" key1 "$TMP/h_ops.json" &&
+    "$VDG" deform "$TMP/h_deform/building.vdg.json" --key key1 --ops "$TMP/h_ops.json" -q >/dev/null &&
+    ! $TOOL objclose "$TMP/h/key1.obj" "$TMP/h/base.obj" 1e-4 >/dev/null 2>&1 &&
+    $TOOL objclose "$TMP/h/key1.obj" "$TMP/h_deform/key1.obj" 1e-5 &&
+    pass "(h) feature lines drawn in the window give vdg deform's lines key" || fail "(h) the lines key differs or was not logged"
+else
+  fail "(h) vdg studio --replay of feature lines failed: $(cat "$TMP/h.err")"
 fi
 
 # ---- usage --------------------------------------------------------------------------------------------

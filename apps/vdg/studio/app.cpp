@@ -51,7 +51,8 @@ const char* kShortcuts[][2] = {
     {"I", "view-sphere inset (click a key to jump to its camera)"},
     {"Left / Right", "animated model: previous / next frame (the base is posed there)"},
     {"[ / ]", "animated model: previous / next frame with keys"},
-    {"Escape", "cancel the stroke or the pending pair"},
+    {"L / Enter", "Deform: feature lines (drag the model's line, then the drawing's) / apply them"},
+    {"Escape", "cancel the stroke, the pending pair or the pending feature line"},
     {"F1", "this help"},
 };
 
@@ -268,9 +269,15 @@ struct Studio::Impl {
       status = sphereDisabled();
     else if (k == "I")
       style.sphere_inset = !style.sphere_inset;
+    else if (k == "L")
+      lines_tool = !lines_tool;
+    else if (k == "Enter" && lines_tool && mode == Mode::kDeform)
+      applyLines();
     else if (k == "Escape") {
       if (session->stroking()) session->cancelStroke();
       pending_vertex.reset();
+      line_from.reset();
+      model_line.reset();
       gesture = Gesture::kNone;
       show_help = false;
     }
@@ -304,6 +311,10 @@ struct Studio::Impl {
       return;
     }
     if (e.button == 0 && mode == Mode::kDeform) {
+      if (lines_tool) {
+        line_from = line_to = px;
+        return;
+      }
       const std::optional<std::int32_t> v = session->pick(px);
       if (!v) return;
       if (session->currentKey() < 0) newKey(nextKeyName());
@@ -321,6 +332,7 @@ struct Studio::Impl {
   }
 
   void mouseMove(const Event& e) {
+    if (line_from) line_to = toImage(e.x, e.y);
     const double dx = e.x - last_x, dy = e.y - last_y;
     last_x = e.x;
     last_y = e.y;
@@ -345,6 +357,10 @@ struct Studio::Impl {
   }
 
   void mouseUp(const Event& e) {
+    if (line_from) {
+      line_to = toImage(e.x, e.y);
+      lineDragEnd();
+    }
     if (gesture == Gesture::kStroke) {
       attempt("stroke", [&] {
         session->updateStroke(toImage(e.x, e.y));
@@ -627,6 +643,7 @@ struct Studio::Impl {
     beginDisabledFor(no_redo);
     if (ImGui::Button("Redo")) redo();
     endDisabledFor(no_redo);
+    linesSection();
   }
 
   // The "Keys" section: each key's view and edit buttons, a new key, saving the current one.
@@ -775,6 +792,58 @@ struct Studio::Impl {
   }
   std::int32_t stroke_vertex = -1;
   bool framed = false;
+
+  // ---- feature lines (vdg/deform/feature_lines.h): drag the model's line, then the drawing's -----
+  bool lines_tool = false, snap_lines = false;
+  std::optional<Eigen::Vector2d> line_from;  // the drag in progress
+  Eigen::Vector2d line_to = Eigen::Vector2d::Zero();
+  std::optional<std::pair<Eigen::Vector2d, Eigen::Vector2d>> model_line;  // waiting for its drawing line
+
+  void lineDragEnd() {
+    const Eigen::Vector2d from = *line_from;
+    line_from.reset();
+    if ((line_to - from).norm() < 2.0) return;  // a click, not a line
+    if (!model_line) {
+      model_line = std::pair{from, line_to};
+      status = "now drag the drawing's line";
+      return;
+    }
+    session->line_pairs.push_back({model_line->first, model_line->second, from, line_to});
+    model_line.reset();
+    status = std::to_string(session->line_pairs.size()) + " line pair(s): Enter applies them";
+  }
+  void applyLines() {
+    if (session->currentKey() < 0) newKey(nextKeyName());
+    if (session->currentKey() < 0) return;
+    attempt("feature lines", [&] { session->applyLines(snap_lines); });
+  }
+  void linesSection() {
+    ImGui::Checkbox("feature lines (L)", &lines_tool);
+    if (!lines_tool) return;
+    ImGui::Checkbox("snap to silhouette", &snap_lines);
+    float falloff = static_cast<float>(session->line_settings.falloff_px);
+    ImGui::SetNextItemWidth(160);
+    if (ImGui::SliderFloat("falloff px", &falloff, 4.0f, 512.0f, "%.0f", ImGuiSliderFlags_Logarithmic))
+      session->line_settings.falloff_px = falloff;
+    ImGui::BeginDisabled(session->line_pairs.empty());
+    if (ImGui::Button("Apply lines (Enter)")) applyLines();
+    ImGui::SameLine();
+    if (ImGui::Button("Clear lines")) session->line_pairs.clear();
+    ImGui::EndDisabled();
+  }
+  void linesOverlay(ImDrawList* dl) {
+    if (!(mode == Mode::kDeform && lines_tool)) return;
+    auto line = [&](const Eigen::Vector2d& a, const Eigen::Vector2d& b, ImU32 colour) {
+      dl->AddLine(toWindow(a), toWindow(b), colour, 2.5f);
+      dl->AddCircleFilled(toWindow(a), 4.0f, colour);  // P: the line's start
+    };
+    for (const FeatureLinePair& pair : session->line_pairs) {
+      line(pair.model_p, pair.model_q, rgb(40, 90, 220));
+      line(pair.drawing_p, pair.drawing_q, rgb(220, 60, 40));
+    }
+    if (model_line) line(model_line->first, model_line->second, rgb(40, 90, 220));
+    if (line_from) line(*line_from, line_to, model_line ? rgb(220, 60, 40) : rgb(40, 90, 220));
+  }
 };
 
 Studio::Studio(const StudioOptions& options) : impl_(std::make_unique<Impl>()) {
@@ -854,6 +923,7 @@ void Studio::frame(Window& window, int frame, const std::vector<Event>& events) 
     try {
       m.drawViewport(dl);
       m.drawOverlays(dl);
+      m.linesOverlay(dl);
     } catch (const std::exception& e) {
       if (m.errors.empty() || m.errors.back() != e.what()) m.error(e.what());
     }

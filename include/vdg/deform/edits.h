@@ -6,7 +6,8 @@
 // Operations ("op"): drag, push_pull, rotate, scale (image-plane tools, Rademacher 99, 3.1.2),
 // displace (Parent 4.10 attenuated vertex displacement), ffd (Sederberg-Parry lattice),
 // squash_stretch and affine (Parent 4.10), skeleton (Burtnyk and Wein's wire deformation, Parent
-// 4.10; vdg/deform/skeleton.h). Only positions change; the topology never does.
+// 4.10; vdg/deform/skeleton.h), lines (Beier and Neely's feature-line warp lifted to 3D,
+// vdg/deform/feature_lines.h). Only positions change; the topology never does.
 #pragma once
 
 #include <array>
@@ -20,6 +21,7 @@
 #include <Eigen/Core>
 
 #include "vdg/deform/falloff.h"
+#include "vdg/deform/feature_lines.h"
 #include "vdg/deform/image_plane.h"
 #include "vdg/deform/skeleton.h"
 #include "vdg/geom/camera.h"
@@ -28,7 +30,7 @@ namespace vdg {
 
 inline constexpr int kEditsVersion = 1;
 
-enum class EditKind { kDrag, kPushPull, kRotate, kScale, kDisplace, kFfd, kSquashStretch, kAffine, kSkeleton };
+enum class EditKind { kDrag, kPushPull, kRotate, kScale, kDisplace, kFfd, kSquashStretch, kAffine, kSkeleton, kLines };
 // "drag", "push_pull", ... : the "op" field of the JSON form.
 const char* editKindName(EditKind kind);
 
@@ -126,10 +128,19 @@ struct SkeletonOp {
   std::optional<Falloff> falloff;
 };
 
+// Deformation from feature lines (vdg/deform/feature_lines.h): line pairs in pixels of the
+// script's image_size (model side "src", drawing side "dst", as `vdg morph --lines` files), the
+// weight parameters and the falloff. Every vertex near the model-side lines moves across the image
+// plane at its own depth. Needs "image_size".
+struct LinesOp {
+  std::vector<FeatureLinePair> pairs;
+  FeatureLineSettings settings;
+};
+
 // One operation: plain data, built in C++ or read from JSON by vdg/io/edit_script.h, which holds
 // the one conversion to and from the JSON form. The alternatives are in EditKind's order.
-using EditOp =
-    std::variant<DragOp, PushPullOp, RotateOp, ScaleOp, DisplaceOp, FfdOp, SquashStretchOp, AffineOp, SkeletonOp>;
+using EditOp = std::variant<DragOp, PushPullOp, RotateOp, ScaleOp, DisplaceOp, FfdOp, SquashStretchOp, AffineOp,
+                            SkeletonOp, LinesOp>;
 
 inline EditKind editKind(const EditOp& op) { return static_cast<EditKind>(op.index()); }
 inline const char* editKindName(const EditOp& op) { return editKindName(editKind(op)); }

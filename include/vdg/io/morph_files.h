@@ -13,7 +13,8 @@
 //   lines file (feature-based morph, Beier and Neely):
 //     {"version": 1, "a": 1, "b": 2, "p": 0.5,
 //      "lines": [{"src": [[px, py], [qx, qy]], "dst": [[px, py], [qx, qy]]}, ...]}
-//   a, b, p optional (morph::FeatureParams's defaults).
+//   a, b, p optional (morph::FeatureParams's defaults). The same file as `vdg deform --lines`
+//   reads: one reader (vdg/io/line_pairs.h) for both.
 //
 //   key-drawings file (inbetweening, Parent 4.5):
 //     {"version": 1, "curve": "linear" | "catmull-rom", "width": 256, "height": 256,
@@ -29,13 +30,14 @@
 #include <string>
 #include <vector>
 
+#include "vdg/io/line_pairs.h"
 #include "vdg/morph/image_morph.h"
 #include "vdg/morph/inbetween.h"
 
 namespace vdg {
 
 inline constexpr int kMorphGridVersion = 1;
-inline constexpr int kMorphLinesVersion = 1;
+inline constexpr int kMorphLinesVersion = kLinePairsVersion;  // one file with vdg deform --lines
 inline constexpr int kKeyDrawingsVersion = 1;
 
 // Limits of what the files may ask for (each far beyond any hand-made file).

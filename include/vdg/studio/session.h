@@ -26,6 +26,7 @@
 
 #include "vdg/deform/align.h"
 #include "vdg/deform/edits.h"
+#include "vdg/deform/feature_lines.h"
 #include "vdg/geom/camera.h"
 #include "vdg/geom/tri_mesh.h"
 #include "vdg/viewdep/model.h"
@@ -142,6 +143,15 @@ class Session {
   bool canRedo() const;
   void undo();
   void redo();
+
+  // Feature lines drawn over the drawing (vdg/deform/feature_lines.h), in image pixels: each pair
+  // is the model's line, then the drawing's. applyLines() makes them one "lines" stroke in the
+  // current camera (in the edit log, undoable) and clears them; with `snap_silhouette` the model
+  // sides are first snapped to the silhouette of the shape shown. Throws vdg::Error (changing
+  // nothing) when there is no pair, no key, or a pair the op refuses.
+  std::vector<FeatureLinePair> line_pairs;
+  FeatureLineSettings line_settings;
+  void applyLines(bool snap_silhouette = false);
 
   // Alignment (3.1.1): pairs of a base vertex and the drawing pixel where it belongs.
   struct Pair {
