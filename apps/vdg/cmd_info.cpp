@@ -24,8 +24,10 @@
 #include "vdg/io/gltf_export.h"
 #include "vdg/io/mesh.h"
 #include "vdg/io/model.h"
+#include "vdg/render/sphere_map_image.h"
 #include "vdg/viewdep/animated_model.h"
 #include "vdg/viewdep/model.h"
+#include "vdg/viewdep/sphere_map.h"
 
 namespace vdg::cli {
 namespace {
@@ -355,12 +357,96 @@ void describeAnimated(const std::string& path, const RawViewDependentModel& raw,
   for (const auto& w : warnings) std::printf("warning: %s\n", w.c_str());
 }
 
+// vdg info MODEL --sphere-map OUT.png: where to key next (vdg/viewdep/sphere_map.h), the map as an
+// image and its statistics on stdout (text, or JSON with --json).
+struct SphereMapRequest {
+  std::string output, size = "360x180";
+  int frame = -1;
+};
+
+nlohmann::ordered_json directionJson(const Eigen::Vector3d& d) {
+  return {{"view", {d.x(), d.y(), d.z()}},
+          {"longitude_deg", SphereMap::longitudeDeg(d)},
+          {"latitude_deg", SphereMap::latitudeDeg(d)}};
+}
+
+void reportSphereMap(const std::string& path, const SphereMapRequest& request, int frame, const SphereMap& map,
+                     bool json) {
+  const auto cell = static_cast<std::size_t>(map.suggested_cell);
+  const Eigen::Vector3d& s = map.suggested;
+  if (json) {
+    nlohmann::ordered_json out;
+    out["model"] = path;
+    out["sphere_map"] = request.output;
+    if (frame >= 0) out["frame"] = frame;
+    out["size"] = {map.width, map.height};
+    out["max_nearest_key_deg"] = map.max_nearest_deg;
+    out["mean_nearest_key_deg"] = map.mean_nearest_deg;
+    out["max_speed"] = map.max_speed;
+    out["max_speed_at"] = directionJson(map.max_speed_view);
+    out["uncovered_fraction"] = map.uncovered_fraction;
+    nlohmann::ordered_json suggested = directionJson(s);
+    suggested["need"] = map.need[cell];
+    suggested["nearest_key_deg"] = map.nearest_key_deg[cell];
+    suggested["speed"] = map.speed[cell];
+    suggested["base_weight"] = map.uncovered[cell];
+    out["suggested"] = suggested;
+    std::cout << out.dump(2) << "\n";
+    return;
+  }
+  std::printf("sphere map  %s: %dx%d cells (longitude x latitude, Y up, +Z at the centre) over a %d-pixel legend%s\n",
+              request.output.c_str(), map.width, map.height, render::kSphereMapLegendHeight,
+              frame >= 0 ? (", frame " + std::to_string(frame)).c_str() : "");
+  std::printf(
+      "colour     need 0 (dark blue) .. 0.5 (red) .. 1 (pale yellow); white dots: keys; cyan ring: suggested\n");
+  std::printf("need       0.5 nearest-key angle / its max + 0.25 base weight + 0.25 speed / its max\n");
+  std::printf("nearest    key angle: max %.1f deg, mean %.1f deg\n", map.max_nearest_deg, map.mean_nearest_deg);
+  std::printf("speed      max %.4g model radii per degree at (%.3f, %.3f, %.3f)\n", map.max_speed,
+              map.max_speed_view.x(), map.max_speed_view.y(), map.max_speed_view.z());
+  std::printf("uncovered  %.1f%% of the sphere shows some base (weight > %g)\n", 100.0 * map.uncovered_fraction,
+              kUncoveredWeight);
+  std::printf(
+      "suggested  view %.4f,%.4f,%.4f (longitude %.1f, latitude %.1f): need %.3f, nearest key %.1f deg, "
+      "speed %.4g, base weight %.3f\n",
+      s.x(), s.y(), s.z(), SphereMap::longitudeDeg(s), SphereMap::latitudeDeg(s), map.need[cell],
+      map.nearest_key_deg[cell], map.speed[cell], map.uncovered[cell]);
+}
+
+void writeSphereMap(const std::string& path, const SphereMapRequest& request, bool json) {
+  if (!hasExtension(request.output, ".png"))
+    throw UsageError("--sphere-map: expected a .png file name, got " + quotedText(request.output));
+  const ImageSize size = parseImageSize(request.size, 'x', kMaxSphereMapSide, "--size");
+  if (isObjPath(path)) throw UsageError("--sphere-map: " + quotedText(path) + " is a mesh, not a model");
+  const RawViewDependentModel described = openModel(path, {}, InputBuild::kRawOnly).raw;
+  if (described.keys.empty()) throw Error(quotedText(path) + ": the model has no keys, so there is no map to draw");
+  const OpenedInput input = openModel(path);
+  SphereMapSettings settings;
+  settings.width = size.width;
+  settings.height = size.height;
+  SphereMap map;
+  if (input.animated) {
+    const int n = input.animated->frameCount();
+    if (request.frame >= n)
+      throw UsageError("--frame: expected a frame in 0.." + std::to_string(n - 1) + " (the model has " +
+                       std::to_string(n) + " frames), got " + std::to_string(request.frame));
+    settings.frame = std::max(0, request.frame);
+    map = computeSphereMap(*input.animated, settings);
+  } else {
+    if (request.frame >= 0)
+      throw UsageError("--frame: " + quotedText(path) + " is not animated; --frame applies to animated models only");
+    map = computeSphereMap(*input.model, settings);
+  }
+  render::writePng(request.output, render::sphereMapImage(map));
+  reportSphereMap(path, request, input.animated ? settings.frame : -1, map, json);
+}
+
 }  // namespace
 
 void addInfoCommand(CLI::App& app) {
   struct Options {
     std::string model;
     bool json = false;
+    SphereMapRequest sphere_map;
   };
   auto opt = std::make_shared<Options>();
   CLI::App* sub =
@@ -372,7 +458,21 @@ void addInfoCommand(CLI::App& app) {
                   "Model manifest (*.vdg.json), a mesh (*.obj), or a glTF 2.0 file (*.gltf, *.glb)")
       ->required();
   sub->add_flag("--json", opt->json, "Print one JSON object instead of text");
+  auto* map_option = sub->add_option("--sphere-map", opt->sphere_map.output,
+                                     "Write where to key next as an equirectangular PNG (need = nearest-key angle, "
+                                     "shape speed and uncovered base; keys and the suggested view marked) and print "
+                                     "the suggested view and statistics (docs/where-to-key.md)");
+  sub->add_option("--size", opt->sphere_map.size, "Cells of the --sphere-map, WxH (default 360x180)")
+      ->check(imageSize('x', kMaxSphereMapSide))
+      ->needs(map_option);
+  sub->add_option("--frame", opt->sphere_map.frame, "Frame of an animated model for --sphere-map (default 0)")
+      ->check(wholeNumber(0, static_cast<long>(kMaxBaseFrames) - 1))
+      ->needs(map_option);
   sub->callback([opt] {
+    if (!opt->sphere_map.output.empty()) {
+      writeSphereMap(opt->model, opt->sphere_map, opt->json);
+      return;
+    }
     if (isObjPath(opt->model)) {
       describeMesh(opt->model, opt->json);
       return;
