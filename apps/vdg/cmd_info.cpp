@@ -26,6 +26,7 @@
 #include "vdg/io/model.h"
 #include "vdg/render/sphere_map_image.h"
 #include "vdg/viewdep/animated_model.h"
+#include "vdg/viewdep/intersection_check.h"
 #include "vdg/viewdep/model.h"
 #include "vdg/viewdep/sphere_map.h"
 
@@ -440,6 +441,92 @@ void writeSphereMap(const std::string& path, const SphereMapRequest& request, bo
   reportSphereMap(path, request, input.animated ? settings.frame : -1, map, json);
 }
 
+// vdg info MODEL --check-intersections: the views (and frames) where the blend passes through
+// itself and the base does not (vdg/viewdep/intersection_check.h). Exit status 0 with the report
+// whatever it finds: it is a description, like the warnings above.
+struct IntersectionRequest {
+  bool check = false;
+  int samples = 200;
+  std::string frames;
+};
+
+std::string viewLabel(const OpenedInput& input, const IntersectingView& v) {
+  if (v.key < 0) return "";
+  const auto k = static_cast<std::size_t>(v.key);
+  return input.animated ? " (the view of " + viewKeys(*input.animated, k) + ")"
+                        : " (key '" + input.model->keyName(k) + "')";
+}
+
+void printIntersections(const std::string& path, const OpenedInput& input, const IntersectionReport& report,
+                        bool json) {
+  if (json) {
+    nlohmann::ordered_json out;
+    out["model"] = path;
+    out["views_checked"] = report.views_checked;
+    out["base_pairs"] = report.base_pairs;
+    nlohmann::ordered_json views = nlohmann::ordered_json::array();
+    for (const IntersectingView& v : report.views) {
+      nlohmann::ordered_json j = {{"view", {v.view.x(), v.view.y(), v.view.z()}}, {"frame", v.frame}};
+      if (v.key >= 0) j["key"] = viewLabel(input, v).substr(2, viewLabel(input, v).size() - 3);
+      j["new_pairs"] = v.new_pairs;
+      j["example"] = {v.example.first, v.example.second};
+      views.push_back(std::move(j));
+    }
+    out["views"] = views;
+    out["worst"] = report.worst;
+    std::cout << out.dump(2) << "\n";
+    return;
+  }
+  std::printf("checked    %zu views%s for triangles passing through each other (not sharing a vertex)\n",
+              report.views_checked, input.animated ? " x frames" : "");
+  std::printf("base       %zu intersecting pair%s of its own (not reported below)\n", report.base_pairs,
+              report.base_pairs == 1 ? "" : "s");
+  std::printf("new        %zu view%s where the blend intersects itself and the base does not\n", report.views.size(),
+              report.views.size() == 1 ? "" : "s");
+  for (const IntersectingView& v : report.views)
+    std::printf("  view %.4f,%.4f,%.4f frame %d: %zu new pair%s (e.g. triangles %d and %d)%s\n", v.view.x(), v.view.y(),
+                v.view.z(), v.frame, v.new_pairs, v.new_pairs == 1 ? "" : "s", v.example.first, v.example.second,
+                viewLabel(input, v).c_str());
+  if (report.worst >= 0) {
+    const IntersectingView& w = report.views[static_cast<std::size_t>(report.worst)];
+    std::printf("worst      view %.4f,%.4f,%.4f frame %d: %zu new pairs%s\n", w.view.x(), w.view.y(), w.view.z(),
+                w.frame, w.new_pairs, viewLabel(input, w).c_str());
+  }
+}
+
+void checkModelIntersections(const std::string& path, const IntersectionRequest& request, bool json) {
+  if (isObjPath(path)) throw UsageError("--check-intersections: " + quotedText(path) + " is a mesh, not a model");
+  const RawViewDependentModel described = openModel(path, {}, InputBuild::kRawOnly).raw;
+  if (described.keys.empty()) throw Error(quotedText(path) + ": the model has no keys, so there is nothing to check");
+  const OpenedInput input = openModel(path);
+  IntersectionCheckSettings settings;
+  settings.samples = request.samples;
+  IntersectionReport report;
+  if (input.animated) {
+    const AnimatedViewDependentModel& model = *input.animated;
+    const int n = model.frameCount();
+    if (!request.frames.empty()) {
+      const FrameRange range = parseFrameRange(request.frames, "--frames");
+      const int last = range.last < range.first ? n - 1 : range.last;
+      if (range.first < 0 || last >= n)
+        throw UsageError("--frames: expected frames in 0.." + std::to_string(n - 1) + ", got " +
+                         quotedText(request.frames));
+      for (int f = range.first; f <= last; ++f) settings.frames.push_back(f);
+    } else {  // the frames that have keys
+      for (std::size_t v = 0; v < model.viewCount(); ++v)
+        for (int f : model.keyFrames(v)) settings.frames.push_back(f);
+      std::sort(settings.frames.begin(), settings.frames.end());
+      settings.frames.erase(std::unique(settings.frames.begin(), settings.frames.end()), settings.frames.end());
+    }
+    report = checkIntersections(model, settings);
+  } else {
+    if (!request.frames.empty())
+      throw UsageError("--frames: " + quotedText(path) + " is not animated; --frames applies to animated models only");
+    report = checkIntersections(*input.model, settings);
+  }
+  printIntersections(path, input, report, json);
+}
+
 }  // namespace
 
 void addInfoCommand(CLI::App& app) {
@@ -447,6 +534,7 @@ void addInfoCommand(CLI::App& app) {
     std::string model;
     bool json = false;
     SphereMapRequest sphere_map;
+    IntersectionRequest intersections;
   };
   auto opt = std::make_shared<Options>();
   CLI::App* sub =
@@ -468,7 +556,24 @@ void addInfoCommand(CLI::App& app) {
   sub->add_option("--frame", opt->sphere_map.frame, "Frame of an animated model for --sphere-map (default 0)")
       ->check(wholeNumber(0, static_cast<long>(kMaxBaseFrames) - 1))
       ->needs(map_option);
+  auto* check_option = sub->add_flag(
+      "--check-intersections", opt->intersections.check,
+      "Report the views (key views and --samples directions over the sphere; frames of an animated model) where "
+      "the blended mesh passes through itself and the base does not, and the worst one; exit status 0 with the "
+      "report (docs/where-to-key.md)");
+  sub->add_option("--samples", opt->intersections.samples,
+                  "Sphere directions for --check-intersections besides the key views (default 200)")
+      ->check(wholeNumber(0, kMaxIntersectionSamples))
+      ->needs(check_option);
+  sub->add_option("--frames", opt->intersections.frames,
+                  "Frames A-B (or N) of an animated model for --check-intersections (default: the frames with keys)")
+      ->needs(check_option);
+  check_option->excludes(map_option);
   sub->callback([opt] {
+    if (opt->intersections.check) {
+      checkModelIntersections(opt->model, opt->intersections, opt->json);
+      return;
+    }
     if (!opt->sphere_map.output.empty()) {
       writeSphereMap(opt->model, opt->sphere_map, opt->json);
       return;
