@@ -450,11 +450,16 @@ struct IntersectionRequest {
   std::string frames;
 };
 
-std::string viewLabel(const OpenedInput& input, const IntersectingView& v) {
+// The key (static) or the keys of the view (animated) that a checked view is, or "".
+std::string keyOfView(const OpenedInput& input, const IntersectingView& v) {
   if (v.key < 0) return "";
   const auto k = static_cast<std::size_t>(v.key);
-  return input.animated ? " (the view of " + viewKeys(*input.animated, k) + ")"
-                        : " (key '" + input.model->keyName(k) + "')";
+  return input.animated ? viewKeys(*input.animated, k) : input.model->keyName(k);
+}
+
+std::string viewLabel(const OpenedInput& input, const IntersectingView& v) {
+  if (v.key < 0) return "";
+  return input.animated ? " (the view of " + keyOfView(input, v) + ")" : " (key '" + keyOfView(input, v) + "')";
 }
 
 void printIntersections(const std::string& path, const OpenedInput& input, const IntersectionReport& report,
@@ -467,7 +472,7 @@ void printIntersections(const std::string& path, const OpenedInput& input, const
     nlohmann::ordered_json views = nlohmann::ordered_json::array();
     for (const IntersectingView& v : report.views) {
       nlohmann::ordered_json j = {{"view", {v.view.x(), v.view.y(), v.view.z()}}, {"frame", v.frame}};
-      if (v.key >= 0) j["key"] = viewLabel(input, v).substr(2, viewLabel(input, v).size() - 3);
+      if (v.key >= 0) j["key"] = keyOfView(input, v);
       j["new_pairs"] = v.new_pairs;
       j["example"] = {v.example.first, v.example.second};
       views.push_back(std::move(j));
@@ -483,10 +488,15 @@ void printIntersections(const std::string& path, const OpenedInput& input, const
               report.base_pairs == 1 ? "" : "s");
   std::printf("new        %zu view%s where the blend intersects itself and the base does not\n", report.views.size(),
               report.views.size() == 1 ? "" : "s");
-  for (const IntersectingView& v : report.views)
+  constexpr std::size_t kMaxListed = 20;  // text lists this many views; --json lists every one
+  for (std::size_t i = 0; i < std::min(report.views.size(), kMaxListed); ++i) {
+    const IntersectingView& v = report.views[i];
     std::printf("  view %.4f,%.4f,%.4f frame %d: %zu new pair%s (e.g. triangles %d and %d)%s\n", v.view.x(), v.view.y(),
                 v.view.z(), v.frame, v.new_pairs, v.new_pairs == 1 ? "" : "s", v.example.first, v.example.second,
                 viewLabel(input, v).c_str());
+  }
+  if (report.views.size() > kMaxListed)
+    std::printf("  ... and %zu more (--json lists every one)\n", report.views.size() - kMaxListed);
   if (report.worst >= 0) {
     const IntersectingView& w = report.views[static_cast<std::size_t>(report.worst)];
     std::printf("worst      view %.4f,%.4f,%.4f frame %d: %zu new pairs%s\n", w.view.x(), w.view.y(), w.view.z(),
