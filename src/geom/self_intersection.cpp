@@ -135,6 +135,12 @@ bool trianglesIntersect(const Vector3d& a0, const Vector3d& a1, const Vector3d& 
     if (db[0] != 0 || db[1] != 0 || db[2] != 0) return false;  // parallel planes apart
     return coplanarIntersect(a, b, ua);
   }
+  // A triangle with no vertex strictly on each side of the other's plane only touches it (a corner
+  // or an edge resting on it): nothing passes through.
+  auto straddles = [](const std::array<double, 3>& d) {
+    return std::min({d[0], d[1], d[2]}) < 0 && std::max({d[0], d[1], d[2]}) > 0;
+  };
+  if (!straddles(da) || !straddles(db)) return false;
   std::array<double, 3> pa{}, pb{};
   for (int k = 0; k < 3; ++k) {
     pa[k] = line.dot(a[k]);

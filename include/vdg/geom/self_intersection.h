@@ -5,8 +5,9 @@
 // Test", Journal of Graphics Tools 2(2), 1997): each triangle's vertices' signed distances to the
 // other's plane, then the two triangles' intervals on the planes' common line, overlapping. A
 // distance within `tolerance` of the plane counts as on it (Moller's EPSILON, here a length), and
-// intervals that only touch (overlap <= tolerance) do not count, so a sheet resting on another
-// is not reported; coplanar pairs (every distance within tolerance) are tested in the plane (edge
+// a triangle that only touches the other's plane (no vertex strictly on each side: a corner or an
+// edge resting on it) and intervals that only touch (overlap <= tolerance) do not count, so a
+// sheet resting on another is not reported; coplanar pairs (every distance within tolerance) are tested in the plane (edge
 // crossings and a corner inside the other triangle, overlap beyond the tolerance).
 //
 // Pairs that share a vertex are never tested (adjacent triangles always touch). Vertices are
