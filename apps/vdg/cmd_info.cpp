@@ -537,6 +537,33 @@ void checkModelIntersections(const std::string& path, const IntersectionRequest&
   printIntersections(path, input, report, json);
 }
 
+// --sphere-map and --check-intersections with the options that refine them.
+void addWhereToKeyOptions(CLI::App& sub, SphereMapRequest& map, IntersectionRequest& check) {
+  auto* map_option = sub.add_option("--sphere-map", map.output,
+                                    "Write where to key next as an equirectangular PNG (need = nearest-key angle, "
+                                    "shape speed and uncovered base; keys and the suggested view marked) and print "
+                                    "the suggested view and statistics (docs/where-to-key.md)");
+  sub.add_option("--size", map.size, "Cells of the --sphere-map, WxH (default 360x180)")
+      ->check(imageSize('x', kMaxSphereMapSide))
+      ->needs(map_option);
+  sub.add_option("--frame", map.frame, "Frame of an animated model for --sphere-map (default 0)")
+      ->check(wholeNumber(0, static_cast<long>(kMaxBaseFrames) - 1))
+      ->needs(map_option);
+  auto* check_option = sub.add_flag(
+      "--check-intersections", check.check,
+      "Report the views (key views and --samples directions over the sphere; frames of an animated model) where "
+      "the blended mesh passes through itself and the base does not, and the worst one; exit status 0 with the "
+      "report (docs/where-to-key.md)");
+  sub.add_option("--samples", check.samples,
+                 "Sphere directions for --check-intersections besides the key views (default 200)")
+      ->check(wholeNumber(0, kMaxIntersectionSamples))
+      ->needs(check_option);
+  sub.add_option("--frames", check.frames,
+                 "Frames A-B (or N) of an animated model for --check-intersections (default: the frames with keys)")
+      ->needs(check_option);
+  check_option->excludes(map_option);
+}
+
 }  // namespace
 
 void addInfoCommand(CLI::App& app) {
@@ -556,29 +583,7 @@ void addInfoCommand(CLI::App& app) {
                   "Model manifest (*.vdg.json), a mesh (*.obj), or a glTF 2.0 file (*.gltf, *.glb)")
       ->required();
   sub->add_flag("--json", opt->json, "Print one JSON object instead of text");
-  auto* map_option = sub->add_option("--sphere-map", opt->sphere_map.output,
-                                     "Write where to key next as an equirectangular PNG (need = nearest-key angle, "
-                                     "shape speed and uncovered base; keys and the suggested view marked) and print "
-                                     "the suggested view and statistics (docs/where-to-key.md)");
-  sub->add_option("--size", opt->sphere_map.size, "Cells of the --sphere-map, WxH (default 360x180)")
-      ->check(imageSize('x', kMaxSphereMapSide))
-      ->needs(map_option);
-  sub->add_option("--frame", opt->sphere_map.frame, "Frame of an animated model for --sphere-map (default 0)")
-      ->check(wholeNumber(0, static_cast<long>(kMaxBaseFrames) - 1))
-      ->needs(map_option);
-  auto* check_option = sub->add_flag(
-      "--check-intersections", opt->intersections.check,
-      "Report the views (key views and --samples directions over the sphere; frames of an animated model) where "
-      "the blended mesh passes through itself and the base does not, and the worst one; exit status 0 with the "
-      "report (docs/where-to-key.md)");
-  sub->add_option("--samples", opt->intersections.samples,
-                  "Sphere directions for --check-intersections besides the key views (default 200)")
-      ->check(wholeNumber(0, kMaxIntersectionSamples))
-      ->needs(check_option);
-  sub->add_option("--frames", opt->intersections.frames,
-                  "Frames A-B (or N) of an animated model for --check-intersections (default: the frames with keys)")
-      ->needs(check_option);
-  check_option->excludes(map_option);
+  addWhereToKeyOptions(*sub, opt->sphere_map, opt->intersections);
   sub->callback([opt] {
     if (opt->intersections.check) {
       checkModelIntersections(opt->model, opt->intersections, opt->json);
