@@ -144,8 +144,10 @@ Image sphereMapImage(const SphereMap& map) {
   for (const Eigen::Vector3d& k : map.keys) {
     int x = 0, y = 0;
     pixelOf(map, k, x, y);
-    disc(img, x, y, r + 1, {0, 0, 0});
-    disc(img, x, y, r, {255, 255, 255});
+    for (int wrap : {-map.width, 0, map.width}) {  // a key near longitude +-180 shows on both edges
+      disc(img, x + wrap, y, r + 1, {0, 0, 0});
+      disc(img, x + wrap, y, r, {255, 255, 255});
+    }
   }
   int sx = 0, sy = 0;
   pixelOf(map, map.suggested, sx, sy);
