@@ -101,6 +101,13 @@ Pairs newIntersections(std::span<const float> blended, std::span<const std::int3
   return fresh;
 }
 
+Pairs keyIntersections(const TriMesh& base, std::span<const float> key_positions) {
+  const std::vector<std::int32_t> weld = weldByPosition(base.positions);
+  const double tolerance = kIntersectionRelativeTolerance * 0.5 * computeBounds(base.positions).diagonal();
+  const Pairs base_pairs = selfIntersections(base.positions, base.triangles, weld, tolerance);
+  return newIntersections(key_positions, base.triangles, weld, base_pairs, tolerance);
+}
+
 IntersectionReport checkIntersections(const ViewDependentModel& model, const IntersectionCheckSettings& settings) {
   checkSamples(settings);
   CheckInput in;

@@ -104,6 +104,19 @@ TEST(IntersectionCheck, CleanModelReportsNothing) {
   EXPECT_EQ(report.worst, -1);
 }
 
+// What the studio checks after a stroke: the key mesh against the base.
+TEST(IntersectionCheck, KeyAtItsOwnView) {
+  const RawViewDependentModel raw = sheets();
+  const auto pushed = keyIntersections(raw.base, raw.keys[0].mesh.positions);
+  EXPECT_FALSE(pushed.empty());
+  for (const auto& [i, j] : pushed) {
+    EXPECT_LT(i, 200) << "a triangle of the lower sheet";
+    EXPECT_GE(j, 200) << "through one of the upper sheet";
+    EXPECT_LT(j, 400);
+  }
+  EXPECT_TRUE(keyIntersections(raw.base, raw.keys[1].mesh.positions).empty()) << "the base's own pairs are not new";
+}
+
 TEST(IntersectionCheck, RefusesBadSettings) {
   const ViewDependentModel model = ViewDependentModel::build(sheets());
   EXPECT_THROW(checkIntersections(model, settings(-1)), Error);

@@ -14,6 +14,7 @@
 #include "vdg/io/image_file.h"
 #include "vdg/studio/navigation.h"
 #include "vdg/studio/session.h"
+#include "vdg/viewdep/intersection_check.h"
 #include "viewport.h"
 
 namespace vdg::studio::app {
@@ -311,8 +312,22 @@ struct Studio::Impl {
         session->updateStroke(toImage(e.x, e.y));
         session->endStroke();
       });
+      warnIfThroughItself();
     }
     gesture = Gesture::kNone;
+  }
+
+  // After a stroke: the key at its own view is the key mesh; triangles of it passing through each
+  // other where the base's do not get a warning on the status line (docs/where-to-key.md).
+  void warnIfThroughItself() {
+    const int k = session->currentKey();
+    if (k < 0 || session->animated()) return;
+    const auto pairs = keyIntersections(session->model().base, session->positions());
+    if (pairs.empty()) return;
+    status = "warning: key '" + session->model().keys[static_cast<std::size_t>(k)].name +
+             "' passes through itself at its own view (" + std::to_string(pairs.size()) +
+             " triangle pairs the base does not have, e.g. " + std::to_string(pairs.front().first) + " and " +
+             std::to_string(pairs.front().second) + "); Ctrl+Z undoes the stroke";
   }
 
   void scroll(const Event& e) {

@@ -53,6 +53,12 @@ std::vector<std::pair<std::int32_t, std::int32_t>> newIntersections(
     std::span<const float> blended, std::span<const std::int32_t> triangles, std::span<const std::int32_t> weld,
     const std::vector<std::pair<std::int32_t, std::int32_t>>& base_pairs, double tolerance);
 
+// A key at its own view (weight 1: the blend is the key mesh): its intersecting pairs that the base
+// does not have. `base` supplies the triangles and the base positions; key_positions is #V x 3.
+// What the studio checks after a stroke.
+std::vector<std::pair<std::int32_t, std::int32_t>> keyIntersections(const TriMesh& base,
+                                                                    std::span<const float> key_positions);
+
 // Throws vdg::Error for samples outside [0, kMaxIntersectionSamples] or a frame outside the model's.
 IntersectionReport checkIntersections(const ViewDependentModel& model, const IntersectionCheckSettings& settings = {});
 IntersectionReport checkIntersections(const AnimatedViewDependentModel& model,
