@@ -483,6 +483,15 @@ struct Studio::Impl {
     ImGui::Checkbox("wireframe (W)", &style.wireframe);
     ImGui::SameLine();
     ImGui::Checkbox("sphere (I)", &style.sphere_inset);
+    if (style.sphere_inset) {
+      ImGui::SameLine();
+      ImGui::Checkbox("where to key", &style.sphere_heat);
+      if (ImGui::IsItemHovered())
+        ImGui::SetTooltip(
+            "Colour the sphere by where a new key would help (docs/where-to-key.md); cyan: the suggestion");
+      if (const auto s = style.sphere_heat && viewport ? viewport->suggestedView() : std::nullopt)
+        ImGui::Text("suggested view %.3f,%.3f,%.3f", s->x(), s->y(), s->z());
+    }
     Camera& c = session->camera;
     bool ortho = c.isOrtho();
     if (ImGui::Checkbox("orthographic", &ortho)) {
@@ -632,12 +641,12 @@ struct Studio::Impl {
     if (!viewport) viewport = std::make_unique<ViewportRenderer>(session->baseMesh(), drawing ? &*drawing : nullptr);
     updateSphere();
     const Camera& c = session->camera;
-    const bool same = drawn_revision == session->revision() && drawn_w == w && drawn_h == h &&
-                      drawn_camera.eye == c.eye && drawn_camera.target == c.target && drawn_camera.up == c.up &&
-                      drawn_camera.fov_deg == c.fov_deg && drawn_camera.ortho_height == c.ortho_height &&
-                      drawn_style.show_drawing == style.show_drawing &&
-                      drawn_style.drawing_opacity == style.drawing_opacity &&
-                      drawn_style.wireframe == style.wireframe && drawn_style.sphere_inset == style.sphere_inset;
+    const bool same =
+        drawn_revision == session->revision() && drawn_w == w && drawn_h == h && drawn_camera.eye == c.eye &&
+        drawn_camera.target == c.target && drawn_camera.up == c.up && drawn_camera.fov_deg == c.fov_deg &&
+        drawn_camera.ortho_height == c.ortho_height && drawn_style.show_drawing == style.show_drawing &&
+        drawn_style.drawing_opacity == style.drawing_opacity && drawn_style.wireframe == style.wireframe &&
+        drawn_style.sphere_inset == style.sphere_inset && drawn_style.sphere_heat == style.sphere_heat;
     if (!same) {
       // The renderer makes its own EGL context current; the texture belongs to the window's.
       const vdg::render::Image& image = viewport->render(w, h, c, session->positions(), style, session->baseDiagonal());
