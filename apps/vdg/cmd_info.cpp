@@ -400,7 +400,8 @@ void reportSphereMap(const std::string& path, const SphereMapRequest& request, i
               frame >= 0 ? (", frame " + std::to_string(frame)).c_str() : "");
   std::printf(
       "colour     need 0 (dark blue) .. 0.5 (red) .. 1 (pale yellow); white dots: keys; cyan ring: suggested\n");
-  std::printf("need       0.5 nearest-key angle / its max + 0.25 base weight + 0.25 speed / its max\n");
+  std::printf("need       %g nearest-key angle / its max + %g base weight + %g speed / its max\n", kNeedAngleWeight,
+              kNeedUncoveredWeight, kNeedSpeedWeight);
   std::printf("nearest    key angle: max %.1f deg, mean %.1f deg\n", map.max_nearest_deg, map.mean_nearest_deg);
   std::printf("speed      max %.4g model radii per degree at (%.3f, %.3f, %.3f)\n", map.max_speed,
               map.max_speed_view.x(), map.max_speed_view.y(), map.max_speed_view.z());

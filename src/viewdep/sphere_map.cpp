@@ -144,7 +144,9 @@ void finish(const SphereMapSettings& s, SphereMap& map) {
   for (std::size_t i = 0; i < cells; ++i) {
     const double a = map.max_nearest_deg > 0 ? map.nearest_key_deg[i] / map.max_nearest_deg : 0.0;
     const double v = map.max_speed > 0 ? map.speed[i] / map.max_speed : 0.0;
-    map.need[i] = static_cast<float>(0.5 * a + 0.25 * std::clamp<double>(map.uncovered[i], 0.0, 1.0) + 0.25 * v);
+    map.need[i] = static_cast<float>(kNeedAngleWeight * a +
+                                     kNeedUncoveredWeight * std::clamp<double>(map.uncovered[i], 0.0, 1.0) +
+                                     kNeedSpeedWeight * v);
     if (map.need[i] > best) {
       best = map.need[i];
       map.suggested_cell = static_cast<int>(i);

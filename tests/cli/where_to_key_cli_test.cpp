@@ -39,7 +39,7 @@ TEST(WhereToKeyCli, SphereMapOnSpot) {
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(pngSize(png), std::make_pair(180, 90 + kLegend));
   EXPECT_NE(r.out.find("suggested  view "), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("need       0.5 nearest-key angle"), std::string::npos) << "the score is stated";
+  EXPECT_NE(r.out.find("need       0.6 nearest-key angle"), std::string::npos) << "the score is stated";
 
   const auto j = runVdg("info " + kSpot + " --sphere-map '" + png + "' --size 90x45 --json");
   ASSERT_EQ(j.code, 0) << j.err;

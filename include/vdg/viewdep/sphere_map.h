@@ -14,11 +14,11 @@
 //    is largest where close keys differ (thin triangles): the popping risk;
 //  - uncovered: the base model's weight at d (section 3.3): > 0 outside the keys' hull (dummy
 //    base points, or the cosine falloff);
-//  - need = 0.5 * nearest_key_deg / max(nearest_key_deg) + 0.25 * uncovered + 0.25 * speed /
-//    max(speed), in [0, 1] (a term whose maximum is 0 adds 0). Distance from every drawing weighs
-//    most (a new key there changes most of the map); the base showing through and fast change
-//    (popping) share the rest. The suggested view is the cell of largest need (the first in row
-//    order on ties).
+//  - need = kNeedAngleWeight * nearest_key_deg / max(nearest_key_deg) + kNeedUncoveredWeight *
+//    uncovered + kNeedSpeedWeight * speed / max(speed), in [0, 1] (a term whose maximum is 0 adds
+//    0). Distance from every drawing weighs most (a new key there changes most of the map); the
+//    base showing through and fast change (popping) share the rest. The suggested view is the cell
+//    of largest need (the first in row order on ties).
 // An animated model (section 4) is measured at one integer frame: D_i is view i's pose at that
 // frame minus the base at that frame (T_v(f) o_i(f), vdg/viewdep/animated_model.h).
 //
@@ -47,6 +47,10 @@ struct SphereMapSettings {
   int frame = 0;                  // animated models: the frame, in [0, frameCount())
 };
 inline constexpr int kMaxSphereMapSide = 4096;
+// The need score's weights (they sum to 1).
+inline constexpr double kNeedAngleWeight = 0.6;
+inline constexpr double kNeedUncoveredWeight = 0.2;
+inline constexpr double kNeedSpeedWeight = 0.2;
 // A cell counts as uncovered when the base's weight there exceeds this.
 inline constexpr double kUncoveredWeight = 1e-6;
 
