@@ -170,6 +170,7 @@ std::vector<std::pair<std::int32_t, std::int32_t>> selfIntersections(std::span<c
                                                                      std::span<const std::int32_t> weld,
                                                                      double tolerance) {
   const std::size_t count = triangles.size() / 3;
+  if (count < 2) return {};
   auto vertex = [&](std::size_t f, int k) {
     const auto v = static_cast<std::size_t>(triangles[3 * f + k]);
     return Vector3d(positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]);

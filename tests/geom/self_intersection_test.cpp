@@ -49,6 +49,9 @@ TEST(TrianglesIntersect, KnownConfigurations) {
 }
 
 TEST(SelfIntersections, ClosedMeshesHaveNone) {
+  EXPECT_TRUE(selfIntersections({}, {}, {}).empty()) << "no triangles";
+  const std::vector<float> one{0, 0, 0, 1, 0, 0, 0, 1, 0};
+  EXPECT_TRUE(selfIntersections(one, std::vector<std::int32_t>{0, 1, 2}, {}).empty()) << "one triangle";
   for (const TriMesh& m : {testing::closedBox(0, 0, 0, 1, 2, 3), testing::uvSphere(16, 24), testing::torus()})
     EXPECT_TRUE(selfIntersections(m.positions, m.triangles, weldByPosition(m.positions)).empty());
 }
