@@ -4,11 +4,12 @@
 // The pair test is Moller's interval test (T. Moller, "A Fast Triangle-Triangle Intersection
 // Test", Journal of Graphics Tools 2(2), 1997): each triangle's vertices' signed distances to the
 // other's plane, then the two triangles' intervals on the planes' common line, overlapping. A
-// distance within `tolerance` of the plane counts as on it (Moller's EPSILON, here a length), and
-// a triangle that only touches the other's plane (no vertex strictly on each side: a corner or an
-// edge resting on it) and intervals that only touch (overlap <= tolerance) do not count, so a
-// sheet resting on another is not reported; coplanar pairs (every distance within tolerance) are tested in the plane (edge
-// crossings and a corner inside the other triangle, overlap beyond the tolerance).
+// distance within `tolerance` of the plane counts as on it (Moller's EPSILON, here a length). A
+// triangle that only touches the other's plane (no vertex strictly on each side: a corner or an
+// edge resting on it) does not count, nor do intervals that overlap by no more than the tolerance,
+// so a sheet resting on another is not reported. Coplanar pairs (every distance within the
+// tolerance) are tested in their plane: edges that properly cross, or a corner strictly inside
+// the other triangle.
 //
 // Pairs that share a vertex are never tested (adjacent triangles always touch). Vertices are
 // shared by position, not only by index: `weld` maps every vertex to one representative of its
