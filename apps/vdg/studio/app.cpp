@@ -49,6 +49,7 @@ const char* kShortcuts[][2] = {
     {"C", "Align: pick 2D-3D pairs (vertex, then its place on the drawing)"},
     {"P", "Preview panel (Figure 6)"},
     {"I", "view-sphere inset (click a key to jump to its camera)"},
+    {"K", "where to key next: the inset as a heat map, the suggested view in cyan"},
     {"Escape", "cancel the stroke or the pending pair"},
     {"F1", "this help"},
 };
@@ -226,7 +227,10 @@ struct Studio::Impl {
       show_preview = !show_preview;
     else if (k == "I")
       style.sphere_inset = !style.sphere_inset;
-    else if (k == "Escape") {
+    else if (k == "K") {  // where to key: the inset's heat map (it shows the inset)
+      style.sphere_heat = !style.sphere_heat;
+      style.sphere_inset = style.sphere_inset || style.sphere_heat;
+    } else if (k == "Escape") {
       if (session->stroking()) session->cancelStroke();
       pending_vertex.reset();
       gesture = Gesture::kNone;
@@ -484,8 +488,7 @@ struct Studio::Impl {
     ImGui::SameLine();
     ImGui::Checkbox("sphere (I)", &style.sphere_inset);
     if (style.sphere_inset) {
-      ImGui::SameLine();
-      ImGui::Checkbox("where to key", &style.sphere_heat);
+      ImGui::Checkbox("where to key (K)", &style.sphere_heat);
       if (ImGui::IsItemHovered())
         ImGui::SetTooltip(
             "Colour the sphere by where a new key would help (docs/where-to-key.md); cyan: the suggestion");
