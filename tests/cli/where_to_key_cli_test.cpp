@@ -110,6 +110,51 @@ TEST(WhereToKeyCli, IntersectionsOnSpot) {
   EXPECT_NE(text.out.find("checked    25 views"), std::string::npos) << text.out;
 }
 
+// Two sheets 0.3 apart (y = 0 and y = 0.3), n x n quads each, as OBJ text; `push` lowers the
+// upper sheet's middle through the lower one.
+std::string sheetsObj(bool push) {
+  constexpr int n = 8;
+  std::string obj;
+  for (int s = 0; s < 2; ++s)
+    for (int j = 0; j <= n; ++j)
+      for (int i = 0; i <= n; ++i) {
+        const double x = -1.0 + 2.0 * i / n, z = -1.0 + 2.0 * j / n;
+        const double y = s == 0 ? 0.0 : (push && x * x + z * z < 0.3 ? -0.2 : 0.3);
+        obj += "v " + std::to_string(x) + " " + std::to_string(y) + " " + std::to_string(z) + "\n";
+      }
+  for (int s = 0; s < 2; ++s)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const int a = 1 + s * (n + 1) * (n + 1) + j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
+        obj += "f " + std::to_string(a) + " " + std::to_string(c) + " " + std::to_string(b) + "\n";
+        obj += "f " + std::to_string(b) + " " + std::to_string(c) + " " + std::to_string(d) + "\n";
+      }
+  return obj;
+}
+
+// A key that pushes a sheet through another: reported at its view (named), the worst view near it;
+// the clean key's view is not reported.
+TEST(WhereToKeyCli, IntersectionsOfAPushedSheet) {
+  vdg::testing::TempDir dir;
+  vdg::testing::writeText(dir.file("base.obj"), sheetsObj(false));
+  vdg::testing::writeText(dir.file("push.obj"), sheetsObj(true));
+  vdg::testing::writeText(dir.file("m.vdg.json"), R"({"version": 2, "base": "base.obj", "keys": [
+    {"name": "push", "mesh": "push.obj", "view": [0, 0, 1]},
+    {"name": "clean", "mesh": "base.obj", "view": [0, 0, -1]}]})");
+  const auto text = runVdg("info '" + dir.file("m.vdg.json") + "' --check-intersections --samples 50");
+  ASSERT_EQ(text.code, 0) << text.err;
+  EXPECT_NE(text.out.find("base       0 intersecting pairs"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("(key 'push')"), std::string::npos) << text.out;
+  EXPECT_EQ(text.out.find("(key 'clean')"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("\nworst      view "), std::string::npos) << text.out;
+  const auto doc = nlohmann::json::parse(
+      runVdg("info '" + dir.file("m.vdg.json") + "' --check-intersections --samples 50 --json").out);
+  ASSERT_GE(doc["worst"].get<int>(), 0);
+  const auto& worst = doc["views"][doc["worst"].get<std::size_t>()];
+  EXPECT_GT(worst["view"][2].get<double>(), 0.8) << "near the pushed key's view +Z";
+  for (const auto& v : doc["views"]) EXPECT_GT(v["view"][2].get<double>(), 0.0) << v.dump();
+}
+
 // The walker at its key frames: its base already intersects itself (limbs through the body), which
 // is not reported; every reported view is at a key frame.
 TEST(WhereToKeyCli, IntersectionsOfAnAnimatedModel) {
