@@ -1,4 +1,6 @@
 // vdg info MODEL [--json] | vdg info MESH.obj [--json] | vdg info FILE.gltf|FILE.glb
+// vdg info MODEL --sphere-map OUT.png [--size WxH] [--frame F] [--json]      (where to key next)
+// vdg info MODEL --check-intersections [--samples N] [--frames A-B] [--json] (no vertex through the mesh)
 //
 // An animated model (manifest "base_animation") is described by its base animation (source,
 // frames, fps, loop, offsets) and its key views, each with its keys and their key frames. A mesh
