@@ -1,4 +1,6 @@
 // vdg info MODEL [--json] | vdg info MESH.obj [--json] | vdg info FILE.gltf|FILE.glb
+// vdg info MODEL --sphere-map OUT.png [--size WxH] [--frame F] [--json]      (where to key next)
+// vdg info MODEL --check-intersections [--samples N] [--frames A-B] [--json] (no vertex through the mesh)
 //
 // An animated model (manifest "base_animation") is described by its base animation (source,
 // frames, fps, loop, offsets) and its key views, each with its keys and their key frames. A mesh
@@ -24,8 +26,11 @@
 #include "vdg/io/gltf_export.h"
 #include "vdg/io/mesh.h"
 #include "vdg/io/model.h"
+#include "vdg/render/sphere_map_image.h"
 #include "vdg/viewdep/animated_model.h"
+#include "vdg/viewdep/intersection_check.h"
 #include "vdg/viewdep/model.h"
+#include "vdg/viewdep/sphere_map.h"
 
 namespace vdg::cli {
 namespace {
@@ -355,12 +360,221 @@ void describeAnimated(const std::string& path, const RawViewDependentModel& raw,
   for (const auto& w : warnings) std::printf("warning: %s\n", w.c_str());
 }
 
+// vdg info MODEL --sphere-map OUT.png: where to key next (vdg/viewdep/sphere_map.h), the map as an
+// image and its statistics on stdout (text, or JSON with --json).
+struct SphereMapRequest {
+  std::string output, size = "360x180";
+  int frame = -1;
+};
+
+nlohmann::ordered_json directionJson(const Eigen::Vector3d& d) {
+  return {{"view", {d.x(), d.y(), d.z()}},
+          {"longitude_deg", SphereMap::longitudeDeg(d)},
+          {"latitude_deg", SphereMap::latitudeDeg(d)}};
+}
+
+void reportSphereMap(const std::string& path, const SphereMapRequest& request, int frame, const SphereMap& map,
+                     bool json) {
+  const auto cell = static_cast<std::size_t>(map.suggested_cell);
+  const Eigen::Vector3d& s = map.suggested;
+  if (json) {
+    nlohmann::ordered_json out;
+    out["model"] = path;
+    out["sphere_map"] = request.output;
+    if (frame >= 0) out["frame"] = frame;
+    out["size"] = {map.width, map.height};
+    out["max_nearest_key_deg"] = map.max_nearest_deg;
+    out["mean_nearest_key_deg"] = map.mean_nearest_deg;
+    out["max_speed"] = map.max_speed;
+    out["max_speed_at"] = directionJson(map.max_speed_view);
+    out["uncovered_fraction"] = map.uncovered_fraction;
+    nlohmann::ordered_json suggested = directionJson(s);
+    suggested["need"] = map.need[cell];
+    suggested["nearest_key_deg"] = map.nearest_key_deg[cell];
+    suggested["speed"] = map.speed[cell];
+    suggested["base_weight"] = map.uncovered[cell];
+    out["suggested"] = suggested;
+    std::cout << out.dump(2) << "\n";
+    return;
+  }
+  std::printf("sphere map  %s: %dx%d cells (longitude x latitude, Y up, +Z at the centre) over a %d-pixel legend%s\n",
+              request.output.c_str(), map.width, map.height, render::kSphereMapLegendHeight,
+              frame >= 0 ? (", frame " + std::to_string(frame)).c_str() : "");
+  std::printf(
+      "colour     need 0 (dark blue) .. 0.5 (red) .. 1 (pale yellow); white dots: keys; cyan ring: suggested\n");
+  std::printf("need       %g nearest-key angle / its max + %g base weight + %g speed / its max\n", kNeedAngleWeight,
+              kNeedUncoveredWeight, kNeedSpeedWeight);
+  std::printf("nearest    key angle: max %.1f deg, mean %.1f deg\n", map.max_nearest_deg, map.mean_nearest_deg);
+  std::printf("speed      max %.4g model radii per degree at (%.3f, %.3f, %.3f)\n", map.max_speed,
+              map.max_speed_view.x(), map.max_speed_view.y(), map.max_speed_view.z());
+  std::printf("uncovered  %.1f%% of the sphere shows some base (weight > %g)\n", 100.0 * map.uncovered_fraction,
+              kUncoveredWeight);
+  std::printf(
+      "suggested  view %.4f,%.4f,%.4f (longitude %.1f, latitude %.1f): need %.3f, nearest key %.1f deg, "
+      "speed %.4g, base weight %.3f\n",
+      s.x(), s.y(), s.z(), SphereMap::longitudeDeg(s), SphereMap::latitudeDeg(s), map.need[cell],
+      map.nearest_key_deg[cell], map.speed[cell], map.uncovered[cell]);
+}
+
+void writeSphereMap(const std::string& path, const SphereMapRequest& request, bool json) {
+  if (!hasExtension(request.output, ".png"))
+    throw UsageError("--sphere-map: expected a .png file name, got " + quotedText(request.output));
+  const ImageSize size = parseImageSize(request.size, 'x', kMaxSphereMapSide, "--size");
+  if (isObjPath(path)) throw UsageError("--sphere-map: " + quotedText(path) + " is a mesh, not a model");
+  const RawViewDependentModel described = openModel(path, {}, InputBuild::kRawOnly).raw;
+  if (described.keys.empty()) throw Error(quotedText(path) + ": the model has no keys, so there is no map to draw");
+  const OpenedInput input = openModel(path);
+  SphereMapSettings settings;
+  settings.width = size.width;
+  settings.height = size.height;
+  SphereMap map;
+  if (input.animated) {
+    const int n = input.animated->frameCount();
+    if (request.frame >= n)
+      throw UsageError("--frame: expected a frame in 0.." + std::to_string(n - 1) + " (the model has " +
+                       std::to_string(n) + " frames), got " + std::to_string(request.frame));
+    settings.frame = std::max(0, request.frame);
+    map = computeSphereMap(*input.animated, settings);
+  } else {
+    if (request.frame >= 0)
+      throw UsageError("--frame: " + quotedText(path) + " is not animated; --frame applies to animated models only");
+    map = computeSphereMap(*input.model, settings);
+  }
+  render::writePng(request.output, render::sphereMapImage(map));
+  reportSphereMap(path, request, input.animated ? settings.frame : -1, map, json);
+}
+
+// vdg info MODEL --check-intersections: the views (and frames) where the blend passes through
+// itself and the base does not (vdg/viewdep/intersection_check.h). Exit status 0 with the report
+// whatever it finds: it is a description, like the warnings above.
+struct IntersectionRequest {
+  bool check = false;
+  int samples = 200;
+  std::string frames;
+};
+
+// The key (static) or the keys of the view (animated) that a checked view is, or "".
+std::string keyOfView(const OpenedInput& input, const IntersectingView& v) {
+  if (v.key < 0) return "";
+  const auto k = static_cast<std::size_t>(v.key);
+  return input.animated ? viewKeys(*input.animated, k) : input.model->keyName(k);
+}
+
+std::string viewLabel(const OpenedInput& input, const IntersectingView& v) {
+  if (v.key < 0) return "";
+  return input.animated ? " (the view of " + keyOfView(input, v) + ")" : " (key '" + keyOfView(input, v) + "')";
+}
+
+void printIntersections(const std::string& path, const OpenedInput& input, const IntersectionReport& report,
+                        bool json) {
+  if (json) {
+    nlohmann::ordered_json out;
+    out["model"] = path;
+    out["views_checked"] = report.views_checked;
+    out["base_pairs"] = report.base_pairs;
+    nlohmann::ordered_json views = nlohmann::ordered_json::array();
+    for (const IntersectingView& v : report.views) {
+      nlohmann::ordered_json j = {{"view", {v.view.x(), v.view.y(), v.view.z()}}, {"frame", v.frame}};
+      if (v.key >= 0) j["key"] = keyOfView(input, v);
+      j["new_pairs"] = v.new_pairs;
+      j["example"] = {v.example.first, v.example.second};
+      views.push_back(std::move(j));
+    }
+    out["views"] = views;
+    out["worst"] = report.worst;
+    std::cout << out.dump(2) << "\n";
+    return;
+  }
+  std::printf("checked    %zu views%s for triangles passing through each other (not sharing a vertex)\n",
+              report.views_checked, input.animated ? " x frames" : "");
+  std::printf("base       %zu intersecting pair%s of its own (not reported below)\n", report.base_pairs,
+              report.base_pairs == 1 ? "" : "s");
+  std::printf("new        %zu view%s where the blend intersects itself and the base does not\n", report.views.size(),
+              report.views.size() == 1 ? "" : "s");
+  constexpr std::size_t kMaxListed = 20;  // text lists this many views; --json lists every one
+  for (std::size_t i = 0; i < std::min(report.views.size(), kMaxListed); ++i) {
+    const IntersectingView& v = report.views[i];
+    std::printf("  view %.4f,%.4f,%.4f frame %d: %zu new pair%s (e.g. triangles %d and %d)%s\n", v.view.x(), v.view.y(),
+                v.view.z(), v.frame, v.new_pairs, v.new_pairs == 1 ? "" : "s", v.example.first, v.example.second,
+                viewLabel(input, v).c_str());
+  }
+  if (report.views.size() > kMaxListed)
+    std::printf("  ... and %zu more (--json lists every one)\n", report.views.size() - kMaxListed);
+  if (report.worst >= 0) {
+    const IntersectingView& w = report.views[static_cast<std::size_t>(report.worst)];
+    std::printf("worst      view %.4f,%.4f,%.4f frame %d: %zu new pairs%s\n", w.view.x(), w.view.y(), w.view.z(),
+                w.frame, w.new_pairs, viewLabel(input, w).c_str());
+  }
+}
+
+void checkModelIntersections(const std::string& path, const IntersectionRequest& request, bool json) {
+  if (isObjPath(path)) throw UsageError("--check-intersections: " + quotedText(path) + " is a mesh, not a model");
+  const RawViewDependentModel described = openModel(path, {}, InputBuild::kRawOnly).raw;
+  if (described.keys.empty()) throw Error(quotedText(path) + ": the model has no keys, so there is nothing to check");
+  const OpenedInput input = openModel(path);
+  IntersectionCheckSettings settings;
+  settings.samples = request.samples;
+  IntersectionReport report;
+  if (input.animated) {
+    const AnimatedViewDependentModel& model = *input.animated;
+    const int n = model.frameCount();
+    if (!request.frames.empty()) {
+      const FrameRange range = parseFrameRange(request.frames, "--frames");
+      const int last = range.last < range.first ? n - 1 : range.last;
+      if (range.first < 0 || last >= n)
+        throw UsageError("--frames: expected frames in 0.." + std::to_string(n - 1) + ", got " +
+                         quotedText(request.frames));
+      for (int f = range.first; f <= last; ++f) settings.frames.push_back(f);
+    } else {  // the frames that have keys
+      for (std::size_t v = 0; v < model.viewCount(); ++v)
+        for (int f : model.keyFrames(v)) settings.frames.push_back(f);
+      std::sort(settings.frames.begin(), settings.frames.end());
+      settings.frames.erase(std::unique(settings.frames.begin(), settings.frames.end()), settings.frames.end());
+    }
+    report = checkIntersections(model, settings);
+  } else {
+    if (!request.frames.empty())
+      throw UsageError("--frames: " + quotedText(path) + " is not animated; --frames applies to animated models only");
+    report = checkIntersections(*input.model, settings);
+  }
+  printIntersections(path, input, report, json);
+}
+
+// --sphere-map and --check-intersections with the options that refine them.
+void addWhereToKeyOptions(CLI::App& sub, SphereMapRequest& map, IntersectionRequest& check) {
+  auto* map_option = sub.add_option("--sphere-map", map.output,
+                                    "Write where to key next as an equirectangular PNG (need = nearest-key angle, "
+                                    "shape speed and uncovered base; keys and the suggested view marked) and print "
+                                    "the suggested view and statistics (docs/where-to-key.md)");
+  sub.add_option("--size", map.size, "Cells of the --sphere-map, WxH (default 360x180)")
+      ->check(imageSize('x', kMaxSphereMapSide))
+      ->needs(map_option);
+  sub.add_option("--frame", map.frame, "Frame of an animated model for --sphere-map (default 0)")
+      ->check(wholeNumber(0, static_cast<long>(kMaxBaseFrames) - 1))
+      ->needs(map_option);
+  auto* check_option = sub.add_flag(
+      "--check-intersections", check.check,
+      "Report the views (key views and --samples directions over the sphere; frames of an animated model) where "
+      "the blended mesh passes through itself and the base does not, and the worst one; exit status 0 with the "
+      "report (docs/where-to-key.md)");
+  sub.add_option("--samples", check.samples,
+                 "Sphere directions for --check-intersections besides the key views (default 200)")
+      ->check(wholeNumber(0, kMaxIntersectionSamples))
+      ->needs(check_option);
+  sub.add_option("--frames", check.frames,
+                 "Frames A-B (or N) of an animated model for --check-intersections (default: the frames with keys)")
+      ->needs(check_option);
+  check_option->excludes(map_option);
+}
+
 }  // namespace
 
 void addInfoCommand(CLI::App& app) {
   struct Options {
     std::string model;
     bool json = false;
+    SphereMapRequest sphere_map;
+    IntersectionRequest intersections;
   };
   auto opt = std::make_shared<Options>();
   CLI::App* sub =
@@ -372,7 +586,16 @@ void addInfoCommand(CLI::App& app) {
                   "Model manifest (*.vdg.json), a mesh (*.obj), or a glTF 2.0 file (*.gltf, *.glb)")
       ->required();
   sub->add_flag("--json", opt->json, "Print one JSON object instead of text");
+  addWhereToKeyOptions(*sub, opt->sphere_map, opt->intersections);
   sub->callback([opt] {
+    if (opt->intersections.check) {
+      checkModelIntersections(opt->model, opt->intersections, opt->json);
+      return;
+    }
+    if (!opt->sphere_map.output.empty()) {
+      writeSphereMap(opt->model, opt->sphere_map, opt->json);
+      return;
+    }
     if (isObjPath(opt->model)) {
       describeMesh(opt->model, opt->json);
       return;

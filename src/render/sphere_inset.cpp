@@ -2,6 +2,9 @@
 // viewing sphere, triangulated by their convex hull; the view falls in one triangle).
 #include "vdg/render/sphere_inset.h"
 
+#include "vdg/render/sphere_map_image.h"
+#include "vdg/viewdep/intersection_check.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -31,6 +34,7 @@ constexpr Rgb kPanelColor{1.0f, 1.0f, 1.0f};
 constexpr Rgb kFrameColor{0.7f, 0.7f, 0.7f};
 constexpr Rgb kHullColor{0.92f, 0.92f, 0.92f};
 constexpr Rgb kActiveColor{0.35f, 0.8f, 0.35f};
+constexpr Rgb kSuggestedColor{0.0f, 0.9f, 1.0f};  // the heat map's suggested view (sphere_map_image.h's ring)
 
 void push(std::vector<float>& v, const Eigen::Vector3d& p) {
   v.push_back(static_cast<float>(p.x()));
@@ -92,6 +96,17 @@ SphereInset::SphereInset(const ViewSphere& sphere)
   view_dot_.reserve(3);
 }
 
+void SphereInset::setHeat(const SphereMap* map) {
+  for (auto& bin : heat_dots_) bin.clear();
+  heat_suggested_.clear();
+  if (map == nullptr || map->need.empty()) return;
+  for (const Eigen::Vector3d& d : fibonacciDirections(kHeatSamples)) {
+    const double need = map->need[static_cast<std::size_t>(map->cellOf(d))];
+    push(heat_dots_[static_cast<std::size_t>(std::clamp(static_cast<int>(need * kHeatBins), 0, kHeatBins - 1))], d);
+  }
+  push(heat_suggested_, map->suggested);
+}
+
 Viewport SphereInset::panel(const Viewport& viewport) {
   return {viewport.x + 1, viewport.y + 1, viewport.width - 2, viewport.height - 2};
 }
@@ -131,6 +146,12 @@ bool SphereInset::draw(Renderer& r, const Viewport& viewport, const Eigen::Vecto
   MeshStyle active_style = hull_style;
   active_style.color = kActiveColor;
   ok = r.drawTriangles(active_tri_, v, active_style) && ok;
+  for (int b = 0; b < kHeatBins; ++b) {
+    const auto c = heatColour((b + 0.5) / kHeatBins);
+    ok = r.drawDots(heat_dots_[static_cast<std::size_t>(b)], v, unit * 3.5f,
+                    {c[0] / 255.0f, c[1] / 255.0f, c[2] / 255.0f}, true, 3.0f) &&
+         ok;
+  }
   ok = r.drawLines(wire_, v, unit * 1.2f, kWireColor, true, 2.0f) && ok;
   ok = r.drawDots(key_dots_, v, unit * 6.0f, kKeyColor, true, 4.0f) && ok;
   ok = r.drawDots(dummy_dots_, v, unit * 5.0f, kDummyColor, true, 4.0f) && ok;
@@ -142,6 +163,7 @@ bool SphereInset::draw(Renderer& r, const Viewport& viewport, const Eigen::Vecto
       if (w.key[i] >= 0 && w.weight[i] > 0.0f) push(active_dots_, points_[w.key[i]]);
   }
   ok = r.drawDots(active_dots_, v, unit * 8.0f, kActiveKeyColor, true, 6.0f) && ok;
+  ok = r.drawDots(heat_suggested_, v, unit * 9.0f, kSuggestedColor, true, 7.0f) && ok;
   view_ray_.clear();
   view_dot_.clear();
   push(view_ray_, Eigen::Vector3d::Zero());

@@ -15,6 +15,7 @@
 #include "vdg/io/image_file.h"
 #include "vdg/studio/navigation.h"
 #include "vdg/studio/session.h"
+#include "vdg/viewdep/intersection_check.h"
 #include "viewport.h"
 
 namespace vdg::studio::app {
@@ -52,6 +53,7 @@ const char* kShortcuts[][2] = {
     {"Left / Right", "animated model: previous / next frame (the base is posed there)"},
     {"[ / ]", "animated model: previous / next frame with keys"},
     {"L / Enter", "Deform: feature lines (drag the model's line, then the drawing's) / apply them"},
+    {"K", "where to key next: the inset as a heat map, the suggested view in cyan"},
     {"Escape", "cancel the stroke, the pending pair or the pending feature line"},
     {"F1", "this help"},
 };
@@ -273,7 +275,12 @@ struct Studio::Impl {
       lines_tool = !lines_tool;
     else if (k == "Enter" && lines_tool && mode == Mode::kDeform)
       applyLines();
-    else if (k == "Escape") {
+    else if (k == "K" && sphereDisabled())
+      status = sphereDisabled();
+    else if (k == "K") {  // where to key: the inset's heat map (it shows the inset)
+      style.sphere_heat = !style.sphere_heat;
+      style.sphere_inset = style.sphere_inset || style.sphere_heat;
+    } else if (k == "Escape") {
       if (session->stroking()) session->cancelStroke();
       pending_vertex.reset();
       line_from.reset();
@@ -366,8 +373,26 @@ struct Studio::Impl {
         session->updateStroke(toImage(e.x, e.y));
         session->endStroke();
       });
+      warnIfThroughItself();
     }
     gesture = Gesture::kNone;
+  }
+
+  // After a stroke: the key at its own view (and, animated, its frame) is the key mesh; triangles of
+  // it passing through each other where the base's (posed at that frame) do not get a warning on the
+  // status line (docs/where-to-key.md).
+  void warnIfThroughItself() {
+    const int k = session->currentKey();
+    if (k < 0) return;
+    TriMesh posed = session->baseMesh();
+    const std::span<const float> base = session->basePositions();
+    posed.positions.assign(base.begin(), base.end());
+    const auto pairs = keyIntersections(posed, session->positions());
+    if (pairs.empty()) return;
+    status = "warning: key '" + session->model().keys[static_cast<std::size_t>(k)].name +
+             "' passes through itself at its own view (" + std::to_string(pairs.size()) +
+             " triangle pairs the base does not have, e.g. " + std::to_string(pairs.front().first) + " and " +
+             std::to_string(pairs.front().second) + "); Ctrl+Z undoes the stroke";
   }
 
   void scroll(const Event& e) {
@@ -557,6 +582,14 @@ struct Studio::Impl {
     beginDisabledFor(sphereDisabled());
     ImGui::Checkbox("sphere (I)", &style.sphere_inset);
     endDisabledFor(sphereDisabled());
+    if (style.sphere_inset && !sphereDisabled()) {
+      ImGui::Checkbox("where to key (K)", &style.sphere_heat);
+      if (ImGui::IsItemHovered())
+        ImGui::SetTooltip(
+            "Colour the sphere by where a new key would help (docs/where-to-key.md); cyan: the suggestion");
+      if (const auto s = style.sphere_heat && viewport ? viewport->suggestedView() : std::nullopt)
+        ImGui::Text("suggested view %.3f,%.3f,%.3f", s->x(), s->y(), s->z());
+    }
     Camera& c = session->camera;
     bool ortho = c.isOrtho();
     if (ImGui::Checkbox("orthographic", &ortho)) {
@@ -715,12 +748,12 @@ struct Studio::Impl {
     if (!viewport) viewport = std::make_unique<ViewportRenderer>(session->baseMesh(), drawing ? &*drawing : nullptr);
     updateSphere();
     const Camera& c = session->camera;
-    const bool same = drawn_revision == session->revision() && drawn_w == w && drawn_h == h &&
-                      drawn_camera.eye == c.eye && drawn_camera.target == c.target && drawn_camera.up == c.up &&
-                      drawn_camera.fov_deg == c.fov_deg && drawn_camera.ortho_height == c.ortho_height &&
-                      drawn_style.show_drawing == style.show_drawing &&
-                      drawn_style.drawing_opacity == style.drawing_opacity &&
-                      drawn_style.wireframe == style.wireframe && drawn_style.sphere_inset == style.sphere_inset;
+    const bool same =
+        drawn_revision == session->revision() && drawn_w == w && drawn_h == h && drawn_camera.eye == c.eye &&
+        drawn_camera.target == c.target && drawn_camera.up == c.up && drawn_camera.fov_deg == c.fov_deg &&
+        drawn_camera.ortho_height == c.ortho_height && drawn_style.show_drawing == style.show_drawing &&
+        drawn_style.drawing_opacity == style.drawing_opacity && drawn_style.wireframe == style.wireframe &&
+        drawn_style.sphere_inset == style.sphere_inset && drawn_style.sphere_heat == style.sphere_heat;
     if (!same) {
       // The renderer makes its own EGL context current; the texture belongs to the window's.
       const vdg::render::Image& image = viewport->render(w, h, c, session->positions(), style, session->baseDiagonal());

@@ -8,6 +8,7 @@
 #include "vdg/geom/error.h"
 #include "vdg/geom/surface.h"
 #include "vdg/render/sphere_inset.h"
+#include "vdg/viewdep/sphere_map.h"
 
 namespace vdg::studio::app {
 
@@ -33,6 +34,7 @@ struct ViewportRenderer::Impl {
   std::shared_ptr<const ViewDependentModel> sphere_model;
   std::unique_ptr<vdg::render::SphereInset> inset;
   Viewport inset_viewport;
+  std::optional<vdg::SphereMap> heat;  // computed when the heat map is first shown for this model
 };
 
 ViewportRenderer::ViewportRenderer(const TriMesh& base, const TextureImage* drawing) : impl_(std::make_unique<Impl>()) {
@@ -59,10 +61,16 @@ ViewportRenderer::~ViewportRenderer() = default;
 void ViewportRenderer::setSphereModel(std::shared_ptr<const ViewDependentModel> model) {
   impl_->sphere_model = std::move(model);
   impl_->inset.reset();
+  impl_->heat.reset();
   if (impl_->sphere_model) impl_->inset = std::make_unique<vdg::render::SphereInset>(impl_->sphere_model->sphere());
 }
 
 bool ViewportRenderer::insetAvailable() const { return impl_->inset != nullptr; }
+
+std::optional<Eigen::Vector3d> ViewportRenderer::suggestedView() const {
+  if (!impl_->heat) return std::nullopt;
+  return impl_->heat->suggested;
+}
 
 Viewport ViewportRenderer::insetViewport() const { return impl_->inset_viewport; }
 
@@ -113,6 +121,10 @@ const Image& ViewportRenderer::render(int width, int height, const Camera& camer
   if (style.sphere_inset && m.inset) {
     const int side = std::max(64, std::min(width, height) / 4);
     m.inset_viewport = {width - side, height - side, side, side};
+    // The heat map: a coarse map (a fraction of a second for Spot), once per model of the keys.
+    constexpr int kHeatWidth = 180, kHeatHeight = 90;
+    if (style.sphere_heat && !m.heat) m.heat = vdg::computeSphereMap(*m.sphere_model, {kHeatWidth, kHeatHeight});
+    if (style.sphere_heat != m.inset->hasHeat()) m.inset->setHeat(style.sphere_heat ? &*m.heat : nullptr);
     const Eigen::Vector3d dir = (camera.eye - m.sphere_model->center()).normalized();
     ViewWeights w;
     if (m.sphere_model->weights(dir, 0.0, w)) (void)m.inset->draw(r, m.inset_viewport, dir, w);

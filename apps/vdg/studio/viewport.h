@@ -27,6 +27,7 @@ struct ViewportStyle {
   float drawing_opacity = 0.5f;  // [0, 1]
   bool wireframe = false;
   bool sphere_inset = false;
+  bool sphere_heat = false;  // the inset shows where to key next (vdg/viewdep/sphere_map.h)
   vdg::render::Rgb paper{0.97f, 0.97f, 0.95f};
 };
 
@@ -44,6 +45,8 @@ class ViewportRenderer {
   // The key whose dot is at canvas pixel `pixel` in the inset, or -1.
   int insetKeyAt(const Eigen::Vector2d& pixel) const;
   bool insetAvailable() const;
+  // The suggested next view of the inset's heat map (after a render with style.sphere_heat), or none.
+  std::optional<Eigen::Vector3d> suggestedView() const;
 
   // Renders positions (#V x 3) seen by `camera` into a width x height canvas (recreated when the
   // size changes) and returns it. Throws vdg::Error when the renderer cannot be made.

@@ -26,6 +26,7 @@
 #include "vdg/geom/camera.h"
 #include "vdg/render/renderer.h"
 #include "vdg/render/shading.h"
+#include "vdg/viewdep/sphere_map.h"
 #include "vdg/viewdep/view_sphere.h"
 
 namespace vdg::render {
@@ -66,6 +67,15 @@ class SphereInset {
   // Pure, no allocation, no throw. Ties go to the lower index.
   int keyAt(const Viewport& viewport, const Eigen::Vector2d& pixel, double radius_px = 10.0) const;
 
+  // The "where to key next" heat map on the sphere (vdg/viewdep/sphere_map.h; vdg studio's toggle):
+  // kHeatSamples dots spread evenly over the sphere, each coloured by the need of its map cell
+  // (heatColour of sphere_map_image.h, in kHeatBins steps), and the suggested view as a cyan dot,
+  // drawn over the hull by every draw() until setHeat(nullptr). Not per-frame: it builds buffers.
+  static constexpr int kHeatSamples = 2500;
+  static constexpr int kHeatBins = 8;
+  void setHeat(const SphereMap* map);
+  bool hasHeat() const { return !heat_suggested_.empty(); }
+
   // The panel of `viewport` (without its frame) in which the diagram is drawn and projected.
   static Viewport panel(const Viewport& viewport);
 
@@ -77,6 +87,8 @@ class SphereInset {
   // Static parts, built once; per-frame parts in reused buffers (#N x 3 floats).
   std::vector<float> wire_, guide_, key_dots_, dummy_dots_;
   std::vector<float> hull_rest_, active_tri_, active_dots_, view_ray_, view_dot_;
+  std::array<std::vector<float>, kHeatBins> heat_dots_;  // per need bin, #N x 3
+  std::vector<float> heat_suggested_;
 };
 
 }  // namespace vdg::render
