@@ -1,0 +1,244 @@
+// Babylon.js plays the KHR_interactivity graph of `vdg export --interactivity` (docs/interactivity.md)
+// with no vdg code: a page with Babylon.js only (page/, pinned in web/package.json) loads each export,
+// the driver places the camera at given eyes (RANDOM_VIEWS seeded random ones and every key view),
+// renders one frame each, and reads what Babylon shows:
+//   - the morph target influences equal `vdg weights --views FILE --json` within WEIGHT_TOLERANCE
+//     (target i is key extras.targetNames[i]; a key with no entry weighs 0);
+//   - the morphed positions (base + sum influence * (target - base), from the mesh data Babylon
+//     holds) equal `vdg eval` within POSITION_TOLERANCE (exported vertex i is model vertex
+//     _VDG_VERTEX[i], read here by the driver, never by the page);
+//   - the page logs no error (Babylon rejects a graph it cannot play with a console error);
+//   - the same export without --interactivity keeps every influence at 0 while the camera moves:
+//     the graph, not the page, moves the shape;
+//   - the page's source holds no vdg code (no "vdg", no glTF extras, only @babylonjs imports).
+// Models: every shipped static example (Spot, the figure 13 head, the building, the tutorial's
+// Suzanne) and degenerate key sets written here from Spot's keys (1 key, 2 keys, 3 keys), in
+// uncovered mode "base" and, where the export plays them, the cosine modes.
+// Writes spot_a.png and spot_b.png (two views of Spot, its keys' distortion visible) in WORK_DIR.
+// Usage: node babylon_interactivity.mjs VDG SOURCE_DIR WEB_DIR WORK_DIR. Exit 77 (skip) when
+// Chromium, playwright-core or Babylon.js is missing, unless VDG_REQUIRE_WEB=1.
+import { spawnSync } from 'node:child_process';
+import fs from 'node:fs';
+import path from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { loadChromium, openPage, serve } from './harness.mjs';
+
+const [vdg, sourceDir, webDir, workDir] = process.argv.slice(2);
+const here = path.dirname(fileURLToPath(import.meta.url));
+const WEIGHT_TOLERANCE = 1e-5; // Babylon's graph runs in float32 matrices and double scalars against vdg's doubles
+const POSITION_TOLERANCE = 1e-4; // model units; float32 morph targets against vdg eval's doubles
+const RANDOM_VIEWS = 20;
+const EYE_DISTANCE = 3; // eyes at this many bounding radii from the centre
+
+let failures = 0;
+function check(ok, what) {
+  console.log(`${ok ? 'ok  ' : 'FAIL'} ${what}`);
+  if (!ok) failures += 1;
+}
+
+/** Runs vdg; returns {status, stdout, stderr}. */
+function vdgRun(...args) {
+  return spawnSync(vdg, args, { encoding: 'utf8', maxBuffer: 64 << 20 });
+}
+/** Runs vdg; throws with its stderr when it fails. */
+function runVdg(...args) {
+  const r = vdgRun(...args);
+  if (r.status !== 0) throw new Error(`vdg ${args.join(' ')}: exit ${r.status}: ${r.stderr}`);
+  return r.stdout;
+}
+
+/** The JSON and BIN chunks of a .glb. */
+function readGlb(file) {
+  const b = fs.readFileSync(file);
+  const jsonLength = b.readUInt32LE(12);
+  const json = JSON.parse(b.subarray(20, 20 + jsonLength).toString('utf8'));
+  const binStart = 20 + jsonLength;
+  const bin = binStart < b.length ? b.subarray(binStart + 8, binStart + 8 + b.readUInt32LE(binStart)) : null;
+  return { json, bin };
+}
+
+/** The scalars of an accessor (SCALAR, any component type), as numbers. */
+function accessorScalars({ json, bin }, index) {
+  const a = json.accessors[index];
+  const view = json.bufferViews[a.bufferView];
+  const Type = { 5121: Uint8Array, 5123: Uint16Array, 5125: Uint32Array, 5126: Float32Array }[a.componentType];
+  const offset = bin.byteOffset + (view.byteOffset || 0) + (a.byteOffset || 0);
+  return Array.from(new Type(bin.buffer.slice(offset, offset + a.count * Type.BYTES_PER_ELEMENT)));
+}
+
+/** Vertex positions of an OBJ file. */
+function objVertices(file) {
+  const out = [];
+  for (const line of fs.readFileSync(file, 'utf8').split('\n'))
+    if (line.startsWith('v ')) out.push(line.trim().split(/\s+/).slice(1, 4).map(Number));
+  return out;
+}
+
+/** A seeded random number generator (mulberry32), so every run checks the same views. */
+function random(seed) {
+  let s = seed >>> 0;
+  return () => {
+    s = (s + 0x6d2b79f5) >>> 0;
+    let t = Math.imul(s ^ (s >>> 15), 1 | s);
+    t = (t + Math.imul(t ^ (t >>> 7), 61 | t)) ^ t;
+    return ((t ^ (t >>> 14)) >>> 0) / 4294967296;
+  };
+}
+
+/** RANDOM_VIEWS random eyes and one per key view, at EYE_DISTANCE radii from the centre. */
+function eyes(json, seed) {
+  const vdgExtras = json.meshes[0].extras.vdg;
+  const position = json.accessors[json.meshes[0].primitives[0].attributes.POSITION];
+  const radius = Math.hypot(...position.max.map((m, i) => m - position.min[i])) / 2;
+  const c = vdgExtras.center;
+  const rnd = random(seed);
+  const dirs = [];
+  for (let i = 0; i < RANDOM_VIEWS; ++i) {
+    const z = 2 * rnd() - 1, phi = 2 * Math.PI * rnd(), r = Math.sqrt(1 - z * z);
+    dirs.push([r * Math.cos(phi), z, r * Math.sin(phi)]);
+  }
+  for (const k of vdgExtras.keys) dirs.push(k.view);
+  return dirs.map((d) => {
+    const n = Math.hypot(...d);
+    return d.map((x, i) => c[i] + (EYE_DISTANCE * radius * x) / n);
+  });
+}
+
+/** Checks that the page holds no vdg code: only Babylon.js imports, no "vdg", no glTF extras. */
+function checkPageSource() {
+  const dir = path.join(here, 'page');
+  for (const name of fs.readdirSync(dir)) {
+    const text = fs.readFileSync(path.join(dir, name), 'utf8');
+    check(!/vdg/i.test(text), `page/${name} names no vdg code (no "vdg" anywhere)`);
+    check(!/extras|view_targets|inverses|targetNames\b/.test(text), `page/${name} reads no glTF extras`);
+    const imports = [...text.matchAll(/(?:import\s[^'"]*|import\s*\()\s*['"]([^'"]+)['"]/g)].map((m) => m[1]);
+    check(imports.every((s) => s.startsWith('@babylonjs/')), `page/${name} imports only @babylonjs (${imports.length} imports)`);
+  }
+}
+
+/** Loads glb in the page and returns, per eye, the influences and the morphed positions. */
+async function play(page, glbUrl, eyeList, center) {
+  await page.evaluate((u) => window.babylonPage.load(u), glbUrl);
+  return page.evaluate(([list, c]) => list.map((e) => {
+    window.babylonPage.view(e, c);
+    return { influences: window.babylonPage.influences(), positions: window.babylonPage.positions() };
+  }), [eyeList, center]);
+}
+
+/** One model: export with the graph, play it at every eye, compare with vdg weights and vdg eval. */
+async function checkModel(page, url, name, manifest, seed) {
+  const glb = path.join(workDir, `${name}.glb`);
+  const t0 = Date.now();
+  const exported = vdgRun('export', manifest, '--interactivity', '-o', glb, '-q');
+  if (exported.status !== 0) {
+    check(false, `${name}: vdg export --interactivity: ${exported.stderr.trim()}`);
+    return;
+  }
+  const data = readGlb(glb);
+  const { json } = data;
+  const ext = json.extensions && json.extensions.KHR_interactivity;
+  check(!!ext && (json.extensionsUsed || []).includes('KHR_interactivity') && !(json.extensionsRequired || []).includes('KHR_interactivity'),
+    `${name}: the export holds a KHR_interactivity graph, in extensionsUsed, not extensionsRequired`);
+  if (!ext) return;
+  const nodeCount = ext.graphs.reduce((n, g) => n + g.nodes.length, 0);
+  const names = json.meshes[0].extras.targetNames;
+  const center = json.meshes[0].extras.vdg.center;
+  const list = eyes(json, seed);
+  const viewsFile = path.join(workDir, `${name}.views.json`);
+  fs.writeFileSync(viewsFile, JSON.stringify(list.map((eye) => ({ eye }))));
+  const want = JSON.parse(runVdg('weights', manifest, '--views', viewsFile, '--json'));
+  const got = await play(page, `/work/${name}.glb`, list, center);
+  const vertexOf = accessorScalars(data, json.meshes[0].primitives[0].attributes._VDG_VERTEX);
+  let worstWeight = 0, worstPosition = 0, worstAt = -1, moved = 0;
+  for (const [v, eye] of list.entries()) {
+    const { influences, positions } = got[v];
+    if (influences.length !== names.length) worstWeight = Infinity;
+    for (const [i, key] of names.entries()) {
+      const err = Math.abs((influences[i] ?? NaN) - (want[v].keys[key] ?? 0));
+      if (!(err <= worstWeight)) { worstWeight = Number.isNaN(err) ? Infinity : err; worstAt = v; }
+    }
+    if (v > 0 && influences.some((w, i) => Math.abs(w - got[0].influences[i]) > WEIGHT_TOLERANCE)) moved += 1;
+    const obj = path.join(workDir, `${name}_eval.obj`);
+    runVdg('eval', manifest, '--eye', eye.join(','), '-o', obj, '-q');
+    const model = objVertices(obj);
+    if (positions.length !== 3 * vertexOf.length) worstPosition = Infinity;
+    for (let i = 0; i < vertexOf.length && worstPosition < Infinity; ++i)
+      for (let c = 0; c < 3; ++c) worstPosition = Math.max(worstPosition, Math.abs(positions[3 * i + c] - model[vertexOf[i]][c]));
+  }
+  check(worstWeight <= WEIGHT_TOLERANCE, `${name}: Babylon's influences equal vdg weights at ${list.length} views ` +
+    `(max error ${worstWeight.toExponential(2)} <= ${WEIGHT_TOLERANCE}${worstAt >= 0 ? `, worst at eye ${list[worstAt].map((x) => x.toFixed(3))}` : ''})`);
+  check(worstPosition <= POSITION_TOLERANCE, `${name}: Babylon's morphed positions equal vdg eval ` +
+    `(max error ${worstPosition.toExponential(2)} <= ${POSITION_TOLERANCE})`);
+  check(names.length < 2 || moved > 0, `${name}: moving the camera changes the influences (${moved} of ${list.length - 1} views differ from the first)`);
+  console.log(`     ${name}: ${names.length} targets, graph of ${nodeCount} nodes, ${((Date.now() - t0) / 1000).toFixed(1)} s`);
+}
+
+/** Without --interactivity the influences stay 0 wherever the camera goes. */
+async function checkControl(page, manifest) {
+  const glb = path.join(workDir, 'control.glb');
+  runVdg('export', manifest, '-o', glb, '-q');
+  const { json } = readGlb(glb);
+  const got = await play(page, '/work/control.glb', eyes(json, 7).slice(0, 5), json.meshes[0].extras.vdg.center);
+  const most = Math.max(...got.flatMap((g) => g.influences.map(Math.abs)));
+  check(most === 0, `control: a plain export (no graph) keeps every influence 0 while the camera moves (max ${most})`);
+}
+
+/** Manifests with fewer keys (Spot's meshes), written into the work folder. */
+function degenerateManifests() {
+  const spotDir = path.join(sourceDir, 'examples/spot');
+  const spot = JSON.parse(fs.readFileSync(path.join(spotDir, 'spot.vdg.json'), 'utf8'));
+  const abs = (k) => ({ ...k, mesh: path.join(spotDir, k.mesh) });
+  const out = {};
+  for (const [name, keys] of [['one_key', ['front']], ['two_keys', ['front', 'right']], ['three_keys', ['front', 'right', 'top']]]) {
+    const file = path.join(workDir, `${name}.vdg.json`);
+    fs.writeFileSync(file, JSON.stringify({ ...spot, base: path.join(spotDir, spot.base), keys: spot.keys.filter((k) => keys.includes(k.name)).map(abs) }, null, 1));
+    out[name] = file;
+  }
+  return out;
+}
+
+/** Two screenshots of Spot (its keys' distortion) into the work folder. */
+async function screenshots(page) {
+  const manifest = path.join(sourceDir, 'examples/spot/spot.vdg.json');
+  if (!fs.existsSync(path.join(workDir, 'spot.glb'))) return; // its export failed: checked above
+  const { json } = readGlb(path.join(workDir, 'spot.glb'));
+  const c = json.meshes[0].extras.vdg.center;
+  await page.evaluate((u) => window.babylonPage.load(u, { background: [0.93, 0.93, 0.95] }), '/work/spot.glb');
+  for (const [label, dir] of [['a', [-1.0, 0.35, -0.55]], ['b', [1.0, 0.3, 0.75]]]) {
+    const n = Math.hypot(...dir);
+    const eye = dir.map((x, i) => c[i] + (2.6 * x) / n);
+    await page.evaluate(([e, t]) => window.babylonPage.view(e, t, 30, 2), [eye, c]);
+    fs.writeFileSync(path.join(workDir, `spot_${label}.png`), await page.locator('#main').screenshot());
+    const w = JSON.parse(runVdg('weights', manifest, '--eye', eye.join(','), '--json'));
+    console.log(`     spot_${label}.png: eye ${eye.map((x) => x.toFixed(2))}, vdg weights ${JSON.stringify(w)}`);
+  }
+}
+
+fs.rmSync(workDir, { recursive: true, force: true });
+fs.mkdirSync(workDir, { recursive: true });
+checkPageSource();
+const browser = await loadChromium(webDir);
+const server = await serve({ modules: path.join(webDir, 'node_modules'), page: path.join(here, 'page'), work: workDir });
+try {
+  const { page, errors } = await openPage(browser, server.url, 320);
+  const models = {
+    spot: path.join(sourceDir, 'examples/spot/spot.vdg.json'),
+    head: path.join(sourceDir, 'examples/figure13/head/head.vdg.json'),
+    building: path.join(sourceDir, 'examples/building/building.vdg.json'),
+    suzanne: path.join(sourceDir, 'examples/tutorial/suzanne.vdg.json'),
+    ...degenerateManifests(),
+  };
+  let seed = 1;
+  for (const [name, manifest] of Object.entries(models)) await checkModel(page, server.url, name, manifest, seed++);
+  await checkControl(page, models.spot);
+  await screenshots(page);
+  check(errors.length === 0, `the page logged no error${errors.length ? `: ${errors.slice(0, 3).join(' | ')}` : ''}`);
+} finally {
+  await browser.close();
+  server.close();
+}
+if (failures) {
+  console.log(`${failures} check(s) failed`);
+  process.exit(1);
+}
+console.log('all Babylon.js checks passed');
