@@ -11,9 +11,9 @@
 //   - the same export without --interactivity keeps every influence at 0 while the camera moves:
 //     the graph, not the page, moves the shape;
 //   - the page's source holds no vdg code (no "vdg", no glTF extras, only @babylonjs imports).
-// Models: every shipped static example (Spot, the figure 13 head, the building, the tutorial's
-// Suzanne) and degenerate key sets written here from Spot's keys (1 key, 2 keys, 3 keys), in
-// uncovered mode "base" and, where the export plays them, the cosine modes.
+// Models: every shipped static example with keys (Spot, the figure 13 head, the building) and
+// degenerate key sets written here: Spot with 1, 2 and 3 of its keys, and the tutorial's Suzanne
+// (shipped with no keys) with the key docs/tutorial.md adds by `vdg deform`, and with two.
 // Writes spot_a.png and spot_b.png (two views of Spot, its keys' distortion visible) in WORK_DIR.
 // Usage: node babylon_interactivity.mjs VDG SOURCE_DIR WEB_DIR WORK_DIR. Exit 77 (skip) when
 // Chromium, playwright-core or Babylon.js is missing, unless VDG_REQUIRE_WEB=1.
@@ -29,6 +29,7 @@ const WEIGHT_TOLERANCE = 1e-5; // Babylon's graph runs in float32 matrices and d
 const POSITION_TOLERANCE = 1e-4; // model units; float32 morph targets against vdg eval's doubles
 const RANDOM_VIEWS = 20;
 const EYE_DISTANCE = 3; // eyes at this many bounding radii from the centre
+const UNCOVERED_MODES = ['base']; // the degenerate sets' uncovered modes the graph plays
 
 let failures = 0;
 function check(ok, what) {
@@ -57,13 +58,16 @@ function readGlb(file) {
   return { json, bin };
 }
 
-/** The scalars of an accessor (SCALAR, any component type), as numbers. */
+/** The scalars of a dense SCALAR accessor (any component type, with or without byteStride), as numbers. */
 function accessorScalars({ json, bin }, index) {
   const a = json.accessors[index];
   const view = json.bufferViews[a.bufferView];
-  const Type = { 5121: Uint8Array, 5123: Uint16Array, 5125: Uint32Array, 5126: Float32Array }[a.componentType];
-  const offset = bin.byteOffset + (view.byteOffset || 0) + (a.byteOffset || 0);
-  return Array.from(new Type(bin.buffer.slice(offset, offset + a.count * Type.BYTES_PER_ELEMENT)));
+  const read = { 5121: 'getUint8', 5123: 'getUint16', 5125: 'getUint32', 5126: 'getFloat32' }[a.componentType];
+  const size = { 5121: 1, 5123: 2, 5125: 4, 5126: 4 }[a.componentType];
+  const data = new DataView(bin.buffer, bin.byteOffset + (view.byteOffset || 0) + (a.byteOffset || 0));
+  const out = [];
+  for (let i = 0; i < a.count; ++i) out.push(data[read](i * (view.byteStride || size), true));
+  return out;
 }
 
 /** Vertex positions of an OBJ file. */
@@ -183,16 +187,32 @@ async function checkControl(page, manifest) {
   check(most === 0, `control: a plain export (no graph) keeps every influence 0 while the camera moves (max ${most})`);
 }
 
-/** Manifests with fewer keys (Spot's meshes), written into the work folder. */
+/**
+ * Degenerate key sets, written into the work folder: Spot with 1, 2 and 3 of its keys (in each
+ * uncovered mode of UNCOVERED_MODES), and the tutorial's Suzanne with the key docs/tutorial.md adds
+ * by `vdg deform` (1 key) and a second one (2 keys).
+ */
 function degenerateManifests() {
   const spotDir = path.join(sourceDir, 'examples/spot');
   const spot = JSON.parse(fs.readFileSync(path.join(spotDir, 'spot.vdg.json'), 'utf8'));
   const abs = (k) => ({ ...k, mesh: path.join(spotDir, k.mesh) });
   const out = {};
-  for (const [name, keys] of [['one_key', ['front']], ['two_keys', ['front', 'right']], ['three_keys', ['front', 'right', 'top']]]) {
-    const file = path.join(workDir, `${name}.vdg.json`);
-    fs.writeFileSync(file, JSON.stringify({ ...spot, base: path.join(spotDir, spot.base), keys: spot.keys.filter((k) => keys.includes(k.name)).map(abs) }, null, 1));
-    out[name] = file;
+  for (const mode of UNCOVERED_MODES)
+    for (const keys of [['front'], ['front', 'right'], ['front', 'right', 'top']]) {
+      const name = `spot_${keys.length}key${keys.length > 1 ? 's' : ''}_${mode}`;
+      const file = path.join(workDir, `${name}.vdg.json`);
+      fs.writeFileSync(file, JSON.stringify({ ...spot, uncovered: mode, base: path.join(spotDir, spot.base),
+        keys: spot.keys.filter((k) => keys.includes(k.name)).map(abs) }, null, 1));
+      out[name] = file;
+    }
+  const tutorial = path.join(sourceDir, 'examples/tutorial');
+  for (const [name, views] of [['tutorial_1key', [[0.7, 0.2, 0.7]]], ['tutorial_2keys', [[0.7, 0.2, 0.7], [-0.6, 0.3, 0.75]]]]) {
+    const dir = path.join(workDir, name);
+    fs.mkdirSync(dir);
+    for (const f of ['suzanne.obj', 'suzanne.vdg.json', 'edits.json']) fs.copyFileSync(path.join(tutorial, f), path.join(dir, f));
+    views.forEach((v, i) => runVdg('deform', path.join(dir, 'suzanne.vdg.json'), '--key', `key${i}`, '--view', v.join(','),
+      '--ops', path.join(dir, 'edits.json'), '-q'));
+    out[name] = path.join(dir, 'suzanne.vdg.json');
   }
   return out;
 }
@@ -225,7 +245,6 @@ try {
     spot: path.join(sourceDir, 'examples/spot/spot.vdg.json'),
     head: path.join(sourceDir, 'examples/figure13/head/head.vdg.json'),
     building: path.join(sourceDir, 'examples/building/building.vdg.json'),
-    suzanne: path.join(sourceDir, 'examples/tutorial/suzanne.vdg.json'),
     ...degenerateManifests(),
   };
   let seed = 1;
