@@ -5,6 +5,7 @@
 // file back as the same model and other tools see the keys as named morph targets. An animated
 // model gets one target per (key view, key frame) and its base animation: the skin for
 // "skinned" offsets, the sampled base frames as morph targets otherwise (docs/gltf-export.md).
+// --interactivity adds the weights as a KHR_interactivity graph (docs/interactivity.md).
 #include <cstdio>
 #include <filesystem>
 #include <limits>
@@ -84,6 +85,7 @@ void addExportCommand(CLI::App& app) {
   struct Options {
     std::string model, output;
     bool quiet = false;
+    bool interactivity = false;
     std::size_t max_targets = std::numeric_limits<std::size_t>::max();
     CompressOption compress;
   };
@@ -94,6 +96,9 @@ void addExportCommand(CLI::App& app) {
   sub->add_option("-o,--output", opt->output, "Output OUT.glb, or OUT.gltf with its buffer in OUT.bin beside it")
       ->required();
   opt->compress.add(*sub);
+  sub->add_flag("--interactivity", opt->interactivity,
+                "Add the weights as a KHR_interactivity graph, so that an engine implementing it (Babylon.js 9) "
+                "follows the camera with no vdg code; static models only (docs/interactivity.md)");
   sub->add_flag("-q,--quiet", opt->quiet, "Print nothing on success");
   addMaxTargetsOption(*sub, opt->max_targets);
   sub->callback([opt] {
@@ -102,6 +107,7 @@ void addExportCommand(CLI::App& app) {
     checkOutputIsNotInput(opt->output, opt->model, input);
     GltfExportInput export_input = exportInputForCli(input);
     export_input.compression = opt->compress.value();
+    export_input.interactivity = opt->interactivity;
     checkMaxTargets(export_input, opt->max_targets, opt->model);
     writeGltfForCli(opt->output, export_input, opt->quiet);
   });

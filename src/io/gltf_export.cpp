@@ -29,6 +29,7 @@
 #include "vdg/io/atomic_file.h"
 #include "vdg/io/file_transaction.h"
 #include "vdg/io/gltf.h"
+#include "vdg/io/gltf_interactivity.h"
 #include "vdg/io/image_file.h"
 #include "vdg/io/read_file.h"
 #include "vdg/version.h"
@@ -826,6 +827,7 @@ void addTargets(BufferBuilder& b, const GltfExportInput& in, const ExportVertice
 
 Built build(const GltfExportInput& in, const std::string& where, GltfExportReport* report,
             const ImageOutput& image_out = {}) {
+  if (in.interactivity) checkInteractivitySupported(in, where);  // before the input's own checks
   validateInput(in, where);
   GltfExportReport rep;
   BufferBuilder b;
@@ -885,6 +887,10 @@ Built build(const GltfExportInput& in, const std::string& where, GltfExportRepor
   doc["buffers"] = OJson::array({OJson{{"byteLength", b.data().size()}}});
   doc["bufferViews"] = std::move(b.views());
   doc["accessors"] = std::move(b.accessors());
+  if (in.interactivity) {  // used, not required: an engine without it still shows the base and targets
+    doc["extensionsUsed"] = OJson::array({"KHR_interactivity"});
+    doc["extensions"]["KHR_interactivity"] = OJson::parse(interactivityGraphJson(interactivityInput(in, where)));
+  }
   if (report) *report = rep;
   return {std::move(doc), std::move(b.data())};
 }

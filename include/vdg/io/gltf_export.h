@@ -149,6 +149,9 @@ struct GltfExportInput {
   // views and `sphere`; an animated input must carry it.
   std::optional<GltfViewSphere> view_sphere;
   GltfCompression compression = GltfCompression::kNone;  // vdg/io/gltf_compress.h
+  // Add the weights as a KHR_interactivity graph (vdg/io/gltf_interactivity.h; static models only:
+  // the writer throws vdg::Error naming what is not supported otherwise).
+  bool interactivity = false;
 };
 
 // Fills the input from a built static model: its base, normals computed from the base positions

@@ -1,0 +1,83 @@
+// The view-dependent weights as a KHR_interactivity behaviour graph (docs/interactivity.md): what
+// `vdg export --interactivity` adds to a static model's glTF so that an engine implementing the
+// extension (Babylon.js 9) sets the morph weights from its active camera with no vdg code.
+//
+// The graph repeats ViewSphere::weightsByScan (vdg/viewdep/view_sphere.h) and web/vdg-three.js's
+// vdgWeights on every tick, from the same numbers mesh.extras.vdg v2 carries:
+//  1. event/onTick; pointer/get /extensions/KHR_interactivity/activeCamera/position (float3, glTF
+//     scene space). The export puts the mesh on root node `node` whose own transform is at most the
+//     dequantisation of --compress (then its parent space is model space), so the camera position
+//     is used as it is (no matrix; an engine that moves the node is not followed, documented).
+//  2. v = normalize(eye - centre).
+//  3. Per hull triangle t: cone coordinates l = (r0.v, r1.v, r2.v) with the rows r of the written
+//     inverse; inside_t = min(l) >= -kGraphInsideTol. A chain of math/select (triangle 0
+//     outermost) keeps the first triangle that holds v, its l and its corners' morph targets
+//     (a float3 of target indices, -1 for a dummy base point).
+//  4. Cosine modes: when no triangle holds v, the nearest boundary arc or isolated key (the scan
+//     order and strict ">" of view_sphere.cpp's falloff) gives the slot weights and the factor
+//     f = max(0, cos) (cosine) or its square (cosine2); base mode's chain ends in the base (no
+//     target).
+//  5. w = max(l, 0); sharpened relative to the largest, (w_i / w_max)^a / sum (skipped for a = 1,
+//     then w / sum); times f.
+//  6. Per morph target k: weight_k = w . saturate(1 - |corners - k|) (1 where a corner is target k),
+//     written by pointer/set /nodes/{node}/weights/{k}; one flow/sequence after the tick runs the
+//     sets (Babylon.js 9 does not follow a pointer/set's "out" flow).
+// Animated models (key frames over time) are not supported: interactivityInput refuses them.
+#pragma once
+
+#include <cstddef>
+#include <map>
+#include <string>
+#include <string_view>
+
+#include <Eigen/Core>
+
+#include "vdg/io/gltf_export.h"
+#include "vdg/viewdep/view_sphere.h"
+
+namespace vdg {
+
+// Cone coordinates down to -kGraphInsideTol still count as inside (view_sphere.cpp's kInsideTol).
+inline constexpr double kGraphInsideTol = 1e-9;
+// An arc's projection counts when 1 - (v.n)^2 exceeds this (view_sphere.cpp's falloff()).
+inline constexpr double kGraphArcMinC2 = 1e-24;
+
+// What the graph is built from: exactly the export's extras v2 sphere and settings.
+struct InteractivityInput {
+  GltfViewSphere sphere;  // static: view_targets[i] = {i}
+  Uncovered uncovered = Uncovered::Base;
+  double sharpness = 1.0;
+  Eigen::Vector3d center = Eigen::Vector3d::Zero();
+  std::size_t targets = 0;  // morph targets of the mesh
+  int node = 0;             // glTF node that holds the mesh
+};
+
+// The input of a static export (`in.view_sphere` as written, or built from the targets as the writer
+// does). Throws vdg::Error "WHERE: --interactivity: ..." for an animated model (named as not
+// supported) or a sphere whose view_targets are not one target per key view.
+InteractivityInput interactivityInput(const GltfExportInput& in, const std::string& where);
+// Its first check alone (what the writer does before anything else): throws for an animated model.
+void checkInteractivitySupported(const GltfExportInput& in, const std::string& where);
+
+// How large a graph is.
+struct InteractivitySize {
+  std::size_t nodes = 0;
+  std::size_t declarations = 0;
+  std::size_t types = 0;
+  std::map<std::string, std::size_t> ops;  // node count per operation ("math/dot": 120, ...)
+};
+
+// The KHR_interactivity extension object as JSON text: {"graphs": [one graph], "graph": 0}.
+// `size` (optional) receives its size.
+std::string interactivityGraphJson(const InteractivityInput& input, InteractivitySize* size = nullptr);
+
+// The size of the KHR_interactivity graph(s) in a glTF document's JSON text (the .gltf file, or a
+// .glb's JSON chunk); false when it has no KHR_interactivity extension. Throws vdg::Error naming
+// `where` for text that is not JSON or a graph that is not an object with "nodes" and
+// "declarations" arrays.
+bool interactivitySizeOfGltfJson(std::string_view json_text, const std::string& where, InteractivitySize& size);
+
+// One line for `vdg info`: "N nodes, D declarations, T types (K math/dot, ...)".
+std::string interactivitySizeText(const InteractivitySize& size);
+
+}  // namespace vdg
