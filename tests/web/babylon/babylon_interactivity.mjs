@@ -170,7 +170,8 @@ async function checkModel(page, url, name, manifest, seed) {
       for (let c = 0; c < 3; ++c) worstPosition = Math.max(worstPosition, Math.abs(positions[3 * i + c] - model[vertexOf[i]][c]));
   }
   check(worstWeight <= WEIGHT_TOLERANCE, `${name}: Babylon's influences equal vdg weights at ${list.length} views ` +
-    `(max error ${worstWeight.toExponential(2)} <= ${WEIGHT_TOLERANCE}${worstAt >= 0 ? `, worst at eye ${list[worstAt].map((x) => x.toFixed(3))}` : ''})`);
+    `(max error ${worstWeight.toExponential(2)} <= ${WEIGHT_TOLERANCE}${worstAt >= 0 ? `, worst at eye ${list[worstAt].map((x) => x.toFixed(3))}: ` +
+    `Babylon ${JSON.stringify(got[worstAt].influences)}, vdg ${JSON.stringify(names.map((k) => want[worstAt].keys[k] ?? 0))}` : ''})`);
   check(worstPosition <= POSITION_TOLERANCE, `${name}: Babylon's morphed positions equal vdg eval ` +
     `(max error ${worstPosition.toExponential(2)} <= ${POSITION_TOLERANCE})`);
   check(names.length < 2 || moved > 0, `${name}: moving the camera changes the influences (${moved} of ${list.length - 1} views differ from the first)`);

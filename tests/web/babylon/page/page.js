@@ -62,8 +62,16 @@ window.babylonPage = {
   view(eye, target, fovDeg = 30, frames = 1) {
     camera.position = toScene(eye);
     camera.setTarget(toScene(target));
+    // setTarget moves the camera 0.001 along z when its z equals the target's (a Babylon guard
+    // against a degenerate look-at): put it back where it was asked to be.
+    camera.position = toScene(eye);
     camera.fov = (fovDeg * Math.PI) / 180;
     for (let i = 0; i < frames; ++i) scene.render();
+  },
+  /** @returns {number[]} the camera's position as Babylon holds it (its world matrix), in glTF coordinates */
+  eye() {
+    const t = camera.getWorldMatrix().getTranslation();
+    return [scene.useRightHandedSystem ? t.x : -t.x, t.y, t.z];
   },
   /** Renders one frame without moving anything. */
   render() { scene.render(); },
