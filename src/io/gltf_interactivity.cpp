@@ -49,6 +49,11 @@ class GraphBuilder {
   OJson combine3(const OJson& x, const OJson& y, const OJson& z) {
     return out(node("math/combine3", {{"a", x}, {"b", y}, {"c", z}}));
   }
+  // A float variable with initial value x; returns its index.
+  int variable(double x) {
+    variables_.push_back({{"type", type("float")}, {"value", OJson::array({x})}});
+    return static_cast<int>(variables_.size()) - 1;
+  }
   void setFlow(int from, const std::string& socket, int to) {
     nodes_[from]["flows"][socket] = {{"node", to}, {"socket", "in"}};
   }
@@ -58,8 +63,11 @@ class GraphBuilder {
     size_.declarations = declarations_.size();
     size_.types = types_.size();
     if (size) *size = size_;
-    // No "variables" or "events": the specification wants such arrays non-empty when present.
-    OJson graph = {{"types", types_}, {"declarations", declarations_}, {"nodes", nodes_}};
+    // No empty "variables" or "events": the specification wants such arrays non-empty when present.
+    OJson graph = {{"types", types_}};
+    if (!variables_.empty()) graph["variables"] = variables_;
+    graph["declarations"] = declarations_;
+    graph["nodes"] = nodes_;
     return {{"graphs", OJson::array({std::move(graph)})}, {"graph", 0}};
   }
 
@@ -70,6 +78,7 @@ class GraphBuilder {
     return it->second;
   }
   OJson types_ = OJson::array(), declarations_ = OJson::array(), nodes_ = OJson::array();
+  OJson variables_ = OJson::array();
   std::map<std::string, int> type_index_, declaration_index_;
   InteractivitySize size_;
 };
@@ -152,16 +161,53 @@ Slots falloff(GraphBuilder& g, const InteractivityInput& in, const OJson& v) {
 OJson finalWeights(GraphBuilder& g, const InteractivityInput& in, const Slots& slots) {
   OJson w = g.call("math/max", slots.weights, g.f3(Vector3d::Zero()));
   if (in.sharpness != 1.0) {
-    const int parts = g.node("math/extract3", {{"a", w}});
-    const OJson largest =
-        g.call("math/max", g.call("math/max", GraphBuilder::out(parts, "0"), GraphBuilder::out(parts, "1")),
-               GraphBuilder::out(parts, "2"));
+    // The components by dot products with the axes (Babylon.js 9 refuses math/extract3 of a float3).
+    OJson part[3];
+    for (int c = 0; c < 3; ++c) part[c] = g.call("math/dot", w, g.f3(Vector3d::Unit(c)));
+    const OJson largest = g.call("math/max", g.call("math/max", part[0], part[1]), part[2]);
     w = g.call("math/pow", g.call("math/div", w, g.combine3(largest, largest, largest)),
                g.f3(Vector3d::Constant(in.sharpness)));
   }
   const OJson sum = g.call("math/dot", w, g.f3(Vector3d::Ones()));
   const OJson scale = g.call("math/div", slots.factor.is_null() ? g.f(1.0) : slots.factor, sum);
   return g.call("math/mul", w, g.combine3(scale, scale, scale));
+}
+
+// Step 6. The tick goes through a flow/branch on `valid` (an eye away from the centre; a NaN camera
+// fails it too), so such a frame keeps the last weights, as vdg-three does. Then one flow/sequence
+// runs one variable/set that stores every target's weight (the value graph is evaluated once: an
+// engine may evaluate it again for each flow node that reads it) and a pointer/set per target
+// from a variable/get. The sequence's output sockets are zero-padded numbers, so their code point
+// order is: the variable/set, then the targets in order. Flows only point to later nodes.
+void setWeights(GraphBuilder& g, const InteractivityInput& in, int tick, const OJson& valid, const OJson& weights,
+                const OJson& corners) {
+  OJson stored = OJson::object(), variables = OJson::array();
+  for (std::size_t k = 0; k < in.targets; ++k) {
+    const OJson distance = g.call("math/abs", g.call("math/sub", corners, g.f3(Vector3d::Constant(double(k)))));
+    const OJson match = g.call("math/saturate", g.call("math/sub", g.f3(Vector3d::Ones()), distance));
+    const int variable = g.variable(0.0);
+    stored[std::to_string(variable)] = g.call("math/dot", weights, match);
+    variables.push_back(variable);
+  }
+  const int branch = g.node("flow/branch", {{"condition", valid}});
+  g.setFlow(tick, "out", branch);
+  const int sequence = g.node("flow/sequence");
+  g.setFlow(branch, "true", sequence);
+  const std::size_t digits = std::to_string(in.targets).size();
+  auto socket = [&](std::size_t i) {
+    const std::string index = std::to_string(i);
+    return std::string(digits - index.size(), '0') + index;
+  };
+  const int set_all = g.node("variable/set", std::move(stored), {{"variables", {{"value", variables}}}});
+  g.setFlow(sequence, socket(0), set_all);
+  for (std::size_t k = 0; k < in.targets; ++k) {
+    const int get = g.node("variable/get", OJson::object(), {{"variable", {{"value", OJson::array({variables[k]})}}}});
+    const std::string pointer = "/nodes/" + std::to_string(in.node) + "/weights/" + std::to_string(k);
+    const int set = g.node(
+        "pointer/set", {{"value", GraphBuilder::out(get)}},
+        {{"pointer", {{"value", OJson::array({pointer})}}}, {"type", {{"value", OJson::array({g.type("float")})}}}});
+    g.setFlow(sequence, socket(k + 1), set);
+  }
 }
 
 }  // namespace
@@ -203,7 +249,8 @@ std::string interactivityGraphJson(const InteractivityInput& in, InteractivitySi
   const int camera = g.node("pointer/get", OJson::object(),
                             {{"pointer", {{"value", OJson::array({kCameraPointer})}}},
                              {"type", {{"value", OJson::array({g.type("float3")})}}}});
-  const OJson v = g.call("math/normalize", g.call("math/sub", GraphBuilder::out(camera), g.f3(in.center)));
+  const OJson eye = g.call("math/sub", GraphBuilder::out(camera), g.f3(in.center));
+  const OJson v = g.call("math/normalize", eye);
   Slots fallback;
   if (in.uncovered == Uncovered::Base) {  // unreachable: the hull with its dummies encloses the centre
     fallback = {g.f3(Vector3d::Ones()), g.f3(Vector3d::Constant(-1.0)), OJson()};
@@ -212,21 +259,7 @@ std::string interactivityGraphJson(const InteractivityInput& in, InteractivitySi
   }
   const Slots chosen = triangleChain(g, in, v, fallback);
   const OJson weights = finalWeights(g, in, chosen);
-  // One flow/sequence fans the tick out to the sets; its output sockets are named by the zero-padded
-  // target index, so that their (code point) order is the target order.
-  const int sequence = g.node("flow/sequence");
-  g.setFlow(tick, "out", sequence);
-  const std::size_t digits = std::to_string(in.targets > 0 ? in.targets - 1 : 0).size();
-  for (std::size_t k = 0; k < in.targets; ++k) {
-    const OJson distance = g.call("math/abs", g.call("math/sub", chosen.corners, g.f3(Vector3d::Constant(double(k)))));
-    const OJson match = g.call("math/saturate", g.call("math/sub", g.f3(Vector3d::Ones()), distance));
-    const std::string pointer = "/nodes/" + std::to_string(in.node) + "/weights/" + std::to_string(k);
-    const int set = g.node(
-        "pointer/set", {{"value", g.call("math/dot", weights, match)}},
-        {{"pointer", {{"value", OJson::array({pointer})}}}, {"type", {{"value", OJson::array({g.type("float")})}}}});
-    const std::string index = std::to_string(k);
-    g.setFlow(sequence, std::string(digits - index.size(), '0') + index, set);
-  }
+  setWeights(g, in, tick, g.call("math/gt", g.call("math/dot", eye, eye), g.f(0.0)), weights, chosen.corners);
   return g.finish(size).dump();
 }
 

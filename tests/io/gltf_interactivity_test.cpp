@@ -64,6 +64,11 @@ class Interpreter {
  public:
   Interpreter(const json& graph, const Vector3d& eye) : g_(graph), eye_(eye) {
     for (const json& t : g_.at("types")) types_.push_back(t.at("signature").get<std::string>());
+    if (g_.contains("variables"))
+      for (const json& v : g_.at("variables")) {
+        if (types_.at(v.at("type").get<std::size_t>()) != "float") throw std::runtime_error("non-float variable");
+        variables_.push_back(v.at("value").at(0).get<double>());
+      }
   }
 
   std::map<int, double> tick() {
@@ -81,6 +86,20 @@ class Interpreter {
     if (n < 0) return;
     if (depth > 64) throw std::runtime_error("flow too deep");
     const json& node = g_.at("nodes").at(n);
+    if (op(n) == "flow/branch") {
+      run(flowTarget(n, flag(input(n, "condition")) ? "true" : "false"), written, depth + 1);
+      return;
+    }
+    if (op(n) == "variable/set") {
+      // Every input socket is named by the variable it sets (configuration "variables").
+      const json& vars = node.at("configuration").at("variables").at("value");
+      std::map<int, double> values;  // all inputs first, then the writes
+      for (const json& var : vars) values[var.get<int>()] = num(input(n, std::to_string(var.get<int>()).c_str()));
+      for (const auto& [var, x] : values) variables_.at(static_cast<std::size_t>(var)) = x;
+      memo_.clear();
+      run(flowTarget(n, "out"), written, depth + 1);
+      return;
+    }
     if (op(n) == "flow/sequence") {
       const std::map<std::string, json> outputs = node.at("flows").get<std::map<std::string, json>>();
       for (const auto& [socket, target] : outputs) run(flowTarget(n, socket.c_str()), written, depth + 1);
@@ -134,6 +153,9 @@ class Interpreter {
         throw std::runtime_error("unexpected pointer/get");
       return eye_;
     }
+    if (o == "variable/get")
+      return variables_.at(
+          g_.at("nodes").at(n).at("configuration").at("variable").at("value").at(0).get<std::size_t>());
     if (o == "math/add") return componentwise(a(), b(), [](double x, double y) { return x + y; });
     if (o == "math/sub") return componentwise(a(), b(), [](double x, double y) { return x - y; });
     if (o == "math/mul") return componentwise(a(), b(), [](double x, double y) { return x * y; });
@@ -161,6 +183,7 @@ class Interpreter {
   const json& g_;
   Vector3d eye_;
   std::vector<std::string> types_;
+  std::vector<double> variables_;
   std::map<std::pair<int, std::string>, Value> memo_;
 };
 
@@ -265,7 +288,7 @@ TEST(GltfInteractivity, GraphIsWellFormedAndItsSizeIsReported) {
   ASSERT_GE(sequence, 0);
   std::vector<std::string> sockets;
   for (const auto& [socket, f] : nodes.at(sequence).at("flows").items()) sockets.push_back(socket);
-  EXPECT_EQ(sockets, (std::vector<std::string>{"0", "1", "2", "3"}));
+  EXPECT_EQ(sockets, (std::vector<std::string>{"0", "1", "2", "3", "4"}));  // variable/set, then the targets
   EXPECT_EQ(size.ops.at("event/onTick"), 1u);
   EXPECT_EQ(size.ops.at("pointer/get"), 1u);
   const std::string text = interactivitySizeText(size);
@@ -282,8 +305,8 @@ TEST(GltfInteractivity, SizeGrowsLinearlyWithTrianglesArcsAndTargets) {
   graphOf(inputOf(sphere, 1.0, Vector3d::Zero()), &one);
   graphOf(inputOf(sphere, 3.0, Vector3d::Zero()), &sharp);
   const std::size_t triangles = sphere.triangles().size();
-  EXPECT_EQ(one.nodes, 10 + 9 * triangles + 6 * keys.size()) << interactivitySizeText(one);
-  EXPECT_EQ(sharp.nodes, one.nodes + 6);  // the sharpening: extract3, two max, combine3, div, pow
+  EXPECT_EQ(one.nodes, 14 + 9 * triangles + 7 * keys.size()) << interactivitySizeText(one);
+  EXPECT_EQ(sharp.nodes, one.nodes + 8);  // the sharpening: three dot, two max, combine3, div, pow
 }
 
 TEST(GltfInteractivity, SizeOfAGltfDocument) {

@@ -19,9 +19,11 @@
 //     target).
 //  5. w = max(l, 0); sharpened relative to the largest, (w_i / w_max)^a / sum (skipped for a = 1,
 //     then w / sum); times f.
-//  6. Per morph target k: weight_k = w . saturate(1 - |corners - k|) (1 where a corner is target k),
-//     written by pointer/set /nodes/{node}/weights/{k}; one flow/sequence after the tick runs the
-//     sets (Babylon.js 9 does not follow a pointer/set's "out" flow).
+//  6. Per morph target k: weight_k = w . saturate(1 - |corners - k|) (1 where a corner is target k).
+//     When the eye is not at the centre (|eye - centre|^2 > 0; a NaN camera fails too: the last
+//     weights stay), one flow/sequence runs a variable/set of every weight (the value graph is
+//     evaluated once per tick) and then, per target, pointer/set /nodes/{node}/weights/{k} from a
+//     variable/get.
 // Animated models (key frames over time) are not supported: interactivityInput refuses them.
 #pragma once
 
