@@ -12,6 +12,7 @@ import '@babylonjs/loaders/glTF/index.js';
 
 const canvas = /** @type {HTMLCanvasElement} */ (document.getElementById('main'));
 const engine = new Engine(canvas, true, { preserveDrawingBuffer: true });
+window.addEventListener('resize', () => engine.resize());
 /** @type {Scene | null} */
 let scene = null;
 /** @type {FreeCamera | null} */
@@ -41,6 +42,7 @@ window.babylonPage = {
    */
   async load(url, options = {}) {
     if (scene) scene.dispose();
+    engine.resize(); // the canvas may have changed size since the last load
     scene = new Scene(engine);
     scene.useRightHandedSystem = !!options.rightHanded;
     const bg = options.background || [0.12, 0.12, 0.14];
