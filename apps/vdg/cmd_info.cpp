@@ -24,6 +24,7 @@
 #include "vdg/geom/error.h"
 #include "vdg/io/gltf.h"
 #include "vdg/io/gltf_export.h"
+#include "vdg/io/gltf_interactivity.h"
 #include "vdg/io/mesh.h"
 #include "vdg/io/model.h"
 #include "vdg/render/sphere_map_image.h"
@@ -277,6 +278,18 @@ void printExportTargets(std::size_t keys, std::size_t frames) {
   std::printf("export     %zu morph target%s in glTF%s; %s\n", count, count == 1 ? "" : "s", parts.c_str(),
               over.empty() ? "within every engine's cap (Bevy 64, three.js and Filament 256)"
                            : ("more than " + over + " take").c_str());
+}
+
+// The size of the KHR_interactivity graph `vdg export --interactivity` writes for the model
+// (docs/interactivity.md), and its --json form.
+InteractivitySize interactivityGraphSize(const ViewDependentModel& model) {
+  InteractivitySize size;
+  (void)interactivityGraphJson(interactivityInput(model), &size);
+  return size;
+}
+nlohmann::ordered_json interactivityJson(const ViewDependentModel& model) {
+  const InteractivitySize size = interactivityGraphSize(model);
+  return {{"nodes", size.nodes}, {"declarations", size.declarations}, {"types", size.types}, {"ops", size.ops}};
 }
 
 // "  (FILE)" after a key read from a mesh file; nothing for a key stored in a glTF model.
@@ -611,6 +624,8 @@ void addInfoCommand(CLI::App& app) {
       if (opt->json && !gltf_model) throw UsageError("--json: only for models, not for glTF files");
       if (!opt->json) {
         std::fputs(describeGltf(opt->model).c_str(), stdout);
+        if (InteractivitySize graph; interactivitySizeOfGltfFile(opt->model, graph))
+          std::printf("KHR_interactivity: %s\n", interactivitySizeText(graph).c_str());
         // The default mesh's surface (a file without a mesh has none to describe).
         std::optional<TriMesh> mesh;
         std::vector<std::string> warnings;
@@ -647,6 +662,7 @@ void addInfoCommand(CLI::App& app) {
       out["model"] = opt->model;
       out["base"] = raw.base_path;
       out["export_targets"] = exportTargetsJson(model.keyCount(), 0);
+      out["interactivity"] = interactivityJson(model);
       addShapeFields(model, out);
       out["keys"] = nlohmann::ordered_json::array();
       for (std::size_t k = 0; k < model.keyCount(); ++k) {
@@ -676,6 +692,8 @@ void addInfoCommand(CLI::App& app) {
     std::printf("coverage   %.1f%% of the viewing sphere lies in triangles of real keys\n",
                 100.0 * sphere.coveredFraction());
     printExportTargets(model.keyCount(), 0);
+    std::printf("graph      KHR_interactivity (vdg export --interactivity): %s\n",
+                interactivitySizeText(interactivityGraphSize(model)).c_str());
     for (const auto& w : warnings) std::printf("warning: %s\n", w.c_str());
   });
 }

@@ -7,11 +7,14 @@
 
 #include <Eigen/Geometry>
 
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <utility>
 #include <vector>
 
 #include "vdg/geom/error.h"
+#include "vdg/io/read_file.h"
 
 namespace vdg {
 namespace {
@@ -97,13 +100,16 @@ struct Slots {
 Slots triangleChain(GraphBuilder& g, const InteractivityInput& in, const OJson& v, Slots fallback) {
   const auto& s = in.sphere;
   for (std::size_t i = s.triangles.size(); i-- > 0;) {
+    const auto& t = s.triangles[i];
+    const Vector3d corners(targetOf(in, t[0]), targetOf(in, t[1]), targetOf(in, t[2]));
+    // A triangle of three dummy base points gives every target 0, as the chain's end does (base mode):
+    // left out, so that a model with few keys does not pay for the dummies' part of the hull.
+    if (corners.maxCoeff() < 0.0) continue;
     const Eigen::Matrix3d& m = s.inverses[i];
     OJson l[3];
     for (int r = 0; r < 3; ++r) l[r] = g.call("math/dot", g.f3(m.row(r).transpose()), v);
     const OJson lower = g.call("math/min", g.call("math/min", l[0], l[1]), l[2]);
     const OJson inside = g.call("math/ge", lower, g.f(-kGraphInsideTol));
-    const auto& t = s.triangles[i];
-    const Vector3d corners(targetOf(in, t[0]), targetOf(in, t[1]), targetOf(in, t[2]));
     fallback.weights = g.select(inside, g.combine3(l[0], l[1], l[2]), fallback.weights);
     fallback.corners = g.select(inside, g.f3(corners), fallback.corners);
     if (!fallback.factor.is_null()) fallback.factor = g.select(inside, g.f(1.0), fallback.factor);
@@ -292,6 +298,27 @@ bool interactivitySizeOfGltfJson(std::string_view json_text, const std::string& 
     }
   }
   return true;
+}
+
+bool interactivitySizeOfGltfFile(const std::string& path, InteractivitySize& size) {
+  const std::string bytes = readFileLimited(path, "glTF file", kMaxMeshFileBytes);
+  std::string_view json = bytes;
+  if (json.size() >= 20 && json.substr(0, 4) == "glTF") {  // a .glb: its first chunk
+    std::uint32_t length = 0;
+    std::memcpy(&length, bytes.data() + 12, 4);
+    json = json.substr(20, std::min<std::size_t>(length, json.size() - 20));
+  }
+  return interactivitySizeOfGltfJson(json, path, size);
+}
+
+InteractivityInput interactivityInput(const ViewDependentModel& model) {
+  InteractivityInput in;
+  in.sphere = gltfViewSphere(model.sphere());
+  in.uncovered = model.sphere().settings().uncovered;
+  in.sharpness = model.sharpness();
+  in.center = model.center();
+  in.targets = model.keyCount();
+  return in;
 }
 
 std::string interactivitySizeText(const InteractivitySize& size) {

@@ -12,7 +12,8 @@
 //  3. Per hull triangle t: cone coordinates l = (r0.v, r1.v, r2.v) with the rows r of the written
 //     inverse; inside_t = min(l) >= -kGraphInsideTol. A chain of math/select (triangle 0
 //     outermost) keeps the first triangle that holds v, its l and its corners' morph targets
-//     (a float3 of target indices, -1 for a dummy base point).
+//     (a float3 of target indices, -1 for a dummy base point). Triangles of three dummy points are
+//     left out: a view in one falls to the chain's end, which gives every target 0 as they would.
 //  4. Cosine modes: when no triangle holds v, the nearest boundary arc or isolated key (the scan
 //     order and strict ">" of view_sphere.cpp's falloff) gives the slot weights and the factor
 //     f = max(0, cos) (cosine) or its square (cosine2); base mode's chain ends in the base (no
@@ -35,6 +36,7 @@
 #include <Eigen/Core>
 
 #include "vdg/io/gltf_export.h"
+#include "vdg/viewdep/model.h"
 #include "vdg/viewdep/view_sphere.h"
 
 namespace vdg {
@@ -78,6 +80,13 @@ std::string interactivityGraphJson(const InteractivityInput& input, Interactivit
 // `where` for text that is not JSON or a graph that is not an object with "nodes" and
 // "declarations" arrays.
 bool interactivitySizeOfGltfJson(std::string_view json_text, const std::string& where, InteractivitySize& size);
+
+// The same for a glTF file (.gltf, or .glb: its JSON chunk). Throws vdg::Error "PATH: ..." for a
+// file that cannot be read or parsed.
+bool interactivitySizeOfGltfFile(const std::string& path, InteractivitySize& size);
+
+// The graph input of a built static model, as its export would carry it (one target per key).
+InteractivityInput interactivityInput(const ViewDependentModel& model);
 
 // One line for `vdg info`: "N nodes, D declarations, T types (K math/dot, ...)".
 std::string interactivitySizeText(const InteractivitySize& size);
