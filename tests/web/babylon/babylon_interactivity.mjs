@@ -8,6 +8,7 @@
 //     holds) equal `vdg eval` within POSITION_TOLERANCE at every POSITION_EVERY-th view
 //     (exported vertex i is model vertex _VDG_VERTEX[i], read here by the driver, never by the page),
 //     for every model but the cosine-mode sets (the blend depends on the influences alone);
+//   - Spot's influences are the same in a right-handed Babylon scene (scene.useRightHandedSystem);
 //   - the page logs no error (Babylon rejects a graph it cannot play with a console error);
 //   - the same export without --interactivity keeps every influence at 0 while the camera moves:
 //     the graph, not the page, moves the shape;
@@ -127,17 +128,30 @@ function checkPageSource() {
   }
 }
 
-/** Loads glb in the page and returns, per eye, the influences and the morphed positions. */
-async function play(page, glbUrl, eyeList, center) {
-  await page.evaluate((u) => window.babylonPage.load(u), glbUrl);
+/** Loads glb in the page (Babylon's default left-handed scene, or a right-handed one) and returns, per eye, the influences and the morphed positions. */
+async function play(page, glbUrl, eyeList, center, rightHanded = false) {
+  await page.evaluate(([u, rh]) => window.babylonPage.load(u, { rightHanded: rh }), [glbUrl, rightHanded]);
   return page.evaluate(([list, c]) => list.map((e) => {
     window.babylonPage.view(e, c);
     return { influences: window.babylonPage.influences(), positions: window.babylonPage.positions() };
   }), [eyeList, center]);
 }
 
+/** The largest |influence - vdg weight| over every view and target, and the view where it is. */
+function weightError(got, want, names) {
+  let worst = 0, at = -1;
+  for (const [v, { influences }] of got.entries()) {
+    if (influences.length !== names.length) return { worst: Infinity, at: v };
+    for (const [i, key] of names.entries()) {
+      const err = Math.abs(influences[i] - (want[v].keys[key] ?? 0));
+      if (!(err <= worst)) { worst = Number.isNaN(err) ? Infinity : err; at = v; }
+    }
+  }
+  return { worst, at };
+}
+
 /** One model: export with the graph, play it at every eye, compare with vdg weights and vdg eval. */
-async function checkModel(page, url, name, manifest, seed, withPositions) {
+async function checkModel(page, name, manifest, seed, withPositions, rightHanded) {
   const glb = path.join(workDir, `${name}.glb`);
   const t0 = Date.now();
   const exported = vdgRun('export', manifest, '--interactivity', '-o', glb, '-q');
@@ -160,14 +174,10 @@ async function checkModel(page, url, name, manifest, seed, withPositions) {
   const want = JSON.parse(runVdg('weights', manifest, '--views', viewsFile, '--json'));
   const got = await play(page, `/work/${name}.glb`, list, center);
   const vertexOf = accessorScalars(data, json.meshes[0].primitives[0].attributes._VDG_VERTEX);
-  let worstWeight = 0, worstPosition = 0, worstAt = -1, moved = 0;
+  const { worst: worstWeight, at: worstAt } = weightError(got, want, names);
+  let worstPosition = 0, moved = 0;
   for (const [v, eye] of list.entries()) {
     const { influences, positions } = got[v];
-    if (influences.length !== names.length) worstWeight = Infinity;
-    for (const [i, key] of names.entries()) {
-      const err = Math.abs((influences[i] ?? NaN) - (want[v].keys[key] ?? 0));
-      if (!(err <= worstWeight)) { worstWeight = Number.isNaN(err) ? Infinity : err; worstAt = v; }
-    }
     if (v > 0 && influences.some((w, i) => Math.abs(w - got[0].influences[i]) > WEIGHT_TOLERANCE)) moved += 1;
     if (!withPositions || v % POSITION_EVERY !== 0) continue;
     const obj = path.join(workDir, `${name}_eval.obj`);
@@ -183,7 +193,11 @@ async function checkModel(page, url, name, manifest, seed, withPositions) {
   if (withPositions)
     check(worstPosition <= POSITION_TOLERANCE, `${name}: Babylon's morphed positions equal vdg eval at ${Math.ceil(list.length / POSITION_EVERY)} views ` +
       `(max error ${worstPosition.toExponential(2)} <= ${POSITION_TOLERANCE})`);
-  check(names.length < 2 || moved > 0, `${name}: moving the camera changes the influences (${moved} of ${list.length - 1} views differ from the first)`);
+  if (rightHanded) {
+    const rh = weightError(await play(page, `/work/${name}.glb`, list, center, true), want, names);
+    check(rh.worst <= WEIGHT_TOLERANCE, `${name}: the same in a right-handed Babylon scene (max error ${rh.worst.toExponential(2)})`);
+  }
+  check(moved > 0, `${name}: moving the camera changes the influences (${moved} of ${list.length - 1} views differ from the first)`);
   console.log(`     ${name}: ${names.length} targets, graph of ${nodeCount} nodes, ${((Date.now() - t0) / 1000).toFixed(1)} s`);
 }
 
@@ -277,7 +291,7 @@ try {
   };
   let seed = 1;
   // Positions depend on the influences alone (checked for every model): the cosine-mode sets skip them.
-  for (const [name, manifest] of Object.entries(models)) await checkModel(page, server.url, name, manifest, seed++, !/_cosine2?$/.test(name));
+  for (const [name, manifest] of Object.entries(models)) await checkModel(page, name, manifest, seed++, !/_cosine2?$/.test(name), name === 'spot');
   await checkControl(page, models.spot);
   await page.setViewportSize({ width: SHOT_SIZE, height: SHOT_SIZE });
   await screenshots(page);
