@@ -19,6 +19,7 @@
 #include "vdg/geom/error.h"
 #include "vdg/io/atomic_file.h"
 #include "vdg/io/gltf_export.h"
+#include "vdg/io/gltf_interactivity.h"
 #include "vdg/io/model.h"
 
 namespace vdg::cli {
@@ -104,6 +105,8 @@ void addExportCommand(CLI::App& app) {
   sub->callback([opt] {
     checkGltfOutput(opt->output);
     const OpenedInput input = openModel(opt->model);
+    if (opt->interactivity && input.animated)
+      throw Error(opt->model + ": --interactivity: " + kInteractivityAnimatedRefusal);
     checkOutputIsNotInput(opt->output, opt->model, input);
     GltfExportInput export_input = exportInputForCli(input);
     export_input.compression = opt->compress.value();

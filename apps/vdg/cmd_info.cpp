@@ -292,6 +292,17 @@ nlohmann::ordered_json interactivityJson(const ViewDependentModel& model) {
   return {{"nodes", size.nodes}, {"declarations", size.declarations}, {"types", size.types}, {"ops", size.ops}};
 }
 
+// The KHR_interactivity graph of a glTF file, if it has one; a malformed one is a warning (the file
+// may come from another tool, and the rest of it is still described).
+void printInteractivityOfFile(const std::string& path) {
+  try {
+    if (InteractivitySize graph; interactivitySizeOfGltfFile(path, graph))
+      std::printf("KHR_interactivity: %s\n", interactivitySizeText(graph).c_str());
+  } catch (const Error& e) {
+    std::fprintf(stderr, "warning: %s\n", e.what());
+  }
+}
+
 // "  (FILE)" after a key read from a mesh file; nothing for a key stored in a glTF model.
 std::string meshNote(const std::string& mesh_path) { return mesh_path.empty() ? "" : "  (" + mesh_path + ")"; }
 
@@ -624,8 +635,7 @@ void addInfoCommand(CLI::App& app) {
       if (opt->json && !gltf_model) throw UsageError("--json: only for models, not for glTF files");
       if (!opt->json) {
         std::fputs(describeGltf(opt->model).c_str(), stdout);
-        if (InteractivitySize graph; interactivitySizeOfGltfFile(opt->model, graph))
-          std::printf("KHR_interactivity: %s\n", interactivitySizeText(graph).c_str());
+        printInteractivityOfFile(opt->model);
         // The default mesh's surface (a file without a mesh has none to describe).
         std::optional<TriMesh> mesh;
         std::vector<std::string> warnings;

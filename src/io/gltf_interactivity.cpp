@@ -220,9 +220,7 @@ void setWeights(GraphBuilder& g, const InteractivityInput& in, int tick, const O
 
 void checkInteractivitySupported(const GltfExportInput& in, const std::string& where) {
   if (in.base_animation || (in.view_sphere && !in.view_sphere->time.empty()))
-    throw Error(where +
-                ": --interactivity: animated models (key frames over time) are not supported; export a "
-                "static model (docs/interactivity.md, \"Limits\")");
+    throw Error(where + ": --interactivity: " + kInteractivityAnimatedRefusal);
 }
 
 InteractivityInput interactivityInput(const GltfExportInput& in, const std::string& where) {

@@ -378,8 +378,12 @@ TEST(GltfCli, EveryKindOfExportPassesTheKhronosValidator) {
       {"bake " + kWalk + " --orbit 8", "walk-skin-bake.glb"},            // weights + skeleton + camera
       {"bake " + kWalkWorld + " --orbit 6 --frames 2-5 --step", "walk-frames-bake.glb"},
       {"bake " + kSpot + " --camera examples/spot/swoop.camera.json --count 8", "swoop-bake.glb"},  // a path
-      {"export " + teapot, "teapot.glb"},    // five materials, no texture
-      {"export " + teapot, "teapot.gltf"}};  // the textured spot.gltf writes its image beside it
+      {"export " + teapot, "teapot.glb"},   // five materials, no texture
+      {"export " + teapot, "teapot.gltf"},  // the textured spot.gltf writes its image beside it
+      // A KHR_interactivity graph (docs/interactivity.md): base mode with dummies, cosine arcs, one key.
+      {"export " + kSpot + " --interactivity", "spot-graph.glb"},
+      {"export examples/figure13/head/head.vdg.json --interactivity", "head-graph.gltf"},
+      {"export examples/building/building.vdg.json --interactivity", "building-graph.glb"}};
   std::string files;
   for (const auto& [args, name] : exports) {
     const Result r = run(args + " -q -o " + dir.file(name));
@@ -391,6 +395,45 @@ TEST(GltfCli, EveryKindOfExportPassesTheKhronosValidator) {
   // No error and no warning (--strict) for scripts/validate-gltf; infos and hints are allowed.
   const Result v = runShell(validator + (std::getenv("VDG_GLTF_VALIDATOR") ? "" : " --strict") + files);
   EXPECT_EQ(v.code, 0) << v.out << v.err;
+}
+
+// vdg export --interactivity (docs/interactivity.md): the graph is in the file, `vdg info` reports
+// it, `vdg info MODEL` says how large it would be, and an animated model is refused in one line
+// naming what is not supported, with nothing written.
+TEST(GltfCli, InteractivityExportIsReportedAndAnimatedModelsAreRefused) {
+  vdg::testing::TempDir dir;
+  Result r = run("export " + kSpot + " --interactivity -o " + dir.file("spot.glb"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto doc = decodeGlb(readText(dir.file("spot.glb"))).doc;
+  EXPECT_EQ(doc.at("extensionsUsed"), nlohmann::json({"KHR_interactivity"}));
+  EXPECT_FALSE(doc.contains("extensionsRequired"));
+  const std::size_t nodes = doc.at("extensions").at("KHR_interactivity").at("graphs").at(0).at("nodes").size();
+  r = run("info " + dir.file("spot.glb"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("KHR_interactivity: " + std::to_string(nodes) + " nodes"), std::string::npos) << r.out;
+  r = run("info " + kSpot);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(
+      r.out.find("graph      KHR_interactivity (vdg export --interactivity): " + std::to_string(nodes) + " nodes"),
+      std::string::npos)
+      << r.out;
+  r = run("info " + kSpot + " --json");
+  EXPECT_EQ(nlohmann::json::parse(r.out).at("interactivity").at("nodes"), nodes);
+  // A plain export has no graph, and info says nothing of one.
+  ASSERT_EQ(run("export " + kSpot + " -q -o " + dir.file("plain.glb")).code, 0);
+  EXPECT_EQ(run("info " + dir.file("plain.glb")).out.find("KHR_interactivity:"), std::string::npos);
+  // --compress keeps the graph.
+  ASSERT_EQ(run("export " + kSpot + " --interactivity --compress quantize -q -o " + dir.file("q.glb")).code, 0);
+  EXPECT_TRUE(decodeGlb(readText(dir.file("q.glb"))).doc.at("extensions").contains("KHR_interactivity"));
+  for (const std::string& model : {kWalk, kWalkWorld}) {
+    r = run("export " + model + " --interactivity -o " + dir.file("walk.glb"));
+    EXPECT_EQ(r.code, 1) << r.err;
+    EXPECT_EQ(r.err, "vdg: error: " + model +
+                         ": --interactivity: animated models (key frames over time) are not supported; export a "
+                         "static model (docs/interactivity.md, \"Limits\")\n");
+    EXPECT_FALSE(fs::exists(dir.file("walk.glb")));
+  }
+  EXPECT_EQ(run("bake " + kSpot + " --orbit 4 --interactivity -o " + dir.file("b.glb")).code, 2);  // export only
 }
 
 // --compress quantize|meshopt (vdg/io/gltf_compress.h) on every kind of export: no error and no

@@ -46,6 +46,11 @@ inline constexpr double kGraphInsideTol = 1e-9;
 // An arc's projection counts when 1 - (v.n)^2 exceeds this (view_sphere.cpp's falloff()).
 inline constexpr double kGraphArcMinC2 = 1e-24;
 
+// Why an animated model gets no graph (after "WHERE: --interactivity: ").
+inline constexpr const char* kInteractivityAnimatedRefusal =
+    "animated models (key frames over time) are not supported; export a static model (docs/interactivity.md, "
+    "\"Limits\")";
+
 // What the graph is built from: exactly the export's extras v2 sphere and settings.
 struct InteractivityInput {
   GltfViewSphere sphere;  // static: view_targets[i] = {i}
