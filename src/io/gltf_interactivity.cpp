@@ -1,6 +1,6 @@
 // The KHR_interactivity graph of a static view-dependent export (see the header and
 // docs/interactivity.md). Every node is a core operation of the extension; values are float,
-// float3 or bool. The graph is data only: it is evaluated by the engine on each tick.
+// float3, float4, float4x4 or bool. The graph is data only: the engine evaluates it on each tick.
 #include "vdg/io/gltf_interactivity.h"
 
 #include <nlohmann/json.hpp>
