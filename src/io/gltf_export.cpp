@@ -887,12 +887,23 @@ Built build(const GltfExportInput& in, const std::string& where, GltfExportRepor
   doc["buffers"] = OJson::array({OJson{{"byteLength", b.data().size()}}});
   doc["bufferViews"] = std::move(b.views());
   doc["accessors"] = std::move(b.accessors());
-  if (in.interactivity) {  // used, not required: an engine without it still shows the base and targets
-    doc["extensionsUsed"] = OJson::array({"KHR_interactivity"});
-    doc["extensions"]["KHR_interactivity"] = OJson::parse(interactivityGraphJson(interactivityInput(in, where)));
-  }
   if (report) *report = rep;
   return {std::move(doc), std::move(b.data())};
+}
+
+// --interactivity, after compression (which may give the mesh's node its dequantisation): the graph
+// as extensions.KHR_interactivity, used, not required (an engine without it shows the base).
+void addInteractivity(OJson& doc, const GltfExportInput& in, const std::string& where) {
+  if (!in.interactivity) return;
+  InteractivityInput graph = interactivityInput(in, where);
+  const OJson& node = doc["nodes"][graph.node];
+  for (int k = 0; k < 3; ++k) {
+    if (node.contains("translation")) graph.node_offset[k] = node["translation"][k].get<double>();
+    if (node.contains("scale")) graph.node_scale[k] = node["scale"][k].get<double>();
+  }
+  if (!doc.contains("extensionsUsed")) doc["extensionsUsed"] = OJson::array();
+  doc["extensionsUsed"].push_back("KHR_interactivity");
+  doc["extensions"]["KHR_interactivity"] = OJson::parse(interactivityGraphJson(graph));
 }
 
 void appendU32(std::string& out, std::uint32_t x) {
@@ -1138,6 +1149,7 @@ GltfBakedAnimation gltfBakedAnimation(CameraPathBake samples, const GltfExportIn
 std::string gltfToGlb(const GltfExportInput& input, const std::string& where, GltfExportReport* report) {
   Built built = build(input, where, report);
   compressGltf(built.doc, built.bin, input.compression, where, report ? &report->sparse_targets : nullptr);
+  addInteractivity(built.doc, input, where);
   built.doc["buffers"][0].erase("uri");
   std::string json = built.doc.dump(-1, ' ', false, OJson::error_handler_t::replace);
   json.resize(pad4(json.size()), ' ');
@@ -1171,6 +1183,7 @@ std::string gltfToJson(const GltfExportInput& input, const std::string& where, c
   }
   Built built = build(input, where, report, image_out);
   compressGltf(built.doc, built.bin, input.compression, where, report ? &report->sparse_targets : nullptr);
+  addInteractivity(built.doc, input, where);
   built.doc["buffers"][0]["uri"] = bin_uri;
   std::string json = built.doc.dump(1, ' ', false, OJson::error_handler_t::replace);
   json += '\n';

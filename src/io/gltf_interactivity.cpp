@@ -40,6 +40,9 @@ class GraphBuilder {
   // The value output `socket` of node `n`.
   static OJson out(int n, const char* socket = "value") { return {{"node", n}, {"socket", socket}}; }
   OJson f(double x) { return {{"type", type("float")}, {"value", OJson::array({x})}}; }
+  OJson f4(const Eigen::Vector4d& v) {
+    return {{"type", type("float4")}, {"value", OJson::array({v.x(), v.y(), v.z(), v.w()})}};
+  }
   OJson f3(const Vector3d& v) { return {{"type", type("float3")}, {"value", OJson::array({v.x(), v.y(), v.z()})}}; }
   // Operation `op` on inputs a (and b, c): its "value" output.
   OJson call(const std::string& op, OJson a) { return out(node(op, {{"a", std::move(a)}})); }
@@ -179,6 +182,32 @@ OJson finalWeights(GraphBuilder& g, const InteractivityInput& in, const Slots& s
   return g.call("math/mul", w, g.combine3(scale, scale, scale));
 }
 
+// Step 2: the camera position carried into the model's space. glTF scene space to the mesh node's
+// space by the inverse of its global matrix (math/transform of (x, y, z, 1)), then to the model's
+// space by the node's own transform as exported (the dequantisation of --compress quantize:
+// offset + scale * p; nothing otherwise). Components come from dot products with the axes
+// (Babylon.js 9 refuses math/extract3 and math/extract4 of a typed input).
+OJson modelEye(GraphBuilder& g, const InteractivityInput& in) {
+  const int camera = g.node("pointer/get", OJson::object(),
+                            {{"pointer", {{"value", OJson::array({kCameraPointer})}}},
+                             {"type", {{"value", OJson::array({g.type("float3")})}}}});
+  const std::string pointer = "/nodes/" + std::to_string(in.node) + "/globalMatrix";
+  const int global = g.node(
+      "pointer/get", OJson::object(),
+      {{"pointer", {{"value", OJson::array({pointer})}}}, {"type", {{"value", OJson::array({g.type("float4x4")})}}}});
+  const OJson position = GraphBuilder::out(camera);
+  OJson c[3];
+  for (int k = 0; k < 3; ++k) c[k] = g.call("math/dot", position, g.f3(Vector3d::Unit(k)));
+  const OJson homogeneous =
+      GraphBuilder::out(g.node("math/combine4", {{"a", c[0]}, {"b", c[1]}, {"c", c[2]}, {"d", g.f(1.0)}}));
+  const OJson local = g.call("math/transform", homogeneous, g.call("math/inverse", GraphBuilder::out(global)));
+  for (int k = 0; k < 3; ++k) c[k] = g.call("math/dot", local, g.f4(Eigen::Vector4d::Unit(k)));
+  OJson p = g.combine3(c[0], c[1], c[2]);
+  if (in.node_scale != Vector3d::Ones()) p = g.call("math/mul", p, g.f3(in.node_scale));
+  if (in.node_offset != Vector3d::Zero()) p = g.call("math/add", p, g.f3(in.node_offset));
+  return p;
+}
+
 // Step 6. The tick goes through a flow/branch on `valid` (an eye away from the centre; a NaN camera
 // fails it too), so such a frame keeps the last weights, as vdg-three does. Then one flow/sequence
 // runs one variable/set that stores every target's weight (the value graph is evaluated once: an
@@ -250,10 +279,7 @@ std::string interactivityGraphJson(const InteractivityInput& in, InteractivitySi
   g.type("float3");
   g.type("bool");
   const int tick = g.node("event/onTick");
-  const int camera = g.node("pointer/get", OJson::object(),
-                            {{"pointer", {{"value", OJson::array({kCameraPointer})}}},
-                             {"type", {{"value", OJson::array({g.type("float3")})}}}});
-  const OJson eye = g.call("math/sub", GraphBuilder::out(camera), g.f3(in.center));
+  const OJson eye = g.call("math/sub", modelEye(g, in), g.f3(in.center));
   const OJson v = g.call("math/normalize", eye);
   Slots fallback;
   if (in.uncovered == Uncovered::Base) {  // unreachable: the hull with its dummies encloses the centre

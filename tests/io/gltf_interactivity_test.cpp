@@ -39,7 +39,7 @@ constexpr int kViewsPerCase = 300;
 
 // ---- the reference interpreter --------------------------------------------------------------
 
-using Value = std::variant<double, Vector3d, bool>;
+using Value = std::variant<double, Vector3d, bool, Eigen::Vector4d, Eigen::Matrix4d>;
 
 double num(const Value& v) { return std::get<double>(v); }
 const Vector3d& vec(const Value& v) { return std::get<Vector3d>(v); }
@@ -58,11 +58,13 @@ Value componentwise(const Value& a, const std::function<double(double)>& op) {
   return Vector3d(op(x.x()), op(x.y()), op(x.z()));
 }
 
-// Runs one graph on one tick: the camera at `eye`; returns the weights pointer/set wrote
-// (/nodes/{node}/weights/{k} -> weights[k]). Throws for anything outside the subset.
+// Runs one graph on one tick: the camera at `eye` (scene space), node 0's global matrix `global`;
+// returns the weights pointer/set wrote (/nodes/{node}/weights/{k} -> weights[k]). Throws for
+// anything outside the subset. float4x4 values are column-major (glTF's order).
 class Interpreter {
  public:
-  Interpreter(const json& graph, const Vector3d& eye) : g_(graph), eye_(eye) {
+  Interpreter(const json& graph, const Vector3d& eye, const Eigen::Matrix4d& global = Eigen::Matrix4d::Identity())
+      : g_(graph), eye_(eye), global_(global) {
     for (const json& t : g_.at("types")) types_.push_back(t.at("signature").get<std::string>());
     if (g_.contains("variables"))
       for (const json& v : g_.at("variables")) {
@@ -133,6 +135,9 @@ class Interpreter {
     if (type == "float") return x.at(0).get<double>();
     if (type == "float3") return Vector3d(x.at(0).get<double>(), x.at(1).get<double>(), x.at(2).get<double>());
     if (type == "bool") return x.at(0).get<bool>();
+    if (type == "float4")
+      return Eigen::Vector4d(x.at(0).get<double>(), x.at(1).get<double>(), x.at(2).get<double>(),
+                             x.at(3).get<double>());
     throw std::runtime_error("unexpected value type " + type);
   }
   Value output(int n, const std::string& socket) {
@@ -148,10 +153,11 @@ class Interpreter {
     auto b = [&] { return input(n, "b"); };
     if (o == "pointer/get") {
       const json& c = g_.at("nodes").at(n).at("configuration");
-      if (c.at("pointer").at("value").at(0) != "/extensions/KHR_interactivity/activeCamera/position" ||
-          types_.at(c.at("type").at("value").at(0).get<std::size_t>()) != "float3")
-        throw std::runtime_error("unexpected pointer/get");
-      return eye_;
+      const std::string pointer = c.at("pointer").at("value").at(0);
+      const std::string type = types_.at(c.at("type").at("value").at(0).get<std::size_t>());
+      if (pointer == "/extensions/KHR_interactivity/activeCamera/position" && type == "float3") return eye_;
+      if (pointer == "/nodes/0/globalMatrix" && type == "float4x4") return global_;
+      throw std::runtime_error("unexpected pointer/get " + pointer);
     }
     if (o == "variable/get")
       return variables_.at(
@@ -166,7 +172,16 @@ class Interpreter {
     if (o == "math/abs") return componentwise(a(), [](double x) { return std::abs(x); });
     if (o == "math/sqrt") return componentwise(a(), [](double x) { return std::sqrt(x); });
     if (o == "math/saturate") return componentwise(a(), [](double x) { return std::min(std::max(x, 0.0), 1.0); });
-    if (o == "math/dot") return vec(a()).dot(vec(b()));
+    if (o == "math/dot") {
+      const Value x = a(), y = b();
+      if (std::holds_alternative<Eigen::Vector4d>(x))
+        return std::get<Eigen::Vector4d>(x).dot(std::get<Eigen::Vector4d>(y));
+      return vec(x).dot(vec(y));
+    }
+    if (o == "math/combine4") return Eigen::Vector4d(num(a()), num(b()), num(input(n, "c")), num(input(n, "d")));
+    if (o == "math/inverse") return Eigen::Matrix4d(std::get<Eigen::Matrix4d>(a()).inverse());
+    // The specification's transform: the matrix b times the column vector a.
+    if (o == "math/transform") return Eigen::Vector4d(std::get<Eigen::Matrix4d>(b()) * std::get<Eigen::Vector4d>(a()));
     if (o == "math/normalize") {
       const Vector3d x = vec(a());
       return Vector3d(x / x.norm());
@@ -182,6 +197,7 @@ class Interpreter {
 
   const json& g_;
   Vector3d eye_;
+  Eigen::Matrix4d global_;
   std::vector<std::string> types_;
   std::vector<double> variables_;
   std::map<std::pair<int, std::string>, Value> memo_;
@@ -290,7 +306,7 @@ TEST(GltfInteractivity, GraphIsWellFormedAndItsSizeIsReported) {
   for (const auto& [socket, f] : nodes.at(sequence).at("flows").items()) sockets.push_back(socket);
   EXPECT_EQ(sockets, (std::vector<std::string>{"0", "1", "2", "3", "4"}));  // variable/set, then the targets
   EXPECT_EQ(size.ops.at("event/onTick"), 1u);
-  EXPECT_EQ(size.ops.at("pointer/get"), 1u);
+  EXPECT_EQ(size.ops.at("pointer/get"), 2u);  // the camera position, the node's global matrix
   const std::string text = interactivitySizeText(size);
   EXPECT_NE(text.find(std::to_string(nodes.size()) + " nodes"), std::string::npos) << text;
 }
@@ -308,7 +324,7 @@ TEST(GltfInteractivity, SizeGrowsLinearlyWithTrianglesArcsAndTargets) {
   for (const auto& t : sphere.triangles())
     triangles += !(sphere.isDummy(t[0]) && sphere.isDummy(t[1]) && sphere.isDummy(t[2]));
   EXPECT_LT(triangles, sphere.triangles().size());
-  EXPECT_EQ(one.nodes, 14 + 9 * triangles + 7 * keys.size()) << interactivitySizeText(one);
+  EXPECT_EQ(one.nodes, 25 + 9 * triangles + 7 * keys.size()) << interactivitySizeText(one);
   EXPECT_EQ(sharp.nodes, one.nodes + 8);  // the sharpening: three dot, two max, combine3, div, pow
 }
 
@@ -348,10 +364,22 @@ TEST(GltfInteractivity, ExportAddsTheExtensionAsUsedNotRequired) {
   EXPECT_EQ(doc.at("nodes").at(0).at("mesh"), 0);
   const std::map<int, double> w = Interpreter(graph, opened.model->center() + Vector3d(0, 0, 5)).tick();
   EXPECT_EQ(w.size(), in.targets.size());
-  // With compression the extension stays (the quantised node keeps model space as its parent space).
+  // With compression the node carries the dequantisation D (translation, scale) and the graph
+  // carries it back: played with the node's global matrix D, the weights are the plain export's.
   in.compression = GltfCompression::kQuantize;
   const json packed = testing::decodeGlb(gltfToGlb(in, "t.glb")).doc;
-  EXPECT_TRUE(packed.at("extensions").contains("KHR_interactivity"));
+  ASSERT_TRUE(packed.at("nodes").at(0).contains("translation"));
+  Eigen::Matrix4d dequantize = Eigen::Matrix4d::Identity();
+  for (int k = 0; k < 3; ++k) {
+    dequantize(k, k) = packed.at("nodes").at(0).at("scale").at(k).get<double>();
+    dequantize(k, 3) = packed.at("nodes").at(0).at("translation").at(k).get<double>();
+  }
+  const json& packed_graph = packed.at("extensions").at("KHR_interactivity").at("graphs").at(0);
+  for (const Vector3d& eye : {Vector3d(0.3, 1.0, 5.0), Vector3d(-4, 0.5, 1), Vector3d(2, -3, -2)}) {
+    const std::map<int, double> plain_w = Interpreter(graph, eye).tick();
+    const std::map<int, double> packed_w = Interpreter(packed_graph, eye, dequantize).tick();
+    for (const auto& [k, x] : plain_w) EXPECT_NEAR(packed_w.at(k), x, kWeightTol) << "eye " << eye.transpose();
+  }
   bool listed = false;
   for (const json& e : packed.at("extensionsUsed")) listed = listed || e == "KHR_interactivity";
   EXPECT_TRUE(listed);
@@ -409,6 +437,24 @@ TEST(GltfInteractivity, GraphEqualsViewSphereOnDegenerateKeySets) {
         expectGraphMatchesSphere(sphere, inputOf(sphere, sharpness, Vector3d(0.3, -1.0, 2.0)),
                                  name + " " + kModes[mode] + " a=" + std::to_string(sharpness), seed++);
       }
+}
+
+// An engine that moves the mesh's node (its global matrix G) is followed: the camera at G * eye
+// sees what the unmoved model shows at eye.
+TEST(GltfInteractivity, AMovedNodeIsFollowedThroughItsGlobalMatrix) {
+  const std::vector<Vector3d> keys = {{0, 0, 1}, {1, 0.2, 0}, {0, 1, 0.1}, {-0.3, 0.2, 1}};
+  const ViewSphere sphere = ViewSphere::build(keys, settingsOf(1));
+  const InteractivityInput in = inputOf(sphere, 2.0, Vector3d(0.1, 0.2, 0.3));
+  const json graph = graphOf(in);
+  Eigen::Affine3d moved =
+      Eigen::Translation3d(3, -2, 7) * Eigen::AngleAxisd(0.8, Vector3d(1, 2, 3).normalized()) * Eigen::Scaling(2.5);
+  std::mt19937 rng(9);
+  for (int i = 0; i < 100; ++i) {
+    const Vector3d eye = in.center + 6.0 * testing::randomDirection(rng);
+    const std::vector<double> want = expectedWeights(sphere, in, (eye - in.center).normalized());
+    const std::map<int, double> got = Interpreter(graph, moved * eye, moved.matrix()).tick();
+    for (std::size_t k = 0; k < in.targets; ++k) ASSERT_NEAR(got.at(static_cast<int>(k)), want[k], kWeightTol) << k;
+  }
 }
 
 // The interpreter is not lenient: it throws for an operation outside the subset, so the oracle

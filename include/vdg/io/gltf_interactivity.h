@@ -5,10 +5,10 @@
 // The graph repeats ViewSphere::weightsByScan (vdg/viewdep/view_sphere.h) and web/vdg-three.js's
 // vdgWeights on every tick, from the same numbers mesh.extras.vdg v2 carries:
 //  1. event/onTick; pointer/get /extensions/KHR_interactivity/activeCamera/position (float3, glTF
-//     scene space). The export puts the mesh on root node `node` whose own transform is at most the
-//     dequantisation of --compress (then its parent space is model space), so the camera position
-//     is used as it is (no matrix; an engine that moves the node is not followed, documented).
-//  2. v = normalize(eye - centre).
+//     scene space).
+//  2. Into the model's space: the inverse of the mesh node's /nodes/{node}/globalMatrix (so an
+//     engine that moves the node is followed), then the node's own transform as exported
+//     (node_offset, node_scale: --compress quantize's dequantisation); v = normalize(eye - centre).
 //  3. Per hull triangle t: cone coordinates l = (r0.v, r1.v, r2.v) with the rows r of the written
 //     inverse; inside_t = min(l) >= -kGraphInsideTol. A chain of math/select (triangle 0
 //     outermost) keeps the first triangle that holds v, its l and its corners' morph targets
@@ -59,6 +59,10 @@ struct InteractivityInput {
   Eigen::Vector3d center = Eigen::Vector3d::Zero();
   std::size_t targets = 0;  // morph targets of the mesh
   int node = 0;             // glTF node that holds the mesh
+  // That node's own transform as exported (translation and scale: --compress quantize's
+  // dequantisation; none otherwise): model space = node_offset + node_scale * node space.
+  Eigen::Vector3d node_offset = Eigen::Vector3d::Zero();
+  Eigen::Vector3d node_scale = Eigen::Vector3d::Ones();
 };
 
 // The input of a static export (`in.view_sphere` as written, or built from the targets as the writer
