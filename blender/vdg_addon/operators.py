@@ -65,6 +65,22 @@ class _Reporting:
             return {"CANCELLED"}
 
 
+class _OnKey(_Reporting):
+    """An operator on one vdg key of the active mesh: `index`, or the panel's active key when -1."""
+
+    @classmethod
+    def poll(cls, context: Any) -> bool:
+        obj = _mesh_object(context)
+        return obj is not None and len(obj.vdg.keys) > 0
+
+    def key_index(self, obj: Any) -> int:
+        """The key this operator acts on; an AddonError naming the object when there is none."""
+        index = self.index if self.index >= 0 else obj.vdg.active_index
+        if not 0 <= index < len(obj.vdg.keys):
+            raise model.AddonError(f"object '{obj.name}' has no key {index}")
+        return index
+
+
 class VDG_OT_key_from_camera(_Reporting, bpy.types.Operator):
     """New shape key for the active camera's view (the camera is stored as the key camera)"""
 
@@ -143,7 +159,7 @@ def _framing_distance(obj: Any, center_local: Vector, fov_deg: float) -> float:
     return 1.2 * radius / math.sin(math.radians(fov_deg) / 2.0)
 
 
-class VDG_OT_look_through(_Reporting, bpy.types.Operator):
+class VDG_OT_look_through(_OnKey, bpy.types.Operator):
     """Puts the scene camera at the key camera (or on the key's view, framing the object)"""
 
     bl_idname = "vdg.look_through"
@@ -152,16 +168,9 @@ class VDG_OT_look_through(_Reporting, bpy.types.Operator):
 
     index: IntProperty(name="Key", default=-1)
 
-    @classmethod
-    def poll(cls, context: Any) -> bool:
-        obj = _mesh_object(context)
-        return obj is not None and len(obj.vdg.keys) > 0
-
     def run(self, context: Any) -> Set[str]:
         obj = _mesh_object(context)
-        index = self.index if self.index >= 0 else obj.vdg.active_index
-        if not 0 <= index < len(obj.vdg.keys):
-            raise model.AddonError(f"object '{obj.name}' has no key {index}")
+        index = self.key_index(obj)
         key = obj.vdg.keys[index]
         scene = context.scene
         cam = scene.camera
@@ -193,7 +202,7 @@ class VDG_OT_look_through(_Reporting, bpy.types.Operator):
         return {"FINISHED"}
 
 
-class VDG_OT_remove_key(_Reporting, bpy.types.Operator):
+class VDG_OT_remove_key(_OnKey, bpy.types.Operator):
     """Removes a vdg key and its shape key"""
 
     bl_idname = "vdg.remove_key"
@@ -202,16 +211,9 @@ class VDG_OT_remove_key(_Reporting, bpy.types.Operator):
 
     index: IntProperty(name="Key", default=-1)
 
-    @classmethod
-    def poll(cls, context: Any) -> bool:
-        obj = _mesh_object(context)
-        return obj is not None and len(obj.vdg.keys) > 0
-
     def run(self, context: Any) -> Set[str]:
         obj = _mesh_object(context)
-        index = self.index if self.index >= 0 else obj.vdg.active_index
-        if not 0 <= index < len(obj.vdg.keys):
-            raise model.AddonError(f"object '{obj.name}' has no key {index}")
+        index = self.key_index(obj)
         name = obj.vdg.keys[index].name
         obj.vdg.keys.remove(index)
         keys = obj.data.shape_keys
