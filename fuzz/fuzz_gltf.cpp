@@ -16,6 +16,7 @@
 #include "fuzz_support.h"
 #include "vdg/anim/rig.h"
 #include "vdg/io/gltf.h"
+#include "vdg/io/gltf_interactivity.h"
 
 namespace {
 
@@ -57,6 +58,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string bytes = fuzz::text(data, size);
   fuzz::expectCleanRejection("describeGltfData",
                              [&] { withVdgMessage([&] { (void)describeGltfData(bytes, kSource); }); });
+  // vdg info's KHR_interactivity summary reads the document's JSON on its own (gltf_interactivity.h).
+  fuzz::expectCleanRejection("interactivitySizeOfGltfJson", [&] {
+    InteractivitySize graph;
+    withVdgMessage([&] { (void)interactivitySizeOfGltfJson(bytes, kSource, graph); });
+  });
   fuzz::expectCleanRejection("parseGltfRig", [&] {
     RawRig raw;
     withVdgMessage([&] { raw = parseGltfRig(bytes, kSource); });
