@@ -51,8 +51,13 @@ ci-ctest:
 asan-build:
 	cmake --preset asan
 	cmake --build $(ASAN_BUILD) -j $(JOBS)
+# LP_NUM_THREADS=0: Mesa's llvmpipe renders without worker threads under the sanitizers.
+# LeakSanitizer's exit check stops every thread from a tracer process, and with llvmpipe's threads
+# alive that tracer dies of SIGSEGV ("Tracer caught signal 11 ... LeakSanitizer has encountered a
+# fatal error") in whichever rendering process the memory layout of the day picks: a crash of the
+# sanitizer, not a finding (vdg render in morph3d's CLI test, 2026-12-03). Leak checks stay on.
 asan-ctest:
-	$(REQUIRE) ctest --test-dir $(ASAN_BUILD) --output-on-failure -j $(JOBS)
+	LP_NUM_THREADS=0 $(REQUIRE) ctest --test-dir $(ASAN_BUILD) --output-on-failure -j $(JOBS)
 # libFuzzer + ASan + UBSan (clang): every target FUZZ_SECONDS on a copy of fuzz/corpus in
 # build/fuzz, FUZZ_JOBS at a time; fails on any finding (see CONTRIBUTING.md, "Fuzzing").
 fuzz-build:
