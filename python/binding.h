@@ -115,6 +115,7 @@ struct BuildArgs {
   py::object base, triangles, keys, center, frames, uvs, corner_uvs, materials, face_materials;
   double sharpness = 1.0, base_falloff_deg = 60.0, fps = 24.0;
   std::string uncovered = "base", comment;
+  std::string scheme = "linear";
   bool loop = false;
 };
 Model buildModel(const BuildArgs& args);

@@ -59,6 +59,12 @@ Uncovered uncoveredFrom(const std::string& name) {
   throw py::value_error("uncovered: expected 'base', 'cosine' or 'cosine2', got '" + name + "'");
 }
 
+WeightScheme schemeFrom(const std::string& name) {
+  for (const WeightScheme w : {WeightScheme::Linear, WeightScheme::Smooth})
+    if (name == weightSchemeName(w)) return w;
+  throw py::value_error("scheme: expected 'linear' or 'smooth', got '" + name + "'");
+}
+
 // The animated base of build(frames=...): frames[0] is the base; saved as an OBJ sequence.
 void setFrames(RawViewDependentModel& raw, const BuildArgs& args, const std::vector<float>& base) {
   const py::array a = py::module_::import("numpy").attr("asarray")(args.frames);
@@ -228,6 +234,7 @@ Model buildModel(const BuildArgs& args) {
   validateMesh(raw.base, "build: base");
   raw.sharpness = args.sharpness;
   raw.sphere.uncovered = uncoveredFrom(args.uncovered);
+  raw.sphere.scheme = schemeFrom(args.scheme);
   raw.sphere.base_falloff_deg = args.base_falloff_deg;
   if (!args.center.is_none()) raw.center = vector3(args.center, "center");
   raw.comment = args.comment;

@@ -108,6 +108,9 @@ void bindModelProperties(py::class_<Model>& c) {
           "uncovered", [](const Model& m) { return uncoveredName(m.raw.sphere.uncovered); },
           "'base', 'cosine' or 'cosine2' (section 3.3).")
       .def_property_readonly(
+          "scheme", [](const Model& m) { return weightSchemeName(m.raw.sphere.scheme); },
+          "The weight scheme: 'linear' (the paper's barycentric blend) or 'smooth' (C1; docs/weights.md).")
+      .def_property_readonly(
           "base_falloff_deg", [](const Model& m) { return m.raw.sphere.base_falloff_deg; },
           "Angle beyond every key where dummy base points go (uncovered='base').")
       .def_property_readonly(
@@ -188,7 +191,8 @@ void bindFunctions(py::module_& m) {
       "build",
       [](py::object base, py::object triangles, py::object keys, double sharpness, std::string uncovered,
          double base_falloff_deg, py::object center, py::object frames, bool loop, double fps, py::object uvs,
-         std::string comment, py::object corner_uvs, py::object materials, py::object face_materials) {
+         std::string comment, py::object corner_uvs, py::object materials, py::object face_materials,
+         std::string scheme) {
         BuildArgs args;
         args.base = std::move(base);
         args.triangles = std::move(triangles);
@@ -205,18 +209,20 @@ void bindFunctions(py::module_& m) {
         args.corner_uvs = std::move(corner_uvs);
         args.materials = std::move(materials);
         args.face_materials = std::move(face_materials);
+        args.scheme = std::move(scheme);
         return buildModel(args);
       },
       py::arg("base"), py::arg("triangles"), py::arg("keys"), py::kw_only(), py::arg("sharpness") = 1.0,
       py::arg("uncovered") = "base", py::arg("base_falloff_deg") = 60.0, py::arg("center") = py::none(),
       py::arg("frames") = py::none(), py::arg("loop") = false, py::arg("fps") = 24.0, py::arg("uvs") = py::none(),
       py::arg("comment") = "", py::arg("corner_uvs") = py::none(), py::arg("materials") = py::none(),
-      py::arg("face_materials") = py::none(),
+      py::arg("face_materials") = py::none(), py::arg("scheme") = "linear",
       R"(A model from arrays: base (V, 3), triangles (T, 3), keys (vdg.Key or dicts {"name",
 "positions", "view" or "camera", "frame"}). frames (F, V, 3) makes an animated model (section 4; base
 must be frames[0] or None). Texture coordinates per vertex (uvs, (V, 2)) or per corner (corner_uvs,
 (T, 3, 2)); materials (dicts {"name", "base_color" display RGB in [0, 1], "texture" PNG or JPEG
-bytes, "texture_path"}) with face_materials ((T,) indices, -1 none), both or neither. Raises vdg.Error with vdg's validation message for an invalid model
+bytes, "texture_path"}) with face_materials ((T,) indices, -1 none), both or neither. scheme: the weight
+scheme, 'linear' (the paper's) or 'smooth' (C1, docs/weights.md). Raises vdg.Error with vdg's validation message for an invalid model
 (duplicate names or views, non-finite coordinates, key frames out of range ...).)");
 }
 

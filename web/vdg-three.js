@@ -1,10 +1,11 @@
 // vdg-three.js: view-dependent models (Rademacher, "View-Dependent Geometry", SIGGRAPH 99) exported
 // by `vdg export` / `vdg bake`, alive in three.js. One ES module, no build step, importing only
 // 'three'. The weights repeat src/viewdep/view_sphere.cpp and animated_model.cpp exactly, from the
-// description the export carries in mesh.extras.vdg (version 2, docs/gltf-export.md):
+// description the export carries in mesh.extras.vdg (versions 2 and 3, docs/gltf-export.md):
 //  - section 3.2.1: the view from the model centre picks the hull triangle whose cone contains it
 //    (cone coordinates lambda = M v with the written inverse M; inside when min >= -kInsideTol);
 //  - section 3.2.2: barycentric weights sharpened relative to the largest, (p/pmax)^a / sum;
+//    version 3's smooth scheme first turns them into the C1 side-vertex blend (docs/weights.md);
 //  - section 3.3: dummy points give their weight to the base; cosine modes fall off towards the
 //    nearest boundary arc or isolated key;
 //  - section 4.2: per key view, cardinal cubic-spline coefficients in time from the written
@@ -23,10 +24,11 @@ import { Matrix4, Vector3 } from 'three';
  * @property {number[][]} view_targets per key view, the morph target of each key frame
  */
 /**
- * @typedef {object} VdgExtras the parsed mesh.extras.vdg object (version 2)
+ * @typedef {object} VdgExtras the parsed mesh.extras.vdg object (version 2 or 3)
  * @property {number} version
  * @property {number} sharpness
  * @property {'base'|'cosine'|'cosine2'} uncovered
+ * @property {{scheme: 'linear'|'smooth'}} [weights] (version 3) the weight scheme; absent: linear
  * @property {number[]} center
  * @property {{name: string, view: number[], frame: number}[]} keys
  * @property {{frame_count: number, fps: number, loop: boolean, animation?: number, base: 'skin'|'frames'}} [animation]
@@ -55,6 +57,7 @@ const kInsideTol = 1e-9;
  * @property {Int32Array} arcs
  * @property {Float64Array} arcFrames per arc: normal, b x normal, normal x a (9 numbers)
  * @property {Int32Array} isolated
+ * @property {boolean} smooth the smooth weight scheme (extras version 3 'weights'), else linear
  * @property {number} targetCount morph targets of the mesh (keys, then base frames)
  */
 
@@ -75,6 +78,11 @@ function prepare(extras) {
     throw new Error(`vdg-three: mesh.extras.vdg has no 'sphere' (version ${extras.version}); re-export with a vdg ` +
       'that writes extras version 2');
   }
+  const scheme = extras.weights ? extras.weights.scheme : 'linear';
+  if (scheme !== 'linear' && scheme !== 'smooth') {
+    throw new Error(`vdg-three: weight scheme '${scheme}' is not supported here (linear and smooth are)`);
+  }
+  const smooth = scheme === 'smooth';
   const points = new Float64Array(s.points.flat());
   const triangles = new Int32Array(s.triangles.flat());
   const inverses = new Float64Array(s.inverses.flat());
@@ -100,7 +108,7 @@ function prepare(extras) {
   const frameTargets = extras.animation && extras.animation.base === 'frames' ? extras.animation.frame_count - 1 : 0;
   /** @type {Prepared} */
   const p = {
-    extras, points, views: s.views, triangles, inverses, arcs, arcFrames,
+    extras, points, views: s.views, triangles, inverses, arcs, arcFrames, smooth,
     isolated: new Int32Array(s.isolated),
     targetCount: extras.keys.length + frameTargets,
   };
@@ -119,6 +127,56 @@ function sharpen(s, alpha) {
   for (let k = 0; k < 3; ++k) s[k] = s[k] === largest ? 1 : Math.pow(s[k] / largest, alpha);
   const sum = s[0] + s[1] + s[2];
   for (let k = 0; k < 3; ++k) s[k] /= sum;
+}
+
+/**
+ * The smooth scheme's edge step F(t) = 3t^2 - 2t^3 on [0, 1], clamped (view_sphere.cpp).
+ * @param {number} t
+ */
+function smoothEdgeStep(t) {
+  t = Math.min(Math.max(t, 0), 1);
+  return t * t * (3 - 2 * t);
+}
+
+/**
+ * Where the view lies between points a and b (offsets into `points`): the chord lengths' ratio
+ * |v - a| / (|v - a| + |v - b|) (view_sphere.cpp's edgeParameter).
+ * @param {Float64Array} points @param {number} a @param {number} b
+ * @param {number} vx @param {number} vy @param {number} vz
+ */
+function edgeParameter(points, a, b, vx, vy, vz) {
+  const toA = Math.sqrt(Math.max(0, 2 - 2 * (vx * points[a] + vy * points[a + 1] + vz * points[a + 2])));
+  const toB = Math.sqrt(Math.max(0, 2 - 2 * (vx * points[b] + vy * points[b + 1] + vz * points[b + 2])));
+  return toA / (toA + toB);
+}
+
+/**
+ * The smooth scheme's weights of triangle t's corners (docs/weights.md; view_sphere.h, "Weight
+ * schemes"), in place: w[0..2] holds the triangle's barycentric weights (>= 0) on entry.
+ * @param {Prepared} p @param {number} t
+ * @param {number} vx @param {number} vy @param {number} vz
+ * @param {Float64Array} w
+ */
+function smoothTriangle(p, t, vx, vy, vz, w) {
+  const total = w[0] + w[1] + w[2];
+  const b0 = w[0] / total, b1 = w[1] / total, b2 = w[2] / total;
+  const p0 = b1 * b2, p1 = b2 * b0, p2 = b0 * b1;
+  const beta = [p0 * p0, p1 * p1, p2 * p2];
+  const sum = beta[0] + beta[1] + beta[2];
+  if (!(sum > 1e-280)) {  // at a corner: its one-hot weights (kMinSmoothBlend)
+    const largest = b0 >= b1 && b0 >= b2 ? 0 : (b1 >= b2 ? 1 : 2);
+    for (let k = 0; k < 3; ++k) w[k] = k === largest ? 1 : 0;
+    return;
+  }
+  w[0] = w[1] = w[2] = 0;
+  for (let k = 0; k < 3; ++k) {
+    const i = (k + 1) % 3, j = (k + 2) % 3;
+    const f = smoothEdgeStep(edgeParameter(p.points, 3 * p.triangles[3 * t + i], 3 * p.triangles[3 * t + j],
+      vx, vy, vz));
+    const weight = beta[k] / sum;
+    w[i] += weight * (1 - f);
+    w[j] += weight * f;
+  }
 }
 
 /**
@@ -158,7 +216,9 @@ function locate(p, vx, vy, vz, alpha, slots, w, hint = -1) {
   }
   if (found >= 0 && (base || bestMin >= -kInsideTol)) {
     w[0] = Math.max(l0, 0); w[1] = Math.max(l1, 0); w[2] = Math.max(l2, 0);
-    if (!(Math.max(w[0], w[1], w[2]) > 0)) { w[0] = w[1] = w[2] = 1; }
+    if (!(Math.max(w[0], w[1], w[2]) > 0)) { w[0] = w[1] = w[2] = 1; } else if (p.smooth) {
+      smoothTriangle(p, found, vx, vy, vz, w);
+    }
     if (alpha !== 1) sharpen(w, alpha);
     const sum = w[0] + w[1] + w[2];
     w[3] = 0;
@@ -187,7 +247,17 @@ function locate(p, vx, vy, vz, alpha, slots, w, hint = -1) {
       const c = Math.sqrt(c2);
       if (c > bestCos) {
         bestCos = c; slots[0] = p.arcs[2 * i]; slots[1] = p.arcs[2 * i + 1];
-        w[0] = la / (la + lb); w[1] = lb / (la + lb);
+        if (p.smooth) {  // the smooth edge weights at the arc's point nearest to the view
+          const a = 3 * p.arcs[2 * i], b = 3 * p.arcs[2 * i + 1];
+          let qx = la * points[a] + lb * points[b], qy = la * points[a + 1] + lb * points[b + 1];
+          let qz = la * points[a + 2] + lb * points[b + 2];
+          const len = Math.sqrt(qx * qx + qy * qy + qz * qz);
+          qx /= len; qy /= len; qz /= len;
+          const f = smoothEdgeStep(edgeParameter(points, a, b, qx, qy, qz));
+          w[0] = 1 - f; w[1] = f;
+        } else {
+          w[0] = la / (la + lb); w[1] = lb / (la + lb);
+        }
       }
       continue;
     }

@@ -107,6 +107,8 @@ void addExportCommand(CLI::App& app) {
     const OpenedInput input = openModel(opt->model);
     if (opt->interactivity && input.animated)
       throw Error(opt->model + ": --interactivity: " + kInteractivityAnimatedRefusal);
+    if (opt->interactivity && input.raw.sphere.scheme != WeightScheme::Linear)
+      throw Error(opt->model + ": --interactivity: " + kInteractivitySchemeRefusal);
     checkOutputIsNotInput(opt->output, opt->model, input);
     GltfExportInput export_input = exportInputForCli(input);
     export_input.compression = opt->compress.value();

@@ -247,6 +247,7 @@ void addShapeFields(const Model& model, nlohmann::ordered_json& out) {
   out["center"] = {model.center().x(), model.center().y(), model.center().z()};
   out["sharpness"] = model.sharpness();
   out["uncovered"] = uncoveredName(model.sphere().settings().uncovered);
+  out["weights"] = weightSchemeName(model.sphere().settings().scheme);
   addSurfaceFields(model.base(), out);
 }
 
@@ -287,6 +288,8 @@ InteractivitySize interactivityGraphSize(const ViewDependentModel& model) {
   (void)interactivityGraphJson(interactivityInput(model), &size);
   return size;
 }
+// The graph repeats the paper's linear weights only (kInteractivitySchemeRefusal).
+bool linearWeights(const ViewDependentModel& model) { return model.sphere().settings().scheme == WeightScheme::Linear; }
 nlohmann::ordered_json interactivityJson(const ViewDependentModel& model) {
   const InteractivitySize size = interactivityGraphSize(model);
   return {{"nodes", size.nodes}, {"declarations", size.declarations}, {"types", size.types}, {"ops", size.ops}};
@@ -369,6 +372,7 @@ void describeAnimated(const std::string& path, const RawViewDependentModel& raw,
   std::printf("centre     (%.4g, %.4g, %.4g)\n", model.center().x(), model.center().y(), model.center().z());
   std::printf("sharpness  %g\n", model.sharpness());
   std::printf("uncovered  %s\n", uncoveredName(sphere.settings().uncovered));
+  std::printf("weights    %s\n", weightSchemeName(sphere.settings().scheme));
   std::printf("views      %zu (%zu keys)\n", model.viewCount(), raw.keys.size());
   for (std::size_t i = 0; i < model.viewCount(); ++i) {
     const auto& v = model.viewDirection(i);
@@ -672,7 +676,7 @@ void addInfoCommand(CLI::App& app) {
       out["model"] = opt->model;
       out["base"] = raw.base_path;
       out["export_targets"] = exportTargetsJson(model.keyCount(), 0);
-      out["interactivity"] = interactivityJson(model);
+      out["interactivity"] = linearWeights(model) ? interactivityJson(model) : nlohmann::ordered_json(nullptr);
       addShapeFields(model, out);
       out["keys"] = nlohmann::ordered_json::array();
       for (std::size_t k = 0; k < model.keyCount(); ++k) {
@@ -692,6 +696,7 @@ void addInfoCommand(CLI::App& app) {
     std::printf("centre     (%.4g, %.4g, %.4g)\n", model.center().x(), model.center().y(), model.center().z());
     std::printf("sharpness  %g\n", model.sharpness());
     std::printf("uncovered  %s\n", uncoveredName(sphere.settings().uncovered));
+    std::printf("weights    %s\n", weightSchemeName(sphere.settings().scheme));
     std::printf("keys       %zu\n", model.keyCount());
     for (std::size_t k = 0; k < model.keyCount(); ++k) {
       const auto& v = model.keyView(k);
@@ -703,7 +708,8 @@ void addInfoCommand(CLI::App& app) {
                 100.0 * sphere.coveredFraction());
     printExportTargets(model.keyCount(), 0);
     std::printf("graph      KHR_interactivity (vdg export --interactivity): %s\n",
-                interactivitySizeText(interactivityGraphSize(model)).c_str());
+                linearWeights(model) ? interactivitySizeText(interactivityGraphSize(model)).c_str()
+                                     : "none (the graph weighs the linear scheme only)");
     for (const auto& w : warnings) std::printf("warning: %s\n", w.c_str());
   });
 }

@@ -1,9 +1,14 @@
-// vdg weights MODEL (--view X,Y,Z | --eye X,Y,Z | --views FILE) [--sharpness A] [--json]
+// vdg weights MODEL (--view X,Y,Z | --eye X,Y,Z | --views FILE | --continuity) [--sharpness A]
+//                   [--scheme linear|smooth] [--json]
 //
 // Batch mode (--views FILE): FILE is a JSON array whose items are directions [x, y, z] (towards
 // the eye, from the model centre), or objects {"view": [x, y, z]} or {"eye": [x, y, z]} (an eye
 // position in model space); the output is one JSON array with the --json object of each item, in
 // order. One process for thousands of views (the runtime's parity tests use it).
+//
+// Continuity (--continuity [--step DEG] [--scheme linear|smooth]): the popping and velocity-jump
+// figures of vdg/viewdep/continuity.h along great circles of views (static models; docs/weights.md).
+// --scheme overrides the model's weight scheme for this command (to compare the two).
 //
 // An animated model (manifest "base_animation") is weighed per key VIEW: its keys that share a view
 // are one point of the viewing sphere (Rademacher 99, section 4.1), and the weights do not depend on
@@ -25,6 +30,7 @@
 #include "vdg/io/model.h"
 #include "vdg/io/read_file.h"
 #include "vdg/viewdep/animated_model.h"
+#include "vdg/viewdep/continuity.h"
 #include "view_options.h"
 
 namespace vdg::cli {
@@ -109,6 +115,33 @@ void batchWeights(const OpenedInput& input, const std::string& path, double shar
   }
   std::cout << out.dump() << "\n";
 }
+void continuityReport(const OpenedInput& input, const std::string& path, const ContinuitySettings& settings,
+                      bool json) {
+  if (input.animated)
+    throw UsageError("--continuity: " + quotedText(path) + " is animated; --continuity measures static models");
+  const ContinuityReport r = measureContinuity(*input.model, settings);
+  const char* scheme = weightSchemeName(input.model->sphere().settings().scheme);
+  if (json) {
+    std::cout << nlohmann::ordered_json{{"scheme", scheme},
+                                        {"step_deg", settings.step_deg},
+                                        {"paths", r.paths},
+                                        {"samples", r.samples},
+                                        {"size", r.size},
+                                        {"popping", r.popping},
+                                        {"velocity_jump", r.velocity_jump},
+                                        {"weight_speed", r.weight_speed},
+                                        {"weight_jump", r.weight_jump}}
+                     .dump()
+              << "\n";
+    return;
+  }
+  std::printf("weights        %s, %zu great circles of views, a sample every %g degrees\n", scheme, r.paths,
+              settings.step_deg);
+  std::printf("popping        %.5f of the model's size per degree (the fastest vertex)\n", r.popping);
+  std::printf("velocity jump  %.6f per degree (the largest change of a vertex's speed between samples)\n",
+              r.velocity_jump);
+  std::printf("weights speed  %.5f per degree, jump %.6f per degree\n", r.weight_speed, r.weight_jump);
+}
 }  // namespace
 
 void addWeightsCommand(CLI::App& app) {
@@ -117,6 +150,9 @@ void addWeightsCommand(CLI::App& app) {
     ViewOptions view;
     bool json = false;
     std::string views;
+    std::string scheme;
+    bool continuity = false;
+    ContinuitySettings continuity_settings;
   };
   auto opt = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand(
@@ -129,8 +165,26 @@ void addWeightsCommand(CLI::App& app) {
                   "[x,y,z]}); prints a JSON array with the --json object of each, in order")
       ->excludes("--view")
       ->excludes("--eye");
+  sub->add_option("--scheme", opt->scheme, "Weigh with this scheme instead of the model's (docs/weights.md)")
+      ->check(CLI::IsMember({"linear", "smooth"}));
+  auto* continuity = sub->add_flag("--continuity", opt->continuity,
+                                   "Measure how smoothly the model changes along great circles of views: popping "
+                                   "(the fastest vertex per degree) and velocity jumps (docs/weights.md)");
+  continuity->excludes("--view")->excludes("--eye")->excludes("--views");
+  sub->add_option("--step", opt->continuity_settings.step_deg, "--continuity: degrees between samples (default 0.1)")
+      ->check(positiveNumber(10.0))
+      ->needs(continuity);
   sub->callback([opt] {
-    const OpenedInput input = openModel(opt->model);
+    OpenedInput input = openModel(opt->model, {}, opt->scheme.empty() ? InputBuild::kBuilt : InputBuild::kRawOnly);
+    if (!opt->scheme.empty()) {
+      input.raw.sphere.scheme = opt->scheme == "smooth" ? WeightScheme::Smooth : WeightScheme::Linear;
+      buildOpenedModel(input);
+    }
+    if (opt->continuity) {
+      opt->continuity_settings.sharpness = opt->view.sharpness;
+      continuityReport(input, opt->model, opt->continuity_settings, opt->json);
+      return;
+    }
     if (!opt->views.empty()) {
       batchWeights(input, opt->views, opt->view.sharpness);
       return;

@@ -373,12 +373,15 @@ void addSphereJson(const GltfViewSphere& vs, OJson& vdg) {
 
 // The view-dependent description (mesh.extras.vdg; docs/schema/vdg-gltf-extras.schema.json).
 OJson vdgExtras(const GltfExportInput& in) {
-  OJson vdg = {{"version", kGltfExtrasVersion},
+  // The oldest version that holds the model: 2 unless the weights are not the paper's linear ones.
+  const bool linear = in.sphere.scheme == WeightScheme::Linear;
+  OJson vdg = {{"version", linear ? 2 : kGltfExtrasVersion},
                {"sharpness", in.sharpness},
                {"uncovered", uncoveredName(in.sphere.uncovered)},
                {"base_falloff_deg", in.sphere.base_falloff_deg},
                {"center", vec3Json(in.center)},
                {"offsets", offsetSpaceName(in.offsets)}};
+  if (!linear) vdg["weights"] = {{"scheme", weightSchemeName(in.sphere.scheme)}};
   if (in.base_animation) {
     OJson anim = {{"frame_count", in.base_animation->frame_count},
                   {"fps", in.base_animation->fps},
@@ -1324,8 +1327,9 @@ Described describedModel(const io::Json& extras, std::size_t target_count, const
   const io::Ctx ctx = top.key("vdg");
   io::allowKeys(vdg, ctx,
                 {"version", "sharpness", "uncovered", "base_falloff_deg", "center", "offsets", "keys", "animation",
-                 "sphere", "time", "dequantize"});
+                 "sphere", "time", "dequantize", "weights"});
   const int version = io::formatVersion(vdg, ctx, "view-dependent glTF extras", 1, kGltfExtrasVersion);
+  if (vdg.contains("weights") && version < 3) ctx.key("weights").fail("needs extras version 3");
   Described d;
   RawViewDependentModel& raw = d.raw;
   raw.source = where;
@@ -1333,6 +1337,13 @@ Described describedModel(const io::Json& extras, std::size_t target_count, const
   raw.sphere.uncovered = io::enumValue(io::required(vdg, "uncovered", ctx), ctx.key("uncovered"), io::kUncoveredNames);
   raw.sphere.base_falloff_deg = io::number(io::required(vdg, "base_falloff_deg", ctx), ctx.key("base_falloff_deg"));
   raw.center = io::vector3(io::required(vdg, "center", ctx), ctx.key("center"));
+  if (vdg.contains("weights")) {
+    const io::Json& weights = vdg.at("weights");
+    const io::Ctx wc = ctx.key("weights");
+    if (!weights.is_object()) wc.fail("expected an object {\"scheme\": ...}, got " + io::describe(weights));
+    io::allowKeys(weights, wc, {"scheme"});
+    raw.sphere.scheme = io::enumValue(io::required(weights, "scheme", wc), wc.key("scheme"), io::kWeightSchemeNames);
+  }
   raw.offsets = io::enumValue(io::required(vdg, "offsets", ctx), ctx.key("offsets"), io::kOffsetSpaceNames);
   if (vdg.contains("animation")) {
     const io::Json& anim = vdg.at("animation");

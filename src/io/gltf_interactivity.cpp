@@ -250,6 +250,8 @@ void setWeights(GraphBuilder& g, const InteractivityInput& in, int tick, const O
 void checkInteractivitySupported(const GltfExportInput& in, const std::string& where) {
   if (in.base_animation || (in.view_sphere && !in.view_sphere->time.empty()))
     throw Error(where + ": --interactivity: " + kInteractivityAnimatedRefusal);
+  if (in.sphere.scheme != WeightScheme::Linear)
+    throw Error(where + ": --interactivity: " + kInteractivitySchemeRefusal);
 }
 
 InteractivityInput interactivityInput(const GltfExportInput& in, const std::string& where) {

@@ -206,9 +206,11 @@ RawViewDependentModel parseManifest(const std::string& text, const std::string& 
     io::allowKeys(doc, top,
                   {"version", "base", "keys", "sharpness", "uncovered", "base_falloff_deg", "center", "comment"});
   } else {
+    if (version == 2 && doc.is_object() && doc.contains("weights"))
+      top.key("weights").fail("needs manifest version 3 (this file says \"version\": 2)");
     io::allowKeys(doc, top,
                   {"version", "base", "base_animation", "offsets", "keys", "sharpness", "uncovered", "base_falloff_deg",
-                   "center", "comment"});
+                   "center", "comment", "weights"});
   }
 
   RawViewDependentModel model;
@@ -237,6 +239,14 @@ RawViewDependentModel parseManifest(const std::string& text, const std::string& 
   if (doc.contains("base_falloff_deg"))
     model.sphere.base_falloff_deg = io::number(doc.at("base_falloff_deg"), top.key("base_falloff_deg"));
   if (doc.contains("center")) model.center = io::vector3(doc.at("center"), top.key("center"));
+  if (doc.contains("weights")) {
+    const Json& weights = doc.at("weights");
+    const Ctx ctx = top.key("weights");
+    if (!weights.is_object()) ctx.fail("expected an object {\"scheme\": \"linear\" | \"smooth\"}");
+    io::allowKeys(weights, ctx, {"scheme"});
+    if (weights.contains("scheme"))
+      model.sphere.scheme = io::enumValue(weights.at("scheme"), ctx.key("scheme"), io::kWeightSchemeNames);
+  }
 
   if (!doc.contains("keys") || !doc.at("keys").is_array())
     top.fail("missing 'keys' (an array of {mesh, view | camera, name})");
@@ -289,7 +299,8 @@ RawViewDependentModel loadManifest(const std::string& path, const MeshReadOption
 
 std::string formatManifest(const RawViewDependentModel& model) {
   nlohmann::ordered_json doc;
-  doc["version"] = kManifestVersion;
+  // The oldest version that holds the model, so that older vdgs still read linear models.
+  doc["version"] = model.sphere.scheme == WeightScheme::Linear ? 2 : kManifestVersion;
   if (!model.comment.empty()) doc["comment"] = model.comment;
   if (model.base_animation) {
     const BaseAnimationSpec& spec = *model.base_animation;
@@ -314,6 +325,7 @@ std::string formatManifest(const RawViewDependentModel& model) {
   doc["uncovered"] = uncoveredName(model.sphere.uncovered);
   if (model.sphere.base_falloff_deg != ViewSphereSettings{}.base_falloff_deg)
     doc["base_falloff_deg"] = model.sphere.base_falloff_deg;
+  if (model.sphere.scheme != WeightScheme::Linear) doc["weights"] = {{"scheme", weightSchemeName(model.sphere.scheme)}};
   nlohmann::ordered_json keys = nlohmann::ordered_json::array();
   for (const RawKey& key : model.keys) {
     nlohmann::ordered_json entry;

@@ -37,15 +37,20 @@ OpenedInput openAsModel(const std::string& path, InputFormat format, const MeshR
   in.kind = InputKind::kModel;
   in.raw = loadModel(path, options);
   if (in.raw.animated()) in.kind = InputKind::kAnimatedModel;
-  if (build == InputBuild::kRawOnly) return in;
-  if (in.raw.animated())
-    in.animated = std::make_shared<const AnimatedViewDependentModel>(AnimatedViewDependentModel::build(in.raw));
-  else
-    in.model = std::make_shared<const ViewDependentModel>(ViewDependentModel::build(in.raw));
+  if (build == InputBuild::kBuilt) buildOpenedModel(in);
   return in;
 }
 
 }  // namespace
+
+void buildOpenedModel(OpenedInput& in) {
+  in.model.reset();
+  in.animated.reset();
+  if (in.raw.animated())
+    in.animated = std::make_shared<const AnimatedViewDependentModel>(AnimatedViewDependentModel::build(in.raw));
+  else
+    in.model = std::make_shared<const ViewDependentModel>(ViewDependentModel::build(in.raw));
+}
 
 OpenedInput openInput(const std::string& path, const MeshReadOptions& options, InputBuild build) {
   const InputType type = inputType(path);

@@ -37,6 +37,9 @@ constexpr double kPlanarTol = 1e-10;
 // of touching: covers rounding in the caps and in the cell lookup, and views just outside a
 // triangle that still count as inside it (kInsideTol) unless at the tip of a needle-thin triangle.
 constexpr double kIndexMarginRad = 1e-5;
+// Smooth scheme: below this sum of the squared corner products a view is at a corner (about 1e-140
+// from it in barycentric terms), where the blend's limit is that corner's one-hot weights.
+constexpr double kMinSmoothBlend = 1e-280;
 
 struct Facet {
   std::array<int, 3> v;
@@ -161,6 +164,52 @@ void sharpenRelative(double (&p)[3], double alpha) {
   }
 }
 
+// The smooth scheme (issue 29; view_sphere.h, "Weight schemes"). F(t) = 3t^2 - 2t^3 on [0, 1],
+// clamped outside: C1 with F' = 0 at both ends.
+double smoothEdgeStep(double t) {
+  t = std::clamp(t, 0.0, 1.0);
+  return t * t * (3.0 - 2.0 * t);
+}
+
+// Where the view v lies between the unit points a and b: t = |v - a| / (|v - a| + |v - b|) (chord
+// lengths), 0 at a, 1 at b, monotonic along the arc from a to b. One smooth function of v away from
+// a and b, the same for both triangles of the edge (and for the edge taken as (b, a), where it gives
+// 1 - t), defined on the whole sphere (a perpendicular projection onto the edge's great circle is
+// not: it wraps round inside triangles wider than a quarter turn). Near a, F(t) ~ 3 |v - a|^2 /
+// |b - a|^2 is smooth with zero slope, so the blend stays C1 at the keys.
+double edgeParameter(const Vector3d& a, const Vector3d& b, const Vector3d& v) {
+  const double to_a = std::sqrt(std::max(0.0, 2.0 - 2.0 * v.dot(a)));
+  const double to_b = std::sqrt(std::max(0.0, 2.0 - 2.0 * v.dot(b)));
+  return to_a / (to_a + to_b);  // a != b (kSameViewRad), so the sum is > 0
+}
+
+// The smooth weights of the corners a[0..2] of a hull triangle for the unit view v with the
+// triangle's barycentric coordinates b (>= 0, sum 1), into w (>= 0, sum 1): the side-vertex blend
+// sum_k beta_k E_k (view_sphere.h). At a corner (where every product b_i b_j is 0) the corner's
+// one-hot weights, the limit of the blend there.
+void smoothTriangleWeights(const std::array<const Vector3d*, 3>& a, const Vector3d& v, const double (&b)[3],
+                           double (&w)[3]) {
+  double beta[3], sum = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    const double product = b[(k + 1) % 3] * b[(k + 2) % 3];
+    beta[k] = product * product;
+    sum += beta[k];
+  }
+  if (!(sum > kMinSmoothBlend)) {
+    const int largest = static_cast<int>(std::max_element(b, b + 3) - b);
+    for (int k = 0; k < 3; ++k) w[k] = k == largest ? 1.0 : 0.0;
+    return;
+  }
+  w[0] = w[1] = w[2] = 0.0;
+  for (int k = 0; k < 3; ++k) {  // the edge (k + 1, k + 2) opposite corner k
+    const int i = (k + 1) % 3, j = (k + 2) % 3;
+    const double f = smoothEdgeStep(edgeParameter(*a[i], *a[j], v));
+    const double weight = beta[k] / sum;
+    w[i] += weight * (1.0 - f);
+    w[j] += weight * f;
+  }
+}
+
 // Keys all on one great circle (normal `normal`): the covered region is a chain of arcs between
 // neighbours, or the whole circle when no gap between neighbours reaches half a turn.
 std::vector<std::array<int, 2>> greatCircleArcs(const std::vector<Vector3d>& keys, const Vector3d& normal) {
@@ -209,6 +258,8 @@ void boundingCaps(const std::vector<Vector3d>& points, const std::vector<std::ar
 }
 
 }  // namespace
+
+const char* weightSchemeName(WeightScheme scheme) { return scheme == WeightScheme::Smooth ? "smooth" : "linear"; }
 
 const char* uncoveredName(Uncovered uncovered) {
   switch (uncovered) {
@@ -531,8 +582,18 @@ ViewWeights ViewSphere::falloff(const Eigen::Vector3d& v, std::span<const int> f
         best = ViewWeights{};
         best.key[0] = arc[0];
         best.key[1] = arc[1];
-        best.weight[0] = static_cast<float>(la / (la + lb));
-        best.weight[1] = static_cast<float>(lb / (la + lb));
+        if (settings_.scheme == WeightScheme::Smooth) {
+          // The smooth edge weights at the arc's point p = normalize(la a + lb b) nearest to v
+          // (view_sphere.h): continuous where the view leaves the covered region.
+          const Vector3d& a = points_[arc[0]];
+          const Vector3d& b = points_[arc[1]];
+          const double f = smoothEdgeStep(edgeParameter(a, b, (la * a + lb * b).normalized()));
+          best.weight[0] = static_cast<float>(1.0 - f);
+          best.weight[1] = static_cast<float>(f);
+        } else {
+          best.weight[0] = static_cast<float>(la / (la + lb));
+          best.weight[1] = static_cast<float>(lb / (la + lb));
+        }
       }
       continue;
     }
@@ -582,13 +643,20 @@ bool ViewSphere::weightsByScan(const Eigen::Vector3d& view, double sharpness, Vi
 // Weights in a triangle (section 3.2.2) in one pass on doubles (the per-frame hot path): barycentric
 // weights l_i / sum l, sharpened as (l_i / l_max)^a / sum_j (l_j / l_max)^a (the normalisation by
 // sum l cancels), dummy points' weight moved to the base.
-ViewWeights ViewSphere::triangleWeights(int t, const Eigen::Vector3d& lambda, double sharpness) const {
+ViewWeights ViewSphere::triangleWeights(int t, const Eigen::Vector3d& v, const Eigen::Vector3d& lambda,
+                                        double sharpness) const {
   double p[3] = {std::max(lambda[0], 0.0), std::max(lambda[1], 0.0), std::max(lambda[2], 0.0)};
   const double largest = std::max({p[0], p[1], p[2]});
   if (!(largest > 0.0)) {  // unreachable for a unit view inside the cone: equal weights then
     p[0] = p[1] = p[2] = 1.0;
-  } else if (sharpness != 1.0) {
-    sharpenRelative(p, sharpness);
+  } else {
+    if (settings_.scheme == WeightScheme::Smooth) {
+      const double total = p[0] + p[1] + p[2];
+      const double b[3] = {p[0] / total, p[1] / total, p[2] / total};
+      const auto& corners = triangles_[t];
+      smoothTriangleWeights({&points_[corners[0]], &points_[corners[1]], &points_[corners[2]]}, v, b, p);
+    }
+    if (sharpness != 1.0) sharpenRelative(p, sharpness);
   }
   const double scale = 1.0 / (p[0] + p[1] + p[2]);
   ViewWeights w;
@@ -658,7 +726,7 @@ ViewWeights ViewSphere::locateByScan(const Eigen::Vector3d& v, double sharpness,
   if (found < 0) found = scanTriangles(v, found_lambda);
   if (found >= 0) {
     *hint = found;
-    return triangleWeights(found, found_lambda, sharpness);
+    return triangleWeights(found, v, found_lambda, sharpness);
   }
   if (settings_.uncovered == Uncovered::Base) {  // unreachable: base mode always encloses
     ViewWeights result;
@@ -677,7 +745,7 @@ ViewWeights ViewSphere::locate(const Eigen::Vector3d& v, double sharpness, int* 
     if (lambda[2] < lambda[k]) k = 2;
     if (lambda[k] >= -kInsideTol) {
       *hint = t;
-      return triangleWeights(t, lambda, sharpness);
+      return triangleWeights(t, v, lambda, sharpness);
     }
     t = neighbours_[t][k];
   }
@@ -689,7 +757,7 @@ ViewWeights ViewSphere::locate(const Eigen::Vector3d& v, double sharpness, int* 
     const Vector3d lambda = coneCoordinates(cones_[c].inverse, v);
     if (lambda.minCoeff() >= -kInsideTol) {
       *hint = c;
-      return triangleWeights(c, lambda, sharpness);
+      return triangleWeights(c, v, lambda, sharpness);
     }
   }
   if (settings_.uncovered == Uncovered::Base) {
@@ -702,7 +770,7 @@ ViewWeights ViewSphere::locate(const Eigen::Vector3d& v, double sharpness, int* 
       return result;
     }
     *hint = found;
-    return triangleWeights(found, lambda, sharpness);
+    return triangleWeights(found, v, lambda, sharpness);
   }
   // Cosine modes: no triangle listed in the cell contains v, so none does (the lists hold every
   // triangle that reaches into the cell).

@@ -99,6 +99,34 @@ TEST(Cli, WeightsViewsFileGivesTheSingleResultsInOrder) {
   EXPECT_NE(run("weights --help").out.find("--views"), std::string::npos);
 }
 
+// The smooth weight scheme (docs/weights.md): --scheme overrides the model's, --continuity
+// measures both; the smooth example is exact at its keys; the KHR_interactivity graph refuses it.
+TEST(Cli, WeightSchemesAndContinuity) {
+  const std::string smooth = "examples/spot/spot-smooth.vdg.json";
+  const auto at_key = nlohmann::json::parse(run("weights " + smooth + " --view 0,0.15,-1 --json").out);
+  EXPECT_NEAR(at_key["keys"]["front"].get<double>(), 1.0, 1e-6) << at_key.dump();
+  EXPECT_EQ(run("weights " + kSpot + " --scheme smooth --view 0.3,0.2,-0.9 --json").out,
+            run("weights " + smooth + " --view 0.3,0.2,-0.9 --json").out);
+  const Result linear = run("weights " + kSpot + " --continuity --step 0.5 --json");
+  const Result smoothed = run("weights " + kSpot + " --continuity --step 0.5 --json --scheme smooth");
+  ASSERT_EQ(linear.code, 0) << linear.err;
+  ASSERT_EQ(smoothed.code, 0) << smoothed.err;
+  const auto l = nlohmann::json::parse(linear.out), s = nlohmann::json::parse(smoothed.out);
+  EXPECT_EQ(l["scheme"], "linear");
+  EXPECT_EQ(s["scheme"], "smooth");
+  EXPECT_LT(s["velocity_jump"].get<double>(), l["velocity_jump"].get<double>()) << l.dump() << "\n" << s.dump();
+  EXPECT_LT(s["weight_jump"].get<double>(), l["weight_jump"].get<double>());
+  EXPECT_EQ(run("weights " + kSpot + " --continuity --view 0,0,1").code, 2);
+  EXPECT_EQ(run("weights " + kSpot + " --step 0.5 --view 0,0,1").code, 2) << "--step needs --continuity";
+  EXPECT_EQ(run("weights " + kSpot + " --scheme cubic --view 0,0,1").code, 2);
+  vdg::testing::TempDir dir;
+  const Result graph = run("export " + smooth + " --interactivity -q -o " + dir.file("s.glb"));
+  EXPECT_EQ(graph.code, 1);
+  EXPECT_NE(graph.err.find("--interactivity: the graph weighs the keys with the linear scheme only"), std::string::npos)
+      << graph.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("s.glb")));
+}
+
 TEST(Cli, EyeIsMeasuredFromTheModelCentre) {
   const auto info = nlohmann::json::parse(run("info " + kSpot + " --json").out);
   const auto c = info["center"];

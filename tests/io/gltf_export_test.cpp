@@ -597,8 +597,15 @@ TEST(GltfExport, BadExtrasAreRefusedByTheReader) {
   EXPECT_EQ(refused([](auto& e) { e.erase("vdg"); }),
             "m.glb: mesh extras: no 'vdg' description: this glTF file was not exported by vdg");
   EXPECT_EQ(refused([](auto& e) { e.erase("targetNames"); }), "m.glb: mesh extras: missing key 'targetNames'");
-  EXPECT_EQ(refused([](auto& e) { e["vdg"]["version"] = 3; }).rfind("m.glb: mesh extras: 'vdg'.'version': ", 0), 0u);
-  EXPECT_NE(refused([](auto& e) { e["vdg"]["version"] = 3; }).find("got 3"), std::string::npos);
+  EXPECT_EQ(refused([](auto& e) { e["vdg"]["version"] = 4; }).rfind("m.glb: mesh extras: 'vdg'.'version': ", 0), 0u);
+  EXPECT_NE(refused([](auto& e) { e["vdg"]["version"] = 4; }).find("got 4"), std::string::npos);
+  EXPECT_EQ(refused([](auto& e) { e["vdg"]["weights"] = {{"scheme", "smooth"}}; }),
+            "m.glb: mesh extras: 'vdg'.'weights': needs extras version 3");
+  EXPECT_NE(refused([](auto& e) {
+              e["vdg"]["version"] = 3;
+              e["vdg"]["weights"] = {{"scheme", "cubic"}};
+            }).find("'vdg'.'weights'.'scheme': unknown value 'cubic'"),
+            std::string::npos);
   EXPECT_EQ(
       refused([](auto& e) { e["vdg"]["colour"] = 2; }).rfind("m.glb: mesh extras: 'vdg': unknown key 'colour'", 0), 0u);
   EXPECT_EQ(refused([](auto& e) {

@@ -128,6 +128,34 @@ TEST_F(ManifestV2, StaticModelsAreWrittenAsVersion2AndVersion1StillLoads) {
   EXPECT_NO_THROW((void)ViewDependentModel::build(loadManifest(write(text))));
 }
 
+// Version 3: "weights": {"scheme": ...} (issue 29, docs/weights.md); written only when not linear.
+TEST_F(ManifestV2, Version3CarriesTheWeightScheme) {
+  const std::string v3 = R"({"version": 3, "base": "k.obj", "weights": {"scheme": "smooth"},
+                             "keys": [{"mesh": "k.obj", "view": [0, 0, 1]}]})";
+  const RawViewDependentModel raw = loadManifest(write(v3));
+  EXPECT_EQ(raw.sphere.scheme, WeightScheme::Smooth);
+  const std::string text = formatManifest(raw);
+  EXPECT_NE(text.find("\"version\": 3"), std::string::npos) << text;
+  EXPECT_EQ(loadManifest(write(text)).sphere.scheme, WeightScheme::Smooth);
+  const std::string linear = R"({"version": 3, "base": "k.obj", "weights": {"scheme": "linear"},
+                                 "keys": [{"mesh": "k.obj", "view": [0, 0, 1]}]})";
+  const std::string written = formatManifest(loadManifest(write(linear)));
+  EXPECT_NE(written.find("\"version\": 2"), std::string::npos) << written;
+  EXPECT_EQ(written.find("weights"), std::string::npos) << written;
+  const std::string key = R"("keys": [{"mesh": "k.obj", "view": [0, 0, 1]}])";
+  EXPECT_EQ(loadError(R"({"version": 2, "base": "k.obj", "weights": {"scheme": "smooth"}, )" + key + "}"),
+            "m.vdg.json: 'weights': needs manifest version 3 (this file says \"version\": 2)");
+  EXPECT_NE(loadError(R"({"version": 3, "base": "k.obj", "weights": {"scheme": "cubic"}, )" + key + "}")
+                .find("m.vdg.json: 'weights'.'scheme': unknown value 'cubic'"),
+            std::string::npos);
+  EXPECT_NE(loadError(R"({"version": 3, "base": "k.obj", "weights": {"kernel": 1}, )" + key + "}")
+                .find("m.vdg.json: 'weights': unknown key 'kernel'"),
+            std::string::npos);
+  EXPECT_NE(loadError(R"({"version": 3, "base": "k.obj", "weights": "smooth", )" + key + "}")
+                .find("m.vdg.json: 'weights': expected an object"),
+            std::string::npos);
+}
+
 TEST_F(ManifestV2, SequencePatterns) {
   EXPECT_EQ(sequenceFileName("a_%d.obj", 7), "a_7.obj");
   EXPECT_EQ(sequenceFileName("a_%04d.obj", 7), "a_0007.obj");

@@ -132,6 +132,29 @@ def test_build_static_round_trip(models: dict[str, vdg.Model], tmp_path: pathlib
     assert not list(tmp_path.glob(".vdg-*")), "the transaction left its journal or temporaries"
 
 
+def test_smooth_scheme_round_trip(models: dict[str, vdg.Model], tmp_path: pathlib.Path) -> None:
+    """build(scheme="smooth") (docs/weights.md): exact at every key, weights summing to 1, the scheme
+    kept through save_manifest and export_gltf; an unknown scheme is refused."""
+    spot = models["spot"]
+    assert spot.scheme == "linear"
+    smooth = vdg.build(spot.base, spot.triangles, spot_keys(spot), scheme="smooth")
+    assert smooth.scheme == "smooth"
+    for key in smooth.keys:
+        w = smooth.weights(key.view)
+        for name, value in w["keys"].items():
+            assert value == pytest.approx(1.0 if name == key.name else 0.0, abs=WEIGHT_TOL)
+    for view in random_views(50, 4):
+        w = smooth.weights(view)
+        assert sum(w["keys"].values()) + w["base"] == pytest.approx(1.0, abs=WEIGHT_TOL)
+        assert min(w["keys"].values(), default=0.0) >= 0.0
+    smooth.save_manifest(tmp_path / "smooth.vdg.json")
+    assert vdg.load(tmp_path / "smooth.vdg.json").scheme == "smooth"
+    smooth.export_gltf(tmp_path / "smooth.glb")
+    assert vdg.load(tmp_path / "smooth.glb").scheme == "smooth"
+    with pytest.raises(ValueError, match="scheme: expected 'linear' or 'smooth'"):
+        vdg.build(spot.base, spot.triangles, spot_keys(spot), scheme="cubic")
+
+
 def test_build_animated_round_trip(models: dict[str, vdg.Model], tmp_path: pathlib.Path) -> None:
     source = models["walker_world"]
     keys = [vdg.Key(k.name, k.positions, view=k.view, frame=k.frame) for k in source.keys]

@@ -44,8 +44,10 @@ namespace vdg {
 
 // Version of the mesh.extras.vdg object ("version" field). Version 2 adds "sphere" (the viewing
 // sphere as vdg built it) and, for an animated model, "time" (the key views' spline tables), so
-// that a runtime reproduces `vdg weights` exactly (docs/gltf-export.md); version 1 files still read.
-inline constexpr int kGltfExtrasVersion = 2;
+// that a runtime reproduces `vdg weights` exactly (docs/gltf-export.md); version 3 adds "weights"
+// ({"scheme": "smooth"}, issue 29) and is written only for a model whose scheme is not linear;
+// versions 1 and 2 still read.
+inline constexpr int kGltfExtrasVersion = 3;
 
 // One key view's time interpolation (mesh.extras.vdg."time"[i]; AnimatedViewDependentModel):
 // its key frames f_1 < ... < f_m and the spline's second-derivative table (m x m, row-major).

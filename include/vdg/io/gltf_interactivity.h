@@ -51,6 +51,11 @@ inline constexpr const char* kInteractivityAnimatedRefusal =
     "animated models (key frames over time) are not supported; export a static model (docs/interactivity.md, "
     "\"Limits\")";
 
+// Why a model whose weights are not linear gets no graph (after "WHERE: --interactivity: ").
+inline constexpr const char* kInteractivitySchemeRefusal =
+    "the graph weighs the keys with the linear scheme only; this model's weights are \"smooth\" (export it without "
+    "--interactivity, or with \"weights\": {\"scheme\": \"linear\"}; docs/weights.md)";
+
 // What the graph is built from: exactly the export's extras v2 sphere and settings.
 struct InteractivityInput {
   GltfViewSphere sphere;  // static: view_targets[i] = {i}

@@ -10,9 +10,10 @@
 namespace vdg {
 
 // Current manifest format version (the "version" field of *.vdg.json). Version 2 added animated
-// bases ("base_animation", "offsets", each key's "frame"); version 1 files load unchanged, and
-// saveManifest always writes version 2.
-inline constexpr int kManifestVersion = 2;
+// bases ("base_animation", "offsets", each key's "frame"), version 3 the weight scheme ("weights":
+// {"scheme": "linear" | "smooth"}, issue 29); older files load unchanged, and saveManifest writes
+// the oldest version that holds the model (2 for the linear scheme, 3 otherwise).
+inline constexpr int kManifestVersion = 3;
 
 // Parses a manifest's text into a raw model WITHOUT reading any mesh: base_path and every key's
 // mesh_path are filled, the meshes are left empty. Throws vdg::Error naming `source` and the key

@@ -70,4 +70,8 @@ OpenedInput openInput(const std::string& path, const MeshReadOptions& options = 
 OpenedInput openModel(const std::string& path, const MeshReadOptions& options = {},
                       InputBuild build = InputBuild::kBuilt);
 
+// (Re)builds the run-time model of an opened model from its `raw` description (after a command
+// changed a setting of it, e.g. vdg weights --scheme). Throws vdg::Error as openInput does.
+void buildOpenedModel(OpenedInput& in);
+
 }  // namespace vdg

@@ -29,6 +29,26 @@
 // alpha == 1 costs nothing, integer alpha up to kMultiplySharpnessMax is a few multiplications,
 // any other alpha one std::pow per key (the results agree to float rounding).
 //
+// Weight schemes (issue 29; docs/weights.md). WeightScheme::Linear is the paper's barycentric
+// blend (C0: its weights kink across every hull edge). WeightScheme::Smooth is C1 on the whole
+// sphere, exact at every key, a partition of unity, non-negative and local (a view's weights come
+// from the three corners of its hull triangle only), built as a side-vertex blend on each hull
+// triangle (after the transfinite triangle schemes of Barnhill, Birkhoff & Gordon 1973 and Nielsen
+// 1979, with Gregory-style squared blending functions):
+//  - along each edge (i, j), E_ij gives key j the weight F(t) and key i 1 - F(t), where
+//    t = |v - i| / (|v - i| + |v - j|) (chord lengths: 0 at i, 1 at j, one smooth function of the
+//    view shared by both triangles of the edge) and F(t) = 3t^2 - 2t^3 (F' = 0 at both ends);
+//  - inside the triangle with barycentric coordinates b (the linear scheme's weights), the three
+//    edges blend with beta_k = (b_i b_j)^2 / sum over the edges of the same products, for the edge
+//    (i, j) opposite corner k: beta_k = 1 on that edge, while the other two betas vanish there
+//    together with their gradients; so on every edge the weights and their gradients are E_ij's
+//    from both sides (C1 across edges), and at a key every weight's gradient is 0 (C1 at keys).
+// Sharpness applies to the smooth weights as to the linear ones (C1 is kept for alpha >= 1; for
+// 1/2 < alpha < 1 too, since a weight vanishes quadratically at the edges where it does), and the
+// uncovered modes are unchanged: base mode's dummies are triangulation points like the keys; the
+// cosine modes' falloff takes at the nearest point of a boundary arc the smooth edge weights (so
+// the weights stay continuous at the covered region's border; C1 holds inside the covered region).
+//
 // Locating a view (spatial index). weightsByScan() tests every hull triangle: O(triangles) per
 // query, kept as the oracle for tests and debugging. weights() gets the same result faster:
 //  - with a hint, it tests the hint's triangle and, when the view lies beyond one of its edges,
@@ -69,10 +89,16 @@ enum class Uncovered { Base, Cosine, Cosine2 };
 // "base", "cosine" or "cosine2": the names the manifest and the command line use.
 const char* uncoveredName(Uncovered uncovered);
 
+// How a view's weights follow from the hull triangle it falls in (see "Weight schemes" above).
+enum class WeightScheme { Linear, Smooth };
+// "linear" or "smooth": the names the manifest ("weights": {"scheme": ...}) and the exports use.
+const char* weightSchemeName(WeightScheme scheme);
+
 struct ViewSphereSettings {
   Uncovered uncovered = Uncovered::Base;
   // Base mode: a dummy base point is placed only where every key is farther than this angle.
   double base_falloff_deg = 60.0;
+  WeightScheme scheme = WeightScheme::Linear;
 };
 
 // Weights of one view: up to three real keys plus the base model; key[i] < 0 marks an unused slot.
@@ -168,7 +194,7 @@ class ViewSphere {
   int cellOf(const Eigen::Vector3d& v) const;
   // Triangle whose cone contains v (within kInsideTol) among the scan's candidates, or -1.
   int scanTriangles(const Eigen::Vector3d& v, Eigen::Vector3d& lambda) const;
-  ViewWeights triangleWeights(int t, const Eigen::Vector3d& lambda, double sharpness) const;
+  ViewWeights triangleWeights(int t, const Eigen::Vector3d& v, const Eigen::Vector3d& lambda, double sharpness) const;
   // Uncovered view (cosine modes): falloff towards the nearest of `features` (see features_).
   ViewWeights uncoveredWeights(const Eigen::Vector3d& v, double sharpness, std::span<const int> features) const;
   ViewWeights falloff(const Eigen::Vector3d& v, std::span<const int> features, double& nearest_cos) const;

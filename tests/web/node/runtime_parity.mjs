@@ -1,6 +1,7 @@
-// web/vdg-three.js against vdg itself (docs/gltf-export.md, extras v2): vdgWeights / vdgSphereWeights
+// web/vdg-three.js against vdg itself (docs/gltf-export.md, extras v2 and v3): vdgWeights / vdgSphereWeights
 // equal `vdg weights --views` within kWeightTol at 10,000 random views and at every key view of every
-// shipped example, and at 2,000 views of small degenerate key sets in every uncovered mode and of
+// shipped example (and of two in the smooth weight scheme), and at 2,000 views of small degenerate
+// key sets in every uncovered mode and both weight schemes, and of
 // animated OBJ-sequence bases (natural and periodic splines); the
 // morphed positions (POSITION + sum w * targets, read from the .glb) equal `vdg eval` within kPosTol.
 // Usage: node runtime_parity.mjs VDG_BINARY SOURCE_DIR WEB_DIR WORK_DIR
@@ -208,7 +209,8 @@ for (const [name, relative] of examples) {
   const manifest = join(sourceDir, relative);
   const exported = exportModel(manifest, name);
   const vdgExtras = exported.extras.vdg;
-  check(vdgExtras.version === 2 && !!vdgExtras.sphere, `${name}: extras version 2 with a sphere`);
+  check(vdgExtras.version === 2 && !!vdgExtras.sphere && !vdgExtras.weights,
+    `${name}: extras version 2 with a sphere and no weight scheme (linear)`);
   const keyViews = vdgExtras.keys.map((k) => k.view);
   compareWeights(manifest, exported.extras, randomViews(kRandomViews, 17).concat(keyViews), name);
   compareWeights(manifest, exported.extras, randomViews(1000, 5), `${name} sharpness 3.5`, 3.5);
@@ -219,18 +221,47 @@ for (const [name, relative] of examples) {
   else if (vdgExtras.animation.base === 'frames') comparePositions(manifest, exported, views.slice(1), [0, 7, 23], `${name} positions`);
 }
 
+// The smooth weight scheme (extras version 3, docs/weights.md) on two shipped examples: the same
+// manifest with "weights": {"scheme": "smooth"} and its meshes named by absolute paths.
+/** @param {string} relative @param {string} name */
+function smoothCopy(relative, name) {
+  const source = join(sourceDir, relative);
+  const folder = join(source, '..');
+  const doc = JSON.parse(readFileSync(source, 'utf8'));
+  doc.version = 3;
+  doc.weights = { scheme: 'smooth' };
+  doc.base = join(folder, doc.base);
+  for (const key of doc.keys) key.mesh = join(folder, key.mesh);
+  const manifest = join(workDir, `${name}.vdg.json`);
+  writeFileSync(manifest, JSON.stringify(doc));
+  return manifest;
+}
+for (const [name, relative] of [['spot', 'examples/spot/spot.vdg.json'], ['head', 'examples/figure13/head/head.vdg.json']]) {
+  const manifest = smoothCopy(relative, `${name}-smooth`);
+  const exported = exportModel(manifest, `${name}-smooth`);
+  const vdgExtras = exported.extras.vdg;
+  check(vdgExtras.version === 3 && vdgExtras.weights && vdgExtras.weights.scheme === 'smooth',
+    `${name}-smooth: extras version 3 with the smooth scheme`);
+  const keyViews = vdgExtras.keys.map((k) => k.view);
+  compareWeights(manifest, exported.extras, randomViews(kRandomViews, 23).concat(keyViews), `${name} smooth`);
+  compareWeights(manifest, exported.extras, randomViews(1000, 6), `${name} smooth sharpness 3.5`, 3.5);
+  comparePositions(manifest, exported, [keyViews[0], [0.3, 0.4, 0.87]], [0], `${name} smooth positions`);
+}
+
 // Degenerate key sets, written here: a tetrahedron base and keys that push one vertex each.
 const tetra = 'v 0 0 1\nv 0.94 0 -0.33\nv -0.47 0.82 -0.33\nv -0.47 -0.82 -0.33\nf 1 2 3\nf 1 3 4\nf 1 4 2\nf 2 4 3\n';
 writeFileSync(join(workDir, 'base.obj'), tetra);
-/** @param {number[][]} keyViews @param {string} uncovered @param {string} name */
-function degenerate(keyViews, uncovered, name) {
+/** @param {number[][]} keyViews @param {string} uncovered @param {string} name @param {string} scheme */
+function degenerate(keyViews, uncovered, name, scheme = 'linear') {
   const keys = keyViews.map((view, i) => {
     const mesh = `k${i}.obj`;
     writeFileSync(join(workDir, mesh), tetra.replace('v 0 0 1', `v ${0.1 * (i + 1)} ${0.05 * i} 1`));
     return { name: `key${i}`, mesh, view };
   });
   const manifest = join(workDir, `${name}.vdg.json`);
-  writeFileSync(manifest, JSON.stringify({ version: 1, base: 'base.obj', uncovered, sharpness: 1.7, keys }));
+  const doc = scheme === 'linear' ? { version: 1, base: 'base.obj', uncovered, sharpness: 1.7, keys }
+    : { version: 3, base: 'base.obj', uncovered, sharpness: 1.7, keys, weights: { scheme } };
+  writeFileSync(manifest, JSON.stringify(doc));
   const exported = exportModel(manifest, name);
   compareWeights(manifest, exported.extras, randomViews(kDegenerateViews, 99).concat(keyViews), name);
   comparePositions(manifest, exported, [[0.2, 0.3, 0.93]], [0], `${name} positions`);
@@ -243,7 +274,10 @@ const sets = {
   'small circle': [[1, 0.5, 0], [-0.5, 0.5, 0.87], [-0.5, 0.5, -0.87]],
 };
 for (const [set, keyViews] of Object.entries(sets)) {
-  for (const mode of ['base', 'cosine', 'cosine2']) degenerate(keyViews, mode, `${set.replace(' ', '-')}-${mode}`);
+  for (const mode of ['base', 'cosine', 'cosine2']) {
+    degenerate(keyViews, mode, `${set.replace(' ', '-')}-${mode}`);
+    degenerate(keyViews, mode, `${set.replace(' ', '-')}-${mode}-smooth`, 'smooth');
+  }
 }
 
 // Animated OBJ-sequence bases, not looping (natural splines, held outside the key frames) and
