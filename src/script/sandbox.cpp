@@ -289,6 +289,20 @@ int luaIoLines(lua_State* L) {
   return 4;
 }
 
+// os.clock, os.time, os.date (upvalue 1 the real one, 2 its name): refused while the actors run,
+// whose frames must come out the same in every run, on every machine (Parent 4.8 actors; a render
+// farm replays them for every frame range).
+int luaOsOutsideActors(lua_State* L) {
+  if (contextOf(L).acting)
+    return luaL_error(L, "os.%s: not available while the actors run (their frames must be the same in every run)",
+                      lua_tostring(L, lua_upvalueindex(2)));
+  const int n = lua_gettop(L);
+  lua_pushvalue(L, lua_upvalueindex(1));
+  lua_insert(L, 1);
+  lua_call(L, n, LUA_MULTRET);
+  return lua_gettop(L);
+}
+
 // Copies field `name` of the table at -1 into the table at `to`.
 void copyField(lua_State* L, int from, int to, const char* name) {
   lua_getfield(L, from, name);
@@ -323,6 +337,13 @@ void openSandbox(lua_State* L) {
   lua_getfield(L, g, "setmetatable");
   lua_pushcclosure(L, luaSetMetatable, 1);
   lua_setfield(L, g, "setmetatable");
+  // math.random starts from the same seed in every run (Lua seeds it from the clock and an
+  // address): a script, and its actors, give the same frames wherever they run.
+  lua_getfield(L, g, LUA_MATHLIBNAME);
+  lua_getfield(L, -1, "randomseed");
+  lua_pushinteger(L, 0);
+  lua_call(L, 1, 0);
+  lua_pop(L, 1);
   // string.dump makes binary chunks (which load refuses anyway).
   lua_getfield(L, g, LUA_STRLIBNAME);
   lua_pushnil(L);
@@ -333,7 +354,12 @@ void openSandbox(lua_State* L) {
   luaL_requiref(L, LUA_OSLIBNAME, luaopen_os, 0);
   const int real_os = lua_gettop(L);
   lua_createtable(L, 0, 3);
-  for (const char* name : {"clock", "time", "date"}) copyField(L, real_os, lua_gettop(L), name);
+  for (const char* name : {"clock", "time", "date"}) {
+    lua_getfield(L, real_os, name);
+    lua_pushstring(L, name);
+    lua_pushcclosure(L, luaOsOutsideActors, 2);
+    lua_setfield(L, -2, name);
+  }
   lua_setfield(L, g, LUA_OSLIBNAME);
   lua_pop(L, 1);
 
