@@ -24,7 +24,7 @@ local kFps = 24
 local kDt = 1 / kFps        -- seconds per frame
 local kGravity = 9.8        -- m/s^2
 local kRestitution = 0.8    -- normal speed kept by a bounce
-local kRadius = 0.5         -- m
+local kRadius = 0.6         -- m
 local kSquashPerSpeed = 0.07   -- squash 1 - s per m/s of normal speed at impact
 local kMinSquash = 0.5
 local kStretchPerSpeed = 0.025 -- stretch s - 1 per m/s of speed in flight
@@ -83,7 +83,8 @@ local left = vdg.node{name = "left_wall", object = box(-5.2, -4.5, 0, 5.5, -1.6,
 local right = vdg.node{name = "right_wall", object = box(0, 0.5, 0, 6.2, -1.6, 1.6), color = {0.7, 0.5, 0.45},
                        translation = {4, 0, 0}, rotation = vdg.quat.axis_angle({0, 0, 1}, -30)}
 
--- A wall actor: flashes towards white when told it was hit, then fades back to its colour.
+-- A wall actor: flashes towards pale yellow when told it was hit, then fades back to its colour.
+local kFlash = {1, 0.95, 0.55}
 local function wall_actor(name, node, color)
   return vdg.actor{
     name = name, node = node, state = {flash = 0, color = color},
@@ -93,8 +94,8 @@ local function wall_actor(name, node, color)
     update = function(self, frame)
       local st = self.state
       local k = st.flash
-      self:set("color", {st.color[1] + k * (1 - st.color[1]), st.color[2] + k * (1 - st.color[2]),
-                         st.color[3] + k * (1 - st.color[3])})
+      self:set("color", {st.color[1] + k * (kFlash[1] - st.color[1]), st.color[2] + k * (kFlash[2] - st.color[2]),
+                         st.color[3] + k * (kFlash[3] - st.color[3])})
       st.flash = st.flash * 0.8
     end}
 end
@@ -167,6 +168,6 @@ vdg.actor{
     self:set(spin, "rotation", turn:inverse() * vdg.quat.axis_angle({0, 0, 1}, st.roll))
   end}
 
-local centre = vdg.group{name = "centre", translation = {0.4, 2.4, 0}}
-vdg.camera{name = "camera", translation = {0.4, 3.2, 12.5}, look_at = centre, fov = 45}
+local centre = vdg.group{name = "centre", translation = {0.6, 2.2, 0}}
+vdg.camera{name = "camera", translation = {0.6, 5.5, 12}, look_at = centre, fov = 44}
 vdg.render{frames = "0-143", size = {480, 320}, out = "bounce"}

@@ -295,7 +295,7 @@ TEST(Actors, TheBounceExampleKeepsTheBallsVolumeAndSquashesAtImpacts) {
   ASSERT_EQ(shot.renders.size(), 1u);
   const int spin = s.findNode("ball_spin"), ball = s.findNode("ball"), floor = s.findNode("floor");
   ASSERT_GE(spin, 0);
-  constexpr double kRadius = 0.5;
+  constexpr double kRadius = 0.6;
   int squashed_frames = 0, floor_flashes = 0;
   for (int f = shot.renders[0].first_frame; f <= shot.renders[0].last_frame; ++f) {
     const auto st = statesAt(s, f);
