@@ -10,8 +10,9 @@
 // frame from the shot's first frame (see ScriptOptions::actor_last_frame), in the order defined,
 // and what they set becomes step tracks of the scene (one key per integer frame where the value
 // changed). So a Shot is still plain data, and any frame range renders what a full run renders.
-// math.random is seeded the same way in every run; os.clock, os.time and os.date are refused
-// while the actors run (their frames must not depend on when or where they run).
+// math.random is seeded the same way in every run, pairs visits keys in a fixed order (numbers,
+// strings, booleans sorted; Lua's own order changes from run to run), and os.clock, os.time and
+// os.date are refused while the actors run (their frames must not depend on when or where they run).
 //
 // The script runs in a sandbox (docs/language.md, "Sandbox"):
 //  - libraries: the base library without dofile, loadfile, require; `load` of text chunks only;
