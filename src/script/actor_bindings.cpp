@@ -189,14 +189,8 @@ int luaActor(lua_State* L) {
   checkFunction(L, receive, label, "receive", " (self, message, sender)");
   if (lua_isnil(L, update) && lua_isnil(L, receive))
     return luaL_error(L, "%s: expected an update or a receive function (an actor with neither does nothing)", label);
-  charge(L, sizeof(Context::Actor) + 2 * lua_rawlen(L, 2) + 128 + sizeof(int) * ctx.scene.nodes.size());
-  int driven_nodes[64];  // the drives list, read now (phase 2 reads no Lua); longer lists: see below
-  if (drive_count > 64) return luaL_error(L, "%s: drives: at most 64 nodes (give more actors)", label);
-  for (int i = 0; i < drive_count; ++i) {
-    lua_rawgeti(L, drives, i + 1);
-    driven_nodes[i] = static_cast<NodeHandle*>(lua_touserdata(L, -1))->node;
-    lua_pop(L, 1);
-  }
+  const std::size_t nodes = ctx.scene.nodes.size(), known = ctx.actor_of_node.size();
+  charge(L, sizeof(Context::Actor) + 2 * lua_rawlen(L, 2) + 128 + sizeof(int) * (nodes > known ? nodes - known : 0));
 
   // The record, and its slot in the registry list (allocated now, so that filling it later cannot fail).
   const int actor = static_cast<int>(ctx.actors.size());
@@ -230,9 +224,13 @@ int luaActor(lua_State* L) {
         ctx.actor_by_name.emplace(a.name, actor);
         ctx.actors.push_back(std::move(a));
         if (node >= 0) ctx.actor_of_node[static_cast<std::size_t>(node)] = actor;
-        for (int i = 0; i < drive_count; ++i) ctx.actor_of_node[static_cast<std::size_t>(driven_nodes[i])] = actor;
       }))
     raiseKept(L, "vdg.actor");
+  for (int i = 1; i <= drive_count; ++i) {  // actor_of_node holds every node now: no allocation
+    lua_rawgeti(L, drives, i);
+    ctx.actor_of_node[static_cast<std::size_t>(static_cast<NodeHandle*>(lua_touserdata(L, -1))->node)] = actor;
+    lua_pop(L, 1);
+  }
   lua_pushvalue(L, record);
   lua_rawseti(L, list, actor + 1);  // replaces the slot: no allocation
   lua_pop(L, 1);
