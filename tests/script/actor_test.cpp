@@ -207,6 +207,13 @@ TEST(Actors, BadDefinitionsAndUsesAreOneClearLine) {
        "vdg.actor{name = 'b', drives = {g}, update = print}",
        "test.lua:3: vdg.actor 'b': drives[1]: node 'g' is already driven by actor 'a' (one actor per node: send it "
        "messages instead)"},
+      {"local g = vdg.group{name = 'g'}\nlocal h = vdg.group{name = 'h'}\nvdg.actor{name = 'a', drives = {h, g}, "
+       "update = print}\n"
+       "vdg.actor{name = 'b', node = g, update = print}",
+       "test.lua:4: vdg.actor 'b': node: node 'g' is already driven by actor 'a' (one actor per node: send it messages "
+       "instead)"},
+      {"local g = vdg.group{name = 'g'}\nvdg.actor{name = 'a', drives = {g, 'h'}, update = print}",
+       "test.lua:2: vdg.actor 'a': drives[2]: expected a node (vdg.node, vdg.group, vdg.camera), got string"},
       {"local g = vdg.group{name = 'g'}\nvdg.actor{name = 'a', node = g, drives = {g}, update = print}",
        "test.lua:2: vdg.actor 'a': drives[1]: node 'g' is given twice"},
       // Uses, while the actors run.
