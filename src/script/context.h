@@ -31,11 +31,13 @@ extern "C" {
 #include <lualib.h>
 }
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <exception>
 #include <functional>
 #include <map>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <type_traits>
@@ -88,12 +90,43 @@ struct Context {
   std::vector<std::array<std::uint8_t, scene::kFieldCount>> driven;
   int next_auto_name = 1;
 
+  // Actors (Parent 4.8; actor_bindings.cpp): defined by vdg.actor while the script runs, stepped
+  // frame by frame after it (runActors). Their Lua values (functions, state, inboxes) live in a
+  // registry table; here is what C++ needs to run them and to record what they drive.
+  struct Actor {
+    std::string name;
+    int node = -1;          // its node (self.node), or -1; it may drive more (vdg.actor's drives)
+    int pending = 0;        // messages sent to it, for the next frame
+    int delivering = 0;     // messages it receives in this frame
+    bool receives = false;  // has a receive function
+  };
+  // One field an actor drives: its value now and the keys recorded so far (a step track).
+  struct Channel {
+    int node = -1;
+    scene::Field field = scene::Field::kTranslation;
+    double current[4] = {0, 0, 0, 0};
+    std::vector<double> times;
+    std::vector<double> values;  // times.size() x fieldDimension(field)
+  };
+  std::vector<Actor> actors;
+  std::map<std::string, int, std::less<>> actor_by_name;
+  std::vector<int> actor_of_node;  // per node: the actor that drives it, or -1 (sized by vdg.actor)
+  std::vector<Channel> channels;
+  std::vector<std::array<int, scene::kFieldCount>> channel_of_node;  // per node and field, or -1 (runActors)
+  std::optional<int> actor_last_frame;                               // ScriptOptions::actor_last_frame
+  std::optional<scene::Scene> stage;  // the scene without the actors, for reading other fields
+  bool acting = false;                // the actors are running: the scene is fixed
+  int current_actor = -1;             // the actor whose function runs (messages), or -1
+  int first_frame = 0;                // the shot's first frame (the actors' first)
+  int frame = 0;                      // the frame the actors are at
+
   // Metatables (registry-owned, alive as long as the state), compared by address.
   const void* mt_node = nullptr;
   const void* mt_object = nullptr;
   const void* mt_quat = nullptr;
   const void* mt_ease = nullptr;
   const void* mt_curve = nullptr;
+  const void* mt_actor = nullptr;
 
   // The message of the last C++ exception caught by guarded(), and scratch text for phase 3.
   std::string error;
@@ -188,9 +221,17 @@ int field(lua_State* L, int idx, const char* key);
 
 // Registration of the libraries (sandbox.cpp, math_bindings.cpp, scene_bindings.cpp). Each expects
 // the `vdg` table on top of the stack where it says so.
-void openSandbox(lua_State* L);         // globals: base, string, table, math, utf8, io, os (checked)
-void openMath(lua_State* L, int vdg);   // vdg.ease, vdg.quat, vdg.curve
-void openScene(lua_State* L, int vdg);  // vdg.load, node, group, camera, set, change, track, ...
+void openSandbox(lua_State* L);          // globals: base, string, table, math, utf8, io, os (checked)
+void openMath(lua_State* L, int vdg);    // vdg.ease, vdg.quat, vdg.curve
+void openScene(lua_State* L, int vdg);   // vdg.load, node, group, camera, set, change, track, ...
+void openActors(lua_State* L, int vdg);  // vdg.actor, vdg.get
+// Runs the actors the script defined, frame by frame from the shot's first frame, and adds the
+// fields they drove to the scene as step tracks (actor_bindings.cpp). Called after the chunk, in
+// the same protected call (budget and memory limit hold).
+void runActors(lua_State* L);
+// Raises "FUNCTION: the scene is fixed once the actors run (...)" while they run (phase 1): the
+// functions that describe the scene call it first.
+void refuseWhileActing(lua_State* L, const char* function);
 
 // A path for `rel` under `base` (canonical folder) that stays there: refuses an empty path, a NUL,
 // an absolute path, a backslash, and a path whose existing part leads outside `base` through

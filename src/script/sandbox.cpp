@@ -4,7 +4,9 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -289,6 +291,124 @@ int luaIoLines(lua_State* L) {
   return 4;
 }
 
+// os.clock, os.time, os.date (upvalue 1 the real one, 2 its name): refused while the actors run,
+// whose frames must come out the same in every run, on every machine (Parent 4.8 actors; a render
+// farm replays them for every frame range).
+int luaOsOutsideActors(lua_State* L) {
+  if (contextOf(L).acting)
+    return luaL_error(L, "os.%s: not available while the actors run (their frames must be the same in every run)",
+                      lua_tostring(L, lua_upvalueindex(2)));
+  const int n = lua_gettop(L);
+  lua_pushvalue(L, lua_upvalueindex(1));
+  lua_insert(L, 1);
+  lua_call(L, n, LUA_MULTRET);
+  return lua_gettop(L);
+}
+
+// ---- pairs in a fixed order ----
+// Lua's pairs follows the table's hash layout, and Lua seeds its string hashes from the clock and
+// an address: the order of string keys changes from run to run. An actor that sums in that order
+// would give a farm node's frames other bits than a full run's. So pairs visits the keys sorted:
+// numbers by value, then strings bytewise, then false, true; keys of other types (tables,
+// functions, userdata: no order survives a run) come last, in Lua's order.
+
+int keyRank(lua_State* L, int idx) {
+  switch (lua_type(L, idx)) {
+    case LUA_TNUMBER:
+      return 0;
+    case LUA_TSTRING:
+      return 1;
+    case LUA_TBOOLEAN:
+      return 2;
+    default:
+      return 3;
+  }
+}
+
+// Whether key a comes before key b (non-raising: numbers compare without metamethods).
+bool keyBefore(lua_State* L, int a, int b) {
+  const int ra = keyRank(L, a), rb = keyRank(L, b);
+  if (ra != rb) return ra < rb;
+  if (ra == 0) {
+    int ia = 0, ib = 0;
+    const lua_Integer xa = lua_tointegerx(L, a, &ia), xb = lua_tointegerx(L, b, &ib);
+    if (ia && ib) return xa < xb;
+    return lua_tonumberx(L, a, nullptr) < lua_tonumberx(L, b, nullptr);
+  }
+  if (ra == 1) {
+    std::size_t na = 0, nb = 0;
+    const char* sa = lua_tolstring(L, a, &na);
+    const char* sb = lua_tolstring(L, b, &nb);
+    const int c = std::memcmp(sa, sb, std::min(na, nb));
+    return c < 0 || (c == 0 && na < nb);
+  }
+  if (ra == 2) return !lua_toboolean(L, a) && lua_toboolean(L, b);
+  return false;
+}
+
+// The iterator: upvalues the table, the sorted keys, the next position. A key assigned nil during
+// the traversal is skipped; one added is not visited (Lua leaves both undefined).
+int sortedNext(lua_State* L) {
+  for (;;) {
+    const lua_Integer i = lua_tointegerx(L, lua_upvalueindex(3), nullptr) + 1;
+    lua_pushinteger(L, i);
+    lua_replace(L, lua_upvalueindex(3));
+    if (lua_rawgeti(L, lua_upvalueindex(2), i) == LUA_TNIL) return 1;  // done: nil
+    lua_pushvalue(L, -1);
+    if (lua_rawget(L, lua_upvalueindex(1)) != LUA_TNIL) return 2;  // key, value
+    lua_pop(L, 2);                                                 // removed meanwhile: skip it
+  }
+}
+
+// pairs(t): t's keys in the order above (a table with __pairs, or another value, as Lua's pairs).
+int luaPairs(lua_State* L) {
+  if (lua_type(L, 1) != LUA_TTABLE || luaL_getmetafield(L, 1, "__pairs") != LUA_TNIL) {
+    lua_settop(L, 1);
+    lua_pushvalue(L, lua_upvalueindex(1));
+    lua_insert(L, 1);
+    lua_call(L, 1, 3);
+    return 3;
+  }
+  lua_settop(L, 1);
+  lua_newtable(L);  // 2: the keys, in Lua's order
+  lua_Integer n = 0;
+  lua_pushnil(L);
+  while (lua_next(L, 1) != 0) {
+    lua_pop(L, 1);
+    lua_pushvalue(L, -1);
+    lua_rawseti(L, 2, ++n);
+  }
+  // The sort's work counts against the instruction budget (n log2 n comparisons).
+  Context& ctx = contextOf(L);
+  const auto count = static_cast<std::int64_t>(n);
+  ctx.executed += count * (1 + static_cast<std::int64_t>(std::log2(static_cast<double>(count) + 1)));
+  if (ctx.executed >= ctx.budget || ctx.budget_exceeded) {
+    ctx.budget_exceeded = true;
+    return luaL_error(L, "instruction budget exceeded");
+  }
+  auto* order =
+      static_cast<lua_Integer*>(lua_newuserdatauv(L, sizeof(lua_Integer) * static_cast<std::size_t>(n + 1), 0));
+  for (lua_Integer i = 0; i < n; ++i) order[i] = i + 1;
+  luaL_checkstack(L, 4, "pairs");
+  std::sort(order, order + n, [&](lua_Integer a, lua_Integer b) {
+    lua_rawgeti(L, 2, a);
+    lua_rawgeti(L, 2, b);
+    const bool before = keyBefore(L, -2, -1);
+    lua_pop(L, 2);
+    return before;
+  });
+  lua_createtable(L, static_cast<int>(std::min<lua_Integer>(n, 1 << 20)), 0);  // 4: the keys, sorted
+  for (lua_Integer i = 0; i < n; ++i) {
+    lua_rawgeti(L, 2, order[i]);
+    lua_rawseti(L, 4, i + 1);
+  }
+  lua_pushvalue(L, 1);
+  lua_pushvalue(L, 4);
+  lua_pushinteger(L, 0);
+  lua_pushcclosure(L, sortedNext, 3);
+  return 1;
+}
+
 // Copies field `name` of the table at -1 into the table at `to`.
 void copyField(lua_State* L, int from, int to, const char* name) {
   lua_getfield(L, from, name);
@@ -318,11 +438,21 @@ void openSandbox(lua_State* L) {
   lua_setfield(L, g, "load");
   lua_pushcfunction(L, luaXpcall);
   lua_setfield(L, g, "xpcall");
+  lua_getfield(L, g, "pairs");
+  lua_pushcclosure(L, luaPairs, 1);
+  lua_setfield(L, g, "pairs");
   lua_pushcfunction(L, luaCollectGarbage);
   lua_setfield(L, g, "collectgarbage");
   lua_getfield(L, g, "setmetatable");
   lua_pushcclosure(L, luaSetMetatable, 1);
   lua_setfield(L, g, "setmetatable");
+  // math.random starts from the same seed in every run (Lua seeds it from the clock and an
+  // address): a script, and its actors, give the same frames wherever they run.
+  lua_getfield(L, g, LUA_MATHLIBNAME);
+  lua_getfield(L, -1, "randomseed");
+  lua_pushinteger(L, 0);
+  lua_call(L, 1, 0);
+  lua_pop(L, 1);
   // string.dump makes binary chunks (which load refuses anyway).
   lua_getfield(L, g, LUA_STRLIBNAME);
   lua_pushnil(L);
@@ -333,7 +463,12 @@ void openSandbox(lua_State* L) {
   luaL_requiref(L, LUA_OSLIBNAME, luaopen_os, 0);
   const int real_os = lua_gettop(L);
   lua_createtable(L, 0, 3);
-  for (const char* name : {"clock", "time", "date"}) copyField(L, real_os, lua_gettop(L), name);
+  for (const char* name : {"clock", "time", "date"}) {
+    lua_getfield(L, real_os, name);
+    lua_pushstring(L, name);
+    lua_pushcclosure(L, luaOsOutsideActors, 2);
+    lua_setfield(L, -2, name);
+  }
   lua_setfield(L, g, LUA_OSLIBNAME);
   lua_pop(L, 1);
 

@@ -71,6 +71,7 @@ void checkOwnFolder(const Context& ctx, const std::string& out) {
 // vdg.load(path) -> object: a mesh (.obj, plain glTF), a view-dependent model (manifest, vdg
 // glTF) or an animated model; the same path gives the same object (instancing).
 int luaLoad(lua_State* L) {
+  refuseWhileActing(L, "vdg.load");
   Text path;
   path.data = luaL_checklstring(L, 1, &path.size);
   const int line = scriptLine(L);
@@ -132,6 +133,7 @@ int luaLoad(lua_State* L) {
 // vdg.mesh{positions = {x1, y1, z1, ...}, triangles = {a1, b1, c1, ...}} -> object: a mesh made
 // by the script (indices count from 1, as Lua lists and OBJ faces do). Each call is a new object.
 int luaMesh(lua_State* L) {
+  refuseWhileActing(L, "vdg.mesh");
   luaL_checktype(L, 1, LUA_TTABLE);
   static const char* const kKeys[] = {"positions", "triangles", nullptr};
   checkKeys(L, 1, "vdg.mesh", kKeys);
@@ -448,6 +450,7 @@ anim::RawCameraPath buildPath(lua_State* L, const NodeSpec& spec) {
 }
 
 int makeNode(lua_State* L, ObjectKind kind, const char* f) {
+  refuseWhileActing(L, f);
   NodeSpec spec;
   readNode(L, kind, f, spec);
   Context& ctx = contextOf(L);
@@ -496,6 +499,7 @@ int luaCamera(lua_State* L) { return makeNode(L, ObjectKind::kCamera, "vdg.camer
 
 // vdg.use_camera(camera): the active camera.
 int useCamera(lua_State* L) {
+  refuseWhileActing(L, "vdg.use_camera");
   Context& ctx = contextOf(L);
   const int n = checkNode(L, 1, "vdg.use_camera", "argument #1");
   if (ctx.scene.nodes[static_cast<std::size_t>(n)].kind != ObjectKind::kCamera)
@@ -523,6 +527,7 @@ Field checkField(lua_State* L, int idx, const char* f) {
 // count. `state` is what the field must not already be driven by (2: a track) plus what it
 // becomes.
 int checkTargets(lua_State* L, int idx, Field field, const char* f, bool track) {
+  refuseWhileActing(L, f);  // set, change and track describe the scene
   Context& ctx = contextOf(L);
   auto check = [&](int node) {
     const scene::RawNode& n = ctx.scene.nodes[static_cast<std::size_t>(node)];
@@ -777,6 +782,7 @@ const char* const kRenderKeys[] = {"frames", "size", "out", "samples", "backgrou
 // vdg.render{frames = {a, b} | "a-b" | a, size = {w, h}, out = "dir", samples =, background =,
 // silhouette =, creases =}.
 int luaRender(lua_State* L) {
+  refuseWhileActing(L, "vdg.render");
   const char* f = "vdg.render";
   luaL_checktype(L, 1, LUA_TTABLE);
   luaL_checkstack(L, 30, f);

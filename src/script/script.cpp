@@ -75,6 +75,7 @@ int protectedMain(lua_State* L) {
   const int vdg = lua_gettop(L);
   detail::openMath(L, vdg);
   detail::openScene(L, vdg);
+  detail::openActors(L, vdg);
   // Registered as a loaded module too, so that messages name functions "vdg.set" and so on.
   luaL_getsubtable(L, LUA_REGISTRYINDEX, LUA_LOADED_TABLE);
   lua_pushvalue(L, vdg);
@@ -83,6 +84,7 @@ int protectedMain(lua_State* L) {
   lua_setglobal(L, "vdg");
   if (luaL_loadbufferx(L, chunk->text, chunk->size, chunk->name, "t") != LUA_OK) return lua_error(L);
   lua_call(L, 0, 0);
+  detail::runActors(L);  // the actors, frame by frame, after the script has described the shot
   return 0;
 }
 
@@ -94,7 +96,7 @@ std::string mib(std::size_t bytes) {
 
 // The message of a failed run (the error object on top of the stack), without raising: only
 // lua_type, lua_tolstring on strings and lua_tonumberx.
-std::string failure(lua_State* L, int status, const Context& ctx) {
+std::string failureMessage(lua_State* L, int status, const Context& ctx) {
   const std::string& name = ctx.chunk_name;
   if (ctx.budget_exceeded)
     return name + ": exceeded its instruction budget (" + std::to_string(ctx.budget) + " instructions; endless loop?)";
@@ -125,6 +127,15 @@ std::string failure(lua_State* L, int status, const Context& ctx) {
   const std::string shown = name.substr(0, LUA_IDSIZE - 1) + ":";
   if (message.compare(0, shown.size(), shown) == 0) return name + ":" + message.substr(shown.size());
   return name + ": " + message;
+}
+
+// The message of a failed run, naming the actor whose function was running, if any.
+std::string failure(lua_State* L, int status, const Context& ctx) {
+  std::string message = failureMessage(L, status, ctx);
+  if (ctx.current_actor >= 0 && static_cast<std::size_t>(ctx.current_actor) < ctx.actors.size())
+    message += " (actor '" + ctx.actors[static_cast<std::size_t>(ctx.current_actor)].name + "', frame " +
+               std::to_string(ctx.frame) + ")";
+  return message;
 }
 
 struct StateCloser {
@@ -175,6 +186,7 @@ Shot runScriptText(std::string_view text, const std::string& chunk_name, const s
   ctx.write_limit = options.write_limit;
   ctx.print = options.print;
   ctx.created = options.created;
+  ctx.actor_last_frame = options.actor_last_frame;
 
   lua_State* L = lua_newstate(allocate, &ctx);
   if (!L) throw Error(chunk_name + ": out of memory (limit " + mib(ctx.memory_limit) + " MiB)");

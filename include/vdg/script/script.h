@@ -5,6 +5,15 @@
 //
 //   script text --runScript--> Shot { scene::RawScene, render requests }
 //
+// Actors (Parent 4.8, vdg.actor): objects with their own state and per-frame functions that send
+// each other messages. The script only defines them; after it has run they are stepped, frame by
+// frame from the shot's first frame (see ScriptOptions::actor_last_frame), in the order defined,
+// and what they set becomes step tracks of the scene (one key per integer frame where the value
+// changed). So a Shot is still plain data, and any frame range renders what a full run renders.
+// math.random is seeded the same way in every run, pairs visits keys in a fixed order (numbers,
+// strings, booleans sorted; Lua's own order changes from run to run), and os.clock, os.time and
+// os.date are refused while the actors run (their frames must not depend on when or where they run).
+//
 // The script runs in a sandbox (docs/language.md, "Sandbox"):
 //  - libraries: the base library without dofile, loadfile, require; `load` of text chunks only;
 //    collectgarbage("count") only; setmetatable refuses __gc metamethods; string (without
@@ -31,6 +40,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -78,6 +88,13 @@ struct ScriptOptions {
   // being relative to the script's folder and free to climb with ".." while they stay below it;
   // empty: the script's own folder. It must hold the script.
   std::string read_root;
+  // Actors (vdg.actor, Parent 4.8) run from the shot's first frame (the smallest first frame of the
+  // script's render requests) to its last (the largest last frame), whatever range is rendered
+  // afterwards. A value here stops them after this frame instead: a caller that renders only
+  // frames up to B (vdg run --frames A-B) can pass B, and every frame <= B is still exactly what a
+  // full run gives (a frame depends only on the frames before it); later frames hold frame B's
+  // values. std::nullopt: the whole shot.
+  std::optional<int> actor_last_frame;
 };
 
 inline constexpr std::size_t kMinMemoryLimit = std::size_t{1} << 20;
@@ -90,6 +107,8 @@ inline constexpr int kMaxCreatedFiles = 10000;  // files io.open may create in o
 //   "SCRIPT: exceeded its instruction budget (N instructions; endless loop?)";
 //   "SCRIPT: out of memory (limit N MiB)";
 //   "SCRIPT: the script raised an error value that is not a string (a table)";
+//   errors raised while an actor's function runs (any of the above) end with
+//                            " (actor 'NAME', frame F)";
 //   "SCRIPT: node 'x': ..." (and the rest of RawScene::validate) for a scene that does not validate;
 //   "SCRIPT: ..." for a file that cannot be read, and for options out of range.
 // SCRIPT is `path` as given.
