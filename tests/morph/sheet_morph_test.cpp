@@ -187,6 +187,15 @@ TEST(SheetMorph, RefusesMeshesThatAreNotOneSphere) {
             "sheet morph: axis must be 0, 1 or 2");
 }
 
+TEST(SheetMorph, CostIsTrianglesTimesLevels) {
+  const TriMesh a = uvSphere(8, 16), b = closedBox(0, 0, 0, 1, 1, 1);  // 224 and 12 triangles
+  EXPECT_DOUBLE_EQ(sheetMorphCost(a, b), (224.0 + 12.0) * (std::log2(224.0) + 2.0) * 64.0);
+  // Doubling both meshes a little more than doubles the cost (one more level).
+  const TriMesh a2 = uvSphere(16, 16);  // 480 triangles
+  EXPECT_GT(sheetMorphCost(a2, a2), 2.0 * sheetMorphCost(a, a));
+  EXPECT_LT(sheetMorphCost(a2, a2), 2.5 * sheetMorphCost(a, a));
+}
+
 TEST(SheetMorph, EvaluateChecksItsContract) {
   const VertexMorph morph = sheetMorph(uvSphere(), closedBox(-1, -1, -1, 1, 1, 1));
   const std::size_t n = morph.vertexCount() * 3;
