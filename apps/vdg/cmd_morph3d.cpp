@@ -1,15 +1,15 @@
-// vdg morph3d A B (--t T -o OUT.obj | --count N -o DIR) [--method distance|spherical|minkowski|slices]
+// vdg morph3d A B (--t T -o OUT.obj | --count N -o DIR) [--method distance|spherical|minkowski|slices|sheets]
 //                 [--voxel S] [--max-voxels N] [--axis x|y|z] [--slices N] [--quiet]
 //
 // 3D shape interpolation (Parent 4.10, "Shape Interpolation, Metamorphosis") from mesh A (t = 0)
-// to mesh B (t = 1) by one of four methods (vdg/morph/shape_morph.h, slice_morph.h): blended signed distance
-// volumes ("Distance Fields", any closed meshes, the topology may change), Kent's spherical
-// projection (star-shaped genus-0 meshes, one common connectivity), Minkowski sums (closed, best
-// convex) or Chen's slices (every cut one contour, star-shaped about its centre; one connectivity). One mesh at --t, or
-// a sequence DIR/frame_0000.obj ... at t = i / (N - 1) with a camera file DIR/camera.json that frames every frame for
-// `vdg render --camera`, and, when every frame has the same connectivity (the spherical and slice methods), a manifest
-// DIR/morph.vdg.json whose animated base is the sequence, so `vdg render DIR/morph.vdg.json` plays it. See
-// docs/morph3d.md.
+// to mesh B (t = 1) by one of five methods (vdg/morph/shape_morph.h, slice_morph.h, sheet_morph.h): blended signed
+// distance volumes ("Distance Fields", any closed meshes, the topology may change), Kent's spherical projection
+// (star-shaped genus-0 meshes, one common connectivity), Minkowski sums (closed, best convex), Chen's slices (every cut
+// one contour, star-shaped about its centre; one connectivity) or Parent's sheets (genus-0 meshes split into sheets
+// recursively; one connectivity). One mesh at --t, or a sequence DIR/frame_0000.obj ... at t = i / (N - 1) with a
+// camera file DIR/camera.json that frames every frame for `vdg render --camera`, and, when every frame has the same
+// connectivity (the spherical, slice and sheet methods), a manifest DIR/morph.vdg.json whose animated base is the
+// sequence, so `vdg render DIR/morph.vdg.json` plays it. See docs/morph3d.md.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -28,6 +28,7 @@
 #include "vdg/io/obj.h"
 #include "vdg/morph/budget.h"
 #include "vdg/morph/shape_morph.h"
+#include "vdg/morph/sheet_morph.h"
 #include "vdg/morph/slice_morph.h"
 
 namespace vdg::cli {
@@ -42,7 +43,7 @@ constexpr long kMaxFrames = 100000;
 constexpr double kCameraAzimuthDeg = 25.0, kCameraElevationDeg = 30.0, kCameraFovDeg = 30.0, kCameraMargin = 1.15;
 
 struct Morph3dOptions {
-  std::string a, b, output, method = "distance", axis = "y";
+  std::string a, b, output, method = "distance", axis;  // axis: default y for slices, z for sheets
   double t = -1, voxel = 0, budget = morph::kDefaultBudget;
   long long max_voxels = 0;
   long frames = 0;  // --count N (the old `--frames N` too, with a deprecation note)
@@ -67,9 +68,11 @@ class Interpolator {
       common_.emplace(morph::sphericalMorph(a, b, opt.a, opt.b));
     } else if (method_ == "slices") {
       morph::SliceMorphOptions options;
-      options.axis = opt.axis == "x" ? 0 : opt.axis == "y" ? 1 : 2;
+      options.axis = axisOf(opt.axis, 1);
       options.slices = opt.slices;
       common_.emplace(morph::sliceMorph(a, b, options, opt.a, opt.b));
+    } else if (method_ == "sheets") {
+      common_.emplace(morph::sheetMorph(a, b, {.axis = axisOf(opt.axis, 2)}, opt.a, opt.b));
     } else {
       what_a_ = opt.a;
       what_b_ = opt.b;
@@ -102,7 +105,12 @@ class Interpolator {
   }
 
  private:
-  // The Minkowski sums (one per frame strictly between t = 0 and 1) and the slices, from the meshes.
+  static int axisOf(const std::string& name, int fallback) {
+    return name.empty() ? fallback : name == "x" ? 0 : name == "y" ? 1 : 2;
+  }
+
+  // The Minkowski sums (one per frame strictly between t = 0 and 1), the slices and the sheets, from
+  // the meshes.
   void checkCostBeforeBuilding(const Morph3dOptions& opt) const {
     if (method_ == "minkowski") {
       const long sums = opt.frames_given ? std::max(opt.frames - 2, 0L) : (opt.t > 0 && opt.t < 1 ? 1 : 0);
@@ -120,6 +128,11 @@ class Interpolator {
                          std::to_string(opt.slices) + " slices x " +
                              std::to_string(a_.triangleCount() + b_.triangleCount()) + " triangles",
                          "give --budget N to allow more, or fewer --slices");
+    } else if (method_ == "sheets") {
+      morph::checkBudget(morph::sheetMorphCost(a_, b_), opt.budget, opt.a + " and " + opt.b,
+                         "the sheets of " + std::to_string(a_.triangleCount()) + " and " +
+                             std::to_string(b_.triangleCount()) + " triangles",
+                         "give --budget N to allow more, or simpler meshes");
     }
   }
 
@@ -128,7 +141,7 @@ class Interpolator {
   const TriMesh& b_;
   std::string what_a_, what_b_;
   std::optional<morph::DistanceMorph> distance_;
-  std::optional<morph::VertexMorph> common_;  // spherical or slices: one connectivity for A and B
+  std::optional<morph::VertexMorph> common_;  // spherical, slices or sheets: one connectivity for A and B
 };
 
 std::string frameName(long i) {
@@ -217,9 +230,10 @@ void run(const Morph3dOptions& opt) {
   if ((opt.voxel_given || opt.max_voxels_given) && opt.method != "distance")
     throw UsageError(std::string(opt.voxel_given ? "--voxel" : "--max-voxels") + ": only for --method distance, not " +
                      opt.method);
-  if ((opt.axis_given || opt.slices_given) && opt.method != "slices")
-    throw UsageError(std::string(opt.axis_given ? "--axis" : "--slices") + ": only for --method slices, not " +
-                     opt.method);
+  if (opt.slices_given && opt.method != "slices")
+    throw UsageError("--slices: only for --method slices, not " + opt.method);
+  if (opt.axis_given && opt.method != "slices" && opt.method != "sheets")
+    throw UsageError("--axis: only for --method slices or sheets, not " + opt.method);
   if (opt.t_given && !hasExtension(opt.output, ".obj"))
     throw UsageError("-o: with --t, give an .obj file, got " + quotedText(opt.output));
   const TriMesh a = readMesh(opt.a), b = readMesh(opt.b);
@@ -242,12 +256,14 @@ void addMorph3dCommand(CLI::App& app) {
   auto opt = std::make_shared<Morph3dOptions>();
   CLI::App* sub = app.add_subcommand(
       "morph3d",
-      "Interpolate between two closed meshes (distance fields, spherical projection, Minkowski sums, slices)");
+      "Interpolate between two closed meshes (distance fields, spherical projection, Minkowski sums, slices, "
+      "sheets)");
   sub->footer(
       "Methods (docs/morph3d.md): distance: any closed meshes, the topology may change (a sphere becomes a torus); "
       "spherical: star-shaped genus-0 meshes, vertex to vertex on one connectivity; minkowski: closed meshes, best "
       "convex (slow otherwise); slices: Chen's slices along --axis, every cut one contour star-shaped about its "
-      "centre. --count N -o DIR writes DIR/frame_0000.obj ... at t = i/(N-1) and DIR/camera.json "
+      "centre; sheets: Parent's recursive sheets, genus-0 meshes, front and back facing --axis (default z). --count N "
+      "-o DIR writes DIR/frame_0000.obj ... at t = i/(N-1) and DIR/camera.json "
       "for 'vdg render FRAME.obj --camera DIR/camera.json'; a sequence of one connectivity also gets "
       "DIR/morph.vdg.json for 'vdg render DIR/morph.vdg.json --camera DIR/camera.json --count N'.\n");
   sub->add_option("A", opt->a, "Source mesh at t = 0 (.obj, .gltf, .glb; closed)")->required();
@@ -276,15 +292,17 @@ void addMorph3dCommand(CLI::App& app) {
         opt->frames = static_cast<long>(*n);
         opt->frames_given = true;
       });
-  sub->add_option("--method", opt->method, "distance (default), spherical, minkowski or slices")
-      ->check(CLI::IsMember({"distance", "spherical", "minkowski", "slices"}));
+  sub->add_option("--method", opt->method, "distance (default), spherical, minkowski, slices or sheets")
+      ->check(CLI::IsMember({"distance", "spherical", "minkowski", "slices", "sheets"}));
   sub->add_option("--voxel", opt->voxel, "Distance method: voxel size in model units (default: diagonal / 96)")
       ->check(positiveNumber())
       ->each([opt](const std::string&) { opt->voxel_given = true; });
   sub->add_option("--max-voxels", opt->max_voxels, "Distance method: refuse volumes of more voxels (default 2^28)")
       ->check(wholeNumber(1000, 1L << 40))
       ->each([opt](const std::string&) { opt->max_voxels_given = true; });
-  sub->add_option("--axis", opt->axis, "Slices method: the axis the cutting planes are across (x, y or z; default y)")
+  sub->add_option("--axis", opt->axis,
+                  "Slices method: the axis the cutting planes are across (x, y or z; default y); sheets method: "
+                  "the axis the front sheet faces (default z)")
       ->check(CLI::IsMember({"x", "y", "z"}))
       ->each([opt](const std::string&) { opt->axis_given = true; });
   sub->add_option("--slices", opt->slices, "Slices method: how many cutting planes (default 32)")

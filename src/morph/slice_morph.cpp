@@ -13,6 +13,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "exact_orient.h"
 #include "vdg/geom/error.h"
 #include "vdg/geom/text.h"
 #include "vdg/morph/mesh_checks.h"
@@ -24,6 +25,61 @@ struct Resampled {
   std::vector<double> points;           // slices * samples * 3: slice by slice, angle by angle
   std::array<double, 3> low{}, high{};  // the end vertices
 };
+
+// Throws unless the contour `loop` (indices into `pts`, wound counter-clockwise when `sense` is 1,
+// clockwise when -1) is star-shaped about `centre`, with the centre inside its kernel: the kernel
+// of a simple polygon is the intersection of the inner half-planes of its edges, so the centre
+// must lie strictly on the inner side of every edge's supporting line (an exact orientation test
+// per edge), and the contour must go round it once. Then every ray from the centre crosses the
+// contour exactly once and the resampling keeps all of it; an edge that faces away from the centre
+// or is seen edge-on from it would be hidden behind another part of the contour (a notch's walls)
+// and lost. Zero-length edges (two crossings at one mesh vertex on the plane) constrain nothing.
+void requireStarShaped(const std::vector<std::array<double, 2>>& pts, const std::vector<std::int32_t>& loop,
+                       const std::array<double, 2>& centre, int sense, int ax, double level, const std::string& where) {
+  // A point (pu, pw) of the cutting plane as "(x, y, z)", with no 1e-17 for a 0.
+  auto text = [&](double pu, double pw) {
+    std::array<double, 3> x{};
+    x[static_cast<std::size_t>(ax)] = level;
+    x[static_cast<std::size_t>((ax + 1) % 3)] = pu;
+    x[static_cast<std::size_t>((ax + 2) % 3)] = pw;
+    auto shown = [](double c) { return numberText(std::abs(c) < 1e-12 ? 0.0 : c, 6); };
+    return "(" + shown(x[0]) + ", " + shown(x[1]) + ", " + shown(x[2]) + ")";
+  };
+  auto prefix = [&] { return where + " is not star-shaped about its centroid " + text(centre[0], centre[1]) + ": "; };
+  double turned = 0;  // the angle the contour turns through about the centre
+  for (std::size_t i = 0; i < loop.size(); ++i) {
+    const auto& p = pts[static_cast<std::size_t>(loop[i])];
+    const auto& q = pts[static_cast<std::size_t>(loop[(i + 1) % loop.size()])];
+    if (p == q) continue;
+    const int side = detail::orient2dSign(centre[0], centre[1], p[0], p[1], q[0], q[1]);
+    if (side != sense)
+      throw Error(prefix() + "the contour's edge from " + text(p[0], p[1]) + " to " + text(q[0], q[1]) +
+                  (side == 0 ? " is seen edge-on from it" : " faces away from it") +
+                  " (rays from the centroid would miss part of the contour)");
+    const double au = p[0] - centre[0], aw = p[1] - centre[1], bu = q[0] - centre[0], bw = q[1] - centre[1];
+    turned += std::atan2(std::abs(au * bw - aw * bu), au * bu + aw * bw);
+  }
+  // Every edge turns forwards, so the total is a whole number of turns; more than one is a contour
+  // that overlaps itself.
+  const long turns = std::lround(turned / (2.0 * M_PI));
+  if (turns != 1)
+    throw Error(prefix() + "the contour goes round it " + std::to_string(turns) + " times (it overlaps itself)");
+}
+
+// The area centroid (u, w) of a contour and twice its signed area (the shoelace formula).
+std::array<double, 3> areaCentroid(const std::vector<std::array<double, 2>>& pts,
+                                   const std::vector<std::int32_t>& loop) {
+  double area2 = 0, cu = 0, cw = 0;
+  for (std::size_t i = 0; i < loop.size(); ++i) {
+    const auto& p = pts[static_cast<std::size_t>(loop[i])];
+    const auto& q = pts[static_cast<std::size_t>(loop[(i + 1) % loop.size()])];
+    const double cr = p[0] * q[1] - q[0] * p[1];
+    area2 += cr;
+    cu += (p[0] + q[0]) * cr;
+    cw += (p[1] + q[1]) * cr;
+  }
+  return {cu / (3.0 * area2), cw / (3.0 * area2), area2};
+}
 
 // One mesh cut and resampled. (u, w) = the axes after `axis`, so that u x w = axis: angle theta
 // runs counter-clockwise seen from the +axis side.
@@ -106,19 +162,10 @@ Resampled resample(const TriMesh& mesh, const SliceMorphOptions& o, const std::s
     if (loops != 1)
       throw Error(where + " is " + std::to_string(loops) +
                   " contours; the slice morph needs one closed contour per cut");
-    // The area centroid of the contour (shoelace), the centre the rays start from.
-    double area2 = 0, cu = 0, cw = 0;
-    for (std::size_t i = 0; i < loop.size(); ++i) {
-      const auto& p = pts[static_cast<std::size_t>(loop[i])];
-      const auto& q = pts[static_cast<std::size_t>(loop[(i + 1) % loop.size()])];
-      const double cr = p[0] * q[1] - q[0] * p[1];
-      area2 += cr;
-      cu += (p[0] + q[0]) * cr;
-      cw += (p[1] + q[1]) * cr;
-    }
+    // The area centroid of the contour, the centre the rays start from.
+    const auto [cu, cw, area2] = areaCentroid(pts, loop);
     if (std::abs(area2) <= 0) throw Error(where + " has no area");
-    cu /= 3.0 * area2;
-    cw /= 3.0 * area2;
+    requireStarShaped(pts, loop, {cu, cw}, area2 > 0 ? 1 : -1, ax, level, where);
     // Rays at equal angles; each takes the farthest crossing of the contour.
     for (int j = 0; j < o.samples; ++j) {
       const double theta = 2.0 * M_PI * j / o.samples;

@@ -5,9 +5,11 @@
 #include <sys/wait.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <set>
 #include <string>
 
 #include "support/test_meshes.h"
@@ -152,6 +154,93 @@ TEST_F(Morph3dCli, SlicesOfConcentricSpheresMeetHalfWayAndKeepOneConnectivity) {
   EXPECT_TRUE(fs::exists(dir_.file("sl/morph.vdg.json")));
   EXPECT_EQ(vdg("morph3d small.obj large.obj --t 0.5 --slices 8 -o x.obj"), 2);
   EXPECT_EQ(err_, "vdg: morph3d: --slices: only for --method slices, not distance (see vdg morph3d --help)\n");
+}
+
+TEST_F(Morph3dCli, SheetsOfABoxAndASphereAreExactAtTheEndsAndPlayAsOneConnectivity) {
+  writeObj(dir_.file("box.obj"), testing::closedBox(-1, -0.6f, -0.8f, 1, 0.6f, 0.8f));
+  ASSERT_EQ(vdg("morph3d box.obj small.obj --method sheets --count 3 -o sh"), 0) << err_;
+  EXPECT_EQ(out_, "wrote 3 frames to sh (sheets); camera.json, morph.vdg.json (one connectivity)\n");
+  const TriMesh first = readObj(dir_.file("sh/frame_0000.obj")), mid = readObj(dir_.file("sh/frame_0001.obj"));
+  const TriMesh last = readObj(dir_.file("sh/frame_0002.obj"));
+  EXPECT_EQ(first.triangles, last.triangles);
+  for (const TriMesh* m : {&first, &mid, &last}) {
+    EXPECT_NO_THROW(morph::requireClosed(*m, "frame"));
+    EXPECT_EQ(morph::eulerCharacteristic(*m), 2);
+  }
+  // t = 0 is the box (every vertex on a face of it), t = 1 the sphere (every vertex on a triangle
+  // of the 48-segment UV sphere, within its chords of the unit sphere).
+  for (std::size_t v = 0; v < first.vertexCount(); ++v) {
+    const float x = first.positions[v * 3], y = first.positions[v * 3 + 1], z = first.positions[v * 3 + 2];
+    ASSERT_NEAR(std::max({std::abs(x) / 1.0f, std::abs(y) / 0.6f, std::abs(z) / 0.8f}), 1.0f, 1e-5f) << v;
+    const double r = std::hypot(last.positions[v * 3], last.positions[v * 3 + 1], last.positions[v * 3 + 2]);
+    ASSERT_NEAR(r, 1.0, 0.005) << v;
+  }
+  ASSERT_TRUE(fs::exists(dir_.file("sh/morph.vdg.json")));
+  ASSERT_EQ(vdg("render sh/morph.vdg.json --camera sh/camera.json --count 3 --size 64x64 -o sh_png --quiet"), 0)
+      << err_;
+  EXPECT_GT(fs::file_size(dir_.file("sh_png/frame_0001.png")), 100u);
+  // --axis chooses the way the front sheet faces; --slices is the slices method's only.
+  ASSERT_EQ(vdg("morph3d box.obj small.obj --method sheets --axis x --t 0.5 -o x.obj --quiet"), 0) << err_;
+  EXPECT_EQ(vdg("morph3d box.obj small.obj --method sheets --slices 4 --t 0.5 -o x.obj"), 2);
+  EXPECT_EQ(err_, "vdg: morph3d: --slices: only for --method slices, not sheets (see vdg morph3d --help)\n");
+  EXPECT_EQ(vdg("morph3d box.obj small.obj --axis x --t 0.5 -o x.obj"), 2);
+  EXPECT_EQ(err_, "vdg: morph3d: --axis: only for --method slices or sheets, not distance (see vdg morph3d --help)\n");
+  // A torus is not genus 0.
+  EXPECT_EQ(vdg("morph3d small.obj torus.obj --method sheets --t 0.5 -o y.obj"), 1);
+  EXPECT_EQ(err_,
+            "vdg: error: torus.obj: is not one genus-0 surface (Euler characteristic 0, 1 part); the sheet morph needs "
+            "a mesh like a sphere\n");
+  EXPECT_FALSE(fs::exists(dir_.file("y.obj")));
+}
+
+// The volume and area a closed mesh's triangles enclose.
+std::pair<double, double> volumeAndArea(const TriMesh& m) {
+  double volume = 0, area = 0;
+  for (std::size_t f = 0; f < m.triangleCount(); ++f) {
+    const float* p = &m.positions[static_cast<std::size_t>(m.triangles[f * 3]) * 3];
+    const float* q = &m.positions[static_cast<std::size_t>(m.triangles[f * 3 + 1]) * 3];
+    const float* r = &m.positions[static_cast<std::size_t>(m.triangles[f * 3 + 2]) * 3];
+    const Eigen::Vector3d a(p[0], p[1], p[2]), b(q[0], q[1], q[2]), c(r[0], r[1], r[2]);
+    volume += a.dot(b.cross(c)) / 6.0;
+    area += (b - a).cross(c - a).norm() / 2.0;
+  }
+  return {volume, area};
+}
+
+TEST_F(Morph3dCli, SheetsOfSpotTheCowAndASphereAreExactAtBothEndsEitherWayRound) {
+  // Spot (5856 triangles, genus 0) and a sphere (2208), a real mesh with legs, ears and horns: both
+  // orders give both ends exactly (every vertex of each mesh a common vertex, the same volume and
+  // area: nothing folds over).
+  const fs::path spot = fs::path(VDG_SOURCE_DIR) / "../shared/assets/models/spot/spot_triangulated.obj";
+  if (!fs::exists(spot)) GTEST_SKIP() << spot << " is not there";
+  TriMesh cow = readObj(spot.string());
+  cow.uvs.clear();
+  cow.uv_triangles.clear();
+  cow.normals.clear();
+  cow.normal_triangles.clear();
+  writeObj(dir_.file("spot.obj"), cow);
+  constexpr double kRelative = 1e-5;  // float positions
+  for (const char* order : {"spot.obj small.obj", "small.obj spot.obj"}) {
+    SCOPED_TRACE(order);
+    for (const char* t : {"0", "1"}) {
+      ASSERT_EQ(vdg(std::string("morph3d ") + order + " --method sheets --t " + t + " -o end.obj --quiet"), 0) << err_;
+      const TriMesh end = readObj(dir_.file("end.obj"));
+      const bool is_spot = (std::string(order).rfind("spot", 0) == 0) == (std::string(t) == "0");
+      const TriMesh original = is_spot ? cow : testing::uvSphere(24, 48);
+      EXPECT_NO_THROW(morph::requireClosed(end, "end.obj"));
+      const auto [volume, area] = volumeAndArea(end);
+      const auto [want_volume, want_area] = volumeAndArea(original);
+      EXPECT_NEAR(volume, want_volume, kRelative * want_volume) << t;
+      EXPECT_NEAR(area, want_area, kRelative * want_area) << t;
+      std::set<std::array<float, 3>> corners;
+      for (std::size_t v = 0; v < end.vertexCount(); ++v)
+        corners.insert({end.positions[v * 3], end.positions[v * 3 + 1], end.positions[v * 3 + 2]});
+      for (std::size_t v = 0; v < original.vertexCount(); ++v)
+        ASSERT_TRUE(
+            corners.count({original.positions[v * 3], original.positions[v * 3 + 1], original.positions[v * 3 + 2]}))
+            << "vertex " << v;
+    }
+  }
 }
 
 TEST_F(Morph3dCli, BadInputIsOneLineExitOneAndLeavesNothing) {

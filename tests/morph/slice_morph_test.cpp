@@ -150,7 +150,94 @@ TEST(SliceMorph, RefusesACutNotStarShapedAboutItsCentroid) {
   quad(id(k, 1, 0), id(k, 0, 0), id(k, 0, 1), id(k, 1, 1));
   ASSERT_EQ(errorOf([&] { requireClosed(c, "c"); }), "");
   EXPECT_EQ(errorOf([&] { (void)sliceMorph(c, uvSphere(), {.axis = 1, .slices = 2, .samples = 16}, "c.obj"); }),
-            "c.obj: the cut at y = -0.5 is not star-shaped about its centroid (a ray from it misses the contour)");
+            "c.obj: the cut at y = -0.5 is not star-shaped about its centroid (-0.0638985, -0.5, 0): the contour's "
+            "edge from (0.88206, -0.5, -0.178802) to (0.829739, -0.5, -0.335341) faces away from it (rays from the "
+            "centroid would miss part of the contour)");
+}
+
+// A prism along y over a polygon in (x, z) (counter-clockwise seen from -y... whichever: the
+// winding is fixed by the signed volume), its caps triangulated by `caps` (index triples into the
+// polygon, wound as the polygon), outward.
+TriMesh prism(const std::vector<std::array<float, 2>>& polygon, const std::vector<std::int32_t>& caps) {
+  TriMesh m;
+  const auto n = static_cast<std::int32_t>(polygon.size());
+  for (const float y : {-1.0f, 1.0f})
+    for (const auto& p : polygon) m.positions.insert(m.positions.end(), {p[0], y, p[1]});
+  for (std::int32_t i = 0; i < n; ++i) {
+    const std::int32_t j = (i + 1) % n;
+    m.triangles.insert(m.triangles.end(), {i, j, n + j, i, n + j, n + i});
+  }
+  for (std::size_t c = 0; c < caps.size(); c += 3) {
+    m.triangles.insert(m.triangles.end(), {n + caps[c], n + caps[c + 1], n + caps[c + 2]});
+    m.triangles.insert(m.triangles.end(), {caps[c + 2], caps[c + 1], caps[c]});
+  }
+  double volume = 0;
+  for (std::size_t f = 0; f < m.triangleCount(); ++f) {
+    const float* p = &m.positions[static_cast<std::size_t>(m.triangles[f * 3]) * 3];
+    const float* q = &m.positions[static_cast<std::size_t>(m.triangles[f * 3 + 1]) * 3];
+    const float* r = &m.positions[static_cast<std::size_t>(m.triangles[f * 3 + 2]) * 3];
+    volume +=
+        p[0] * (q[1] * r[2] - q[2] * r[1]) + p[1] * (q[2] * r[0] - q[0] * r[2]) + p[2] * (q[0] * r[1] - q[1] * r[0]);
+  }
+  if (volume < 0)
+    for (std::size_t f = 0; f < m.triangleCount(); ++f) std::swap(m.triangles[f * 3 + 1], m.triangles[f * 3 + 2]);
+  return m;
+}
+
+TEST(SliceMorph, RefusesANotchedSquarePrismWhoseNotchWallsNoRayReaches) {
+  // The square [-1, 1]^2 with a notch 0.4 wide and 0.5 deep cut into its +z side. Its centroid
+  // (0, -0.0395) sees the notch's floor but neither of its walls (x = -0.2 and 0.2; the first piece
+  // of the wall at x = 0.2 is named, the cut crossing its two triangles): rays from it
+  // reach the floor and go no further, so a resampling would lose both walls; no sampled ray misses
+  // the contour, which is why only an exact test per edge finds it.
+  const TriMesh notched = prism(
+      {{-1, -1}, {1, -1}, {1, 0.5f}, {1, 1}, {0.2f, 1}, {0.2f, 0.5f}, {-0.2f, 0.5f}, {-0.2f, 1}, {-1, 1}, {-1, 0.5f}},
+      {0, 1, 2, 0, 2, 5, 0, 5, 6, 0, 6, 9, 2, 3, 4, 2, 4, 5, 9, 6, 7, 9, 7, 8});
+  ASSERT_EQ(errorOf([&] { requireClosed(notched, "notched"); }), "");
+  for (const int samples : {8, 64, 1000}) {
+    const std::string message = errorOf(
+        [&] { (void)sliceMorph(uvSphere(), notched, {.axis = 1, .slices = 3, .samples = samples}, "A", "notch.obj"); });
+    EXPECT_EQ(message,
+              "notch.obj: the cut at y = -0.666667 is not star-shaped about its centroid (0, -0.666667, -0.0394737): "
+              "the contour's edge from (0.2, -0.666667, 1) to (0.2, -0.666667, 0.916667) faces away from it (rays "
+              "from the centroid would miss part of the contour)")
+        << samples;
+  }
+  // Along z every cut is a rectangle or two (through the notch): refused as two contours, not
+  // resampled.
+  EXPECT_EQ(errorOf([&] { (void)sliceMorph(notched, uvSphere(), {.axis = 2, .slices = 4, .samples = 8}); }),
+            "A: the cut at z = 0.75 is 2 contours; the slice morph needs one closed contour per cut");
+}
+
+TEST(SliceMorph, AcceptsANonConvexCutThatIsStarShapedAboutItsCentroid) {
+  // A plus sign: not convex, but its centroid (the origin) sees every edge from the inside.
+  const TriMesh plus =
+      prism({{-0.3f, -1},
+             {0.3f, -1},
+             {0.3f, -0.3f},
+             {1, -0.3f},
+             {1, 0.3f},
+             {0.3f, 0.3f},
+             {0.3f, 1},
+             {-0.3f, 1},
+             {-0.3f, 0.3f},
+             {-1, 0.3f},
+             {-1, -0.3f},
+             {-0.3f, -0.3f}},
+            {2, 5, 8, 2, 8, 11, 0, 1, 2, 0, 2, 11, 2, 3, 4, 2, 4, 5, 5, 6, 7, 5, 7, 8, 8, 9, 10, 8, 10, 11});
+  ASSERT_EQ(errorOf([&] { requireClosed(plus, "plus"); }), "");
+  const VertexMorph morph = sliceMorph(uvSphere(), plus, {.axis = 1, .slices = 4, .samples = 48});
+  expectOn(morph.positionsOnB(), plus);
+  // Every resampled contour reaches the tips of the arms (|x| or |z| = 1 in some direction).
+  const auto on_b = morph.positionsOnB();
+  for (int s = 0; s < 4; ++s) {
+    float reach = 0;
+    for (int j = 0; j < 48; ++j) {
+      const std::size_t v = static_cast<std::size_t>(s * 48 + j) * 3;
+      reach = std::max({reach, std::abs(on_b[v]), std::abs(on_b[v + 2])});
+    }
+    EXPECT_NEAR(reach, 1.0f, 1e-6f) << "slice " << s;
+  }
 }
 
 TEST(SliceMorph, EvaluateChecksItsContract) {

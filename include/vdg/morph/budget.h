@@ -6,7 +6,7 @@
 // a pixel of a warp's pass). One operation is a few to a few tens of nanoseconds on one core, so
 // kDefaultBudget, 2e9 operations, is some seconds to about a minute of work. The estimate
 // functions sit next to their algorithms (image_morph.h, inbetween.h, implicit.h, shape_morph.h,
-// slice_morph.h); they compute in double, so that no count overflows (a count past 1e308 is
+// slice_morph.h, sheet_morph.h); they compute in double, so no count overflows (a count past 1e308 is
 // +infinity, which every budget refuses).
 #pragma once
 

@@ -32,8 +32,12 @@ struct SliceMorphOptions {
 // Builder: checks both meshes closed and the options in range, cuts and resamples. Throws
 // vdg::Error: requireClosed's message; "slice morph: axis must be 0, 1 or 2" (and likewise for
 // slices and samples); "WHAT: the cut at AXIS = L is N contours; the slice morph needs one closed
-// contour per cut"; "WHAT: the cut at AXIS = L is not star-shaped about its centroid (a ray from
-// it misses the contour)".
+// contour per cut"; "WHAT: the cut at AXIS = L is not star-shaped about its centroid (x, y, z): the
+// contour's edge from P to Q faces away from it" (or "is seen edge-on from it"; then "... (rays from
+// the centroid would miss part of the contour)"), or "...: the contour goes round it N times".
+// Star-shaped is tested exactly for every contour: the centroid must lie strictly on the inner
+// side of every edge of the contour (an exact orientation test), so that each ray from it crosses
+// the contour once and no part of the contour (the walls of a notch) is hidden from the rays.
 // The VertexMorph it returns gives the lofted mesh at t: positions (1 - t) pa + t pb, slices *
 // samples + 2 vertices, closed, genus 0, counter-clockwise seen from outside; its at() refuses a t
 // that is not finite with "slice morph: t T is not a finite number".

@@ -1,6 +1,6 @@
 // The runtime of the 3D shape morphs that first give A and B one common connectivity, then
-// interpolate vertex to vertex (Parent 4.10): Kent's spherical overlay (sphericalMorph,
-// vdg/morph/shape_morph.h) and Chen's slices (sliceMorph, vdg/morph/slice_morph.h) both build one.
+// interpolate vertex to vertex (Parent 4.10): Kent's spherical overlay (sphericalMorph, shape_morph.h),
+// Chen's slices (sliceMorph, slice_morph.h) and Parent's sheets (sheetMorph, sheet_morph.h) build one.
 // Immutable once built; the per-frame evaluate() neither throws nor allocates.
 #pragma once
 #include <cstddef>
