@@ -4,15 +4,18 @@
 // dependence, determinism), plus the error paths. Goldens: see tests/render/README.md.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <functional>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <Eigen/Geometry>
 
@@ -130,8 +133,111 @@ TEST(Shading, HueRuleLeavesOtherHuesAndScalesCallerConstants) {
   EXPECT_EQ(green.k4, 1.0f);
   const ShadingConstants purple = hueAdjustedConstants({1.0f, 1.0f, 1.0f, 0.5f}, {0.5f, 0.2f, 0.7f});
   EXPECT_FLOAT_EQ(purple.k4, 1.0f);
-  // Dark grey is not whitish: the warm light stays on.
-  EXPECT_EQ(hueAdjustedConstants({}, {0.3f, 0.3f, 0.3f}).k2, 1.0f);
+}
+
+// The rule of the paper alone (white-ish, purple, red; section 3.2.4), as it was before the rules
+// for dark and grey colours: the reference for the colours those rules leave alone.
+ShadingConstants paperHueRule(const ShadingConstants& k, const Rgb& base) {
+  const Hsv hsv = toHsv(base);
+  ShadingConstants out = k;
+  if (hsv.s < 0.2f) {
+    if (hsv.v > 0.6f) out.k2 = 0.0f;
+  } else if (hsv.h >= 250.0f && hsv.h < 330.0f) {
+    out.k4 = 2.0f * k.k4;
+  } else if (hsv.h < 20.0f || hsv.h >= 330.0f) {
+    out.k4 = 1.5f * k.k4;
+    out.k2 = 0.5f * k.k2;
+  }
+  return out;
+}
+
+// Normals towards the warm light, towards the cool light, towards the viewer and half-way.
+std::vector<std::array<float, 3>> probeNormals(const ShadingParams& p) {
+  const Eigen::Vector3f l1 = Eigen::Vector3f(p.light_warm[0], p.light_warm[1], p.light_warm[2]).normalized();
+  const Eigen::Vector3f l2 = Eigen::Vector3f(p.light_cool[0], p.light_cool[1], p.light_cool[2]).normalized();
+  std::vector<std::array<float, 3>> out;
+  for (const Eigen::Vector3f& n : {l1, l2, Eigen::Vector3f(0, 0, 1), Eigen::Vector3f((l1 + l2).normalized()),
+                                   Eigen::Vector3f((l1 + Eigen::Vector3f(0, 0, 1)).normalized())})
+    out.push_back({n.x(), n.y(), n.z()});
+  return out;
+}
+
+TEST(Shading, HueRuleLeavesBrightSaturatedColoursBitForBit) {
+  // Saturation >= 0.2 and value >= 0.5: neither the grey nor the dark rule applies, so the
+  // constants and the shaded colour are exactly the paper's rule's, for any caller constants.
+  const ShadingConstants caller{0.8f, 1.3f, 0.7f, 0.6f};
+  int checked = 0;
+  for (int r = 0; r <= 10; ++r)
+    for (int g = 0; g <= 10; ++g)
+      for (int b = 0; b <= 10; ++b) {
+        const Rgb base{r / 10.0f, g / 10.0f, b / 10.0f};
+        const Hsv hsv = toHsv(base);
+        if (hsv.s < kNeutralSaturation || hsv.v < kLitValue) continue;
+        for (const ShadingConstants& k : {ShadingConstants{}, caller}) {
+          const ShadingConstants got = hueAdjustedConstants(k, base), want = paperHueRule(k, base);
+          EXPECT_EQ(got.k1, want.k1);
+          EXPECT_EQ(got.k2, want.k2) << base[0] << "," << base[1] << "," << base[2];
+          EXPECT_EQ(got.k3, want.k3);
+          EXPECT_EQ(got.k4, want.k4) << base[0] << "," << base[1] << "," << base[2];
+        }
+        ++checked;
+      }
+  EXPECT_GT(checked, 500);
+}
+
+TEST(Shading, HueRuleKeepsDarkColoursDarkAndNeutral) {
+  const ShadingParams p;
+  // At or below kDarkValue, any hue: no light colour at all, C = ka * Cbase at every normal.
+  for (const Rgb& base : {Rgb{0, 0, 0}, Rgb{0.1f, 0.1f, 0.1f}, Rgb{0.2f, 0.03f, 0.03f}, Rgb{0.05f, 0.05f, 0.2f},
+                          Rgb{0.12f, 0.18f, 0.02f}}) {
+    const ShadingConstants k = hueAdjustedConstants({}, base);
+    EXPECT_EQ(k.k2, 0.0f);
+    EXPECT_EQ(k.k4, 0.0f);
+    for (const auto& n : probeNormals(p)) {
+      const Rgb c = shade(p, base, n);
+      for (int i = 0; i < 3; ++i) EXPECT_FLOAT_EQ(c[i], p.ka * base[i]);
+    }
+  }
+  // Spot's dark patches (grey 64/255): they stay dark and nearly neutral under both lights (a
+  // trace of the cool light gives them form), where the paper's rule alone turned them orange.
+  const Rgb patch{64 / 255.0f, 64 / 255.0f, 64 / 255.0f};
+  ShadingParams paper = p;
+  paper.vary_by_hue = false;  // the same constants as paperHueRule for this grey (k = 1)
+  ASSERT_EQ(paperHueRule({}, patch).k2, 1.0f);
+  constexpr float kDarkCeiling = 0.35f;  // darker than any light grey
+  constexpr float kNeutralSpread = 0.06f;
+  for (const auto& n : probeNormals(p)) {
+    const Rgb c = shade(p, patch, n);
+    EXPECT_LE(std::max({c[0], c[1], c[2]}), kDarkCeiling);
+    EXPECT_LE(std::max({c[0], c[1], c[2]}) - std::min({c[0], c[1], c[2]}), kNeutralSpread);
+  }
+  const Rgb before = shade(paper, patch, probeNormals(p)[0]);  // facing the warm light
+  EXPECT_GT(before[0] - before[2], 0.3f) << "the paper's rule alone: orange";
+}
+
+TEST(Shading, HueRuleGreysAreCoolAndWhitesStayWhite) {
+  const ShadingParams p;
+  for (float v = 0.0f; v <= 1.0f; v += 0.05f) {
+    const Rgb grey{v, v, v};
+    EXPECT_EQ(hueAdjustedConstants({}, grey).k2, 0.0f) << "grey " << v << ": no warm light";
+    for (const auto& n : probeNormals(p)) {
+      const Rgb c = shade(p, grey, n);
+      EXPECT_LE(c[0], c[2] + 1e-6f) << "grey " << v << ": never warmer than it is blue";
+    }
+  }
+  // White: light and cool at every normal, as the paper's whites were (its rule for them is kept).
+  constexpr float kWhiteFloor = 0.5f;  // mean channel
+  for (const auto& n : probeNormals(p)) {
+    const Rgb c = shade(p, {1, 1, 1}, n);
+    EXPECT_GE((c[0] + c[1] + c[2]) / 3.0f, kWhiteFloor);
+    EXPECT_GE(c[2], c[0]);
+    EXPECT_EQ(hueAdjustedConstants({}, {1, 1, 1}).k4, 1.0f);
+  }
+  // The value ramp is continuous: no jump in the constants where the dark rule ends.
+  const ShadingConstants below = hueAdjustedConstants({}, {0.4999f, 0.1f, 0.1f});
+  const ShadingConstants at = hueAdjustedConstants({}, {0.5f, 0.1f, 0.1f});
+  EXPECT_NEAR(below.k2, at.k2, 1e-3f);
+  EXPECT_NEAR(below.k4, at.k4, 1e-3f);
 }
 
 TEST(Shading, EquationMatchesThePaper) {
