@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <string>
 #include <utility>
@@ -64,6 +65,33 @@ double fitDistance(double radius, double fov_deg, double aspect) {
   return 1.1 * radius / std::sin(half);
 }
 
+double projectedDiameter(const Camera& camera, int height, const Eigen::Vector3d& center, double radius) {
+  if (camera.isOrtho()) return 2.0 * radius / camera.ortho_height * height;
+  const double d = (center - camera.eye).norm();
+  if (d <= radius) return std::numeric_limits<double>::infinity();
+  // The sphere's angular radius a at distance d: tan a = r / sqrt(d^2 - r^2); its picture at the
+  // centre of a view of vertical field fov spans tan a / tan(fov / 2) half-heights.
+  const double tan_a = radius / std::sqrt((d - radius) * (d + radius));
+  return tan_a / std::tan(0.5 * camera.fov_deg * kDegToRad) * height;
+}
+
+float strokeWidthFor(const FrameSettings& s, double diameter_px) {
+  if (s.stroke_mode == StrokeWidthMode::fixed) return s.silhouette_width;
+  const float hi = std::max(s.stroke_min, s.stroke_max > 0.0f ? s.stroke_max : s.silhouette_width);
+  // Rounded to a quarter pixel: the same width for pictures that differ in rounding only (a model
+  // and its export), and few distinct widths in a crowd (the GPU blend draws one call per width).
+  const double w = std::round(4.0 * static_cast<double>(s.silhouette_width) * diameter_px / s.height) / 4.0;
+  if (!(w >= s.stroke_min)) return s.stroke_min;  // NaN (no size) as well
+  return static_cast<float>(std::min<double>(w, hi));
+}
+
+void checkStrokeRange(const FrameSettings& s) {
+  if (s.stroke_mode == StrokeWidthMode::fixed) return;
+  if (!(std::isfinite(s.stroke_min) && s.stroke_min > 0.0f) || !std::isfinite(s.stroke_max))
+    throw Error("render: the screen stroke width needs a finite minimum > 0 and a finite maximum (got " +
+                numberText(s.stroke_min) + " and " + numberText(s.stroke_max) + ")");
+}
+
 struct ModelRenderer::Impl {
   const ViewDependentModel* model = nullptr;
   const AnimatedViewDependentModel* animated = nullptr;  // section 4; `model` is then null
@@ -113,6 +141,7 @@ struct ModelRenderer::Impl {
                   numberText(radius) + "), so no camera can frame it");
     if (options.silhouette_width <= 0.0f)
       options.silhouette_width = std::max(3.0f, static_cast<float>(options.height) / 100.0f);
+    checkStrokeRange(options);
     const double aspect = static_cast<double>(options.width) / options.height;
     observer = options.observer_camera ? *options.observer_camera
                                        : orbitCamera(center, fitDistance(radius, kFovDeg, aspect), 35.0, 25.0, kFovDeg);
@@ -229,7 +258,8 @@ ViewWeights ModelRenderer::render(const Camera& camera, Image& out) {
   style.color = o.color;
   style.shading = o.shading;
   style.flat = o.flat;
-  style.silhouette_width = o.silhouette_width;
+  // Screen mode: the stroke follows the picture of the sphere holding everything the model draws.
+  style.silhouette_width = strokeWidthFor(o, projectedDiameter(camera, o.height, m.center, m.radius));
   style.borders = o.borders;
   style.crease_angle_deg = o.crease_angle_deg;
   style.materials = o.materials;
@@ -265,6 +295,7 @@ ViewWeights ModelRenderer::render(const Camera& camera, Image& out) {
     MeshStyle observer_style = style;
     observer_style.color = o.observer_color;
     observer_style.materials = false;
+    observer_style.silhouette_width = strokeWidthFor(o, projectedDiameter(m.observer, o.height, m.center, m.radius));
     observer_style.shading.vary_by_hue = false;
     observer_style.shading.k = effectiveConstants(o.shading, o.observer_color);
     observer_style.shading.k.k2 *= 0.25f;

@@ -387,6 +387,101 @@ TEST(RenderImage, ObjectCoversPixelsAndOutlineIsClosedAndDark) {
   }
 }
 
+// ---------------------------------------------------------------------------------------------
+// Stroke width following the object's size on screen (StrokeWidthMode).
+
+TEST(StrokeWidth, ProjectedDiameterIsThePictureOfTheSphere) {
+  // A sphere on the view axis: its outline is the circle of tangent points, at angle a from the
+  // axis with sin a = r / d; project() of the top tangent point gives the picture's radius.
+  constexpr int kHeight = 480;
+  constexpr double kRelativeTolerance = 1e-9;
+  for (const double d : {3.0, 7.5, 40.0}) {
+    Camera c;
+    c.eye = Eigen::Vector3d(0, 0, d);
+    c.target = Eigen::Vector3d::Zero();
+    c.fov_deg = 35.0;
+    const double r = 1.3, a = std::asin(r / d), along = std::sqrt(d * d - r * r);
+    const Projected top =
+        project(c, kHeight, kHeight, Eigen::Vector3d(0, along * std::sin(a), d - along * std::cos(a)));
+    const double picture = 2.0 * (kHeight / 2.0 - top.pixel.y());
+    EXPECT_NEAR(projectedDiameter(c, kHeight, Eigen::Vector3d::Zero(), r), picture, kRelativeTolerance * picture);
+  }
+  Camera inside;
+  inside.eye = Eigen::Vector3d(0, 0, 0.5);
+  EXPECT_TRUE(std::isinf(projectedDiameter(inside, 100, Eigen::Vector3d::Zero(), 1.0)));
+  Camera parallel;
+  parallel.ortho_height = 4.0;
+  EXPECT_DOUBLE_EQ(projectedDiameter(parallel, 100, Eigen::Vector3d(3, 1, -9), 1.0), 50.0);
+}
+
+TEST(StrokeWidth, FollowsTheScreenSizeWithinTheRange) {
+  FrameSettings s;
+  s.height = 400;
+  s.silhouette_width = 4.0f;
+  s.stroke_min = 1.0f;
+  s.stroke_mode = StrokeWidthMode::fixed;
+  for (const double d : {1.0, 100.0, 400.0, 1e6}) EXPECT_EQ(strokeWidthFor(s, d), 4.0f) << "fixed, diameter " << d;
+  s.stroke_mode = StrokeWidthMode::screen;
+  EXPECT_FLOAT_EQ(strokeWidthFor(s, 400.0), 4.0f);   // spans the height: the reference width
+  EXPECT_FLOAT_EQ(strokeWidthFor(s, 200.0), 2.0f);   // twice as far: half the width
+  EXPECT_FLOAT_EQ(strokeWidthFor(s, 50.0), 1.0f);    // clamped at the minimum
+  EXPECT_FLOAT_EQ(strokeWidthFor(s, 4000.0), 4.0f);  // and at the maximum (default: the reference)
+  EXPECT_FLOAT_EQ(strokeWidthFor(s, std::numeric_limits<double>::infinity()), 4.0f);
+  EXPECT_FLOAT_EQ(strokeWidthFor(s, std::nan("")), 1.0f);
+  s.stroke_max = 6.0f;
+  EXPECT_FLOAT_EQ(strokeWidthFor(s, 500.0), 5.0f);
+  EXPECT_FLOAT_EQ(strokeWidthFor(s, 4000.0), 6.0f);
+  s.stroke_max = 0.5f;  // below the minimum: the minimum wins
+  EXPECT_FLOAT_EQ(strokeWidthFor(s, 4000.0), 1.0f);
+  s.stroke_min = 0.0f;
+  EXPECT_THROW(checkStrokeRange(s), Error);
+  s.stroke_mode = StrokeWidthMode::fixed;
+  EXPECT_NO_THROW(checkStrokeRange(s));
+}
+
+// The thickness of the ink on the middle row's left outline: the run of dark pixels from the
+// first dark pixel walking right.
+int inkRun(const Image& img) {
+  const int y = img.height / 2;
+  int x = 0;
+  while (x < img.width && !isDark(img, x, y)) ++x;
+  int run = 0;
+  for (; x < img.width && isDark(img, x, y); ++x) ++run;
+  return run;
+}
+
+TEST(StrokeWidth, AFigureTwiceAsFarGetsThinnerLinesClampedAtMinAndMax) {
+  constexpr int kCanvas = 256;
+  const TriMesh sphere = uvSphere(24, 32);
+  FrameOptions o;
+  o.width = o.height = kCanvas;
+  o.silhouette_width = 14.0f;
+  o.stroke_min = 2.0f;
+  const double near = fitDistance(std::sqrt(3.0), 30.0, 1.0);  // the mesh's box sphere fills the view
+  auto render = [&](StrokeWidthMode mode, double distance, float width) {
+    FrameOptions f = o;
+    f.stroke_mode = mode;
+    f.silhouette_width = width;
+    ModelRenderer r(sphere, f);
+    Image img;
+    r.render(orbitCamera(Eigen::Vector3d::Zero(), distance, 0.0, 0.0, 30.0), img);
+    return img;
+  };
+  const Image fixed_near = render(StrokeWidthMode::fixed, near, 14.0f);
+  const Image fixed_far = render(StrokeWidthMode::fixed, 2.0 * near, 14.0f);
+  EXPECT_NEAR(inkRun(fixed_near), inkRun(fixed_far), 1) << "fixed: the same ink at any distance";
+  const Image screen_near = render(StrokeWidthMode::screen, near, 14.0f);
+  const Image screen_far = render(StrokeWidthMode::screen, 2.0 * near, 14.0f);
+  EXPECT_GE(inkRun(screen_near), inkRun(screen_far) + 2) << "twice as far: thinner";
+  EXPECT_LT(inkRun(screen_far), inkRun(fixed_far));
+  // Far enough, the minimum: the picture of the fixed width stroke_min, byte for byte.
+  EXPECT_EQ(render(StrokeWidthMode::screen, 16.0 * near, 14.0f).rgba,
+            render(StrokeWidthMode::fixed, 16.0 * near, 2.0f).rgba);
+  // Close up (the sphere wider than the view), the maximum: the fixed width's picture.
+  EXPECT_EQ(render(StrokeWidthMode::screen, 0.7 * near, 14.0f).rgba,
+            render(StrokeWidthMode::fixed, 0.7 * near, 14.0f).rgba);
+}
+
 TEST(RenderImage, WhiteSurfaceHasNoWarmTint) {
   const FrameOptions o = smallOptions();
   ModelRenderer r(uvSphere(24, 32), o);
