@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <span>
 #include <string>
 #include <utility>
 
@@ -100,8 +101,9 @@ struct ModelRenderer::Impl {
   FrameOptions options;
   Renderer renderer;
   int mesh_id = -1;
-  int blend_id = -1;             // options.gpu_blend: the model's GPU blend handle
-  std::vector<float> positions;  // this frame's; the renderer computes the normals per smoothing group
+  int blend_id = -1;                 // options.gpu_blend: the model's GPU blend handle
+  std::vector<float> positions;      // this frame's; the renderer computes the normals per smoothing group
+  std::vector<float> screen_points;  // the vertices projected, for the inset's corner (x, y pairs)
   Eigen::Vector3d center = Eigen::Vector3d::Zero();
   double radius = 1.0;
   Camera observer;
@@ -121,6 +123,7 @@ struct ModelRenderer::Impl {
   void setup() {
     const TriMesh& mesh = base();
     positions = mesh.positions;
+    screen_points.resize(positions.size() / 3 * 2);
     // The GPU blend registers the model itself (below); the CPU path draws a surface.
     if (!(options.gpu_blend && model)) mesh_id = renderer.addSurface(mesh, SurfaceTopology::build(mesh));
     // Frame what will be drawn: a model's extent (the base and every key, at every frame of an
@@ -160,12 +163,37 @@ struct ModelRenderer::Impl {
     inset->shading = options.shading;
   }
 
-  // The inset in the bottom-right corner of the main view: a square of 28% of its shorter side
-  // (at least 48 pixels) inside a one-pixel frame, a margin of 1/20 of that from the corner.
-  void drawSphereInset(const Eigen::Vector3d& view, const ViewWeights& w) {
+  // The model's vertices projected into the main view (x, y pixel pairs in screen_points, points
+  // behind the eye left out): of the base for a static model (the GPU blend path has no blended
+  // positions on the CPU, and both paths must place the inset alike), of this frame's pose for an
+  // animated one. No allocation: screen_points has room for every vertex from the set-up on.
+  std::span<const float> projectedPoints(const Camera& camera) {
+    const double aspect = static_cast<double>(options.width) / options.height;
+    const double d = (camera.eye - center).norm();
+    const Eigen::Matrix4d to_clip =
+        projectionMatrix(camera, aspect, std::max(0.01 * radius, d - 2.0 * radius), d + 2.0 * radius) *
+        viewMatrix(camera);
+    const std::vector<float>& p = model ? model->base().positions : positions;
+    screen_points.resize(p.size() / 3 * 2);
+    std::size_t n = 0;
+    for (std::size_t v = 0; v + 2 < p.size(); v += 3) {
+      const Eigen::Vector4d c = to_clip * Eigen::Vector4d(p[v], p[v + 1], p[v + 2], 1.0);
+      if (!(c.w() > 0.0)) continue;
+      screen_points[n++] = static_cast<float>((c.x() / c.w() + 1.0) * 0.5 * options.width);
+      screen_points[n++] = static_cast<float>((1.0 - c.y() / c.w()) * 0.5 * options.height);
+    }
+    return std::span<const float>(screen_points).first(n);
+  }
+
+  // The inset in a corner of the main view: a square of 28% of its shorter side (at least 48
+  // pixels) inside a one-pixel frame, a margin of 1/20 of that from the corner; the bottom-right
+  // corner unless the model's picture reaches further into it than into another
+  // (insetPlacement: by the projected vertices in each corner).
+  void drawSphereInset(const Eigen::Vector3d& view, const ViewWeights& w, const Camera& camera) {
     const int side = std::max(48, static_cast<int>(0.28 * std::min(options.width, options.height)));
     const int margin = std::max(2, side / 20);
-    const Viewport area{options.width - side - margin - 1, options.height - side - margin - 1, side + 2, side + 2};
+    const Viewport main{0, 0, options.width, options.height};
+    const Viewport area = insetPlacement(main, side + 2, margin - 1, projectedPoints(camera));
     check(inset->draw(renderer, area, view, w), "SphereInset::draw");
   }
 };
@@ -317,7 +345,7 @@ ViewWeights ModelRenderer::render(const Camera& camera, Image& out) {
     const Viewport sep{o.width, 0, std::max(1, o.width / 256), o.height};
     m.renderer.clear(kBorderColor, &sep);
   }
-  if (o.sphere && m.viewDependent()) m.drawSphereInset(view, w);
+  if (o.sphere && m.viewDependent()) m.drawSphereInset(view, w, camera);
   m.renderer.readPixels(out);
   return w;
 }

@@ -482,6 +482,35 @@ TEST(StrokeWidth, AFigureTwiceAsFarGetsThinnerLinesClampedAtMinAndMax) {
             render(StrokeWidthMode::fixed, 0.7 * near, 14.0f).rgba);
 }
 
+TEST(RenderImage, TheSphereInsetLeavesTheModelVisible) {
+  // The camera looks up and to the left of the model, so its picture fills the bottom-right
+  // corner, where the inset goes by default: the inset moves to a free corner and hides none of
+  // the model's pixels. Where the inset is: the pixels that differ from the frame without it.
+  FrameOptions o = smallOptions();
+  Camera c = cameraToward({0, 0, 1});
+  c.target = Eigen::Vector3d(-0.8, 0.8, 0.0);
+  c.eye += c.target;
+  ModelRenderer plain(testModel(), o);
+  o.sphere = true;
+  ModelRenderer with_inset(testModel(), o);
+  Image a, b;
+  plain.render(c, a);
+  with_inset.render(c, b);
+  long inset_pixels = 0, hidden = 0, model_in_bottom_right = 0;
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kSize; ++x) {
+      const bool model = !isBackground(a, x, y, o.background);
+      if (model && x >= kSize / 2 && y >= kSize / 2) ++model_in_bottom_right;
+      if (std::equal(a.pixel(x, y), a.pixel(x, y) + 3, b.pixel(x, y))) continue;
+      ++inset_pixels;
+      hidden += model ? 1 : 0;
+    }
+  EXPECT_GT(model_in_bottom_right, kSize * kSize / 8) << "the framing puts the model in the bottom-right corner";
+  EXPECT_GT(inset_pixels, 40 * 40) << "the inset is drawn";
+  EXPECT_EQ(hidden, 0) << "model pixels under the inset";
+  if (hidden) writePng(testing::TempDir() + "/inset_failure.png", b);
+}
+
 TEST(RenderImage, WhiteSurfaceHasNoWarmTint) {
   const FrameOptions o = smallOptions();
   ModelRenderer r(uvSphere(24, 32), o);
