@@ -268,11 +268,11 @@ void addRenderCommand(CLI::App& app) {
                 "Draw the base model without its key deformations (to compare with the view-dependent model)");
   sub->add_option("--line-width", opt->line_width,
                   "Silhouette stroke width in pixels (default: max(3, height/100)); with --line-width-mode screen, "
-                  "the width of a model whose bounding sphere spans the image's height")
+                  "the width of a model whose bounding sphere spans half the image's height or more")
       ->check(positiveNumber(kMaxLineWidth));
   sub->add_option("--line-width-mode", opt->line_width_mode,
                   "screen: the stroke follows the model's size on screen (--line-width times its bounding "
-                  "sphere's picture over the image height, within --line-width-min/max); fixed: --line-width "
+                  "sphere's picture over half the image height, within --line-width-min/max); fixed: --line-width "
                   "always (default screen)")
       ->check(CLI::IsMember({"fixed", "screen"}));
   sub->add_option("--line-width-min", opt->line_width_min, "Screen mode: the thinnest stroke in pixels (default 1)")

@@ -81,7 +81,8 @@ float strokeWidthFor(const FrameSettings& s, double diameter_px) {
   const float hi = std::max(s.stroke_min, s.stroke_max > 0.0f ? s.stroke_max : s.silhouette_width);
   // Rounded to a quarter pixel: the same width for pictures that differ in rounding only (a model
   // and its export), and few distinct widths in a crowd (the GPU blend draws one call per width).
-  const double w = std::round(4.0 * static_cast<double>(s.silhouette_width) * diameter_px / s.height) / 4.0;
+  // The reference: an object spanning half the image's height gets silhouette_width.
+  const double w = std::round(4.0 * static_cast<double>(s.silhouette_width) * diameter_px / (0.5 * s.height)) / 4.0;
   if (!(w >= s.stroke_min)) return s.stroke_min;  // NaN (no size) as well
   return static_cast<float>(std::min<double>(w, hi));
 }

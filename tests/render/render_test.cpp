@@ -422,14 +422,16 @@ TEST(StrokeWidth, FollowsTheScreenSizeWithinTheRange) {
   s.stroke_mode = StrokeWidthMode::fixed;
   for (const double d : {1.0, 100.0, 400.0, 1e6}) EXPECT_EQ(strokeWidthFor(s, d), 4.0f) << "fixed, diameter " << d;
   s.stroke_mode = StrokeWidthMode::screen;
-  EXPECT_FLOAT_EQ(strokeWidthFor(s, 400.0), 4.0f);   // spans the height: the reference width
-  EXPECT_FLOAT_EQ(strokeWidthFor(s, 200.0), 2.0f);   // twice as far: half the width
-  EXPECT_FLOAT_EQ(strokeWidthFor(s, 50.0), 1.0f);    // clamped at the minimum
-  EXPECT_FLOAT_EQ(strokeWidthFor(s, 4000.0), 4.0f);  // and at the maximum (default: the reference)
+  EXPECT_FLOAT_EQ(strokeWidthFor(s, 200.0), 4.0f);   // spans half the height: the reference width
+  EXPECT_FLOAT_EQ(strokeWidthFor(s, 100.0), 2.0f);   // twice as far: half the width
+  EXPECT_FLOAT_EQ(strokeWidthFor(s, 137.0), 2.75f);  // rounded to a quarter pixel (2.74)
+  EXPECT_FLOAT_EQ(strokeWidthFor(s, 25.0), 1.0f);    // clamped at the minimum
+  EXPECT_FLOAT_EQ(strokeWidthFor(s, 400.0), 4.0f);   // and at the maximum (default: the reference)
+  EXPECT_FLOAT_EQ(strokeWidthFor(s, 4000.0), 4.0f);
   EXPECT_FLOAT_EQ(strokeWidthFor(s, std::numeric_limits<double>::infinity()), 4.0f);
   EXPECT_FLOAT_EQ(strokeWidthFor(s, std::nan("")), 1.0f);
   s.stroke_max = 6.0f;
-  EXPECT_FLOAT_EQ(strokeWidthFor(s, 500.0), 5.0f);
+  EXPECT_FLOAT_EQ(strokeWidthFor(s, 250.0), 5.0f);
   EXPECT_FLOAT_EQ(strokeWidthFor(s, 4000.0), 6.0f);
   s.stroke_max = 0.5f;  // below the minimum: the minimum wins
   EXPECT_FLOAT_EQ(strokeWidthFor(s, 4000.0), 1.0f);
@@ -457,11 +459,15 @@ TEST(StrokeWidth, AFigureTwiceAsFarGetsThinnerLinesClampedAtMinAndMax) {
   o.width = o.height = kCanvas;
   o.silhouette_width = 14.0f;
   o.stroke_min = 2.0f;
-  const double near = fitDistance(std::sqrt(3.0), 30.0, 1.0);  // the mesh's box sphere fills the view
-  auto render = [&](StrokeWidthMode mode, double distance, float width) {
+  // The mesh's box sphere fills the view at the fit distance: at twice that it spans about half
+  // the height (width about 12.7 pixels), at four times a quarter (about 6.4).
+  const double fit = fitDistance(std::sqrt(3.0), 30.0, 1.0), near = 2.0 * fit;
+  auto render = [&](StrokeWidthMode mode, double distance, float width, float min = 2.0f, float max = 0.0f) {
     FrameOptions f = o;
     f.stroke_mode = mode;
     f.silhouette_width = width;
+    f.stroke_min = min;
+    f.stroke_max = max;
     ModelRenderer r(sphere, f);
     Image img;
     r.render(orbitCamera(Eigen::Vector3d::Zero(), distance, 0.0, 0.0, 30.0), img);
@@ -469,7 +475,15 @@ TEST(StrokeWidth, AFigureTwiceAsFarGetsThinnerLinesClampedAtMinAndMax) {
   };
   const Image fixed_near = render(StrokeWidthMode::fixed, near, 14.0f);
   const Image fixed_far = render(StrokeWidthMode::fixed, 2.0 * near, 14.0f);
-  EXPECT_NEAR(inkRun(fixed_near), inkRun(fixed_far), 1) << "fixed: the same ink at any distance";
+  // Fixed: silhouette_width whatever the distance and the range (stroke_min and stroke_max are
+  // the screen mode's): the picture of the library's default mode.
+  for (const double d : {near, 2.0 * near}) {
+    ModelRenderer default_mode(sphere, o);
+    Image a;
+    default_mode.render(orbitCamera(Eigen::Vector3d::Zero(), d, 0.0, 0.0, 30.0), a);
+    EXPECT_EQ(a.rgba, (d == near ? fixed_near : fixed_far).rgba);
+    EXPECT_EQ(render(StrokeWidthMode::fixed, d, 14.0f, 5.0f, 6.0f).rgba, a.rgba);
+  }
   const Image screen_near = render(StrokeWidthMode::screen, near, 14.0f);
   const Image screen_far = render(StrokeWidthMode::screen, 2.0 * near, 14.0f);
   EXPECT_GE(inkRun(screen_near), inkRun(screen_far) + 2) << "twice as far: thinner";
@@ -477,9 +491,10 @@ TEST(StrokeWidth, AFigureTwiceAsFarGetsThinnerLinesClampedAtMinAndMax) {
   // Far enough, the minimum: the picture of the fixed width stroke_min, byte for byte.
   EXPECT_EQ(render(StrokeWidthMode::screen, 16.0 * near, 14.0f).rgba,
             render(StrokeWidthMode::fixed, 16.0 * near, 2.0f).rgba);
-  // Close up (the sphere wider than the view), the maximum: the fixed width's picture.
-  EXPECT_EQ(render(StrokeWidthMode::screen, 0.7 * near, 14.0f).rgba,
-            render(StrokeWidthMode::fixed, 0.7 * near, 14.0f).rgba);
+  // Framed (and closer), the maximum: the fixed width's picture.
+  EXPECT_EQ(render(StrokeWidthMode::screen, fit, 14.0f).rgba, render(StrokeWidthMode::fixed, fit, 14.0f).rgba);
+  EXPECT_EQ(render(StrokeWidthMode::screen, 0.7 * fit, 14.0f).rgba,
+            render(StrokeWidthMode::fixed, 0.7 * fit, 14.0f).rgba);
 }
 
 TEST(RenderImage, TheSphereInsetLeavesTheModelVisible) {

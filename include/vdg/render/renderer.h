@@ -113,9 +113,11 @@ struct View {
 //  - fixed: every object gets silhouette_width pixels (the paper's thick wireframe, section 3.2.4);
 //  - screen: the width follows the object's size on screen, as a draftsman's line does, so that
 //    small and distant figures are not swamped by their outlines: an object whose bounding sphere
-//    spans D pixels of an image H pixels tall gets silhouette_width * D / H pixels, rounded to a
-//    quarter pixel and clamped to [stroke_min, stroke_max] (strokeWidthFor). An object filling the frame's height gets the
-//    fixed width; one twice as far (half the size) half of it, down to the minimum.
+//    spans D pixels of an image H pixels tall gets silhouette_width * D / (H / 2) pixels, rounded
+//    to a quarter pixel and clamped to [stroke_min, stroke_max] (strokeWidthFor). An object
+//    spanning half the frame's height or more gets the fixed width (the default maximum), so a
+//    framed model looks as in the fixed mode; one twice as far (half the size) half of it, down to
+//    the minimum.
 enum class StrokeWidthMode { fixed, screen };
 
 // What the frame renderers (ModelRenderer, SceneRenderer) take alike: the canvas and the style
