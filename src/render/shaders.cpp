@@ -100,6 +100,7 @@ vec4 hueAdjusted(vec4 k, vec3 base) {
     o.y = 0.0;
   } else if (c.x >= 250.0 && c.x < 330.0) {
     o.w = 2.0 * k.w;
+    o.y = 0.25 * k.y;
   } else if (c.x < 20.0 || c.x >= 330.0) {
     o.w = 1.5 * k.w;
     o.y = 0.5 * k.y;

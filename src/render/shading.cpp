@@ -36,8 +36,11 @@ ShadingConstants hueAdjustedConstants(const ShadingConstants& k, const Rgb& base
     // Neutral colours (whites, greys, blacks): the paper's whites, "warm light off: soft, cool
     // whites", extended to every grey, which the orange light would otherwise turn beige.
     out.k2 = 0.0f;
-  } else if (hsv.h >= 250.0f && hsv.h < 330.0f) {  // purples: intensified cool light
+  } else if (hsv.h >= 250.0f && hsv.h < 330.0f) {
+    // Purples: intensified cool light (the paper), and a quarter of the warm light: at l1.n = 1
+    // the warm term leaves Cwarm - 0.1 Cbase whatever the base, which turned purples orange.
     out.k4 = 2.0f * k.k4;
+    out.k2 = 0.25f * k.k2;
   } else if (hsv.h < 20.0f || hsv.h >= 330.0f) {  // reds: more cool, less warm
     out.k4 = 1.5f * k.k4;
     out.k2 = 0.5f * k.k2;

@@ -113,10 +113,21 @@ TEST(Shading, HueRuleWhiteTurnsOffWarmLight) {
   EXPECT_EQ(hueAdjustedConstants({}, {0.95f, 0.93f, 0.9f}).k2, 0.0f);
 }
 
-TEST(Shading, HueRulePurpleDoublesCoolLight) {
+TEST(Shading, HueRulePurpleDoublesCoolLightAndQuartersTheWarmOne) {
   const ShadingConstants k = hueAdjustedConstants({}, {0.5f, 0.2f, 0.7f});
   EXPECT_FLOAT_EQ(k.k4, 2.0f);
-  EXPECT_FLOAT_EQ(k.k2, 1.0f);
+  EXPECT_FLOAT_EQ(k.k2, 0.25f);
+  // The teapot's purple (examples/meshes/teapot-parts.mtl) facing the warm light stays purple:
+  // blue above green and red above green, where the paper's constants gave orange.
+  ShadingParams p;
+  const Rgb purple{0.55f, 0.36f, 0.78f};
+  const Eigen::Vector3f l1 = Eigen::Vector3f(p.light_warm[0], p.light_warm[1], p.light_warm[2]).normalized();
+  const Rgb lit = shade(p, purple, {l1.x(), l1.y(), l1.z()});
+  EXPECT_GT(lit[2], lit[1]);
+  EXPECT_GT(lit[0], lit[1]);
+  p.vary_by_hue = false;
+  const Rgb paper = shade(p, purple, {l1.x(), l1.y(), l1.z()});
+  EXPECT_LT(paper[2], paper[1]) << "k2 = 1: orange";
 }
 
 TEST(Shading, HueRuleRedMoreCoolLessWarm) {
@@ -135,8 +146,9 @@ TEST(Shading, HueRuleLeavesOtherHuesAndScalesCallerConstants) {
   EXPECT_FLOAT_EQ(purple.k4, 1.0f);
 }
 
-// The rule of the paper alone (white-ish, purple, red; section 3.2.4), as it was before the rules
-// for dark and grey colours: the reference for the colours those rules leave alone.
+// The rule of the paper (white-ish, purple, red; section 3.2.4; with vdg's quarter warm light for
+// purples), as it was before the rules for dark and grey colours: the reference for the colours
+// those rules leave alone.
 ShadingConstants paperHueRule(const ShadingConstants& k, const Rgb& base) {
   const Hsv hsv = toHsv(base);
   ShadingConstants out = k;
@@ -144,6 +156,7 @@ ShadingConstants paperHueRule(const ShadingConstants& k, const Rgb& base) {
     if (hsv.v > 0.6f) out.k2 = 0.0f;
   } else if (hsv.h >= 250.0f && hsv.h < 330.0f) {
     out.k4 = 2.0f * k.k4;
+    out.k2 = 0.25f * k.k2;  // vdg's addition for purples (docs/render.md)
   } else if (hsv.h < 20.0f || hsv.h >= 330.0f) {
     out.k4 = 1.5f * k.k4;
     out.k2 = 0.5f * k.k2;

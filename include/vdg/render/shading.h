@@ -45,14 +45,17 @@ Hsv toHsv(const Rgb& c);
 // other hues that can be handled"), applied to the caller's constants `k` (a pure function). First
 // by hue:
 //   neutral (saturation < 0.2: whites, greys, blacks): k2 = 0   (no warm light: cool whites/greys)
-//   purple  (hue in [250, 330), saturation >= 0.2):    k4 = 2 * k4   (intensified cool light)
+//   purple  (hue in [250, 330), saturation >= 0.2):    k4 = 2 * k4   (intensified cool light),
+//                                                      k2 = 0.25 * k2 (vdg: the warm light alone
+//                                                      turned purples orange; see docs/render.md)
 //   red     (hue < 20 or >= 330, saturation >= 0.2):   k4 = 1.5 * k4, k2 = 0.5 * k2
 //                                                      (more cool, less warm: brilliant reds)
 //   any other hue: unchanged;
 // then by value, for every hue:
 //   dark    (value < 0.5): k2 and k4 times t = max(0, (value - 0.2) / 0.3), so that the lights'
 //           own colours fade out on dark surfaces and vanish at value <= 0.2 (black stays black).
-// A colour of value >= 0.5 and saturation >= 0.2 gets exactly what the hue rule alone gives.
+// A colour of value >= 0.5 and saturation >= 0.2 gets exactly what the paper's rule gives (for
+// purples, with the quarter warm light).
 inline constexpr float kNeutralSaturation = 0.2f;  // below: no dominant hue
 inline constexpr float kDarkValue = 0.2f;          // at or below: no light colour at all
 inline constexpr float kLitValue = 0.5f;           // at or above: the lights at full strength
