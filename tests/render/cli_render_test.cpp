@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -239,6 +240,30 @@ TEST(CliRender, SizeZeroOrHuge) {
   expectOneLineError(vdg("render " + kSpot + " -o " + freshDir("x").string() + " --size 0x64"), 2, "--size");
   expectOneLineError(vdg("render " + kSpot + " -o " + freshDir("x").string() + " --size 20000x64"), 2, "16384");
   expectOneLineError(vdg("render " + kSpot + " -o " + freshDir("x").string() + " --size big"), 2, "--size");
+}
+
+TEST(CliRender, LineWidthModes) {
+  // Framed by the default distance, the model spans more than half the height: the screen mode
+  // draws the fixed width (byte for byte); from far away its strokes thin out.
+  const std::string common = " --size 96x96 --quiet";
+  std::map<std::string, std::string> frames;
+  for (const std::string mode : {"fixed", "screen"})
+    for (const std::string distance : {"", " --distance 40"}) {
+      const fs::path dir = freshDir("vdg_render_width");
+      const Result r =
+          vdg("render " + kSpot + " -o " + dir.string() + common + distance + " --line-width-mode " + mode);
+      ASSERT_EQ(r.status, 0) << r.output;
+      frames[mode + distance] = readBytes(dir / "frame_0000.png");
+    }
+  EXPECT_EQ(frames["fixed"], frames["screen"]);
+  EXPECT_NE(frames["fixed --distance 40"], frames["screen --distance 40"]);
+  const std::string out = " -o " + freshDir("x").string();
+  expectOneLineError(vdg("render " + kSpot + out + " --line-width-mode fixed --line-width-min 2"), 2,
+                     "--line-width-min: only with --line-width-mode screen");
+  expectOneLineError(vdg("render " + kSpot + out + " --line-width-min 3 --line-width-max 2"), 2,
+                     "--line-width-max: expected at least --line-width-min (3), got 2");
+  expectOneLineError(vdg("render " + kSpot + out + " --line-width-mode wide"), 2, "--line-width-mode");
+  expectOneLineError(vdg("render " + kSpot + out + " --line-width-min 0"), 2, "--line-width-min");
 }
 
 TEST(CliRender, NoOpenGl) {
