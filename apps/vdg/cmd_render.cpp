@@ -44,6 +44,7 @@
 #include "orbit_options.h"
 #include "vdg/anim/camera_path.h"
 #include "vdg/geom/error.h"
+#include "vdg/geom/text.h"
 #include "vdg/io/anim_json.h"
 #include "vdg/io/atomic_file.h"
 #include "vdg/io/camera_json.h"
@@ -63,6 +64,8 @@ struct RenderOptions : CameraOptions {
   std::string model, output, size = "512x512", color, background;
   int samples = 8;
   double sharpness = 0.0, line_width = 0.0, creases = 0.0;
+  std::string line_width_mode = "screen";             // fixed | screen (render::StrokeWidthMode)
+  double line_width_min = 0.0, line_width_max = 0.0;  // 0: not given
   bool observer = false, sphere = false, flat = false, quiet = false, base_only = false;
   bool no_borders = false, no_materials = false, strict = false, gpu_blend = false;
   int hold_frame = -1;  // -1: advance one animation frame per output frame
@@ -110,6 +113,15 @@ render::FrameOptions frameOptions(const RenderOptions& opt) {
   fo.flat = opt.flat;
   fo.base_only = opt.base_only;
   fo.silhouette_width = static_cast<float>(opt.line_width);
+  fo.stroke_mode = opt.line_width_mode == "fixed" ? render::StrokeWidthMode::fixed : render::StrokeWidthMode::screen;
+  if (fo.stroke_mode == render::StrokeWidthMode::fixed && (opt.line_width_min > 0.0 || opt.line_width_max > 0.0))
+    throw UsageError(std::string(opt.line_width_min > 0.0 ? "--line-width-min" : "--line-width-max") +
+                     ": only with --line-width-mode screen (a fixed width has no range)");
+  if (opt.line_width_min > 0.0) fo.stroke_min = static_cast<float>(opt.line_width_min);
+  fo.stroke_max = static_cast<float>(opt.line_width_max);
+  if (opt.line_width_max > 0.0 && opt.line_width_max < fo.stroke_min)
+    throw UsageError("--line-width-max: expected at least --line-width-min (" + numberText(fo.stroke_min) + "), got " +
+                     numberText(opt.line_width_max));
   fo.crease_angle_deg = static_cast<float>(opt.creases);
   fo.borders = !opt.no_borders;
   fo.materials = !opt.no_materials;
@@ -254,7 +266,19 @@ void addRenderCommand(CLI::App& app) {
       ->check(wholeNumber(0, static_cast<long>(kMaxBaseFrames) - 1));
   sub->add_flag("--base-only", opt->base_only,
                 "Draw the base model without its key deformations (to compare with the view-dependent model)");
-  sub->add_option("--line-width", opt->line_width, "Silhouette stroke width in pixels (default: max(3, height/100))")
+  sub->add_option("--line-width", opt->line_width,
+                  "Silhouette stroke width in pixels (default: max(3, height/100)); with --line-width-mode screen, "
+                  "the width of a model whose bounding sphere spans half the image's height or more")
+      ->check(positiveNumber(kMaxLineWidth));
+  sub->add_option("--line-width-mode", opt->line_width_mode,
+                  "screen: the stroke follows the model's size on screen (--line-width times its bounding "
+                  "sphere's picture over half the image height, within --line-width-min/max); fixed: --line-width "
+                  "always (default screen)")
+      ->check(CLI::IsMember({"fixed", "screen"}));
+  sub->add_option("--line-width-min", opt->line_width_min, "Screen mode: the thinnest stroke in pixels (default 1)")
+      ->check(positiveNumber(kMaxLineWidth));
+  sub->add_option("--line-width-max", opt->line_width_max,
+                  "Screen mode: the thickest stroke in pixels (default: --line-width, or its default)")
       ->check(positiveNumber(kMaxLineWidth));
   sub->add_option("--creases", opt->creases,
                   "Ink creases: edges whose faces' normals differ by more than DEG degrees, in (0, 180] "

@@ -7,15 +7,17 @@ knob and spout (more cool, less warm light).
 The parts are found from the geometry alone:
   - the surface splits into connected pieces by shared vertex indices: body with handle, lid,
     knob, spout (the lid, knob and spout are separate patches in Newell's data);
-  - inside the body piece, the handle is what sticks out of the body of revolution: a face whose
-    centre lies farther from the vertical axis than the body does at that height (the body's
-    radius profile is measured away from the handle's plane, |z| > 0.6), within the handle's
-    width (|z| < 0.4) and behind the axis (x < 0).
+  - inside the body piece, the handle is what sticks out of the body of revolution: a face with a
+    vertex farther from the vertical axis than the body is at that vertex's height (the body's
+    radius profile is taken from its rings of vertices away from the handle, x > 0 or |z| > 0.6,
+    and interpolated between rings), within the handle's width (|z| < 0.4) and behind the axis
+    (x < 0).
 
 Usage: python3 examples/meshes/make_teapot_parts.py [OUT_DIR]   (Python standard library only;
 writes next to this script by default; a test checks that it regenerates the committed files byte
 for byte)
 """
+import bisect
 import math
 import os
 import sys
@@ -81,25 +83,42 @@ def classify(vertices, faces):
     names = {body: "body", spout: "spout", knob: "knob"}
     for p in boxes:
         names.setdefault(p, "lid")
-    # The body's radius at each height, away from the handle's plane.
-    step = 0.02
-    profile = {}
+    # The body of revolution: its vertices lie on rings (one height, one radius each); the rings'
+    # radii are measured away from the handle (x > 0 or |z| > 0.6), and the body's radius between
+    # two rings is interpolated linearly. (A face-centre test against rings found within a fixed
+    # height window missed the rings wherever they lie farther apart than the window, which
+    # labelled a saw-toothed band of body faces as handle.)
+    ring = {}
     for (_, f), p in zip(faces, piece):
         if p != body:
             continue
         for v in f:
             x, y, z = vertices[v]
-            if abs(z) > 0.6:
-                k = int(y / step)
-                profile[k] = max(profile.get(k, 0.0), math.hypot(x, z))
+            if x > 0 or abs(z) > 0.6:
+                ring[y] = max(ring.get(y, 0.0), math.hypot(x, z))
+    heights = sorted(ring)
+
+    def body_radius(y):
+        i = bisect.bisect_left(heights, y)
+        if i < len(heights) and heights[i] == y:
+            return ring[y]
+        if i == 0 or i == len(heights):
+            return 0.0  # above or below the body: nothing of it there
+        y0, y1 = heights[i - 1], heights[i]
+        return ring[y0] + (ring[y1] - ring[y0]) * (y - y0) / (y1 - y0)
+
+    def off_body(v):
+        x, y, z = vertices[v]
+        return math.hypot(x, z) > body_radius(y) + 0.01
+
     out = []
     for (_, f), p in zip(faces, piece):
         name = names[p]
         if p == body:
+            # The handle sticks out of the body behind the axis (x < 0), within its width
+            # (|z| < 0.4): a face with a vertex off the body of revolution there is the handle's.
             x, y, z = centre(vertices, f)
-            k = int(y / step)
-            body_r = max(profile.get(k + d, 0.0) for d in (-1, 0, 1))
-            if x < 0 and abs(z) < 0.4 and math.hypot(x, z) > body_r + 0.01:
+            if x < 0 and abs(z) < 0.4 and any(off_body(v) for v in f):
                 name = "handle"
         out.append(name)
     return out

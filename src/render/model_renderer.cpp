@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
+#include <span>
 #include <string>
 #include <utility>
 
@@ -64,6 +66,34 @@ double fitDistance(double radius, double fov_deg, double aspect) {
   return 1.1 * radius / std::sin(half);
 }
 
+double projectedDiameter(const Camera& camera, int height, const Eigen::Vector3d& center, double radius) {
+  if (camera.isOrtho()) return 2.0 * radius / camera.ortho_height * height;
+  const double d = (center - camera.eye).norm();
+  if (d <= radius) return std::numeric_limits<double>::infinity();
+  // The sphere's angular radius a at distance d: tan a = r / sqrt(d^2 - r^2); its picture at the
+  // centre of a view of vertical field fov spans tan a / tan(fov / 2) half-heights.
+  const double tan_a = radius / std::sqrt((d - radius) * (d + radius));
+  return tan_a / std::tan(0.5 * camera.fov_deg * kDegToRad) * height;
+}
+
+float strokeWidthFor(const FrameSettings& s, double diameter_px) {
+  if (s.stroke_mode == StrokeWidthMode::fixed) return s.silhouette_width;
+  const float hi = std::max(s.stroke_min, s.stroke_max > 0.0f ? s.stroke_max : s.silhouette_width);
+  // Rounded to a quarter pixel: the same width for pictures that differ in rounding only (a model
+  // and its export), and few distinct widths in a crowd (the GPU blend draws one call per width).
+  // The reference: an object spanning half the image's height gets silhouette_width.
+  const double w = std::round(4.0 * static_cast<double>(s.silhouette_width) * diameter_px / (0.5 * s.height)) / 4.0;
+  if (!(w >= s.stroke_min)) return s.stroke_min;  // NaN (no size) as well
+  return static_cast<float>(std::min<double>(w, hi));
+}
+
+void checkStrokeRange(const FrameSettings& s) {
+  if (s.stroke_mode == StrokeWidthMode::fixed) return;
+  if (!(std::isfinite(s.stroke_min) && s.stroke_min > 0.0f) || !std::isfinite(s.stroke_max))
+    throw Error("render: the screen stroke width needs a finite minimum > 0 and a finite maximum (got " +
+                numberText(s.stroke_min) + " and " + numberText(s.stroke_max) + ")");
+}
+
 struct ModelRenderer::Impl {
   const ViewDependentModel* model = nullptr;
   const AnimatedViewDependentModel* animated = nullptr;  // section 4; `model` is then null
@@ -72,8 +102,9 @@ struct ModelRenderer::Impl {
   FrameOptions options;
   Renderer renderer;
   int mesh_id = -1;
-  int blend_id = -1;             // options.gpu_blend: the model's GPU blend handle
-  std::vector<float> positions;  // this frame's; the renderer computes the normals per smoothing group
+  int blend_id = -1;                 // options.gpu_blend: the model's GPU blend handle
+  std::vector<float> positions;      // this frame's; the renderer computes the normals per smoothing group
+  std::vector<float> screen_points;  // the vertices projected, for the inset's corner (x, y pairs)
   Eigen::Vector3d center = Eigen::Vector3d::Zero();
   double radius = 1.0;
   Camera observer;
@@ -93,6 +124,7 @@ struct ModelRenderer::Impl {
   void setup() {
     const TriMesh& mesh = base();
     positions = mesh.positions;
+    screen_points.resize(positions.size() / 3 * 2);
     // The GPU blend registers the model itself (below); the CPU path draws a surface.
     if (!(options.gpu_blend && model)) mesh_id = renderer.addSurface(mesh, SurfaceTopology::build(mesh));
     // Frame what will be drawn: a model's extent (the base and every key, at every frame of an
@@ -113,6 +145,7 @@ struct ModelRenderer::Impl {
                   numberText(radius) + "), so no camera can frame it");
     if (options.silhouette_width <= 0.0f)
       options.silhouette_width = std::max(3.0f, static_cast<float>(options.height) / 100.0f);
+    checkStrokeRange(options);
     const double aspect = static_cast<double>(options.width) / options.height;
     observer = options.observer_camera ? *options.observer_camera
                                        : orbitCamera(center, fitDistance(radius, kFovDeg, aspect), 35.0, 25.0, kFovDeg);
@@ -131,12 +164,37 @@ struct ModelRenderer::Impl {
     inset->shading = options.shading;
   }
 
-  // The inset in the bottom-right corner of the main view: a square of 28% of its shorter side
-  // (at least 48 pixels) inside a one-pixel frame, a margin of 1/20 of that from the corner.
-  void drawSphereInset(const Eigen::Vector3d& view, const ViewWeights& w) {
+  // The model's vertices projected into the main view (x, y pixel pairs in screen_points, points
+  // behind the eye left out): of the base for a static model (the GPU blend path has no blended
+  // positions on the CPU, and both paths must place the inset alike), of this frame's pose for an
+  // animated one. No allocation: screen_points has room for every vertex from the set-up on.
+  std::span<const float> projectedPoints(const Camera& camera) {
+    const double aspect = static_cast<double>(options.width) / options.height;
+    const double d = (camera.eye - center).norm();
+    const Eigen::Matrix4d to_clip =
+        projectionMatrix(camera, aspect, std::max(0.01 * radius, d - 2.0 * radius), d + 2.0 * radius) *
+        viewMatrix(camera);
+    const std::vector<float>& p = model ? model->base().positions : positions;
+    screen_points.resize(p.size() / 3 * 2);
+    std::size_t n = 0;
+    for (std::size_t v = 0; v + 2 < p.size(); v += 3) {
+      const Eigen::Vector4d c = to_clip * Eigen::Vector4d(p[v], p[v + 1], p[v + 2], 1.0);
+      if (!(c.w() > 0.0)) continue;
+      screen_points[n++] = static_cast<float>((c.x() / c.w() + 1.0) * 0.5 * options.width);
+      screen_points[n++] = static_cast<float>((1.0 - c.y() / c.w()) * 0.5 * options.height);
+    }
+    return std::span<const float>(screen_points).first(n);
+  }
+
+  // The inset in a corner of the main view: a square of 28% of its shorter side (at least 48
+  // pixels) inside a one-pixel frame, a margin of 1/20 of that from the corner; the bottom-right
+  // corner unless the model's picture reaches further into it than into another
+  // (insetPlacement: by the projected vertices in each corner).
+  void drawSphereInset(const Eigen::Vector3d& view, const ViewWeights& w, const Camera& camera) {
     const int side = std::max(48, static_cast<int>(0.28 * std::min(options.width, options.height)));
     const int margin = std::max(2, side / 20);
-    const Viewport area{options.width - side - margin - 1, options.height - side - margin - 1, side + 2, side + 2};
+    const Viewport main{0, 0, options.width, options.height};
+    const Viewport area = insetPlacement(main, side + 2, margin - 1, projectedPoints(camera));
     check(inset->draw(renderer, area, view, w), "SphereInset::draw");
   }
 };
@@ -229,7 +287,8 @@ ViewWeights ModelRenderer::render(const Camera& camera, Image& out) {
   style.color = o.color;
   style.shading = o.shading;
   style.flat = o.flat;
-  style.silhouette_width = o.silhouette_width;
+  // Screen mode: the stroke follows the picture of the sphere holding everything the model draws.
+  style.silhouette_width = strokeWidthFor(o, projectedDiameter(camera, o.height, m.center, m.radius));
   style.borders = o.borders;
   style.crease_angle_deg = o.crease_angle_deg;
   style.materials = o.materials;
@@ -265,6 +324,7 @@ ViewWeights ModelRenderer::render(const Camera& camera, Image& out) {
     MeshStyle observer_style = style;
     observer_style.color = o.observer_color;
     observer_style.materials = false;
+    observer_style.silhouette_width = strokeWidthFor(o, projectedDiameter(m.observer, o.height, m.center, m.radius));
     observer_style.shading.vary_by_hue = false;
     observer_style.shading.k = effectiveConstants(o.shading, o.observer_color);
     observer_style.shading.k.k2 *= 0.25f;
@@ -286,7 +346,7 @@ ViewWeights ModelRenderer::render(const Camera& camera, Image& out) {
     const Viewport sep{o.width, 0, std::max(1, o.width / 256), o.height};
     m.renderer.clear(kBorderColor, &sep);
   }
-  if (o.sphere && m.viewDependent()) m.drawSphereInset(view, w);
+  if (o.sphere && m.viewDependent()) m.drawSphereInset(view, w, camera);
   m.renderer.readPixels(out);
   return w;
 }

@@ -6,7 +6,9 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "vdg/geom/error.h"
@@ -64,6 +66,8 @@ struct SceneRenderer::Impl {
     // model, and this frame's instances, gathered and drawn in one drawBlendInstances call.
     int blend_handle = -1;
     std::vector<InstanceBlend> instances;
+    std::vector<std::pair<float, int>> widths;  // screen mode: each instance's stroke width and index
+    std::vector<InstanceBlend> sorted;          // the instances in order of stroke width
     Bounds box;
     std::vector<float> local;  // this instance's blended positions, object coordinates
     std::vector<float> world;  // the same carried into the world
@@ -83,6 +87,7 @@ struct SceneRenderer::Impl {
       : scene(s), options(o), renderer(RendererSettings{o.width, o.height, o.samples}) {
     if (options.silhouette_width <= 0.0f)
       options.silhouette_width = std::max(3.0f, static_cast<float>(options.height) / 100.0f);
+    checkStrokeRange(options);
     std::map<const void*, int> known;
     const int n = scene.nodeCount();
     object_of_node.assign(n, -1);
@@ -121,7 +126,11 @@ struct SceneRenderer::Impl {
     for (int i = 0; i < n; ++i)
       if (object_of_node[i] >= 0) ++nodes_of[static_cast<std::size_t>(object_of_node[i])];
     for (std::size_t k = 0; k < objects.size(); ++k)
-      if (objects[k].blend_handle >= 0) objects[k].instances.reserve(nodes_of[k]);
+      if (objects[k].blend_handle >= 0) {
+        objects[k].instances.reserve(nodes_of[k]);
+        objects[k].widths.reserve(nodes_of[k]);
+        objects[k].sorted.reserve(nodes_of[k]);
+      }
     if (scene.cameraNode() < 0) frameAutomatically();
   }
 
@@ -154,6 +163,41 @@ struct SceneRenderer::Impl {
     const double aspect = static_cast<double>(options.width) / options.height;
     auto_camera = orbitCamera(center, fitDistance(radius, kAutoFovDeg, aspect), 0.0, kAutoElevationDeg, kAutoFovDeg);
     has_auto_camera = true;
+  }
+
+  // The stroke width of node `i` (StrokeWidthMode): by the picture of the sphere about its box
+  // (base and keys: the model's extent) carried into the world. strokeWidthFor rounds it to a
+  // quarter pixel, so the GPU blend draws the instances of one width in one call.
+  float strokeWidth(const Camera& camera, std::size_t i) const {
+    if (options.stroke_mode == StrokeWidthMode::fixed) return options.silhouette_width;
+    const Bounds& b = objects[static_cast<std::size_t>(object_of_node[i])].box;
+    const Eigen::Matrix4d& m = states[i].object;
+    const auto c = b.center();
+    const Eigen::Vector3d center = (m * Eigen::Vector4d(c[0], c[1], c[2], 1.0)).head<3>();
+    const Eigen::Matrix3d linear = m.topLeftCorner<3, 3>();
+    const double scale = linear.colwise().norm().maxCoeff();  // the largest stretch of a rotation and scale
+    const double radius = std::max(1e-12, 0.5 * static_cast<double>(b.diagonal()) * scale);
+    return strokeWidthFor(options, projectedDiameter(camera, options.height, center, radius));
+  }
+
+  // A blend model's instances, drawn in groups of one stroke width, thinnest first (in screen
+  // mode the farthest and smallest, so a nearer instance's outline is drawn after them).
+  void drawBlendObject(Object& obj, const View& view, MeshStyle& style) {
+    if (options.stroke_mode == StrokeWidthMode::fixed) {
+      checkDraw(renderer.drawBlendInstances(obj.blend_handle, obj.instances, view, style), "drawBlendInstances", view);
+      return;
+    }
+    std::sort(obj.widths.begin(), obj.widths.end());
+    obj.sorted.clear();
+    for (const auto& [w, k] : obj.widths) obj.sorted.push_back(obj.instances[static_cast<std::size_t>(k)]);
+    for (std::size_t a = 0; a < obj.widths.size();) {
+      std::size_t b = a + 1;
+      while (b < obj.widths.size() && obj.widths[b].first == obj.widths[a].first) ++b;
+      style.silhouette_width = obj.widths[a].first;
+      const std::span<const InstanceBlend> group(obj.sorted.data() + a, b - a);
+      checkDraw(renderer.drawBlendInstances(obj.blend_handle, group, view, style), "drawBlendInstances", view);
+      a = b;
+    }
   }
 
   Camera render(double frame, Image& out) {
@@ -200,7 +244,10 @@ struct SceneRenderer::Impl {
     style.crease_angle_deg = options.crease_angle_deg;
     style.materials = options.materials;
     drawn = 0;
-    for (Object& obj : objects) obj.instances.clear();
+    for (Object& obj : objects) {
+      obj.instances.clear();
+      obj.widths.clear();
+    }
     for (std::size_t i = 0; i < states.size(); ++i) {
       const int o = object_of_node[i];
       if (o < 0 || !states[i].visible) continue;
@@ -215,6 +262,7 @@ struct SceneRenderer::Impl {
         instance.color = st.color;
         instance.weights.base = 1.0f;
         if (has_view) check(scene.model(node)->weights(dir, st.sharpness, instance.weights), "weights");
+        obj.widths.emplace_back(strokeWidth(camera, i), static_cast<int>(obj.instances.size()));
         obj.instances.push_back(instance);
         ++drawn;
         continue;
@@ -245,13 +293,12 @@ struct SceneRenderer::Impl {
       }
       check(renderer.updateMesh(obj.handle, obj.world, {}), "updateMesh");
       style.color = st.color;
+      style.silhouette_width = strokeWidth(camera, i);
       checkDraw(renderer.drawMesh(obj.handle, view, style), "drawMesh", view);
       ++drawn;
     }
-    for (const Object& obj : objects)
-      if (obj.blend_handle >= 0 && !obj.instances.empty())
-        checkDraw(renderer.drawBlendInstances(obj.blend_handle, obj.instances, view, style), "drawBlendInstances",
-                  view);
+    for (Object& obj : objects)
+      if (obj.blend_handle >= 0 && !obj.instances.empty()) drawBlendObject(obj, view, style);
     renderer.readPixels(out);
     return camera;
   }

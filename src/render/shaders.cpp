@@ -97,14 +97,18 @@ vec4 hueAdjusted(vec4 k, vec3 base) {
   vec3 c = hsv(base);
   vec4 o = k;
   if (c.y < 0.2) {
-    if (c.z > 0.6) o.y = 0.0;
-    return o;
-  }
-  if (c.x >= 250.0 && c.x < 330.0) {
+    o.y = 0.0;
+  } else if (c.x >= 250.0 && c.x < 330.0) {
     o.w = 2.0 * k.w;
+    o.y = 0.25 * k.y;
   } else if (c.x < 20.0 || c.x >= 330.0) {
     o.w = 1.5 * k.w;
     o.y = 0.5 * k.y;
+  }
+  if (c.z < 0.5) {
+    float t = max(0.0, (c.z - 0.2) / (0.5 - 0.2));
+    o.y *= t;
+    o.w *= t;
   }
   return o;
 }

@@ -30,19 +30,28 @@ Hsv toHsv(const Rgb& c) {
 }
 
 ShadingConstants hueAdjustedConstants(const ShadingConstants& k, const Rgb& base) {
-  constexpr float kGreySaturation = 0.2f;  // below: no dominant hue
-  constexpr float kWhiteValue = 0.6f;      // above (with low saturation): whitish
   const Hsv hsv = toHsv(base);
   ShadingConstants out = k;
-  if (hsv.s < kGreySaturation) {
-    if (hsv.v > kWhiteValue) out.k2 = 0.0f;  // soft, cool whites: warm light off
-    return out;
-  }
-  if (hsv.h >= 250.0f && hsv.h < 330.0f) {  // purples: intensified cool light
+  if (hsv.s < kNeutralSaturation) {
+    // Neutral colours (whites, greys, blacks): the paper's whites, "warm light off: soft, cool
+    // whites", extended to every grey, which the orange light would otherwise turn beige.
+    out.k2 = 0.0f;
+  } else if (hsv.h >= 250.0f && hsv.h < 330.0f) {
+    // Purples: intensified cool light (the paper), and a quarter of the warm light: at l1.n = 1
+    // the warm term leaves Cwarm - 0.1 Cbase whatever the base, which turned purples orange.
     out.k4 = 2.0f * k.k4;
+    out.k2 = 0.25f * k.k2;
   } else if (hsv.h < 20.0f || hsv.h >= 330.0f) {  // reds: more cool, less warm
     out.k4 = 1.5f * k.k4;
     out.k2 = 0.5f * k.k2;
+  }
+  if (hsv.v < kLitValue) {
+    // Dark colours, any hue: the two lights add their own colours (Cwarm k2, Ccool k4), which
+    // swamp a dark base (black would turn orange and blue). Their strength fades with the value,
+    // to nothing at kDarkValue and below, so dark stays dark (ka Cbase).
+    const float t = std::max(0.0f, (hsv.v - kDarkValue) / (kLitValue - kDarkValue));
+    out.k2 *= t;
+    out.k4 *= t;
   }
   return out;
 }

@@ -6,6 +6,7 @@
 #include "vdg/viewdep/intersection_check.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -105,6 +106,35 @@ void SphereInset::setHeat(const SphereMap* map) {
     push(heat_dots_[static_cast<std::size_t>(std::clamp(static_cast<int>(need * kHeatBins), 0, kHeatBins - 1))], d);
   }
   push(heat_suggested_, map->suggested);
+}
+
+Viewport insetPlacement(const Viewport& view, int side, int margin, std::span<const float> points) {
+  const int left = view.x + std::max(0, std::min(margin, view.width - side));
+  const int top = view.y + std::max(0, std::min(margin, view.height - side));
+  const int right = view.x + std::max(0, view.width - side - margin);
+  const int bottom = view.y + std::max(0, view.height - side - margin);
+  const std::array<std::array<int, 2>, 4> corners{{{right, bottom}, {left, bottom}, {right, top}, {left, top}}};
+  std::array<long, 4> inside{};
+  double x0 = std::numeric_limits<double>::infinity(), y0 = x0, x1 = -x0, y1 = -x0;
+  for (std::size_t i = 0; i + 1 < points.size(); i += 2) {
+    const double x = points[i], y = points[i + 1];
+    x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+    for (std::size_t c = 0; c < corners.size(); ++c)
+      inside[c] += x >= corners[c][0] && x <= corners[c][0] + side && y >= corners[c][1] && y <= corners[c][1] + side;
+  }
+  std::size_t best = 0;
+  double best_overlap = std::numeric_limits<double>::infinity();
+  for (std::size_t c = 0; c < corners.size(); ++c) {
+    const double w = std::min<double>(corners[c][0] + side, x1) - std::max<double>(corners[c][0], x0);
+    const double h = std::min<double>(corners[c][1] + side, y1) - std::max<double>(corners[c][1], y0);
+    const double overlap = std::max(0.0, w) * std::max(0.0, h);
+    // Strictly better only: ties keep the earlier corner.
+    if (inside[c] < inside[best] || (inside[c] == inside[best] && overlap < best_overlap)) {
+      best = c;
+      best_overlap = overlap;
+    }
+  }
+  return {corners[best][0], corners[best][1], side, side};
 }
 
 Viewport SphereInset::panel(const Viewport& viewport) {

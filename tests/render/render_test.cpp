@@ -4,15 +4,18 @@
 // dependence, determinism), plus the error paths. Goldens: see tests/render/README.md.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <functional>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <Eigen/Geometry>
 
@@ -110,10 +113,21 @@ TEST(Shading, HueRuleWhiteTurnsOffWarmLight) {
   EXPECT_EQ(hueAdjustedConstants({}, {0.95f, 0.93f, 0.9f}).k2, 0.0f);
 }
 
-TEST(Shading, HueRulePurpleDoublesCoolLight) {
+TEST(Shading, HueRulePurpleDoublesCoolLightAndQuartersTheWarmOne) {
   const ShadingConstants k = hueAdjustedConstants({}, {0.5f, 0.2f, 0.7f});
   EXPECT_FLOAT_EQ(k.k4, 2.0f);
-  EXPECT_FLOAT_EQ(k.k2, 1.0f);
+  EXPECT_FLOAT_EQ(k.k2, 0.25f);
+  // The teapot's purple (examples/meshes/teapot-parts.mtl) facing the warm light stays purple:
+  // blue above green and red above green, where the paper's constants gave orange.
+  ShadingParams p;
+  const Rgb purple{0.55f, 0.36f, 0.78f};
+  const Eigen::Vector3f l1 = Eigen::Vector3f(p.light_warm[0], p.light_warm[1], p.light_warm[2]).normalized();
+  const Rgb lit = shade(p, purple, {l1.x(), l1.y(), l1.z()});
+  EXPECT_GT(lit[2], lit[1]);
+  EXPECT_GT(lit[0], lit[1]);
+  p.vary_by_hue = false;
+  const Rgb paper = shade(p, purple, {l1.x(), l1.y(), l1.z()});
+  EXPECT_LT(paper[2], paper[1]) << "k2 = 1: orange";
 }
 
 TEST(Shading, HueRuleRedMoreCoolLessWarm) {
@@ -130,8 +144,113 @@ TEST(Shading, HueRuleLeavesOtherHuesAndScalesCallerConstants) {
   EXPECT_EQ(green.k4, 1.0f);
   const ShadingConstants purple = hueAdjustedConstants({1.0f, 1.0f, 1.0f, 0.5f}, {0.5f, 0.2f, 0.7f});
   EXPECT_FLOAT_EQ(purple.k4, 1.0f);
-  // Dark grey is not whitish: the warm light stays on.
-  EXPECT_EQ(hueAdjustedConstants({}, {0.3f, 0.3f, 0.3f}).k2, 1.0f);
+}
+
+// The rule of the paper (white-ish, purple, red; section 3.2.4; with vdg's quarter warm light for
+// purples), as it was before the rules for dark and grey colours: the reference for the colours
+// those rules leave alone.
+ShadingConstants paperHueRule(const ShadingConstants& k, const Rgb& base) {
+  const Hsv hsv = toHsv(base);
+  ShadingConstants out = k;
+  if (hsv.s < 0.2f) {
+    if (hsv.v > 0.6f) out.k2 = 0.0f;
+  } else if (hsv.h >= 250.0f && hsv.h < 330.0f) {
+    out.k4 = 2.0f * k.k4;
+    out.k2 = 0.25f * k.k2;  // vdg's addition for purples (docs/render.md)
+  } else if (hsv.h < 20.0f || hsv.h >= 330.0f) {
+    out.k4 = 1.5f * k.k4;
+    out.k2 = 0.5f * k.k2;
+  }
+  return out;
+}
+
+// Normals towards the warm light, towards the cool light, towards the viewer and half-way.
+std::vector<std::array<float, 3>> probeNormals(const ShadingParams& p) {
+  const Eigen::Vector3f l1 = Eigen::Vector3f(p.light_warm[0], p.light_warm[1], p.light_warm[2]).normalized();
+  const Eigen::Vector3f l2 = Eigen::Vector3f(p.light_cool[0], p.light_cool[1], p.light_cool[2]).normalized();
+  std::vector<std::array<float, 3>> out;
+  for (const Eigen::Vector3f& n : {l1, l2, Eigen::Vector3f(0, 0, 1), Eigen::Vector3f((l1 + l2).normalized()),
+                                   Eigen::Vector3f((l1 + Eigen::Vector3f(0, 0, 1)).normalized())})
+    out.push_back({n.x(), n.y(), n.z()});
+  return out;
+}
+
+TEST(Shading, HueRuleLeavesBrightSaturatedColoursBitForBit) {
+  // Saturation >= 0.2 and value >= 0.5: neither the grey nor the dark rule applies, so the
+  // constants and the shaded colour are exactly the paper's rule's, for any caller constants.
+  const ShadingConstants caller{0.8f, 1.3f, 0.7f, 0.6f};
+  int checked = 0;
+  for (int r = 0; r <= 10; ++r)
+    for (int g = 0; g <= 10; ++g)
+      for (int b = 0; b <= 10; ++b) {
+        const Rgb base{r / 10.0f, g / 10.0f, b / 10.0f};
+        const Hsv hsv = toHsv(base);
+        if (hsv.s < kNeutralSaturation || hsv.v < kLitValue) continue;
+        for (const ShadingConstants& k : {ShadingConstants{}, caller}) {
+          const ShadingConstants got = hueAdjustedConstants(k, base), want = paperHueRule(k, base);
+          EXPECT_EQ(got.k1, want.k1);
+          EXPECT_EQ(got.k2, want.k2) << base[0] << "," << base[1] << "," << base[2];
+          EXPECT_EQ(got.k3, want.k3);
+          EXPECT_EQ(got.k4, want.k4) << base[0] << "," << base[1] << "," << base[2];
+        }
+        ++checked;
+      }
+  EXPECT_GT(checked, 500);
+}
+
+TEST(Shading, HueRuleKeepsDarkColoursDarkAndNeutral) {
+  const ShadingParams p;
+  // At or below kDarkValue, any hue: no light colour at all, C = ka * Cbase at every normal.
+  for (const Rgb& base : {Rgb{0, 0, 0}, Rgb{0.1f, 0.1f, 0.1f}, Rgb{0.2f, 0.03f, 0.03f}, Rgb{0.05f, 0.05f, 0.2f},
+                          Rgb{0.12f, 0.18f, 0.02f}}) {
+    const ShadingConstants k = hueAdjustedConstants({}, base);
+    EXPECT_EQ(k.k2, 0.0f);
+    EXPECT_EQ(k.k4, 0.0f);
+    for (const auto& n : probeNormals(p)) {
+      const Rgb c = shade(p, base, n);
+      for (int i = 0; i < 3; ++i) EXPECT_FLOAT_EQ(c[i], p.ka * base[i]);
+    }
+  }
+  // Spot's dark patches (grey 64/255): they stay dark and nearly neutral under both lights (a
+  // trace of the cool light gives them form), where the paper's rule alone turned them orange.
+  const Rgb patch{64 / 255.0f, 64 / 255.0f, 64 / 255.0f};
+  ShadingParams paper = p;
+  paper.vary_by_hue = false;  // the same constants as paperHueRule for this grey (k = 1)
+  ASSERT_EQ(paperHueRule({}, patch).k2, 1.0f);
+  constexpr float kDarkCeiling = 0.35f;  // darker than any light grey
+  constexpr float kNeutralSpread = 0.06f;
+  for (const auto& n : probeNormals(p)) {
+    const Rgb c = shade(p, patch, n);
+    EXPECT_LE(std::max({c[0], c[1], c[2]}), kDarkCeiling);
+    EXPECT_LE(std::max({c[0], c[1], c[2]}) - std::min({c[0], c[1], c[2]}), kNeutralSpread);
+  }
+  const Rgb before = shade(paper, patch, probeNormals(p)[0]);  // facing the warm light
+  EXPECT_GT(before[0] - before[2], 0.3f) << "the paper's rule alone: orange";
+}
+
+TEST(Shading, HueRuleGreysAreCoolAndWhitesStayWhite) {
+  const ShadingParams p;
+  for (float v = 0.0f; v <= 1.0f; v += 0.05f) {
+    const Rgb grey{v, v, v};
+    EXPECT_EQ(hueAdjustedConstants({}, grey).k2, 0.0f) << "grey " << v << ": no warm light";
+    for (const auto& n : probeNormals(p)) {
+      const Rgb c = shade(p, grey, n);
+      EXPECT_LE(c[0], c[2] + 1e-6f) << "grey " << v << ": never warmer than it is blue";
+    }
+  }
+  // White: light and cool at every normal, as the paper's whites were (its rule for them is kept).
+  constexpr float kWhiteFloor = 0.5f;  // mean channel
+  for (const auto& n : probeNormals(p)) {
+    const Rgb c = shade(p, {1, 1, 1}, n);
+    EXPECT_GE((c[0] + c[1] + c[2]) / 3.0f, kWhiteFloor);
+    EXPECT_GE(c[2], c[0]);
+    EXPECT_EQ(hueAdjustedConstants({}, {1, 1, 1}).k4, 1.0f);
+  }
+  // The value ramp is continuous: no jump in the constants where the dark rule ends.
+  const ShadingConstants below = hueAdjustedConstants({}, {0.4999f, 0.1f, 0.1f});
+  const ShadingConstants at = hueAdjustedConstants({}, {0.5f, 0.1f, 0.1f});
+  EXPECT_NEAR(below.k2, at.k2, 1e-3f);
+  EXPECT_NEAR(below.k4, at.k4, 1e-3f);
 }
 
 TEST(Shading, EquationMatchesThePaper) {
@@ -279,6 +398,145 @@ TEST(RenderImage, ObjectCoversPixelsAndOutlineIsClosedAndDark) {
     EXPECT_EQ(uncovered, 0) << "boundary pixels with no silhouette nearby, view " << dir.transpose();
     if (uncovered) writePng(testing::TempDir() + "/outline_failure.png", img);
   }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Stroke width following the object's size on screen (StrokeWidthMode).
+
+TEST(StrokeWidth, ProjectedDiameterIsThePictureOfTheSphere) {
+  // A sphere on the view axis: its outline is the circle of tangent points, at angle a from the
+  // axis with sin a = r / d; project() of the top tangent point gives the picture's radius.
+  constexpr int kHeight = 480;
+  constexpr double kRelativeTolerance = 1e-9;
+  for (const double d : {3.0, 7.5, 40.0}) {
+    Camera c;
+    c.eye = Eigen::Vector3d(0, 0, d);
+    c.target = Eigen::Vector3d::Zero();
+    c.fov_deg = 35.0;
+    const double r = 1.3, a = std::asin(r / d), along = std::sqrt(d * d - r * r);
+    const Projected top =
+        project(c, kHeight, kHeight, Eigen::Vector3d(0, along * std::sin(a), d - along * std::cos(a)));
+    const double picture = 2.0 * (kHeight / 2.0 - top.pixel.y());
+    EXPECT_NEAR(projectedDiameter(c, kHeight, Eigen::Vector3d::Zero(), r), picture, kRelativeTolerance * picture);
+  }
+  Camera inside;
+  inside.eye = Eigen::Vector3d(0, 0, 0.5);
+  EXPECT_TRUE(std::isinf(projectedDiameter(inside, 100, Eigen::Vector3d::Zero(), 1.0)));
+  Camera parallel;
+  parallel.ortho_height = 4.0;
+  EXPECT_DOUBLE_EQ(projectedDiameter(parallel, 100, Eigen::Vector3d(3, 1, -9), 1.0), 50.0);
+}
+
+TEST(StrokeWidth, FollowsTheScreenSizeWithinTheRange) {
+  FrameSettings s;
+  s.height = 400;
+  s.silhouette_width = 4.0f;
+  s.stroke_min = 1.0f;
+  s.stroke_mode = StrokeWidthMode::fixed;
+  for (const double d : {1.0, 100.0, 400.0, 1e6}) EXPECT_EQ(strokeWidthFor(s, d), 4.0f) << "fixed, diameter " << d;
+  s.stroke_mode = StrokeWidthMode::screen;
+  EXPECT_FLOAT_EQ(strokeWidthFor(s, 200.0), 4.0f);   // spans half the height: the reference width
+  EXPECT_FLOAT_EQ(strokeWidthFor(s, 100.0), 2.0f);   // twice as far: half the width
+  EXPECT_FLOAT_EQ(strokeWidthFor(s, 137.0), 2.75f);  // rounded to a quarter pixel (2.74)
+  EXPECT_FLOAT_EQ(strokeWidthFor(s, 25.0), 1.0f);    // clamped at the minimum
+  EXPECT_FLOAT_EQ(strokeWidthFor(s, 400.0), 4.0f);   // and at the maximum (default: the reference)
+  EXPECT_FLOAT_EQ(strokeWidthFor(s, 4000.0), 4.0f);
+  EXPECT_FLOAT_EQ(strokeWidthFor(s, std::numeric_limits<double>::infinity()), 4.0f);
+  EXPECT_FLOAT_EQ(strokeWidthFor(s, std::nan("")), 1.0f);
+  s.stroke_max = 6.0f;
+  EXPECT_FLOAT_EQ(strokeWidthFor(s, 250.0), 5.0f);
+  EXPECT_FLOAT_EQ(strokeWidthFor(s, 4000.0), 6.0f);
+  s.stroke_max = 0.5f;  // below the minimum: the minimum wins
+  EXPECT_FLOAT_EQ(strokeWidthFor(s, 4000.0), 1.0f);
+  s.stroke_min = 0.0f;
+  EXPECT_THROW(checkStrokeRange(s), Error);
+  s.stroke_mode = StrokeWidthMode::fixed;
+  EXPECT_NO_THROW(checkStrokeRange(s));
+}
+
+// The thickness of the ink on the middle row's left outline: the run of dark pixels from the
+// first dark pixel walking right.
+int inkRun(const Image& img) {
+  const int y = img.height / 2;
+  int x = 0;
+  while (x < img.width && !isDark(img, x, y)) ++x;
+  int run = 0;
+  for (; x < img.width && isDark(img, x, y); ++x) ++run;
+  return run;
+}
+
+TEST(StrokeWidth, AFigureTwiceAsFarGetsThinnerLinesClampedAtMinAndMax) {
+  constexpr int kCanvas = 256;
+  const TriMesh sphere = uvSphere(24, 32);
+  FrameOptions o;
+  o.width = o.height = kCanvas;
+  o.silhouette_width = 14.0f;
+  o.stroke_min = 2.0f;
+  // The mesh's box sphere fills the view at the fit distance: at twice that it spans about half
+  // the height (width about 12.7 pixels), at four times a quarter (about 6.4).
+  const double fit = fitDistance(std::sqrt(3.0), 30.0, 1.0), near = 2.0 * fit;
+  auto render = [&](StrokeWidthMode mode, double distance, float width, float min = 2.0f, float max = 0.0f) {
+    FrameOptions f = o;
+    f.stroke_mode = mode;
+    f.silhouette_width = width;
+    f.stroke_min = min;
+    f.stroke_max = max;
+    ModelRenderer r(sphere, f);
+    Image img;
+    r.render(orbitCamera(Eigen::Vector3d::Zero(), distance, 0.0, 0.0, 30.0), img);
+    return img;
+  };
+  const Image fixed_near = render(StrokeWidthMode::fixed, near, 14.0f);
+  const Image fixed_far = render(StrokeWidthMode::fixed, 2.0 * near, 14.0f);
+  // Fixed: silhouette_width whatever the distance and the range (stroke_min and stroke_max are
+  // the screen mode's): the picture of the library's default mode.
+  for (const double d : {near, 2.0 * near}) {
+    ModelRenderer default_mode(sphere, o);
+    Image a;
+    default_mode.render(orbitCamera(Eigen::Vector3d::Zero(), d, 0.0, 0.0, 30.0), a);
+    EXPECT_EQ(a.rgba, (d == near ? fixed_near : fixed_far).rgba);
+    EXPECT_EQ(render(StrokeWidthMode::fixed, d, 14.0f, 5.0f, 6.0f).rgba, a.rgba);
+  }
+  const Image screen_near = render(StrokeWidthMode::screen, near, 14.0f);
+  const Image screen_far = render(StrokeWidthMode::screen, 2.0 * near, 14.0f);
+  EXPECT_GE(inkRun(screen_near), inkRun(screen_far) + 2) << "twice as far: thinner";
+  EXPECT_LT(inkRun(screen_far), inkRun(fixed_far));
+  // Far enough, the minimum: the picture of the fixed width stroke_min, byte for byte.
+  EXPECT_EQ(render(StrokeWidthMode::screen, 16.0 * near, 14.0f).rgba,
+            render(StrokeWidthMode::fixed, 16.0 * near, 2.0f).rgba);
+  // Framed (and closer), the maximum: the fixed width's picture.
+  EXPECT_EQ(render(StrokeWidthMode::screen, fit, 14.0f).rgba, render(StrokeWidthMode::fixed, fit, 14.0f).rgba);
+  EXPECT_EQ(render(StrokeWidthMode::screen, 0.7 * fit, 14.0f).rgba,
+            render(StrokeWidthMode::fixed, 0.7 * fit, 14.0f).rgba);
+}
+
+TEST(RenderImage, TheSphereInsetLeavesTheModelVisible) {
+  // The camera looks up and to the left of the model, so its picture fills the bottom-right
+  // corner, where the inset goes by default: the inset moves to a free corner and hides none of
+  // the model's pixels. Where the inset is: the pixels that differ from the frame without it.
+  FrameOptions o = smallOptions();
+  Camera c = cameraToward({0, 0, 1});
+  c.target = Eigen::Vector3d(-0.8, 0.8, 0.0);
+  c.eye += c.target;
+  ModelRenderer plain(testModel(), o);
+  o.sphere = true;
+  ModelRenderer with_inset(testModel(), o);
+  Image a, b;
+  plain.render(c, a);
+  with_inset.render(c, b);
+  long inset_pixels = 0, hidden = 0, model_in_bottom_right = 0;
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kSize; ++x) {
+      const bool model = !isBackground(a, x, y, o.background);
+      if (model && x >= kSize / 2 && y >= kSize / 2) ++model_in_bottom_right;
+      if (std::equal(a.pixel(x, y), a.pixel(x, y) + 3, b.pixel(x, y))) continue;
+      ++inset_pixels;
+      hidden += model ? 1 : 0;
+    }
+  EXPECT_GT(model_in_bottom_right, kSize * kSize / 8) << "the framing puts the model in the bottom-right corner";
+  EXPECT_GT(inset_pixels, 40 * 40) << "the inset is drawn";
+  EXPECT_EQ(hidden, 0) << "model pixels under the inset";
+  if (hidden) writePng(testing::TempDir() + "/inset_failure.png", b);
 }
 
 TEST(RenderImage, WhiteSurfaceHasNoWarmTint) {

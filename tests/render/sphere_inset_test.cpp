@@ -71,6 +71,45 @@ class SphereInsetTest : public ::testing::Test {
   Renderer renderer_;
 };
 
+// ---------------------------------------------------------------------------------------------
+// Placement in the main view (insetPlacement): the corner the model's picture leaves free.
+
+TEST(InsetPlacement, TheCornerWithTheFewestModelPointsBottomRightFirst) {
+  const Viewport view{0, 0, 400, 300};
+  constexpr int kSide = 100, kMargin = 5;
+  auto at = [&](const std::vector<float>& points) {
+    const Viewport v = insetPlacement(view, kSide, kMargin, points);
+    return std::array<int, 4>{v.x, v.y, v.width, v.height};
+  };
+  const std::array<int, 4> bottom_right{295, 195, 100, 100}, bottom_left{5, 195, 100, 100}, top_right{295, 5, 100, 100},
+      top_left{5, 5, 100, 100};
+  // Points inside each corner's square.
+  const std::vector<float> in_br{300, 200, 390, 290}, in_bl{10, 200, 100, 290}, in_tr{300, 10, 390, 100},
+      in_tl{10, 10, 100, 100};
+  auto join = [](std::initializer_list<std::vector<float>> parts) {
+    std::vector<float> out;
+    for (const auto& p : parts) out.insert(out.end(), p.begin(), p.end());
+    return out;
+  };
+  EXPECT_EQ(at({}), bottom_right) << "no model";
+  EXPECT_EQ(at({200, 150, 150, 120, 250, 180}), bottom_right) << "a centred model";
+  EXPECT_EQ(at(in_br), bottom_left) << "the model in the bottom-right corner";
+  EXPECT_EQ(at(join({in_br, in_bl})), top_right);
+  EXPECT_EQ(at(join({in_br, in_bl, in_tr})), top_left);
+  EXPECT_EQ(at(join({in_br, in_bl, in_tr, in_tl})), bottom_right) << "every corner alike";
+  EXPECT_EQ(at(join({in_br, in_br, in_bl, in_tr, in_tl})), bottom_left) << "the fewest points";
+  // No point in any corner, but the points' box (a large face) covers the bottom-right one.
+  EXPECT_EQ(at({150, 150, 400, 300}), bottom_left);
+  EXPECT_EQ(at({0, 0, 400, 300}), bottom_right) << "the box covers every corner alike";
+  // An offset view (the main view need not start at the canvas origin).
+  const Viewport moved = insetPlacement(Viewport{50, 10, 400, 300}, kSide, kMargin, {});
+  EXPECT_EQ((std::array<int, 4>{moved.x, moved.y, moved.width, moved.height}),
+            (std::array<int, 4>{345, 205, 100, 100}));
+  // A square larger than the view: at the view's origin.
+  const Viewport big = insetPlacement(Viewport{0, 0, 40, 30}, kSide, kMargin, {});
+  EXPECT_EQ((std::array<int, 4>{big.x, big.y, big.width, big.height}), (std::array<int, 4>{0, 0, 100, 100}));
+}
+
 TEST_F(SphereInsetTest, EachVisibleKeyIsFoundAtItsDot) {
   ASSERT_GT(sphere_.points().size(), sphere_.keyCount()) << "the test sphere should have dummies";
   std::mt19937 rng(3);

@@ -109,12 +109,26 @@ struct View {
   double z_near = 0.1, z_far = 100.0;
 };
 
+// How the frame renderers choose each object's silhouette stroke width.
+//  - fixed: every object gets silhouette_width pixels (the paper's thick wireframe, section 3.2.4);
+//  - screen: the width follows the object's size on screen, as a draftsman's line does, so that
+//    small and distant figures are not swamped by their outlines: an object whose bounding sphere
+//    spans D pixels of an image H pixels tall gets silhouette_width * D / (H / 2) pixels, rounded
+//    to a quarter pixel and clamped to [stroke_min, stroke_max] (strokeWidthFor). An object
+//    spanning half the frame's height or more gets the fixed width (the default maximum), so a
+//    framed model looks as in the fixed mode; one twice as far (half the size) half of it, down to
+//    the minimum.
+enum class StrokeWidthMode { fixed, screen };
+
 // What the frame renderers (ModelRenderer, SceneRenderer) take alike: the canvas and the style
 // of the whole frame. FrameOptions and SceneFrameOptions add their own fields to it.
 struct FrameSettings : RendererSettings {
   Rgb background{0.97f, 0.97f, 0.95f};  // light, as in the paper's figures
   ShadingParams shading;
   float silhouette_width = 0.0f;  // stroke width in pixels; 0: max(3, height / 100)
+  StrokeWidthMode stroke_mode = StrokeWidthMode::fixed;
+  float stroke_min = 1.0f;        // screen mode: the thinnest stroke, pixels (> 0)
+  float stroke_max = 0.0f;        // screen mode: the thickest stroke, pixels; <= 0: silhouette_width
   bool borders = true;            // ink the true open borders (holes) of the surfaces
   float crease_angle_deg = 0.0f;  // ink edges sharper than this (degrees, half the stroke width); <= 0: none
   // The objects' materials and textures (per-material Cbase, hue rule per material and per
@@ -129,6 +143,22 @@ struct FrameSettings : RendererSettings {
   // 4.3 ..." on an older driver (see each renderer for what stays on the CPU).
   bool gpu_blend = false;
 };
+
+// The diameter in pixels of the picture of a sphere (`center`, `radius` > 0, world units) seen by
+// `camera` in a viewport `height` pixels tall: for a perspective camera 2 r' / tan(fov / 2) *
+// height / 2, where r' = radius / sqrt(d^2 - radius^2) is the tangent of the sphere's angular
+// radius at distance d from the eye (its picture at the centre of the view); for a parallel camera
+// 2 radius / ortho_height * height. An eye inside the sphere gives +infinity; a sphere behind the
+// eye is measured as if in front (its size, not its visibility).
+double projectedDiameter(const Camera& camera, int height, const Eigen::Vector3d& center, double radius);
+
+// The stroke width, in pixels, of an object whose bounding sphere spans `diameter_px` pixels, by
+// `s.stroke_mode` (see StrokeWidthMode). `s.silhouette_width` must be resolved (> 0); a stroke_max
+// <= 0 means silhouette_width, and a stroke_max below stroke_min is raised to it.
+float strokeWidthFor(const FrameSettings& s, double diameter_px);
+// Throws vdg::Error "render: the screen stroke width needs ..." when in screen mode stroke_min is
+// not finite and > 0 or stroke_max is not finite (the frame renderers' constructors call it).
+void checkStrokeRange(const FrameSettings& s);
 
 struct MeshStyle {
   Rgb color{1.0f, 1.0f, 1.0f};  // Cbase of faces without a material (of every face when !materials)

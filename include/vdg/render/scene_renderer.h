@@ -28,18 +28,23 @@
 namespace vdg::render {
 
 // The canvas and style shared with FrameOptions are in FrameSettings (renderer.h); a scene's
-// canvas is 640 x 360 unless set. With gpu_blend, every visible instance of one static
-// view-dependent model is blended, shaded and inked in one call per frame (drawBlendInstances),
-// after the objects drawn on the CPU; animated models and plain meshes stay on the CPU path. The
-// picture equals the CPU path's within rounding wherever objects do not overlap. Where they do,
-// the GPU path shades every instance of a model before it inks them, so a nearer instance's
-// outline is never covered by a farther one drawn after it; on the CPU path each object is shaded
-// and inked in turn, and a farther object drawn later covers the outer half of a nearer one's
-// silhouette stroke.
+// canvas is 640 x 360 unless set, and its stroke width follows each object's size on screen
+// (StrokeWidthMode::screen: the sphere about the object's box carried into the world, the width
+// rounded to 1/4 pixel). With gpu_blend, the visible instances of one static view-dependent model
+// are blended, shaded and inked in one call per frame and stroke width (drawBlendInstances;
+// thinnest first), after the objects drawn on the CPU; animated models and plain meshes stay on
+// the CPU path. The picture equals the CPU path's within rounding wherever objects do not overlap.
+// Where they do, the GPU path shades every instance of a call before it inks them, so a nearer
+// instance's outline is not covered by a farther one of the same call drawn after it; on the CPU
+// path each object is shaded and inked in turn, and a farther object drawn later covers the outer
+// half of a nearer one's silhouette stroke.
 struct SceneFrameOptions : FrameSettings {
   SceneFrameOptions() {
     width = 640;
     height = 360;
+    // A scene's objects lie at many distances (a crowd, Figure 13): their outlines follow their
+    // size on screen unless set to fixed (StrokeWidthMode, renderer.h).
+    stroke_mode = StrokeWidthMode::screen;
   }
   // The frames a scene without a camera is framed over (see above).
   double frame_first = 0.0, frame_last = 0.0;

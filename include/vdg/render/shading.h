@@ -1,8 +1,8 @@
 // NPR shading of Rademacher 99, section 3.2.4: a strong ambient term plus a warm and a cool light
 // on opposite sides of the surface,
 //   C = ka*Cbase + (l1.n)(Cwarm - Cbase*k1)*k2 + (l2.n)(Ccool - Cbase*k3)*k4,
-// with k1..k4 varied by the hue of Cbase (warm light off for whitish surfaces, stronger cool light
-// for purples, more cool and less warm for reds).
+// with k1..k4 varied by the hue of Cbase (warm light off for neutral surfaces, stronger cool light
+// for purples, more cool and less warm for reds) and faded out on dark surfaces.
 //
 // Negative l.n: each light term is clamped at l.n = 0, as OpenGL's fixed-function diffuse term
 // max(0, l.n) does (the paper implements the two terms as the diffuse parts of two GL lights).
@@ -40,13 +40,25 @@ struct Hsv {
 };
 Hsv toHsv(const Rgb& c);
 
-// The paper's per-surface variation of k1..k4 by the hue of Cbase (section 3.2.4), applied to the
-// caller's constants `k` (a pure function):
-//   whitish (saturation < 0.2 and value > 0.6):   k2 = 0            (no warm light: cool whites)
-//   purple  (hue in [250, 330), saturation >= 0.2): k4 = 2 * k4     (intensified cool light)
-//   red     (hue < 20 or >= 330, saturation >= 0.2): k4 = 1.5 * k4, k2 = 0.5 * k2
-//                                                   (more cool, less warm: brilliant reds)
-//   anything else: unchanged.
+// The paper's per-surface variation of k1..k4 by the colour of Cbase (section 3.2.4: "we disable
+// the warm (orange) light when rendering white-ish surfaces ... purple ... red ... There are many
+// other hues that can be handled"), applied to the caller's constants `k` (a pure function). First
+// by hue:
+//   neutral (saturation < 0.2: whites, greys, blacks): k2 = 0   (no warm light: cool whites/greys)
+//   purple  (hue in [250, 330), saturation >= 0.2):    k4 = 2 * k4   (intensified cool light),
+//                                                      k2 = 0.25 * k2 (vdg: the warm light alone
+//                                                      turned purples orange; see docs/render.md)
+//   red     (hue < 20 or >= 330, saturation >= 0.2):   k4 = 1.5 * k4, k2 = 0.5 * k2
+//                                                      (more cool, less warm: brilliant reds)
+//   any other hue: unchanged;
+// then by value, for every hue:
+//   dark    (value < 0.5): k2 and k4 times t = max(0, (value - 0.2) / 0.3), so that the lights'
+//           own colours fade out on dark surfaces and vanish at value <= 0.2 (black stays black).
+// A colour of value >= 0.5 and saturation >= 0.2 gets exactly what the paper's rule gives (for
+// purples, with the quarter warm light).
+inline constexpr float kNeutralSaturation = 0.2f;  // below: no dominant hue
+inline constexpr float kDarkValue = 0.2f;          // at or below: no light colour at all
+inline constexpr float kLitValue = 0.5f;           // at or above: the lights at full strength
 ShadingConstants hueAdjustedConstants(const ShadingConstants& k, const Rgb& base);
 
 // The constants actually used for a surface of colour `base`.

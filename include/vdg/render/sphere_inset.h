@@ -4,8 +4,9 @@
 // filled green with its three corners in red, and the current view as a blue marker with its ray
 // from the centre. An equator and a front meridian in light grey give the orientation.
 //
-// ModelRenderer draws it in the bottom-right corner of the main view (FrameOptions::sphere); vdg
-// studio draws it as a panel and picks keys on it (keyAt).
+// ModelRenderer draws it in a corner of the main view (FrameOptions::sphere): the bottom-right one
+// unless the model's picture reaches into it more than into another (insetPlacement); vdg studio
+// draws it as a panel and picks keys on it (keyAt).
 //
 // Built once from a ViewSphere (its points, triangles and arcs are copied: the sphere need not
 // outlive the inset). draw() is a per-frame call: it reuses its buffers (they reach their size
@@ -19,6 +20,7 @@
 #pragma once
 
 #include <array>
+#include <span>
 #include <vector>
 
 #include <Eigen/Core>
@@ -30,6 +32,15 @@
 #include "vdg/viewdep/view_sphere.h"
 
 namespace vdg::render {
+
+// Where ModelRenderer puts the inset so that it hides as little of the model as it can: a square
+// of `side` pixels, `margin` pixels from a corner of the view (`view`, canvas pixels), in the
+// corner whose square holds the fewest of `points` (the model's vertices projected: x, y pairs in
+// canvas pixels, x right, y down); between corners holding as many, the one whose square overlaps
+// the points' bounding box least (a large face with no vertex in the corner still covers it);
+// then in the order bottom-right (the paper's Figure 4 layout), bottom-left, top-right, top-left.
+// A square larger than the view is placed at the view's origin. Pure, no allocation.
+Viewport insetPlacement(const Viewport& view, int side, int margin, std::span<const float> points);
 
 class SphereInset {
  public:
