@@ -73,6 +73,9 @@ void run(const RunOptions& opt) {
   so.output_dir = opt.output;
   so.read_root = opt.root;
   so.created = script::announceCreated;
+  // Actors need only be stepped up to the last frame rendered (every earlier frame is what a full
+  // run gives; script.h, ScriptOptions::actor_last_frame).
+  if (!opt.frames.empty()) so.actor_last_frame = only.last;
   const script::Shot shot = script::runScript(opt.script, so);
   script::liftLimits();
   if (shot.renders.empty()) {
