@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "support/dense_weights.h"
 #include "support/random_direction.h"
 #include "vdg/viewdep/view_sphere.h"
 
@@ -120,13 +121,7 @@ double insideness(const ViewSphere& s, int t, const Vector3d& v) {
   return (m.inverse() * v).minCoeff();
 }
 
-std::vector<double> dense(const ViewSphere& s, const ViewWeights& w) {
-  std::vector<double> d(s.keyCount() + 1, 0.0);
-  for (int k = 0; k < 3; ++k)
-    if (w.key[k] >= 0) d[static_cast<std::size_t>(w.key[k])] += w.weight[k];
-  d.back() += w.base;
-  return d;
-}
+using testing::denseWeights;
 
 struct Tally {
   long views = 0;
@@ -137,7 +132,7 @@ struct Tally {
 void expectSame(const ViewSphere& s, const Vector3d& v, const ViewWeights& fast, const ViewWeights& oracle,
                 const std::string& where, Tally& tally) {
   ++tally.views;
-  const std::vector<double> a = dense(s, fast), b = dense(s, oracle);
+  const std::vector<double> a = denseWeights(s, fast), b = denseWeights(s, oracle);
   double worst = 0.0;
   for (std::size_t i = 0; i < a.size(); ++i) worst = std::max(worst, std::abs(a[i] - b[i]));
   ASSERT_LE(worst, kFloatRoundingTol) << where << ", view " << v.transpose() << ": triangle " << fast.triangle

@@ -8,6 +8,7 @@
 #include <numbers>
 #include <random>
 
+#include "support/dense_weights.h"
 #include "support/random_direction.h"
 #include "vdg/geom/error.h"
 
@@ -24,14 +25,7 @@ constexpr int kRandomViews = 10000;
 constexpr double kPathStep = 5e-4;
 constexpr double kLipschitz = 60.0;
 
-// Dense weights: one entry per key, then the base.
-std::vector<double> dense(const ViewSphere& s, const ViewWeights& w) {
-  std::vector<double> d(s.keyCount() + 1, 0.0);
-  for (int k = 0; k < 3; ++k)
-    if (w.key[k] >= 0) d[static_cast<std::size_t>(w.key[k])] += w.weight[k];
-  d.back() += w.base;
-  return d;
-}
+using testing::denseWeights;
 
 // weights() for a query that is valid by construction (the contract cases are in contract_test).
 ViewWeights weightsOf(const ViewSphere& s, const Vector3d& view, double sharpness = 1.0, int* hint = nullptr) {
@@ -83,16 +77,16 @@ TEST(ViewSphere, OctahedronMatchesTheNumbersOfTheIssue) {
   EXPECT_EQ(s.points().size(), 6u) << "an enclosing key set needs no dummy base keys";
   EXPECT_EQ(s.triangles().size(), 8u);
   EXPECT_NEAR(s.coveredFraction(), 1.0, 1e-12);
-  auto d = dense(s, weightsOf(s, Vector3d(1, 1, 1)));
+  auto d = denseWeights(s, weightsOf(s, Vector3d(1, 1, 1)));
   EXPECT_NEAR(d[0], 1.0 / 3, kWeightTol);  // +X
   EXPECT_NEAR(d[2], 1.0 / 3, kWeightTol);  // +Y
   EXPECT_NEAR(d[4], 1.0 / 3, kWeightTol);  // +Z
-  d = dense(s, weightsOf(s, Vector3d(1, 1, 0.2)));
+  d = denseWeights(s, weightsOf(s, Vector3d(1, 1, 0.2)));
   EXPECT_NEAR(d[0], 1.0 / 2.2, kWeightTol);
   EXPECT_NEAR(d[2], 1.0 / 2.2, kWeightTol);
   EXPECT_NEAR(d[4], 0.2 / 2.2, kWeightTol);
   // Sharpness alpha = 2: squares, renormalised (paper 3.2.2).
-  d = dense(s, weightsOf(s, Vector3d(1, 1, 0.2), 2.0));
+  d = denseWeights(s, weightsOf(s, Vector3d(1, 1, 0.2), 2.0));
   const double sum = (1.0 + 1.0 + 0.04) / (2.2 * 2.2);
   EXPECT_NEAR(d[0], (1.0 / (2.2 * 2.2)) / sum, kWeightTol);
   EXPECT_NEAR(d[4], (0.04 / (2.2 * 2.2)) / sum, kWeightTol);
@@ -104,7 +98,7 @@ TEST(ViewSphere, SharpnessMovesTowardsTheNearestKey) {
   const Vector3d view(1, 0.5, 0.3);
   double previous = 0.0;
   for (double alpha : {0.5, 1.0, 2.0, 4.0, 16.0}) {
-    const double w = dense(s, weightsOf(s, view, alpha))[0];
+    const double w = denseWeights(s, weightsOf(s, view, alpha))[0];
     EXPECT_GT(w, previous) << "alpha " << alpha;
     previous = w;
   }
@@ -117,7 +111,7 @@ TEST(ViewSphere, EachKeyViewGivesThatKeyAlone) {
       const ViewSphere s = ViewSphere::build(keys, {mode});
       for (std::size_t k = 0; k < keys.size(); ++k) {
         for (double alpha : {0.5, 1.0, 3.0}) {
-          const auto d = dense(s, weightsOf(s, keys[k], alpha));
+          const auto d = denseWeights(s, weightsOf(s, keys[k], alpha));
           for (std::size_t j = 0; j < d.size(); ++j)
             EXPECT_NEAR(d[j], j == k ? 1.0 : 0.0, kWeightTol) << name << ", " << modeName(mode) << ", key " << k;
         }
@@ -164,13 +158,13 @@ TEST(ViewSphere, WeightsAreContinuousAlongGreatCircles) {
       const ViewSphere s = ViewSphere::build(keys, {mode});
       for (const auto& [a, b_raw] : circles) {
         const Vector3d b = (b_raw - b_raw.dot(a) * a).normalized();
-        std::vector<double> previous = dense(s, weightsOf(s, a));
+        std::vector<double> previous = denseWeights(s, weightsOf(s, a));
         const int steps = static_cast<int>(2 * std::numbers::pi / kPathStep);
         double worst = 0.0;
         for (int i = 1; i <= steps; ++i) {
           const double t = i * kPathStep;
           const Vector3d v = std::cos(t) * a + std::sin(t) * b;
-          const std::vector<double> d = dense(s, weightsOf(s, v));
+          const std::vector<double> d = denseWeights(s, weightsOf(s, v));
           double change = 0.0;
           for (std::size_t j = 0; j < d.size(); ++j) change += std::abs(d[j] - previous[j]);
           worst = std::max(worst, change);
@@ -208,10 +202,10 @@ TEST(ViewSphere, SingleKeyCosineIsThePapersFormula) {
     const double c = std::max(0.0, key.dot(v));
     // Paper 3.3: max(0, Vkey.Veye) for the key; the base gets the rest (1 - w), also behind the key.
     ViewWeights w = weightsOf(cosine, v);
-    EXPECT_NEAR(dense(cosine, w)[0], c, kWeightTol);
+    EXPECT_NEAR(denseWeights(cosine, w)[0], c, kWeightTol);
     EXPECT_NEAR(w.base, 1.0 - c, kWeightTol);
     w = weightsOf(cosine2, v);
-    EXPECT_NEAR(dense(cosine2, w)[0], c * c, kWeightTol);
+    EXPECT_NEAR(denseWeights(cosine2, w)[0], c * c, kWeightTol);
   }
 }
 
@@ -220,13 +214,13 @@ TEST(ViewSphere, TwoKeyCosineBlendsAlongTheArcAndFallsOffAcrossIt) {
   const ViewSphere s = ViewSphere::build(std::vector<Vector3d>{a, b}, {Uncovered::Cosine});
   // On the arc: chord-barycentric weights, no base.
   const Vector3d mid = (a + b).normalized();
-  auto d = dense(s, weightsOf(s, mid));
+  auto d = denseWeights(s, weightsOf(s, mid));
   EXPECT_NEAR(d[0], 0.5, kWeightTol);
   EXPECT_NEAR(d[1], 0.5, kWeightTol);
   EXPECT_NEAR(d[2], 0.0, kWeightTol);
   // 30 degrees off the arc's middle, straight up: falloff cos(30 deg) of the same 50/50 blend.
   const Vector3d off = std::cos(std::numbers::pi / 6) * mid + std::sin(std::numbers::pi / 6) * Vector3d(0, 1, 0);
-  d = dense(s, weightsOf(s, off));
+  d = denseWeights(s, weightsOf(s, off));
   const double c = std::cos(std::numbers::pi / 6);
   EXPECT_NEAR(d[0], 0.5 * c, kWeightTol);
   EXPECT_NEAR(d[1], 0.5 * c, kWeightTol);
@@ -239,7 +233,7 @@ TEST(ViewSphere, CosineModeIsPlainBarycentricInsideTheKeys) {
   const Vector3d inside = (keys[0] + keys[1] + keys[2]).normalized();
   const ViewWeights w = weightsOf(s, inside);
   EXPECT_NEAR(w.base, 0.0, kWeightTol);
-  const auto d = dense(s, w);
+  const auto d = denseWeights(s, w);
   for (int k = 0; k < 3; ++k) EXPECT_NEAR(d[k], 1.0 / 3, kWeightTol);
 }
 

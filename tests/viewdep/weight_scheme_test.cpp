@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "support/dense_weights.h"
 #include "support/random_direction.h"
 #include "support/test_meshes.h"
 #include "vdg/geom/error.h"
@@ -37,18 +38,12 @@ constexpr double kPathStepRad = 2e-3;  // the coarser of the two steps
 constexpr int kRandomViews = 10000;
 constexpr int kPaths = 16;
 
-std::vector<double> dense(const ViewSphere& s, const ViewWeights& w) {
-  std::vector<double> d(s.keyCount() + 1, 0.0);
-  for (int k = 0; k < 3; ++k)
-    if (w.key[k] >= 0) d[static_cast<std::size_t>(w.key[k])] += w.weight[k];
-  d.back() += w.base;
-  return d;
-}
+using testing::denseWeights;
 
 std::vector<double> denseAt(const ViewSphere& s, const Vector3d& view, double sharpness = 1.0) {
   ViewWeights w;
   EXPECT_TRUE(s.weights(view, sharpness, w)) << view.transpose();
-  return dense(s, w);
+  return denseWeights(s, w);
 }
 
 Vector3d fromAngles(double azimuth_deg, double elevation_deg) {
