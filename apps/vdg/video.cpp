@@ -29,18 +29,32 @@ namespace {
 namespace fs = std::filesystem;
 
 // A fresh empty file beside `real` with the extension of `video` (ffmpeg picks the format from
-// it), carrying the mode the target has, or would get as a new file.
-std::string makeTemporaryBeside(const std::string& real, const std::string& where, const std::string& video) {
+// it), carrying the mode the target has, or would get as a new file. Its name is registered for
+// removal on an interrupt BEFORE the file is created (O_EXCL), as StagedFile does: an interrupt
+// between the two would otherwise leave it behind. Returns the name; `token` is keepOnInterrupt's.
+std::string makeTemporaryBeside(const std::string& real, const std::string& where, const std::string& video,
+                                int& token) {
+  constexpr int kAttempts = 16;
   const std::string ext = fs::path(video).extension().string();
-  std::string name = (fs::path(real).parent_path() / (".vdg-XXXXXX" + ext)).string();
-  const int fd = ::mkstemps(name.data(), static_cast<int>(ext.size()));
-  if (fd < 0) throw Error(where + ": cannot write file: " + std::strerror(errno));
   const mode_t mask = ::umask(0);  // the tool is single-threaded here: read the umask and put it back
   ::umask(mask);
   struct stat existing {};
-  (void)::fchmod(fd, ::stat(real.c_str(), &existing) == 0 ? existing.st_mode & 07777 : 0666 & ~mask);
-  ::close(fd);
-  return name;
+  const mode_t mode = ::stat(real.c_str(), &existing) == 0 ? existing.st_mode & 07777 : 0666 & ~mask;
+  for (int attempt = 0; attempt < kAttempts; ++attempt) {
+    const std::string name = temporaryPathFor(real) + ext;
+    token = removeOnInterrupt(name);
+    const int fd = ::open(name.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
+    if (fd >= 0) {
+      (void)::fchmod(fd, mode);
+      ::close(fd);
+      return name;
+    }
+    const int err = errno;
+    keepOnInterrupt(token);  // not ours: never remove it
+    token = -1;
+    if (err != EEXIST) throw Error(where + ": cannot write file: " + std::strerror(err));
+  }
+  throw Error(where + ": cannot write file: no free temporary name beside it");
 }
 
 // What became of one ffmpeg run.
@@ -208,11 +222,12 @@ void encodeVideo(const std::string& where, const std::string& video, const Video
   struct stat existing {};
   if (::stat(real.c_str(), &existing) == 0 && !S_ISREG(existing.st_mode))
     throw Error(where + ": is not a regular file; a video is written only to a file");
-  const std::string temp = makeTemporaryBeside(real, where, video);
+  int token = -1;
+  const std::string temp = makeTemporaryBeside(real, where, video, token);
   struct Forget {  // the temp file is the interrupt handler's to remove until this call ends
     int token;
     ~Forget() { keepOnInterrupt(token); }
-  } const forget{removeOnInterrupt(temp)};
+  } const forget{token};
   const double seconds = ffmpegTimeoutSeconds(frames.count);
   std::vector<std::string> args{"-loglevel",
                                 "error",
