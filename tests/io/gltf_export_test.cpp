@@ -599,7 +599,9 @@ TEST(GltfExport, BadExtrasAreRefusedByTheReader) {
   EXPECT_EQ(refused([](auto& e) { e.erase("targetNames"); }), "m.glb: mesh extras: missing key 'targetNames'");
   EXPECT_EQ(refused([](auto& e) { e["vdg"]["version"] = 4; }).rfind("m.glb: mesh extras: 'vdg'.'version': ", 0), 0u);
   EXPECT_NE(refused([](auto& e) { e["vdg"]["version"] = 4; }).find("got 4"), std::string::npos);
-  EXPECT_EQ(refused([](auto& e) { e["vdg"]["weights"] = {{"scheme", "smooth"}}; }),
+  EXPECT_EQ(refused([](auto& e) {
+              e["vdg"]["weights"] = {{"scheme", "smooth"}};
+            }),
             "m.glb: mesh extras: 'vdg'.'weights': needs extras version 3");
   EXPECT_NE(refused([](auto& e) {
               e["vdg"]["version"] = 3;
