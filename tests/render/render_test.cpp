@@ -9,11 +9,14 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <functional>
+#include <iomanip>
 #include <limits>
 #include <map>
 #include <numbers>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -251,6 +254,91 @@ TEST(Shading, HueRuleGreysAreCoolAndWhitesStayWhite) {
   const ShadingConstants at = hueAdjustedConstants({}, {0.5f, 0.1f, 0.1f});
   EXPECT_NEAR(below.k2, at.k2, 1e-3f);
   EXPECT_NEAR(below.k4, at.k4, 1e-3f);
+}
+
+// The hue rules' record for the web viewer: tests/render/golden/hue_rules.txt holds, for a table of
+// colours covering every rule and each boundary (saturation 0.2; hues 20, 250, 330; values 0.2 and
+// 0.5), the caller's k1..k4 and hueAdjustedConstants' result, and the ShadingParams defaults. This
+// test checks the C++ against the file (VDG_UPDATE_GOLDEN=1 rewrites it); the Node test
+// tests/web/node/hue_rules.mjs checks web/view/shading.js against the same file.
+struct HueRuleRow {
+  const char* rule;  // the rule the colour is meant to exercise (a label for the reader)
+  Rgb base;
+  ShadingConstants caller;
+};
+
+std::vector<HueRuleRow> hueRuleRecordRows() {
+  const ShadingConstants one{}, caller{0.8f, 1.3f, 0.7f, 0.6f};
+  return {
+      {"neutral", {1.0f, 1.0f, 1.0f}, one},
+      {"neutral", {0.6f, 0.6f, 0.6f}, one},
+      {"neutral", {1.0f, 0.81f, 0.81f}, one},
+      {"neutral-edge", {1.0f, 0.8f, 0.8f}, one},
+      {"neutral-edge", {0.5f, 0.4f, 0.4f}, one},
+      {"red", {1.0f, 0.79f, 0.79f}, one},
+      {"neutral", {0.95f, 0.93f, 0.9f}, caller},
+      {"purple", {0.5f, 0.2f, 0.7f}, one},
+      {"purple", {0.55f, 0.36f, 0.78f}, one},
+      {"purple", {0.5f, 0.2f, 0.7f}, caller},
+      {"other", {0.37f, 0.25f, 1.0f}, one},
+      {"hue-250-edge", {0.375f, 0.25f, 1.0f}, one},
+      {"purple", {0.38f, 0.25f, 1.0f}, one},
+      {"purple", {1.0f, 0.0f, 0.51f}, one},
+      {"hue-330-edge", {1.0f, 0.0f, 0.5f}, one},
+      {"red", {0.8f, 0.1f, 0.1f}, one},
+      {"red", {0.8f, 0.1f, 0.1f}, caller},
+      {"red", {0.75f, 0.24f, 0.0f}, one},
+      {"hue-20-edge", {0.75f, 0.25f, 0.0f}, one},
+      {"other", {0.75f, 0.26f, 0.0f}, one},
+      {"other", {0.2f, 0.7f, 0.2f}, one},
+      {"other", {0.2f, 0.3f, 0.9f}, one},
+      {"other", {0.9f, 0.8f, 0.1f}, caller},
+      {"dark", {0.0f, 0.0f, 0.0f}, one},
+      {"dark", {0.1f, 0.1f, 0.1f}, one},
+      {"dark", {64 / 255.0f, 64 / 255.0f, 64 / 255.0f}, one},
+      {"dark", {0.4f, 0.1f, 0.1f}, one},
+      {"dark", {0.4f, 0.1f, 0.1f}, caller},
+      {"dark", {0.25f, 0.1f, 0.3f}, one},
+      {"dark", {0.1f, 0.35f, 0.15f}, one},
+      {"value-0.2-edge", {0.2f, 0.03f, 0.03f}, one},
+      {"dark", {0.21f, 0.03f, 0.03f}, one},
+      {"dark", {0.4999f, 0.1f, 0.1f}, one},
+      {"value-0.5-edge", {0.5f, 0.1f, 0.1f}, one},
+      {"value-0.5-edge", {0.5f, 0.5f, 0.5f}, one},
+  };
+}
+
+TEST(Shading, HueRulesMatchTheWebViewersRecord) {
+  const std::string path = kSourceDir + "/tests/render/golden/hue_rules.txt";
+  std::ostringstream text;
+  text << std::setprecision(9);  // round-trips a float
+  text << "# vdg's hue rules (include/vdg/render/shading.h), recorded by vdg_render_tests\n"
+          "# (Shading.HueRulesMatchTheWebViewersRecord; VDG_UPDATE_GOLDEN=1 rewrites this file) and read by\n"
+          "# tests/web/node/hue_rules.mjs, which checks web/view/shading.js against it.\n"
+          "# params ka warm(3) cool(3) light_warm(3) light_cool(3)  (ShadingParams' defaults)\n"
+          "# rule r g b  caller k1 k2 k3 k4  ->  k1 k2 k3 k4  (hueAdjustedConstants)\n";
+  const ShadingParams p;
+  text << "params " << p.ka;
+  for (const auto* v : {&p.warm, &p.cool, &p.light_warm, &p.light_cool})
+    for (const float x : *v) text << ' ' << x;
+  text << '\n';
+  for (const HueRuleRow& row : hueRuleRecordRows()) {
+    const ShadingConstants k = hueAdjustedConstants(row.caller, row.base);
+    text << row.rule << ' ' << row.base[0] << ' ' << row.base[1] << ' ' << row.base[2] << "  " << row.caller.k1 << ' '
+         << row.caller.k2 << ' ' << row.caller.k3 << ' ' << row.caller.k4 << "  " << k.k1 << ' ' << k.k2 << ' ' << k.k3
+         << ' ' << k.k4 << '\n';
+  }
+  if (const char* update = std::getenv("VDG_UPDATE_GOLDEN"); update && std::string(update) == "1") {
+    std::ofstream(path) << text.str();
+    std::printf("updated %s\n", path.c_str());
+    return;
+  }
+  std::ifstream in(path);
+  ASSERT_TRUE(in) << "missing " << path << " (run with VDG_UPDATE_GOLDEN=1)";
+  std::ostringstream recorded;
+  recorded << in.rdbuf();
+  EXPECT_EQ(recorded.str(), text.str()) << path << " no longer matches hueAdjustedConstants or ShadingParams: "
+                                        << "update it (VDG_UPDATE_GOLDEN=1) and web/view/shading.js with it";
 }
 
 TEST(Shading, EquationMatchesThePaper) {

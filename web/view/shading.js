@@ -39,28 +39,123 @@ const VERTEX_BODY = /* glsl */ `
   #include <project_vertex>
 `;
 
+// The hue rules' thresholds, those of include/vdg/render/shading.h (kNeutralSaturation, kDarkValue,
+// kLitValue): below the first saturation a colour is neutral; the lights fade out between the
+// two values.
+export const HUE_RULES = { neutralSaturation: 0.2, darkValue: 0.2, litValue: 0.5 };
+
+const f32 = Math.fround;
+
 /**
- * The k1..k4 of the paper's hue rule for a base colour (src/render/shading.cpp, hueAdjustedConstants).
+ * HSV of a colour, as src/render/shading.cpp's toHsv computes it: in 32-bit floats (every step
+ * rounded with Math.fround), so that a colour on a rule's boundary falls on the same side as in
+ * `vdg render`.
+ * @param {number} r @param {number} g @param {number} b
+ * @returns {{h: number, s: number, v: number}} hue in degrees [0, 360), saturation and value in [0, 1]
+ */
+export function toHsv(r, g, b) {
+  [r, g, b] = [f32(r), f32(g), f32(b)];
+  const mx = Math.max(r, g, b), mn = Math.min(r, g, b);
+  const delta = f32(mx - mn);
+  const out = { h: 0, s: mx > 0 ? f32(delta / mx) : 0, v: mx };
+  if (delta <= 0) return out;
+  let h;
+  if (mx === r) {
+    h = f32(60 * (f32(f32(g - b) / delta) % 6)); // % is C's fmod (the dividend's sign)
+  } else if (mx === g) {
+    h = f32(60 * f32(f32(f32(b - r) / delta) + 2));
+  } else {
+    h = f32(60 * f32(f32(f32(r - g) / delta) + 4));
+  }
+  if (h < 0) h = f32(h + 360);
+  out.h = h;
+  return out;
+}
+
+/**
+ * The hue rules (Rademacher 99, section 3.2.4, and vdg's rules for neutral and dark colours; the
+ * table in docs/render.md): the caller's k1..k4 adjusted for a base colour, as
+ * src/render/shading.cpp's hueAdjustedConstants does, in 32-bit floats.
+ *   neutral (saturation < 0.2): k2 = 0 (no warm light: cool whites and greys);
+ *   purple (hue in [250, 330)): k4 = 2 k4, k2 = 0.25 k2;
+ *   red (hue < 20 or >= 330): k4 = 1.5 k4, k2 = 0.5 k2;
+ *   then dark (value < 0.5, any hue): k2 and k4 times t = max(0, (value - 0.2) / 0.3).
+ * @param {number[]} k the caller's [k1, k2, k3, k4]
+ * @param {number[]} rgb the base colour, each channel in [0, 1]
+ * @returns {number[]} [k1, k2, k3, k4]
+ */
+export function hueAdjusted(k, rgb) {
+  const { h, s, v } = toHsv(rgb[0], rgb[1], rgb[2]);
+  const out = k.map(f32);
+  const neutral = f32(HUE_RULES.neutralSaturation), dark = f32(HUE_RULES.darkValue), lit = f32(HUE_RULES.litValue);
+  if (s < neutral) {
+    out[1] = 0;
+  } else if (h >= 250 && h < 330) {
+    out[3] = f32(2 * out[3]);
+    out[1] = f32(0.25 * out[1]);
+  } else if (h < 20 || h >= 330) {
+    out[3] = f32(1.5 * out[3]);
+    out[1] = f32(0.5 * out[1]);
+  }
+  if (v < lit) {
+    const t = Math.max(0, f32(f32(v - dark) / f32(lit - dark)));
+    out[1] = f32(out[1] * t);
+    out[3] = f32(out[3] * t);
+  }
+  return out;
+}
+
+/**
+ * The k1..k4 of the hue rules for a base colour and the paper's k1..k4 = 1 (ShadingParams::k).
  * @param {THREE.Color} base
  * @returns {THREE.Vector4}
  */
 export function hueConstants(base) {
-  const hsl = { h: 0, s: 0, l: 0 };
-  const max = Math.max(base.r, base.g, base.b), min = Math.min(base.r, base.g, base.b);
-  const saturation = max > 0 ? (max - min) / max : 0;
-  base.getHSL(hsl, THREE.LinearSRGBColorSpace);
-  const hue = hsl.h * 360;
-  const k = new THREE.Vector4(1, 1, 1, 1);
-  if (saturation < 0.2) {
-    if (max > 0.6) k.y = 0; // soft, cool whites: warm light off
-  } else if (hue >= 250 && hue < 330) {
-    k.w = 2; // purples: intensified cool light
-  } else if (hue < 20 || hue >= 330) {
-    k.w = 1.5; // reds: more cool, less warm
-    k.y = 0.5;
-  }
-  return k;
+  return new THREE.Vector4().fromArray(hueAdjusted([1, 1, 1, 1], [base.r, base.g, base.b]));
 }
+
+// The same rules in GLSL, for a textured material's Cbase = base colour x texel, a different colour
+// at every fragment: src/render/shaders.cpp's hsv() and hueAdjusted(), which vdg render runs per
+// texel, line for line.
+const HUE_RULES_GLSL = /* glsl */ `
+  vec3 vdgHsv(vec3 c) {
+    float mx = max(c.r, max(c.g, c.b));
+    float mn = min(c.r, min(c.g, c.b));
+    float delta = mx - mn;
+    vec3 o = vec3(0.0, mx > 0.0 ? delta / mx : 0.0, mx);
+    if (delta <= 0.0) return o;
+    float h;
+    if (mx == c.r) {
+      h = 60.0 * mod((c.g - c.b) / delta, 6.0);
+    } else if (mx == c.g) {
+      h = 60.0 * ((c.b - c.r) / delta + 2.0);
+    } else {
+      h = 60.0 * ((c.r - c.g) / delta + 4.0);
+    }
+    if (h < 0.0) h += 360.0;
+    o.x = h;
+    return o;
+  }
+  vec4 vdgHueAdjusted(vec4 k, vec3 base) {
+    vec3 c = vdgHsv(base);
+    vec4 o = k;
+    if (c.y < ${HUE_RULES.neutralSaturation.toFixed(3)}) {
+      o.y = 0.0;
+    } else if (c.x >= 250.0 && c.x < 330.0) {
+      o.w = 2.0 * k.w;
+      o.y = 0.25 * k.y;
+    } else if (c.x < 20.0 || c.x >= 330.0) {
+      o.w = 1.5 * k.w;
+      o.y = 0.5 * k.y;
+    }
+    if (c.z < ${HUE_RULES.litValue.toFixed(3)}) {
+      float t = max(0.0, (c.z - ${HUE_RULES.darkValue.toFixed(3)}) / ${(HUE_RULES.litValue - HUE_RULES.darkValue).toFixed(3)});
+      o.y *= t;
+      o.w *= t;
+    }
+    return o;
+  }
+`;
 
 /**
  * The warm/cool material for one glTF material (its base colour and base colour texture).
@@ -101,13 +196,18 @@ export function warmCoolMaterial(source) {
       uniform bool uHasMap;
       varying vec3 vNormalView;
       varying vec2 vTexCoord;
+      ${HUE_RULES_GLSL}
       void main() {
         vec3 base = uBase;
-        if (uHasMap) base *= texture2D(uMap, vTexCoord).rgb;
+        vec4 k = uK;
+        if (uHasMap) {
+          base *= texture2D(uMap, vTexCoord).rgb;
+          k = vdgHueAdjusted(vec4(1.0), base); // per texel, as vdg render does
+        }
         vec3 n = normalize(vNormalView);
         if (!gl_FrontFacing) n = -n;
         float d1 = max(dot(uLightWarm, n), 0.0), d2 = max(dot(uLightCool, n), 0.0);
-        vec3 c = uKa * base + d1 * (uWarm - base * uK.x) * uK.y + d2 * (uCool - base * uK.z) * uK.w;
+        vec3 c = uKa * base + d1 * (uWarm - base * k.x) * k.y + d2 * (uCool - base * k.z) * k.w;
         gl_FragColor = vec4(clamp(c, 0.0, 1.0), 1.0);
       }`,
     side: THREE.FrontSide,
