@@ -36,7 +36,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr int kMaxFrames = 100000;
+constexpr int kMaxMorphFrames = 100000;
 constexpr double kStrokeWidth = 2.0;  // pixels, the drawn inbetweens' line width
 
 struct MorphOptions {
@@ -53,9 +53,9 @@ void parseFrames(MorphOptions& opt, bool count_given) {
   if (opt.frames_range.empty()) return;
   if (isPlainCount(opt.frames_range) && !count_given) {
     noteDeprecated("--frames N", "--count N");
-    const auto n = parseNumberIn(opt.frames_range, {1, End::kClosed, kMaxFrames, End::kClosed, true});
+    const auto n = parseNumberIn(opt.frames_range, {1, End::kClosed, kMaxMorphFrames, End::kClosed, true});
     if (!n)
-      throw UsageError("--frames: expected a count in [1, " + std::to_string(kMaxFrames) + "], got " +
+      throw UsageError("--frames: expected a count in [1, " + std::to_string(kMaxMorphFrames) + "], got " +
                        quotedText(opt.frames_range));
     opt.frames = static_cast<int>(*n);
     return;
@@ -326,7 +326,7 @@ void addMorphCommand(CLI::App& app) {
   sub->add_option("--count", opt->frames,
                   "A sequence of N frames at t = i/(N-1), written to -o DIR as frame_0000.png ... (N >= 2; "
                   "with --drawings N >= 1, spanning the keys' times)")
-      ->check(wholeNumber(1, kMaxFrames));
+      ->check(wholeNumber(1, kMaxMorphFrames));
   sub->add_option("--frames", opt->frames_range,
                   "Write only frames A-B (or N) of the --count N (a farm node's share); the old '--frames N' for "
                   "a count is still read as --count N in this version, with a deprecation note");

@@ -36,7 +36,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr long kMaxFrames = 100000;
+constexpr long kMaxMorph3dFrames = 100000;
 // The sequence camera (DIR/camera.json): a three-quarter view from above, so that a hole through
 // the shape shows, at the distance where the sphere holding every frame fills the view with a
 // margin.
@@ -273,7 +273,7 @@ void addMorph3dCommand(CLI::App& app) {
       ->check(numberIn({.lo = 0, .lo_end = End::kClosed, .hi = 1, .hi_end = End::kClosed}))
       ->each([opt](const std::string&) { opt->t_given = true; });
   sub->add_option("--count", opt->frames, "A sequence of N frames, t = i/(N-1)")
-      ->check(wholeNumber(2, kMaxFrames))
+      ->check(wholeNumber(2, kMaxMorph3dFrames))
       ->each([opt](const std::string&) { opt->frames_given = true; });
   sub->add_option("--frames", opt->frames_text,
                   "The old spelling of --count N, read as such in this version with a deprecation note (a range "
@@ -285,9 +285,9 @@ void addMorph3dCommand(CLI::App& app) {
               "--count N, got " +
               quotedText(text));
         noteDeprecated("--frames N", "--count N");
-        const auto n = parseNumberIn(text, {2, End::kClosed, kMaxFrames, End::kClosed, true});
+        const auto n = parseNumberIn(text, {2, End::kClosed, kMaxMorph3dFrames, End::kClosed, true});
         if (!n)
-          throw UsageError("--frames: expected a count in [2, " + std::to_string(kMaxFrames) + "], got " +
+          throw UsageError("--frames: expected a count in [2, " + std::to_string(kMaxMorph3dFrames) + "], got " +
                            quotedText(text));
         opt->frames = static_cast<long>(*n);
         opt->frames_given = true;

@@ -21,7 +21,7 @@
 namespace vdg::cli {
 namespace {
 
-constexpr long kMaxSamples = 1000000;
+constexpr long kMaxCurveSamples = 1000000;
 
 struct Sampled {
   std::vector<std::string> header;  // parameter name, then the components
@@ -281,7 +281,7 @@ void addSampleCommand(CLI::App& app) {
       ->required();
   cmd->add_option("--at", opt->at, "Comma-separated parameter values T1,T2,... (time, or arc-length fraction)");
   cmd->add_option("--samples", opt->samples, "N evenly spaced samples over the spec's range")
-      ->check(wholeNumber(1, kMaxSamples));
+      ->check(wholeNumber(1, kMaxCurveSamples));
   cmd->add_flag("--csv", opt->csv, "Print CSV: a header line, then the parameter and the value's components");
   cmd->add_option("-o,--output", opt->svg, "Write an SVG plot to this file instead of printing");
   cmd->callback([opt]() {

@@ -19,7 +19,6 @@
 namespace vdg::anim {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 constexpr double kTransportOnlyDeg = 10.0;  // within this angle of world up: pure parallel transport
 constexpr double kUprightDeg = 30.0;        // beyond this angle: exactly the projected world up
 constexpr double kTinyDirection = 1e-12;
@@ -137,7 +136,8 @@ CameraPath CameraPath::build(const RawCameraPath& raw, const std::string& where)
       break;
     }
   }
-  const double sin_lo = std::sin(kTransportOnlyDeg * kPi / 180.0), sin_hi = std::sin(kUprightDeg * kPi / 180.0);
+  const double sin_lo = std::sin(kTransportOnlyDeg * std::numbers::pi / 180.0),
+               sin_hi = std::sin(kUprightDeg * std::numbers::pi / 180.0);
   for (int i = 0; i < n; ++i) {
     if (const auto d = directionOf(raw_forward[i])) last = *d;
     const Eigen::Vector3d f = last;
@@ -224,7 +224,7 @@ bool CameraPath::evaluate(double t, Camera& out) const {
   if (tilt_) {
     double tilt_deg = 0.0;
     if (!tilt_->evaluate(t, std::span<double>(&tilt_deg, 1))) return false;
-    up = Eigen::AngleAxisd(tilt_deg * kPi / 180.0, -f) * up;
+    up = Eigen::AngleAxisd(tilt_deg * std::numbers::pi / 180.0, -f) * up;
   }
   switch (view_) {
     case ViewMode::kCenterOfInterest:

@@ -32,4 +32,11 @@ bool hasExtension(std::string_view path, std::string_view extension) {
 
 bool hasGltfExtension(std::string_view path) { return hasExtension(path, ".gltf") || hasExtension(path, ".glb"); }
 
+std::string joinedLines(std::string text) {
+  while (!text.empty() && (text.back() == '\n' || text.back() == '\r' || text.back() == ' ')) text.pop_back();
+  for (char& c : text)
+    if (c == '\n' || c == '\r') c = ' ';
+  return text;
+}
+
 }  // namespace vdg

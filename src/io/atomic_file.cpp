@@ -21,6 +21,7 @@
 #include <sstream>
 #include <vector>
 
+#include "path_facts.h"
 #include "vdg/geom/error.h"
 
 namespace vdg {
@@ -35,16 +36,6 @@ std::string errnoText(int err) { return std::strerror(err); }
 
 [[noreturn]] void failWrite(const std::string& path, int err) {
   throw Error(path + ": cannot write file: " + errnoText(err));
-}
-
-// What a path names, for messages about files vdg will not write.
-std::string kindOf(mode_t mode) {
-  if (S_ISDIR(mode)) return "a folder";
-  if (S_ISCHR(mode)) return "a character device";
-  if (S_ISBLK(mode)) return "a block device";
-  if (S_ISFIFO(mode)) return "a FIFO";
-  if (S_ISSOCK(mode)) return "a socket";
-  return "not a regular file";
 }
 
 // Writes all of `data` to `fd`, retrying short writes and interrupted calls. Returns 0 or errno.
@@ -227,15 +218,6 @@ std::string ownTemporaryPathFor(const std::string& real_target) {
   return (parent.empty() ? fs::path(name) : parent / name).string();
 }
 
-// Whether `inner` is `outer` or a folder beneath it, both real (canonical) paths.
-bool isWithin(const fs::path& inner, const fs::path& outer) {
-  auto o = outer.begin();
-  auto i = inner.begin();
-  for (; o != outer.end(); ++o, ++i)
-    if (i == inner.end() || *i != *o) return false;
-  return true;
-}
-
 // Flushes a folder's entries (a rename) to the disk; best effort, as not every file system can.
 void syncFolder(const std::string& folder) {
   const int fd = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
@@ -304,7 +286,7 @@ std::string checkedOutputPath(const std::string& path) {
   std::error_code ec1, ec2;
   const fs::path link_folder = fs::weakly_canonical(fs::absolute(folderOf(path)), ec1);
   const fs::path real_folder = fs::weakly_canonical(fs::absolute(folderOf(real)), ec2);
-  if (ec1 || ec2 || !isWithin(real_folder, link_folder))
+  if (ec1 || ec2 || !detail::isPathWithin(real_folder, link_folder))
     throw Error(path + ": is a symbolic link to a file outside its folder (" + real + "); not written through");
   return real;
 }
@@ -420,7 +402,8 @@ StagedFile::StagedFile(const std::string& path, std::string_view contents, const
   struct stat st {};
   bool replacing = false;
   if (::stat(target_.c_str(), &st) == 0) {
-    if (!S_ISREG(st.st_mode)) throw Error(path_ + ": is " + kindOf(st.st_mode) + ", not a file vdg can replace");
+    if (!S_ISREG(st.st_mode))
+      throw Error(path_ + ": is " + detail::fileKindText(st.st_mode) + ", not a file vdg can replace");
     replacing = true;
   }
   const int fd = createTemporary(path_, target_, temp_path, temp_path_, interrupt_token_);
@@ -494,7 +477,7 @@ void writeFileAtomically(const std::string& path, std::string_view contents) {
   const std::string real = checkedOutputPath(path);
   if (::stat(real.c_str(), &st) == 0) {
     if (S_ISCHR(st.st_mode) || S_ISFIFO(st.st_mode)) return writeStream(path, real, S_ISFIFO(st.st_mode), contents);
-    if (!S_ISREG(st.st_mode)) throw Error(path + ": is " + kindOf(st.st_mode) + ", not a file");
+    if (!S_ISREG(st.st_mode)) throw Error(path + ": is " + detail::fileKindText(st.st_mode) + ", not a file");
   }
   StagedFile staged(path, contents);
   staged.commit();

@@ -12,6 +12,7 @@
 #include <system_error>
 
 #include "json_reader.h"
+#include "path_facts.h"
 #include "vdg/geom/error.h"
 #include "vdg/io/atomic_file.h"
 
@@ -54,15 +55,6 @@ fs::path realFolderOf(const fs::path& path) {
   std::error_code ec;
   fs::path folder = fs::weakly_canonical(fs::absolute(path, ec).parent_path(), ec);
   return ec ? fs::path() : folder;
-}
-
-// Whether `inner` is `outer` or a folder beneath it.
-bool isWithin(const fs::path& inner, const fs::path& outer) {
-  if (inner.empty() || outer.empty()) return false;
-  auto i = inner.begin();
-  for (auto o = outer.begin(); o != outer.end(); ++o, ++i)
-    if (i == inner.end() || *i != *o) return false;
-  return true;
 }
 
 // Whether `target` is one of `trusted`: the same real folder and the same name.
@@ -133,7 +125,7 @@ void FileTransaction::checkTargets() const {
         throw Error(f.path + ": named twice in one step (it is the same file as " + files_[j].path +
                     "); nothing written");
     const std::string real = checkedOutputPath(f.path);
-    if (!isWithin(realFolderOf(real), journal_folder))
+    if (!detail::isPathWithin(realFolderOf(real), journal_folder))
       throw Error(f.what + ": outside the folder of " + journal_path_ +
                   " (a step writes files in that folder and the folders beneath it); nothing written");
   }

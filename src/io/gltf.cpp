@@ -46,13 +46,6 @@ namespace tg = tinygltf;
 // callbacks see exactly the URI the file wrote (tinygltf also tries "./URI", which is refused).
 constexpr const char* kFolderToken = "<vdg-gltf-folder>";
 
-std::string oneLine(std::string text) {
-  while (!text.empty() && (text.back() == '\n' || text.back() == '\r' || text.back() == ' ')) text.pop_back();
-  for (char& c : text)
-    if (c == '\n' || c == '\r') c = ' ';
-  return text;
-}
-
 std::string idx(const char* array, std::size_t i) { return std::string(array) + "[" + std::to_string(i) + "]"; }
 
 struct FileAccess {
@@ -894,7 +887,7 @@ class Gltf {
                                              static_cast<unsigned int>(bytes.size()), kFolderToken)
                : loader.LoadASCIIFromString(&model_, &err, &warn, json.data(), static_cast<unsigned int>(json.size()),
                                             kFolderToken);
-    if (!access.error.empty() && !ok) throw Error(source + ": buffers: " + oneLine(access.error));
+    if (!access.error.empty() && !ok) throw Error(source + ": buffers: " + joinedLines(access.error));
     if (!ok) refused(json, access);
     checkStructure();
   }

@@ -20,6 +20,7 @@
 #include <span>
 #include <vector>
 
+#include "gltf_codes.h"
 #include "gltf_compress_pass.h"
 #include "vdg/geom/error.h"
 
@@ -48,14 +49,10 @@ static_assert(std::endian::native == std::endian::little, "the glTF buffer is wr
 
 using OJson = nlohmann::ordered_json;
 
-constexpr int kByte = 5120, kUnsignedByte = 5121, kShort = 5122, kUnsignedShort = 5123, kUnsignedInt = 5125,
-              kFloat = 5126;
-constexpr int kArrayBuffer = 34962, kElementArrayBuffer = 34963;
+using namespace gltf_codes;
 // The largest magnitude of a normalized signed integer: value = q / kMax (glTF 2.0, section 3.11).
 constexpr double kShortMax = 32767.0, kByteMax = 127.0, kUnsignedShortMax = 65535.0;
 constexpr std::array<double, 3> kNoOffset = {0.0, 0.0, 0.0};
-
-std::size_t pad4(std::size_t n) { return (n + 3) & ~std::size_t{3}; }
 
 std::size_t componentBytes(int type) {
   switch (type) {

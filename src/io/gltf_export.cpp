@@ -20,6 +20,7 @@
 #include <tuple>
 
 #include "camera_fields.h"
+#include "gltf_codes.h"
 #include "gltf_compress_pass.h"
 #include "json_reader.h"
 #include "model_names.h"
@@ -41,9 +42,7 @@ static_assert(std::endian::native == std::endian::little, "the glTF buffer is wr
 
 using OJson = nlohmann::ordered_json;
 
-// glTF constants (glTF 2.0 section 5.1.1 and 5.11.1).
-constexpr int kUnsignedByte = 5121, kUnsignedShort = 5123, kUnsignedInt = 5125, kFloat = 5126;
-constexpr int kArrayBuffer = 34962, kElementArrayBuffer = 34963;
+using namespace gltf_codes;
 constexpr int kTriangles = 4;
 constexpr std::uint32_t kGlbMagic = 0x46546C67;  // "glTF"
 constexpr std::uint32_t kGlbVersion = 2;
@@ -52,8 +51,6 @@ constexpr std::uint32_t kChunkBin = 0x004E4942;   // "BIN\0"
 // A NORMAL accessor's vectors must be unit length (glTF 2.0 section 3.7.2.1); the validator allows
 // a small float error, this is looser than float rounding and far tighter than a wrong normal.
 constexpr double kUnitNormalTol = 1e-4;
-
-std::size_t pad4(std::size_t n) { return (n + 3) & ~std::size_t{3}; }
 
 // The binary buffer and the bufferViews / accessors describing it.
 class BufferBuilder {

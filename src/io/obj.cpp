@@ -27,14 +27,6 @@ void appendFloat(std::string& out, float value) {
   out.append(buffer, result.ptr);
 }
 
-// tinyobjloader's messages can span several lines; keep them to one.
-std::string oneLine(std::string text) {
-  while (!text.empty() && (text.back() == '\n' || text.back() == '\r')) text.pop_back();
-  for (char& c : text)
-    if (c == '\n') c = ' ';
-  return text;
-}
-
 constexpr std::size_t kShownToken = 32;  // bytes of a token or name a message shows
 // Faces of more corners than this are fan-triangulated here (corner 1 with corners k and k + 1:
 // n - 2 triangles, linear time, exact for convex faces); smaller ones go to tinyobjloader's ear
@@ -548,7 +540,7 @@ TriMesh parseObj(const std::string& text, const std::string& source, const MeshR
   tinyobj::ObjReader reader;
   // The checked text has no mtllib line: tinyobjloader opens no file.
   if (!reader.ParseFromString(checked, std::string(), config)) {
-    throw Error(source + ": cannot read OBJ: " + oneLine(reader.Error()));
+    throw Error(source + ": cannot read OBJ: " + joinedLines(reader.Error()));
   }
   const auto& attrib = reader.GetAttrib();
   TriMesh mesh;

@@ -11,19 +11,11 @@
 #include <cstring>
 #include <mutex>
 
+#include "path_facts.h"
 #include "vdg/geom/error.h"
 
 namespace vdg {
 namespace {
-
-std::string kindOf(mode_t mode) {
-  if (S_ISDIR(mode)) return "a folder";
-  if (S_ISFIFO(mode)) return "a FIFO (named pipe)";
-  if (S_ISCHR(mode)) return "a character device";
-  if (S_ISBLK(mode)) return "a block device";
-  if (S_ISSOCK(mode)) return "a socket";
-  return "not a regular file";
-}
 
 // "a model", "an edit script".
 std::string withArticle(const std::string& noun) {
@@ -83,7 +75,7 @@ int openRegular(const std::string& path, const std::string& what, struct stat& i
     throw Error(path + ": cannot open " + what + ": " + std::strerror(err));
   }
   if (::fstat(fd, &info) != 0 || !S_ISREG(info.st_mode)) {
-    const std::string kind = S_ISREG(info.st_mode) ? "cannot be examined" : "is " + kindOf(info.st_mode);
+    const std::string kind = S_ISREG(info.st_mode) ? "cannot be examined" : "is " + detail::fileKindText(info.st_mode);
     ::close(fd);
     throw Error(path + ": " + kind + ", not " + withArticle(what) + " file");
   }

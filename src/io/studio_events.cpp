@@ -124,7 +124,7 @@ InputEvent readEvent(const Json& j, const Ctx& ctx) {
   return e;
 }
 
-InputScript scriptFrom(const Json& doc, const std::string& source) {
+InputScript inputScriptFrom(const Json& doc, const std::string& source) {
   const Ctx ctx{source, ""};
   io::formatVersion(doc, ctx, "input event files", kInputScriptVersion, kInputScriptVersion,
                     /*missing=*/kInputScriptVersion);
@@ -200,11 +200,11 @@ std::string_view inputEventTypeName(InputEventType type) {
 }
 
 InputScript parseInputScript(const std::string& text, const std::string& source) {
-  return scriptFrom(io::parseJson(text, source), source);
+  return inputScriptFrom(io::parseJson(text, source), source);
 }
 
 InputScript readInputScript(const std::string& path) {
-  return scriptFrom(io::readJsonFile(path, "input event file"), path);
+  return inputScriptFrom(io::readJsonFile(path, "input event file"), path);
 }
 
 std::string formatInputScript(const InputScript& script) {
@@ -225,7 +225,7 @@ std::string formatInputScript(const InputScript& script) {
   text += script.events.empty() ? "]\n}\n" : "\n  ]\n}\n";
   // The reader's rules are the only ones: what it refuses (a NaN, written as null; a frame out of
   // range or decreasing; an unknown key name) is refused here, naming the event.
-  scriptFrom(io::parseJson(text, where), where);
+  inputScriptFrom(io::parseJson(text, where), where);
   return text;
 }
 

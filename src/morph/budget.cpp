@@ -10,14 +10,6 @@
 namespace vdg::morph {
 namespace {
 
-// `v` rounded up to 3 significant digits.
-double roundUp3(double v) {
-  if (!(v > 0) || !std::isfinite(v)) return v;
-  const double scale = std::pow(10.0, 2 - std::floor(std::log10(v)));
-  const double r = std::ceil(v * scale - 1e-9) / scale;
-  return std::isfinite(r) ? r : v;
-}
-
 bool fits(const std::function<double(double)>& count, double size, double limit) {
   const double n = count(size);
   return n <= limit;  // false for NaN
@@ -32,6 +24,13 @@ std::string operationsText(double operations) {
   else
     std::snprintf(text, sizeof text, "%.3g", operations);
   return text;
+}
+
+double roundUpTo3Digits(double v) {
+  if (!(v > 0) || !std::isfinite(v)) return v;
+  const double scale = std::pow(10.0, 2 - std::floor(std::log10(v)));
+  const double r = std::ceil(v * scale - 1e-9) / scale;
+  return std::isfinite(r) ? r : v;
 }
 
 void checkBudget(double operations, double budget, const std::string& what, const std::string& detail,
@@ -59,8 +58,8 @@ double smallestFittingSize(const std::function<double(double)>& count, double si
     (fits(count, mid, limit) ? hi : lo) = mid;
   }
   // Round up to the 3 digits a message shows, stepping up while the rounded size does not fit.
-  double shown = roundUp3(hi);
-  for (int i = 0; i < 1000 && !fits(count, shown, limit); ++i) shown = roundUp3(shown * 1.001);
+  double shown = roundUpTo3Digits(hi);
+  for (int i = 0; i < 1000 && !fits(count, shown, limit); ++i) shown = roundUpTo3Digits(shown * 1.001);
   return fits(count, shown, limit) ? shown : hi;
 }
 

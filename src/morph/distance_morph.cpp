@@ -28,6 +28,7 @@
 #include <string>
 #include <vector>
 
+#include "d3.h"
 #include "vdg/geom/error.h"
 #include "vdg/morph/budget.h"
 #include "vdg/morph/mesh_checks.h"
@@ -36,7 +37,7 @@
 namespace vdg::morph {
 namespace {
 
-using Vec3 = std::array<double, 3>;
+using Vec3 = detail::D3;
 
 // Bytes per active voxel of a float volume: the 4-byte value plus the leaf's masks and the tree
 // above the leaves (OpenVDB's memUsage of a filled 8^3 leaf is about 4.3 bytes per voxel).
@@ -57,8 +58,8 @@ Vec3 vertex(const TriMesh& m, std::int32_t i) {
   const auto k = static_cast<std::size_t>(i) * 3;
   return {m.positions[k], m.positions[k + 1], m.positions[k + 2]};
 }
-Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+using detail::dot;
+using detail::sub;
 
 // Squared distance from p to triangle (a, b, c) (Ericson, Real-Time Collision Detection, 5.1.5:
 // the closest point by Voronoi regions of the vertices, edges and face).
@@ -153,12 +154,6 @@ std::string number(double v) {
   return text;
 }
 
-// `v` rounded up to 3 significant digits (what number() shows).
-double roundUp3(double v) {
-  const double scale = std::pow(10.0, 2 - std::floor(std::log10(v)));
-  return std::ceil(v * scale - 1e-9) / scale;
-}
-
 openvdb::FloatGrid::Ptr distanceVolume(const TriMesh& mesh, const openvdb::math::Transform::Ptr& transform,
                                        double exterior_voxels) {
   std::vector<openvdb::Vec3s> points(mesh.vertexCount());
@@ -214,7 +209,7 @@ DistanceMorph::DistanceMorph(const TriMesh& a, const TriMesh& b, const DistanceM
     double enough = voxel * std::cbrt(voxels / limit);
     bool found = false;
     for (int tries = 0; tries < 1000 && std::isfinite(enough) && enough > 0; ++tries) {
-      const double shown = roundUp3(enough);
+      const double shown = roundUpTo3Digits(enough);
       if (voxelsAt(shown) <= limit) {
         enough = shown;
         found = true;

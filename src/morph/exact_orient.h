@@ -5,9 +5,9 @@
 #include <array>
 #include <cmath>
 
-namespace vdg::morph::detail {
+#include "d3.h"
 
-using D3 = std::array<double, 3>;
+namespace vdg::morph::detail {
 
 // ---- Exact sign of a 3 x 3 determinant of doubles -------------------------------------------
 // Shewchuk, "Adaptive precision floating-point arithmetic and fast robust geometric predicates"

@@ -394,7 +394,7 @@ TriMesh polygonise(const BlobModel& model, const PolygoniseOptions& options, con
   const auto& prims = model.primitives();
   const int n[3] = {nx, ny, nz};
   const std::vector<Splat> splats = splatBoxes(model, h, origin, n);
-  detail::parallelChunks(static_cast<std::size_t>(nx), 1, [&](std::size_t begin, std::size_t end) {
+  vdg::detail::parallelChunks(static_cast<std::size_t>(nx), 1, [&](std::size_t begin, std::size_t end) {
     std::vector<double> row(static_cast<std::size_t>(nz));
     for (std::size_t i = begin; i < end; ++i) {
       const int ii = static_cast<int>(i);

@@ -6,23 +6,22 @@
 #include <cstdint>
 #include <vector>
 
+#include "d3.h"
 #include "vdg/morph/shape_morph.h"
 
 namespace vdg::morph {
 namespace {
 
-using Vec3 = std::array<double, 3>;
+using Vec3 = detail::D3;
 constexpr double kFlat = 1e-6;  // sine of the fold angle below which an edge counts as flat
 
 Vec3 at(const TriMesh& m, std::int32_t v) {
   const auto k = static_cast<std::size_t>(v) * 3;
   return {m.positions[k], m.positions[k + 1], m.positions[k + 2]};
 }
-Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-Vec3 cross(const Vec3& a, const Vec3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+using detail::cross;
+using detail::dot;
+using detail::sub;
 
 bool validIndex(const TriMesh& m, std::int32_t v) { return v >= 0 && static_cast<std::size_t>(v) < m.vertexCount(); }
 

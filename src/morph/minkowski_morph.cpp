@@ -62,6 +62,7 @@
 #include <utility>
 #include <vector>
 
+#include "d3.h"
 #include "vdg/geom/error.h"
 #include "vdg/geom/text.h"
 #include "vdg/morph/mesh_checks.h"
@@ -79,16 +80,14 @@ using InexactMesh = CGAL::Surface_mesh<InexactPoint>;
 using ExactMesh = CGAL::Surface_mesh<ExactPoint>;
 using Nef = CGAL::Nef_polyhedron_3<ExactKernel>;
 
-using Vec3 = std::array<double, 3>;
+using Vec3 = detail::D3;
 
 Vec3 vertex(const TriMesh& mesh, std::size_t v) {
   return {mesh.positions[v * 3], mesh.positions[v * 3 + 1], mesh.positions[v * 3 + 2]};
 }
-Vec3 sub(const Vec3& p, const Vec3& q) { return {p[0] - q[0], p[1] - q[1], p[2] - q[2]}; }
-Vec3 cross(const Vec3& p, const Vec3& q) {
-  return {p[1] * q[2] - p[2] * q[1], p[2] * q[0] - p[0] * q[2], p[0] * q[1] - p[1] * q[0]};
-}
-double dot(const Vec3& p, const Vec3& q) { return p[0] * q[0] + p[1] * q[1] + p[2] * q[2]; }
+using detail::cross;
+using detail::dot;
+using detail::sub;
 
 // The bounding-box centre and diagonal, in double.
 std::pair<Vec3, double> boxOf(const TriMesh& mesh) {

@@ -50,13 +50,11 @@
 namespace vdg::morph {
 namespace {
 
-using D3 = std::array<double, 3>;
+using detail::D3;
 
-D3 sub(const D3& a, const D3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-D3 cross(const D3& a, const D3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double dot(const D3& a, const D3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+using detail::cross;
+using detail::dot;
+using detail::sub;
 D3 normalized(const D3& a) {
   const double n = std::sqrt(dot(a, a));
   return n > 0 ? D3{a[0] / n, a[1] / n, a[2] / n} : D3{0, 0, 0};

@@ -8,9 +8,9 @@
 namespace vdg::render {
 namespace {
 
-using Rgb = std::array<std::uint8_t, 3>;
+using Rgb8 = std::array<std::uint8_t, 3>;
 
-void put(Image& img, int x, int y, const Rgb& c) {
+void put(Image& img, int x, int y, const Rgb8& c) {
   if (x < 0 || y < 0 || x >= img.width || y >= img.height) return;
   std::uint8_t* p = img.pixel(x, y);
   p[0] = c[0];
@@ -20,20 +20,20 @@ void put(Image& img, int x, int y, const Rgb& c) {
 }
 
 // Blends `c` over the pixel with opacity `a`.
-void blend(Image& img, int x, int y, const Rgb& c, double a) {
+void blend(Image& img, int x, int y, const Rgb8& c, double a) {
   if (x < 0 || y < 0 || x >= img.width || y >= img.height) return;
   std::uint8_t* p = img.pixel(x, y);
   for (int k = 0; k < 3; ++k) p[k] = static_cast<std::uint8_t>(std::lround(p[k] * (1 - a) + c[k] * a));
 }
 
-void disc(Image& img, int cx, int cy, double r, const Rgb& c) {
+void disc(Image& img, int cx, int cy, double r, const Rgb8& c) {
   const int n = static_cast<int>(std::ceil(r));
   for (int dy = -n; dy <= n; ++dy)
     for (int dx = -n; dx <= n; ++dx)
       if (dx * dx + dy * dy <= r * r) put(img, cx + dx, cy + dy, c);
 }
 
-void ring(Image& img, int cx, int cy, double r, double width, const Rgb& c) {
+void ring(Image& img, int cx, int cy, double r, double width, const Rgb8& c) {
   const int n = static_cast<int>(std::ceil(r + width));
   for (int dy = -n; dy <= n; ++dy)
     for (int dx = -n; dx <= n; ++dx) {
@@ -58,7 +58,7 @@ constexpr std::array<std::array<std::uint8_t, 5>, 11> kGlyphs{{
 }};
 
 // Draws `text` (digits and '.') with its top-left corner at (x, y), `scale` pixels per font pixel.
-void text(Image& img, int x, int y, std::string_view s, int scale, const Rgb& c) {
+void text(Image& img, int x, int y, std::string_view s, int scale, const Rgb8& c) {
   for (char ch : s) {
     const int g = ch == '.' ? 10 : ch - '0';
     if (g < 0 || g > 10) continue;
@@ -79,7 +79,7 @@ void pixelOf(const SphereMap& map, const Eigen::Vector3d& d, int& x, int& y) {
 }
 
 void drawGraticule(const SphereMap& map, Image& img) {
-  const Rgb white{255, 255, 255};
+  const Rgb8 white{255, 255, 255};
   for (int deg = -150; deg <= 180; deg += 30) {
     const int x = static_cast<int>(std::lround((deg + 180.0) / 360.0 * map.width));
     for (int y = 0; y < map.height; ++y) blend(img, std::min(x, map.width - 1), y, white, deg == 0 ? 0.45 : 0.18);
@@ -91,13 +91,13 @@ void drawGraticule(const SphereMap& map, Image& img) {
 }
 
 void drawLegend(const SphereMap& map, Image& img) {
-  const Rgb background{240, 240, 240}, ink{20, 20, 20};
+  const Rgb8 background{240, 240, 240}, ink{20, 20, 20};
   for (int y = map.height; y < img.height; ++y)
     for (int x = 0; x < img.width; ++x) put(img, x, y, background);
   const int margin = std::max(8, img.width / 40), bar_top = map.height + 4, bar_bottom = map.height + 14;
   const int x0 = margin, x1 = img.width - 1 - margin;
   for (int x = x0; x <= x1; ++x) {
-    const Rgb c = heatColour(x1 > x0 ? static_cast<double>(x - x0) / (x1 - x0) : 0.0);
+    const Rgb8 c = heatColour(x1 > x0 ? static_cast<double>(x - x0) / (x1 - x0) : 0.0);
     for (int y = bar_top; y < bar_bottom; ++y) put(img, x, y, c);
   }
   const std::array<std::string_view, 3> labels{"0", "0.5", "1"};
@@ -151,7 +151,7 @@ Image sphereMapImage(const SphereMap& map) {
   }
   int sx = 0, sy = 0;
   pixelOf(map, map.suggested, sx, sy);
-  const Rgb cyan{0, 230, 255};
+  const Rgb8 cyan{0, 230, 255};
   ring(img, sx, sy, 3 * r, std::max(1.5, r / 2), cyan);
   for (int d = -static_cast<int>(2 * r); d <= static_cast<int>(2 * r); ++d) {
     put(img, sx + d, sy, cyan);

@@ -25,8 +25,6 @@
 namespace vdg {
 namespace {
 
-std::string where(const RawViewDependentModel& raw) { return raw.source.empty() ? std::string("model") : raw.source; }
-
 [[noreturn]] void throwOutOfRange(const char* what, std::size_t index, std::size_t count, const char* plural) {
   throw Error(std::string(what) + " " + std::to_string(index) + " out of range (the model has " +
               std::to_string(count) + " " + plural + ")");
@@ -66,9 +64,9 @@ std::vector<double> secondDerivativeTable(const std::vector<int>& t, bool loop, 
 
 AnimatedViewDependentModel AnimatedViewDependentModel::build(const RawViewDependentModel& raw) {
   if (!raw.animated())
-    throw Error(where(raw) + ": the base is not animated (no 'base_animation'); build it as a ViewDependentModel");
+    throw Error(raw.where() + ": the base is not animated (no 'base_animation'); build it as a ViewDependentModel");
   raw.validate();
-  if (raw.keys.empty()) throw Error(where(raw) + ": the model has no keys (add at least one key deformation)");
+  if (raw.keys.empty()) throw Error(raw.where() + ": the model has no keys (add at least one key deformation)");
   AnimatedViewDependentModel model;
   model.base_ = raw.base;
   model.surface_ = SurfaceTopology::build(model.base_);
@@ -96,7 +94,7 @@ AnimatedViewDependentModel AnimatedViewDependentModel::build(const RawViewDepend
   try {
     model.sphere_ = ViewSphere::build(directions, raw.sphere, labels);
   } catch (const Error& e) {
-    throw Error(where(raw) + ": " + e.what());
+    throw Error(raw.where() + ": " + e.what());
   }
   for (std::size_t k = 0; k < raw.keys.size(); ++k)
     model.views_[static_cast<std::size_t>(groups.group_of_key[k])].key_indices.push_back(k);

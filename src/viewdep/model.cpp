@@ -72,16 +72,12 @@ KeyViewGroups groupKeyViews(std::span<const Eigen::Vector3d> unit_views) {
 
 namespace {
 
-std::string where(const RawViewDependentModel& model) {
-  return model.source.empty() ? std::string("model") : model.source;
-}
-
 std::string rawKeyName(const RawViewDependentModel& model, std::size_t k) {
   return "key '" + model.keys[k].name + "' (keys[" + std::to_string(k) + "])";
 }
 
 std::string keyLabel(const RawViewDependentModel& model, std::size_t k) {
-  return where(model) + ": " + rawKeyName(model, k);
+  return model.where() + ": " + rawKeyName(model, k);
 }
 
 // validate() without, when `check_view_pairs` is false, the search for two keys with the same
@@ -102,45 +98,45 @@ bool invertibleSkin(const float* m) {
 void validateAnimation(const RawViewDependentModel& raw) {
   if (!raw.animated()) {
     if (!raw.base_frames.empty())
-      throw Error(where(raw) + ": base_frames are given but the base is static (no 'base_animation')");
+      throw Error(raw.where() + ": base_frames are given but the base is static (no 'base_animation')");
     if (!raw.base_skin.empty())
-      throw Error(where(raw) + ": base_skin is given but the base is static (no 'base_animation')");
+      throw Error(raw.where() + ": base_skin is given but the base is static (no 'base_animation')");
     if (raw.offsets != OffsetSpace::kWorld)
-      throw Error(where(raw) + ": 'offsets': 'skinned' needs an animated, skinned base ('base_animation')");
+      throw Error(raw.where() + ": 'offsets': 'skinned' needs an animated, skinned base ('base_animation')");
     return;
   }
   const std::size_t n = raw.base_frames.size(), size = raw.base.positions.size();
-  if (n == 0) throw Error(where(raw) + ": the base animation has no frames");
+  if (n == 0) throw Error(raw.where() + ": the base animation has no frames");
   if (n > kMaxBaseFrames)
-    throw Error(where(raw) + ": the base animation has " + std::to_string(n) + " frames; at most " +
+    throw Error(raw.where() + ": the base animation has " + std::to_string(n) + " frames; at most " +
                 std::to_string(kMaxBaseFrames) + " are allowed");
   for (std::size_t f = 0; f < n; ++f) {
     const std::vector<float>& frame = raw.base_frames[f];
     if (frame.size() != size)
-      throw Error(where(raw) + ": base animation frame " + std::to_string(f) + " has " + std::to_string(frame.size()) +
+      throw Error(raw.where() + ": base animation frame " + std::to_string(f) + " has " + std::to_string(frame.size()) +
                   " coordinates; expected 3 per vertex of the base (" + std::to_string(size) + ")");
     for (std::size_t i = 0; i < size; ++i)
       if (!std::isfinite(frame[i]))
-        throw Error(where(raw) + ": base animation frame " + std::to_string(f) + ": vertex " + std::to_string(i / 3) +
+        throw Error(raw.where() + ": base animation frame " + std::to_string(f) + ": vertex " + std::to_string(i / 3) +
                     " has a non-finite coordinate (NaN or Inf)");
   }
   if (!raw.base_skin.empty()) {
     if (raw.base_skin.size() != n)
-      throw Error(where(raw) + ": base_skin has " + std::to_string(raw.base_skin.size()) +
+      throw Error(raw.where() + ": base_skin has " + std::to_string(raw.base_skin.size()) +
                   " frames but the base animation has " + std::to_string(n));
     for (std::size_t f = 0; f < n; ++f) {
       if (raw.base_skin[f].size() != 3 * size)
-        throw Error(where(raw) + ": base_skin frame " + std::to_string(f) + " has " +
+        throw Error(raw.where() + ": base_skin frame " + std::to_string(f) + " has " +
                     std::to_string(raw.base_skin[f].size()) + " floats; expected 9 per vertex (" +
                     std::to_string(3 * size) + ")");
       for (std::size_t i = 0; i < 3 * size; ++i)
         if (!std::isfinite(raw.base_skin[f][i]))
-          throw Error(where(raw) + ": base_skin frame " + std::to_string(f) + ": vertex " + std::to_string(i / 9) +
+          throw Error(raw.where() + ": base_skin frame " + std::to_string(f) + ": vertex " + std::to_string(i / 9) +
                       " has a non-finite skin matrix");
     }
   }
   if (raw.offsets == OffsetSpace::kSkinned && raw.base_skin.empty())
-    throw Error(where(raw) + ": 'offsets': 'skinned' needs a skinned base (the base animation has no skin)");
+    throw Error(raw.where() + ": 'offsets': 'skinned' needs a skinned base (the base animation has no skin)");
 }
 
 // Animated keys, after each was checked alone: views grouped into sphere points; within a group the
@@ -207,22 +203,22 @@ void validateRaw(const RawViewDependentModel& raw, bool check_view_pairs) {
   const double sharpness = raw.sharpness;
   const ViewSphereSettings& sphere = raw.sphere;
   const std::optional<Eigen::Vector3d>& center = raw.center;
-  validateMesh(base, where(raw) + ": base mesh" + (base_path.empty() ? std::string() : " '" + base_path + "'"));
+  validateMesh(base, raw.where() + ": base mesh" + (base_path.empty() ? std::string() : " '" + base_path + "'"));
   if (keys.size() > kMaxKeys)
-    throw Error(where(raw) + ": " + std::to_string(keys.size()) + " keys; a model may have at most " +
+    throw Error(raw.where() + ": " + std::to_string(keys.size()) + " keys; a model may have at most " +
                 std::to_string(kMaxKeys));
   if (!(sharpness > 0.0) || !std::isfinite(sharpness))
-    throw Error(where(raw) + ": 'sharpness' must be a positive number, got " + std::to_string(sharpness));
+    throw Error(raw.where() + ": 'sharpness' must be a positive number, got " + std::to_string(sharpness));
   if (!(sphere.base_falloff_deg > 0.0 && sphere.base_falloff_deg <= 70.0))
-    throw Error(where(raw) + ": 'base_falloff_deg' must be in (0, 70] degrees, got " +
+    throw Error(raw.where() + ": 'base_falloff_deg' must be in (0, 70] degrees, got " +
                 std::to_string(sphere.base_falloff_deg));
-  if (center && !center->allFinite()) throw Error(where(raw) + ": 'center' is not finite");
+  if (center && !center->allFinite()) throw Error(raw.where() + ": 'center' is not finite");
   validateAnimation(raw);
   std::set<std::string> names;
   for (std::size_t k = 0; k < keys.size(); ++k) {
     const RawKey& key = keys[k];
     const std::string label = keyLabel(raw, k);
-    if (key.name.empty()) throw Error(where(raw) + ": keys[" + std::to_string(k) + "] has an empty name");
+    if (key.name.empty()) throw Error(raw.where() + ": keys[" + std::to_string(k) + "] has an empty name");
     if (!names.insert(key.name).second) throw Error(label + ": another key has the same name");
     if (key.mesh.vertexCount() != base.vertexCount())
       throw Error(label + ": mesh has " + std::to_string(key.mesh.vertexCount()) + " vertices but the base has " +
@@ -283,11 +279,11 @@ void validateRaw(const RawViewDependentModel& raw, bool check_view_pairs) {
 
 ViewDependentModel ViewDependentModel::build(const RawViewDependentModel& raw) {
   if (raw.animated())
-    throw Error(where(raw) +
+    throw Error(raw.where() +
                 ": has an animated base ('base_animation'); build it as an AnimatedViewDependentModel "
                 "(vdg/viewdep/animated_model.h)");
   validateRaw(raw, false);  // ViewSphere::build below finds coinciding views, naming the keys
-  if (raw.keys.empty()) throw Error(where(raw) + ": the model has no keys (add at least one key deformation)");
+  if (raw.keys.empty()) throw Error(raw.where() + ": the model has no keys (add at least one key deformation)");
   ViewDependentModel model;
   model.base_ = raw.base;
   model.surface_ = SurfaceTopology::build(model.base_);
@@ -302,7 +298,7 @@ ViewDependentModel ViewDependentModel::build(const RawViewDependentModel& raw) {
   try {
     model.sphere_ = ViewSphere::build(views, raw.sphere, labels);
   } catch (const Error& e) {
-    throw Error(where(raw) + ": " + e.what());
+    throw Error(raw.where() + ": " + e.what());
   }
   const std::size_t nv = raw.base.vertexCount();
   for (const RawKey& raw_key : raw.keys) {

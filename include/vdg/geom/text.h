@@ -18,6 +18,10 @@ std::string shownText(std::string_view text, std::size_t max_bytes = kShownBytes
 // shownText in single quotes: "'spot.obj'", "'aaaa...'".
 std::string quotedText(std::string_view text, std::size_t max_bytes = kShownBytes);
 
+// A library's multi-line message as one line: trailing line breaks and spaces dropped, the other
+// line breaks turned into spaces (tinyobjloader's and tinygltf's errors span lines).
+std::string joinedLines(std::string text);
+
 // A number for a message as printf's %g writes it with `significant_digits` significant digits
 // (6 by default, as printf and std::ostream): "0.5", "12", "1e-09", "1e+12", "inf", "nan".
 std::string numberText(double value, int significant_digits = 6);

@@ -30,6 +30,10 @@ void checkBudget(double operations, double budget, const std::string& what, cons
 // "1.3e+10" style: 3 significant digits (whole numbers below 1e6 as they are).
 std::string operationsText(double operations);
 
+// `v` rounded up to 3 significant digits (what operationsText and "%.3g" show); `v` itself when it
+// is not a positive finite number.
+double roundUpTo3Digits(double v);
+
 // The smallest size s >= `size` (3 significant digits, rounded up) with count(s) <= limit, for
 // "use a --voxel of at least S" messages; `count` must fall (weakly) as the size grows. Bounded:
 // at most a few thousand evaluations of `count`, whatever `size` is (1e-300 included; a count of

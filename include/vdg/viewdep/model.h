@@ -76,7 +76,9 @@ struct RawKey {
 };
 
 struct RawViewDependentModel {
-  std::string source;     // manifest path, used in messages (may be empty)
+  std::string source;  // manifest path, used in messages (may be empty)
+  // `source`, or "model" when it is empty: how messages name the model.
+  std::string where() const { return source.empty() ? std::string("model") : source; }
   std::string base_path;  // as written in the manifest
   std::string comment;    // free text kept with the model (the manifest's "comment")
   TriMesh base;
