@@ -860,7 +860,10 @@ bool ViewSphere::denseWeights(const Eigen::Vector3d& view, double sharpness, std
     const ViewWeights located = locate(v, 1.0, &local_hint, &nearest);
     double f = 1.0;
     if (located.triangle < 0) {
-      f = located.key[0] < 0 ? 0.0 : std::max(0.0, v.dot(nearest));
+      // No key at all only when the covered region is out of reach (falloff() found no feature);
+      // a key of zero falloff weight leaves its slot empty, so look at every slot.
+      const bool reached = located.key[0] >= 0 || located.key[1] >= 0 || located.key[2] >= 0;
+      f = reached ? std::max(0.0, v.dot(nearest)) : 0.0;
       if (settings_.uncovered == Uncovered::Cosine2) f *= f;
     }
     rbfWeightsAt(located.triangle < 0 ? nearest : v, sharpness, f, out);

@@ -391,6 +391,21 @@ TEST(RbfWeights, UncoveredModesKeepTheirMeaning) {
   EXPECT_GT(denseAt(based, Vector3d(0, -1, 0)).back(), 0.99) << "far below the keys: nearly the base";
 }
 
+// Figure 13's head (four keys, cosine falloff): a view level with three of the keys, just below
+// them, falls off towards the nearest key as in the other schemes (a view exactly on the keys'
+// great circle once lost its nearest point).
+TEST(RbfWeights, FalloffAtTheBorderOfTheKeysGreatCircle) {
+  const std::vector<Vector3d> keys = {Vector3d(0, 0, 1), Vector3d(-1, 0, 0), Vector3d(1, 0, 0), Vector3d(0, 1, 0)};
+  const ViewSphere rbf = buildRbf(keys, Uncovered::Cosine);
+  const ViewSphere linear = build(keys, Uncovered::Cosine, WeightScheme::Linear);
+  for (const double z : {0.0, 1e-3, -1e-3}) {
+    const Vector3d view(0.9943572200697444, -0.1060835467693743, z);
+    const auto r = denseAt(rbf, view), l = denseAt(linear, view);
+    EXPECT_NEAR(r.back(), l.back(), kWeightTol) << "z " << z << ": the same falloff in both schemes";
+    EXPECT_GT(r[2], 0.99) << "z " << z << ": the nearest key, 'right'";
+  }
+}
+
 TEST(RbfWeights, SettingsAndIllConditionedKeysAreRefusedInOneLine) {
   const auto keys = keySets()["octahedron"];
   for (const double width : {0.0, -5.0, 181.0, std::nan("")}) {
