@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <map>
 #include <numbers>
 #include <string>
@@ -882,12 +883,17 @@ void ViewSphere::rbfWeightsAt(const Eigen::Vector3d& x, double sharpness, double
   const std::size_t m = points_.size(), outputs = key_count_ + 1;
   for (std::size_t j = 0; j < m; ++j)
     phi[j] = rbfKernelOfChord2(settings_.rbf_kernel, (x - points_[j]).squaredNorm() / rbf_chord2_);
+  // Centre by centre (rbf_rows_: the constants b_o, then each centre's c_oj over the outputs), so
+  // that a compactly supported kernel skips the centres out of reach.
+  std::copy_n(rbf_rows_.data(), outputs, w.data());
+  for (std::size_t j = 0; j < m; ++j) {
+    if (phi[j] == 0.0) continue;
+    const double* row = rbf_rows_.data() + (j + 1) * outputs;
+    for (std::size_t o = 0; o < outputs; ++o) w[o] += row[o] * phi[j];
+  }
   double sum = 0.0;
   for (std::size_t o = 0; o < outputs; ++o) {
-    const double* row = rbf_rows_.data() + o * (m + 1);
-    double r = row[m];
-    for (std::size_t j = 0; j < m; ++j) r += row[j] * phi[j];
-    w[o] = rbfPositivePart(r);
+    w[o] = rbfPositivePart(w[o]);
     sum += w[o];
   }
   // sum >= P(max r) > 0: the r sum to 1 over keys + 1 outputs (see the header).
@@ -932,18 +938,22 @@ void ViewSphere::buildRbf(std::span<const std::string> key_labels) {
           b = j;
         }
     auto label = [&](std::size_t i) { return key_labels.empty() ? "key " + std::to_string(i) : key_labels[i]; };
-    const std::string pair = key_count_ < 2
-                                 ? std::string("the keys and the dummy base points")
-                                 : label(a) + " and " + label(b) + " (" +
-                                       std::to_string(closest * 180.0 / std::numbers::pi) + " degrees apart)";
-    throw Error("view sphere: the rbf weights are ill-conditioned (reciprocal condition " + std::to_string(rcond) +
-                "): " + pair + " are too close for a " + rbfKernelName(settings_.rbf_kernel) + " width of " +
-                std::to_string(settings_.rbf_width_deg) + " degrees; lower 'width' or move the keys apart");
+    char numbers[160];
+    std::snprintf(numbers, sizeof(numbers), " (%.3g degrees apart) are too close for a %s width of %g degrees",
+                  closest * 180.0 / std::numbers::pi, rbfKernelName(settings_.rbf_kernel), settings_.rbf_width_deg);
+    const std::string pair = key_count_ < 2 ? std::string("the key and the dummy base points are too close")
+                                            : label(a) + " and " + label(b) + numbers;
+    std::snprintf(numbers, sizeof(numbers), "%.2g", rcond);
+    throw Error("view sphere: the rbf weights are ill-conditioned (reciprocal condition " + std::string(numbers) +
+                "): " + pair + "; lower 'width' or move the keys apart");
   }
   const Eigen::MatrixXd solution = lu.solve(data);
+  // Layout (rbfWeightsAt): the constants b_o (solution row m), then per centre j its c_oj.
   rbf_rows_.assign(static_cast<std::size_t>(outputs * (m + 1)), 0.0);
-  for (Eigen::Index o = 0; o < outputs; ++o)
-    for (Eigen::Index j = 0; j <= m; ++j) rbf_rows_[static_cast<std::size_t>(o * (m + 1) + j)] = solution(j, o);
+  for (Eigen::Index o = 0; o < outputs; ++o) {
+    rbf_rows_[static_cast<std::size_t>(o)] = solution(m, o);
+    for (Eigen::Index j = 0; j < m; ++j) rbf_rows_[static_cast<std::size_t>((j + 1) * outputs + o)] = solution(j, o);
+  }
 }
 
 std::size_t forEachCloseViewPair(std::span<const Eigen::Vector3d> directions, double max_angle_rad,
