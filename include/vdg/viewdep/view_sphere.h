@@ -81,7 +81,8 @@
 // build() refuses (vdg::Error, one line naming the closest two keys) a system whose reciprocal
 // condition number is below 1 / kRbfMaxCondition (keys too close for the width), more than
 // kRbfMaxKeys keys, and a width outside (0, 180] degrees. Cost per view: one kernel per centre and
-// (keys + 1) x (centres + 1) multiply-adds, O(keys^2), on the stack (no allocation). The rbf
+// keys + 1 multiply-adds per centre whose kernel is not 0 (every centre for the Gaussian and the
+// inverse multiquadric: O(keys^2); those within `width` for Wendland's), on the stack (no allocation). The rbf
 // weights are over all keys, so they come from denseWeights(); weights() and weightsByScan(), whose
 // ViewWeights hold three keys, refuse an rbf sphere (return false).
 //
@@ -275,8 +276,8 @@ class ViewSphere {
   std::vector<std::array<int, 2>> arcs_;
   std::vector<int> isolated_;  // cosine modes: keys that belong to no triangle and no arc
   double covered_fraction_ = 0.0;
-  // Rbf scheme: per output (keys, then the base) the centres' coefficients c_oj and the constant
-  // b_o, rows of points_.size() + 1 doubles; and the width as a squared chord.
+  // Rbf scheme: the constants b_o over the outputs (keys, then the base), then per centre j (the
+  // points) its coefficients c_oj over the outputs; and the width as a squared chord.
   std::vector<double> rbf_rows_;
   double rbf_chord2_ = 1.0;
   // Spatial index (built by buildIndex()). Features of the falloff: 0 .. isolated_.size() - 1 are
