@@ -82,9 +82,9 @@
 // condition number is below 1 / kRbfMaxCondition (keys too close for the width), more than
 // kRbfMaxKeys keys, and a width outside (0, 180] degrees. Cost per view: one kernel per centre and
 // keys + 1 multiply-adds per centre whose kernel is not 0 (every centre for the Gaussian and the
-// inverse multiquadric: O(keys^2); those within `width` for Wendland's), on the stack (no allocation). The rbf
-// weights are over all keys, so they come from denseWeights(); weights() and weightsByScan(), whose
-// ViewWeights hold three keys, refuse an rbf sphere (return false).
+// inverse multiquadric: O(keys^2); those within `width` for Wendland's), on the stack (no
+// allocation). The rbf weights are over all keys, so they come from denseWeights(); weights() and
+// weightsByScan(), whose ViewWeights hold three keys, refuse an rbf sphere (return false).
 //
 // Locating a view (spatial index). weightsByScan() tests every hull triangle: O(triangles) per
 // query, kept as the oracle for tests and debugging. weights() gets the same result faster:
