@@ -2,7 +2,7 @@
 // its ratio to the plain scan ViewSphere::weightsByScan measured in the same run (x_scan < 1 is
 // faster). Goals (issue 12): <= 50 ns on a coherent camera path (with the hint), <= 150 ns for
 // random views (no hint), with 6 and with 200 keys, Base and Cosine modes, sharpness 1 and 2.
-// Scheme/...: the smooth weight scheme's cost per query as a multiple of the linear one's (issue 29).
+// Scheme/...: the smooth and rbf weight schemes' cost per query as a multiple of the linear one's (issue 29).
 //
 // Key sets: "octahedron" (6 keys around the object, as bench/blend), "half6" (6 keys of a
 // character: front, back, sides, top, three-quarter above; the lower half is uncovered),
@@ -129,37 +129,51 @@ void locateBenchmark(benchmark::State& state, const std::string& keys, vdg::Unco
   state.counters["x_scan"] = fast_s / scan_s;  // the figure to watch with ns per query
 }
 
-// The smooth weight scheme (issue 29, docs/weights.md) against the linear one on the same views,
-// timed back to back in this run: x_linear is the smooth query's cost as a multiple of the linear.
-void schemeBenchmark(benchmark::State& state, const std::string& keys, bool path) {
-  vdg::ViewSphereSettings linear_settings, smooth_settings;
-  smooth_settings.scheme = vdg::WeightScheme::Smooth;
-  const vdg::ViewSphere linear = vdg::ViewSphere::build(keySet(keys), linear_settings);
-  const vdg::ViewSphere smooth = vdg::ViewSphere::build(keySet(keys), smooth_settings);
-  const std::vector<Vector3d>& views = path ? pathViews() : randomViews();
-  int hint = -1;
-  std::size_t i = 0;
-  vdg::ViewWeights w;
-  for (auto _ : state) {
-    if (!smooth.weights(views[i], 1.0, w, path ? &hint : nullptr)) {
-      state.SkipWithError("weights refused its input (internal error)");
-      break;
-    }
-    benchmark::DoNotOptimize(w);
-    if (++i == views.size()) i = 0;
+// The smooth and rbf weight schemes (issue 29, docs/weights.md) against the linear one on the same
+// views, timed back to back in this run: x_linear is the scheme's query cost as a multiple of the
+// linear one's. The rbf scheme's query is denseWeights() (every key); sphere200 gets a Wendland
+// kernel of width 30 degrees (a 60-degree Gaussian cannot tell 200 random keys apart: refused).
+vdg::ViewSphereSettings benchSchemeSettings(const std::string& keys, vdg::WeightScheme scheme) {
+  vdg::ViewSphereSettings settings;
+  settings.scheme = scheme;
+  if (scheme == vdg::WeightScheme::Rbf && keys == "sphere200") {
+    settings.rbf_kernel = vdg::RbfKernel::Wendland;
+    settings.rbf_width_deg = 30.0;
   }
-  auto query = [&](const vdg::ViewSphere& sphere) {
-    return [&sphere](const Vector3d& v, int* h) {
+  return settings;
+}
+
+void schemeBenchmark(benchmark::State& state, const std::string& keys, bool path, vdg::WeightScheme scheme) {
+  const vdg::ViewSphere linear = vdg::ViewSphere::build(keySet(keys), vdg::ViewSphereSettings{});
+  const vdg::ViewSphere other = vdg::ViewSphere::build(keySet(keys), benchSchemeSettings(keys, scheme));
+  const std::vector<Vector3d>& views = path ? pathViews() : randomViews();
+  std::vector<float> dense(other.keyCount() + 1);
+  auto query = [&dense](const vdg::ViewSphere& sphere) {
+    return [&sphere, &dense](const Vector3d& v, int* h) {
+      if (sphere.settings().scheme == vdg::WeightScheme::Rbf)
+        return sphere.denseWeights(v, 1.0, dense, h) ? dense.back() : -1.0f;
       vdg::ViewWeights r;
       return sphere.weights(v, 1.0, r, h) ? r.base : -1.0f;
     };
   };
+  int hint = -1;
+  std::size_t i = 0;
+  const auto timed = query(other);
+  for (auto _ : state) {
+    const float base = timed(views[i], path ? &hint : nullptr);
+    if (base < 0.0f) {
+      state.SkipWithError("weights refused its input (internal error)");
+      break;
+    }
+    benchmark::DoNotOptimize(base);
+    if (++i == views.size()) i = 0;
+  }
   constexpr long kQueries = 400'000;
   const double linear_s = secondsPerQuery(views, kQueries, path, query(linear));
-  const double smooth_s = secondsPerQuery(views, kQueries, path, query(smooth));
+  const double other_s = secondsPerQuery(views, kQueries, path, query(other));
   state.counters["linear_cpu_ns"] = linear_s * 1e9;
-  state.counters["smooth_cpu_ns"] = smooth_s * 1e9;
-  state.counters["x_linear"] = smooth_s / linear_s;
+  state.counters[std::string(vdg::weightSchemeName(scheme)) + "_cpu_ns"] = other_s * 1e9;
+  state.counters["x_linear"] = other_s / linear_s;
 }
 
 }  // namespace
@@ -179,10 +193,13 @@ int main(int argc, char** argv) {
               name.c_str(), [=](benchmark::State& state) { locateBenchmark(state, keys, mode, path, sharpness); });
         }
   for (const bool path : {true, false})
-    for (const char* keys : {"octahedron", "sphere200"}) {
-      const std::string name = std::string("Scheme/") + (path ? "path" : "random") + "/" + keys + "/smooth";
-      benchmark::RegisterBenchmark(name.c_str(), [=](benchmark::State& state) { schemeBenchmark(state, keys, path); });
-    }
+    for (const char* keys : {"octahedron", "sphere200"})
+      for (const vdg::WeightScheme scheme : {vdg::WeightScheme::Smooth, vdg::WeightScheme::Rbf}) {
+        const std::string name =
+            std::string("Scheme/") + (path ? "path" : "random") + "/" + keys + "/" + vdg::weightSchemeName(scheme);
+        benchmark::RegisterBenchmark(name.c_str(),
+                                     [=](benchmark::State& state) { schemeBenchmark(state, keys, path, scheme); });
+      }
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();

@@ -60,9 +60,9 @@ Uncovered uncoveredFrom(const std::string& name) {
 }
 
 WeightScheme schemeFrom(const std::string& name) {
-  for (const WeightScheme w : {WeightScheme::Linear, WeightScheme::Smooth})
+  for (const WeightScheme w : {WeightScheme::Linear, WeightScheme::Smooth, WeightScheme::Rbf})
     if (name == weightSchemeName(w)) return w;
-  throw py::value_error("scheme: expected 'linear' or 'smooth', got '" + name + "'");
+  throw py::value_error("scheme: expected 'linear', 'smooth' or 'rbf', got '" + name + "'");
 }
 
 // The animated base of build(frames=...): frames[0] is the base; saved as an OBJ sequence.

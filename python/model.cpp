@@ -3,6 +3,7 @@
 // evaluated mesh (3.2.3), and for an animated base the key frames' time coefficients (section 4.2).
 // The numbers are the library's own: the same calls `vdg weights` and `vdg eval` make.
 #include <cmath>
+#include <vector>
 
 #include "binding.h"
 #include "vdg/geom/error.h"
@@ -107,17 +108,20 @@ py::dict modelWeights(const Model& m, py::handle view, py::handle sharpness, py:
   const double a = sharpnessArg(sharpness);
   std::optional<double> at;
   if (!frame.is_none()) at = finiteNumber(frame, "frame");
-  const ViewWeights w = viewWeights(m, v, a);
-  if (m.animated) return at ? animatedKeysAt(m, w, *at) : animatedViews(*m.animated, w);
+  if (m.animated) {
+    const ViewWeights w = viewWeights(m, v, a);
+    return at ? animatedKeysAt(m, w, *at) : animatedViews(*m.animated, w);
+  }
   if (at && *at != 0.0)
     throw py::value_error("frame: the model is not animated; frame applies to animated models only");
   py::dict keys = zeroKeys(m);
-  for (int k = 0; k < 3; ++k)
-    if (w.key[k] >= 0)
-      keys[py::str(m.model->keyName(static_cast<std::size_t>(w.key[k])))] = static_cast<double>(w.weight[k]);
+  std::vector<float> dense(m.model->keyCount() + 1);  // every scheme's weights, the rbf's over every key
+  if (!m.model->denseWeights(v, a, dense)) refused("weights");
+  for (std::size_t k = 0; k < m.model->keyCount(); ++k)
+    if (dense[k] != 0.0f) keys[py::str(m.model->keyName(k))] = static_cast<double>(dense[k]);
   py::dict out;
   out["keys"] = keys;
-  out["base"] = static_cast<double>(w.base);
+  out["base"] = static_cast<double>(dense.back());
   return out;
 }
 

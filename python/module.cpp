@@ -109,7 +109,8 @@ void bindModelProperties(py::class_<Model>& c) {
           "'base', 'cosine' or 'cosine2' (section 3.3).")
       .def_property_readonly(
           "scheme", [](const Model& m) { return weightSchemeName(m.raw.sphere.scheme); },
-          "The weight scheme: 'linear' (the paper's barycentric blend) or 'smooth' (C1; docs/weights.md).")
+          "The weight scheme: 'linear' (the paper's barycentric blend), 'smooth' (C1) or 'rbf' (radial basis "
+          "functions over every key, with the manifest's kernel and width; docs/weights.md).")
       .def_property_readonly(
           "base_falloff_deg", [](const Model& m) { return m.raw.sphere.base_falloff_deg; },
           "Angle beyond every key where dummy base points go (uncovered='base').")
@@ -222,7 +223,7 @@ void bindFunctions(py::module_& m) {
 must be frames[0] or None). Texture coordinates per vertex (uvs, (V, 2)) or per corner (corner_uvs,
 (T, 3, 2)); materials (dicts {"name", "base_color" display RGB in [0, 1], "texture" PNG or JPEG
 bytes, "texture_path"}) with face_materials ((T,) indices, -1 none), both or neither. scheme: the weight
-scheme, 'linear' (the paper's) or 'smooth' (C1, docs/weights.md). Raises vdg.Error with vdg's validation message for an invalid model
+scheme, 'linear' (the paper's), 'smooth' (C1) or 'rbf' (every key, Gaussian of width 60 degrees; docs/weights.md). Raises vdg.Error with vdg's validation message for an invalid model
 (duplicate names or views, non-finite coordinates, key frames out of range ...).)");
 }
 

@@ -4,6 +4,8 @@
 // required for an animated model and refused (usage error) for a static one.
 #include <cstdio>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "cli.h"
 #include "vdg/geom/error.h"
@@ -17,6 +19,31 @@ namespace {
 
 std::string viewText(const Eigen::Vector3d& view) {
   return std::to_string(view.x()) + " " + std::to_string(view.y()) + " " + std::to_string(view.z());
+}
+
+// Blends a static model at `view` into `out` (the base's size) and returns its weights as text
+// (" NAME=W ... base=W"): every key the view weighs, all of them for the rbf scheme.
+std::string evalStaticWeights(const ViewDependentModel& model, const Eigen::Vector3d& view, double sharpness,
+                              TriMesh& out) {
+  const auto refused = [&] {
+    throw Error("eval: the model refused view " + std::to_string(view.x()) + "," + std::to_string(view.y()) + "," +
+                std::to_string(view.z()) + " (internal error)");
+  };
+  std::vector<float> dense(model.keyCount() + 1);
+  // resolve() gave a unit view, the sharpness is checked positive and `out` has the base's size.
+  if (model.sphere().settings().scheme == WeightScheme::Rbf) {
+    if (!model.denseWeights(view, sharpness, dense) || !model.blendDense(dense, out.positions)) refused();
+  } else {
+    ViewWeights w;
+    if (!model.weights(view, sharpness, w) || !model.blend(w, out.positions)) refused();
+    for (int k = 0; k < 3; ++k)
+      if (w.key[k] >= 0) dense[static_cast<std::size_t>(w.key[k])] += w.weight[k];
+    dense.back() = w.base;
+  }
+  std::string text;
+  for (std::size_t k = 0; k < model.keyCount(); ++k)
+    if (dense[k] != 0.0f) text += " " + model.keyName(k) + "=" + std::to_string(dense[k]);
+  return text + " base=" + std::to_string(dense.back());
 }
 
 }  // namespace
@@ -74,16 +101,9 @@ void addEvalCommand(CLI::App& app) {
       const ViewDependentModel& model = *input.model;
       const Eigen::Vector3d view = opt->view.resolve(model);
       out = model.base();
-      // resolve() gives a unit view, the sharpness is checked positive and `out` has the base's size.
-      if (!model.weights(view, opt->view.sharpness, w) || !model.blend(w, out.positions))
-        throw Error("eval: the model refused view " + std::to_string(view.x()) + "," + std::to_string(view.y()) + "," +
-                    std::to_string(view.z()) + " (internal error)");
-      header += "\nview " + viewText(view) + "\nweights:";
-      for (int k = 0; k < 3; ++k)
-        if (w.key[k] >= 0)
-          header += " " + model.keyName(static_cast<std::size_t>(w.key[k])) + "=" + std::to_string(w.weight[k]);
+      header += "\nview " + viewText(view) + "\nweights:" + evalStaticWeights(model, view, opt->view.sharpness, out);
     }
-    header += " base=" + std::to_string(w.base);
+    if (input.animated) header += " base=" + std::to_string(w.base);
     writeObj(opt->output, out, header);
     if (!opt->quiet)
       std::printf("wrote %s (%zu vertices, %zu triangles)\n", opt->output.c_str(), out.vertexCount(),

@@ -247,7 +247,12 @@ void addShapeFields(const Model& model, nlohmann::ordered_json& out) {
   out["center"] = {model.center().x(), model.center().y(), model.center().z()};
   out["sharpness"] = model.sharpness();
   out["uncovered"] = uncoveredName(model.sphere().settings().uncovered);
-  out["weights"] = weightSchemeName(model.sphere().settings().scheme);
+  const ViewSphereSettings& sphere = model.sphere().settings();
+  out["weights"] = weightSchemeName(sphere.scheme);
+  if (sphere.scheme == WeightScheme::Rbf) {
+    out["rbf_kernel"] = rbfKernelName(sphere.rbf_kernel);
+    out["rbf_width_deg"] = sphere.rbf_width_deg;
+  }
   addSurfaceFields(model.base(), out);
 }
 
@@ -288,6 +293,17 @@ InteractivitySize interactivityGraphSize(const ViewDependentModel& model) {
   (void)interactivityGraphJson(interactivityInput(model), &size);
   return size;
 }
+// The rbf scheme's kernel and width after its name (" (gaussian, width 60 degrees; not exported)"),
+// nothing for the other schemes.
+std::string infoRbfSettingsText(const ViewSphere& sphere) {
+  const ViewSphereSettings& s = sphere.settings();
+  if (s.scheme != WeightScheme::Rbf) return "";
+  char buffer[128];
+  std::snprintf(buffer, sizeof(buffer), " (%s, width %g degrees; every key weighs; not exported to glTF)",
+                rbfKernelName(s.rbf_kernel), s.rbf_width_deg);
+  return buffer;
+}
+
 // The graph repeats the paper's linear weights only (kInteractivitySchemeRefusal).
 bool linearWeights(const ViewDependentModel& model) { return model.sphere().settings().scheme == WeightScheme::Linear; }
 nlohmann::ordered_json interactivityJson(const ViewDependentModel& model) {
@@ -696,7 +712,7 @@ void addInfoCommand(CLI::App& app) {
     std::printf("centre     (%.4g, %.4g, %.4g)\n", model.center().x(), model.center().y(), model.center().z());
     std::printf("sharpness  %g\n", model.sharpness());
     std::printf("uncovered  %s\n", uncoveredName(sphere.settings().uncovered));
-    std::printf("weights    %s\n", weightSchemeName(sphere.settings().scheme));
+    std::printf("weights    %s%s\n", weightSchemeName(sphere.settings().scheme), infoRbfSettingsText(sphere).c_str());
     std::printf("keys       %zu\n", model.keyCount());
     for (std::size_t k = 0; k < model.keyCount(); ++k) {
       const auto& v = model.keyView(k);

@@ -1,14 +1,17 @@
 // vdg weights MODEL (--view X,Y,Z | --eye X,Y,Z | --views FILE | --continuity) [--sharpness A]
-//                   [--scheme linear|smooth] [--json]
+//                   [--scheme linear|smooth|rbf [--kernel NAME] [--width DEG]] [--json]
 //
 // Batch mode (--views FILE): FILE is a JSON array whose items are directions [x, y, z] (towards
 // the eye, from the model centre), or objects {"view": [x, y, z]} or {"eye": [x, y, z]} (an eye
 // position in model space); the output is one JSON array with the --json object of each item, in
 // order. One process for thousands of views (the runtime's parity tests use it).
 //
-// Continuity (--continuity [--step DEG] [--scheme linear|smooth]): the popping and velocity-jump
+// Continuity (--continuity [--step DEG] [--scheme linear|smooth|rbf]): the popping and velocity-jump
 // figures of vdg/viewdep/continuity.h along great circles of views (static models; docs/weights.md).
-// --scheme overrides the model's weight scheme for this command (to compare the two).
+// --scheme overrides the model's weight scheme for this command (to compare them); --kernel and
+// --width set the rbf scheme's kernel and width (degrees) and need it (the model's or --scheme's).
+// A static model's weights list every key with a weight above 0, in key order (the rbf scheme
+// weighs every key, the others at most three).
 //
 // An animated model (manifest "base_animation") is weighed per key VIEW: its keys that share a view
 // are one point of the viewing sphere (Rademacher 99, section 4.1), and the weights do not depend on
@@ -22,6 +25,8 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <span>
+#include <string>
 #include <vector>
 
 #include "cli.h"
@@ -65,13 +70,13 @@ nlohmann::ordered_json animatedJson(const AnimatedViewDependentModel& model, con
   return out;
 }
 
-nlohmann::ordered_json staticJson(const ViewDependentModel& model, const ViewWeights& w) {
+// `dense`: ViewDependentModel::denseWeights' keyCount() + 1 weights (the base last).
+nlohmann::ordered_json staticJson(const ViewDependentModel& model, std::span<const float> dense) {
   nlohmann::ordered_json out;
   out["keys"] = nlohmann::ordered_json::object();
-  for (int k = 0; k < 3; ++k)
-    if (w.key[k] >= 0 && w.weight[k] > 0.0f)
-      out["keys"][model.keyName(static_cast<std::size_t>(w.key[k]))] = floatDigits(w.weight[k]);
-  out["base"] = floatDigits(w.base);
+  for (std::size_t k = 0; k < model.keyCount(); ++k)
+    if (dense[k] > 0.0f) out["keys"][model.keyName(k)] = floatDigits(dense[k]);
+  out["base"] = floatDigits(dense.back());
   return out;
 }
 
@@ -103,39 +108,66 @@ void batchWeights(const OpenedInput& input, const std::string& path, double shar
   int hint = -1;
   const std::vector<Eigen::Vector3d> views =
       parseViewList(readFileLimited(path, "views file", kMaxJsonFileBytes), path + ": --views", center);
+  std::vector<float> dense(input.model ? input.model->keyCount() + 1 : 0);
   for (const Eigen::Vector3d& view : views) {
     ViewWeights w;
     if (input.animated) {
       if (!input.animated->weights(view, sharpness, w, &hint)) refused(view);
       out.push_back(animatedJson(*input.animated, w));
     } else {
-      if (!input.model->weights(view, sharpness, w, &hint)) refused(view);
-      out.push_back(staticJson(*input.model, w));
+      if (!input.model->denseWeights(view, sharpness, dense, &hint)) refused(view);
+      out.push_back(staticJson(*input.model, dense));
     }
   }
   std::cout << out.dump() << "\n";
 }
+// --scheme, --kernel and --width over the model's own settings; the rbf settings need the rbf
+// scheme (the model's or --scheme's), else a usage error.
+void overrideWeightScheme(ViewSphereSettings& sphere, const std::string& scheme, const std::string& kernel,
+                          double width_deg) {
+  if (!scheme.empty())
+    sphere.scheme = scheme == "rbf"      ? WeightScheme::Rbf
+                    : scheme == "smooth" ? WeightScheme::Smooth
+                                         : WeightScheme::Linear;
+  if ((!kernel.empty() || width_deg > 0.0) && sphere.scheme != WeightScheme::Rbf)
+    throw UsageError("--kernel, --width: settings of the rbf scheme; this model's weights are '" +
+                     std::string(weightSchemeName(sphere.scheme)) + "' (add --scheme rbf)");
+  if (!kernel.empty())
+    sphere.rbf_kernel = kernel == "wendland"               ? RbfKernel::Wendland
+                        : kernel == "inverse-multiquadric" ? RbfKernel::InverseMultiquadric
+                                                           : RbfKernel::Gaussian;
+  if (width_deg > 0.0) sphere.rbf_width_deg = width_deg;
+}
+
 void continuityReport(const OpenedInput& input, const std::string& path, const ContinuitySettings& settings,
                       bool json) {
   if (input.animated)
     throw UsageError("--continuity: " + quotedText(path) + " is animated; --continuity measures static models");
   const ContinuityReport r = measureContinuity(*input.model, settings);
-  const char* scheme = weightSchemeName(input.model->sphere().settings().scheme);
+  const ViewSphereSettings& sphere = input.model->sphere().settings();
+  const bool rbf = sphere.scheme == WeightScheme::Rbf;
   if (json) {
-    std::cout << nlohmann::ordered_json{{"scheme", scheme},
-                                        {"step_deg", settings.step_deg},
-                                        {"paths", r.paths},
-                                        {"samples", r.samples},
-                                        {"size", r.size},
-                                        {"popping", r.popping},
-                                        {"velocity_jump", r.velocity_jump},
-                                        {"weight_speed", r.weight_speed},
-                                        {"weight_jump", r.weight_jump}}
-                     .dump()
-              << "\n";
+    nlohmann::ordered_json doc{{"scheme", weightSchemeName(sphere.scheme)}};
+    if (rbf) {
+      doc["kernel"] = rbfKernelName(sphere.rbf_kernel);
+      doc["width"] = sphere.rbf_width_deg;
+    }
+    doc.update(nlohmann::ordered_json{{"step_deg", settings.step_deg},
+                                      {"paths", r.paths},
+                                      {"samples", r.samples},
+                                      {"size", r.size},
+                                      {"popping", r.popping},
+                                      {"velocity_jump", r.velocity_jump},
+                                      {"weight_speed", r.weight_speed},
+                                      {"weight_jump", r.weight_jump}});
+    std::cout << doc.dump() << "\n";
     return;
   }
-  std::printf("weights        %s, %zu great circles of views, a sample every %g degrees\n", scheme, r.paths,
+  char buffer[96];
+  std::snprintf(buffer, sizeof(buffer), " (%s, width %g degrees)", rbfKernelName(sphere.rbf_kernel),
+                sphere.rbf_width_deg);
+  const std::string scheme = weightSchemeName(sphere.scheme) + std::string(rbf ? buffer : "");
+  std::printf("weights        %s, %zu great circles of views, a sample every %g degrees\n", scheme.c_str(), r.paths,
               settings.step_deg);
   std::printf("popping        %.5f of the model's size per degree (the fastest vertex)\n", r.popping);
   std::printf("velocity jump  %.6f per degree (the largest change of a vertex's speed between samples)\n",
@@ -150,7 +182,8 @@ void addWeightsCommand(CLI::App& app) {
     ViewOptions view;
     bool json = false;
     std::string views;
-    std::string scheme;
+    std::string scheme, kernel;
+    double width_deg = 0.0;
     bool continuity = false;
     ContinuitySettings continuity_settings;
   };
@@ -166,7 +199,11 @@ void addWeightsCommand(CLI::App& app) {
       ->excludes("--view")
       ->excludes("--eye");
   sub->add_option("--scheme", opt->scheme, "Weigh with this scheme instead of the model's (docs/weights.md)")
-      ->check(CLI::IsMember({"linear", "smooth"}));
+      ->check(CLI::IsMember({"linear", "smooth", "rbf"}));
+  sub->add_option("--kernel", opt->kernel, "The rbf scheme's kernel (default: the model's, else gaussian)")
+      ->check(CLI::IsMember({"gaussian", "inverse-multiquadric", "wendland"}));
+  sub->add_option("--width", opt->width_deg, "The rbf scheme's kernel width in degrees, in (0, 180]")
+      ->check(positiveNumber(180.0));
   auto* continuity = sub->add_flag("--continuity", opt->continuity,
                                    "Measure how smoothly the model changes along great circles of views: popping "
                                    "(the fastest vertex per degree) and velocity jumps (docs/weights.md)");
@@ -175,9 +212,11 @@ void addWeightsCommand(CLI::App& app) {
       ->check(positiveNumber(10.0))
       ->needs(continuity);
   sub->callback([opt] {
-    OpenedInput input = openModel(opt->model, {}, opt->scheme.empty() ? InputBuild::kBuilt : InputBuild::kRawOnly);
-    if (!opt->scheme.empty()) {
-      input.raw.sphere.scheme = opt->scheme == "smooth" ? WeightScheme::Smooth : WeightScheme::Linear;
+    const bool rbf_settings = !opt->kernel.empty() || opt->width_deg > 0.0;
+    const bool rebuild = !opt->scheme.empty() || rbf_settings;
+    OpenedInput input = openModel(opt->model, {}, rebuild ? InputBuild::kRawOnly : InputBuild::kBuilt);
+    if (rebuild) {
+      overrideWeightScheme(input.raw.sphere, opt->scheme, opt->kernel, opt->width_deg);
       buildOpenedModel(input);
     }
     if (opt->continuity) {
@@ -195,17 +234,16 @@ void addWeightsCommand(CLI::App& app) {
     }
     const ViewDependentModel& model = *input.model;
     const Eigen::Vector3d view = opt->view.resolve(model);
-    ViewWeights w;
-    if (!model.weights(view, opt->view.sharpness, w)) refused(view);  // a unit view; sharpness > 0
+    std::vector<float> dense(model.keyCount() + 1);
+    if (!model.denseWeights(view, opt->view.sharpness, dense)) refused(view);  // a unit view; sharpness > 0
     if (opt->json) {
-      std::cout << staticJson(model, w).dump() << "\n";
+      std::cout << staticJson(model, dense).dump() << "\n";
       return;
     }
     std::printf("view (%.6f, %.6f, %.6f)\n", view.x(), view.y(), view.z());
-    for (int k = 0; k < 3; ++k)
-      if (w.key[k] >= 0 && w.weight[k] > 0.0f)
-        std::printf("  %-20s %.6f\n", model.keyName(static_cast<std::size_t>(w.key[k])).c_str(), w.weight[k]);
-    std::printf("  %-20s %.6f\n", "(base)", w.base);
+    for (std::size_t k = 0; k < model.keyCount(); ++k)
+      if (dense[k] > 0.0f) std::printf("  %-20s %.6f\n", model.keyName(k).c_str(), dense[k]);
+    std::printf("  %-20s %.6f\n", "(base)", dense.back());
   });
 }
 

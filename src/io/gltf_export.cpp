@@ -317,6 +317,10 @@ void validateInput(const GltfExportInput& in, const std::string& where) {
         fail("bake: expected 0 < yfov < pi, aspect > 0 and 0 < znear < zfar");
     }
   }
+  if (in.sphere.scheme == WeightScheme::Rbf)
+    fail(
+        "the 'rbf' weight scheme is not supported by the glTF export: its runtimes blend the keys of one hull "
+        "triangle (export a 'linear' or 'smooth' model; docs/weights.md)");
   validateViewSphere(in, fail);
 }
 
@@ -1340,6 +1344,7 @@ Described describedModel(const io::Json& extras, std::size_t target_count, const
     if (!weights.is_object()) wc.fail("expected an object {\"scheme\": ...}, got " + io::describe(weights));
     io::allowKeys(weights, wc, {"scheme"});
     raw.sphere.scheme = io::enumValue(io::required(weights, "scheme", wc), wc.key("scheme"), io::kWeightSchemeNames);
+    if (raw.sphere.scheme == WeightScheme::Rbf) wc.key("scheme").fail("'rbf' is not a scheme of the glTF extras");
   }
   raw.offsets = io::enumValue(io::required(vdg, "offsets", ctx), ctx.key("offsets"), io::kOffsetSpaceNames);
   if (vdg.contains("animation")) {

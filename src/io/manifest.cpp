@@ -242,10 +242,20 @@ RawViewDependentModel parseManifest(const std::string& text, const std::string& 
   if (doc.contains("weights")) {
     const Json& weights = doc.at("weights");
     const Ctx ctx = top.key("weights");
-    if (!weights.is_object()) ctx.fail("expected an object {\"scheme\": \"linear\" | \"smooth\"}");
-    io::allowKeys(weights, ctx, {"scheme"});
+    if (!weights.is_object()) ctx.fail("expected an object {\"scheme\": \"linear\" | \"smooth\" | \"rbf\", ...}");
+    io::allowKeys(weights, ctx, {"scheme", "kernel", "width"});
     if (weights.contains("scheme"))
       model.sphere.scheme = io::enumValue(weights.at("scheme"), ctx.key("scheme"), io::kWeightSchemeNames);
+    for (const char* rbf_only : {"kernel", "width"})
+      if (weights.contains(rbf_only) && model.sphere.scheme != WeightScheme::Rbf)
+        ctx.key(rbf_only).fail("is a setting of the 'rbf' scheme only");
+    if (weights.contains("kernel"))
+      model.sphere.rbf_kernel = io::enumValue(weights.at("kernel"), ctx.key("kernel"), io::kRbfKernelNames);
+    if (weights.contains("width")) {
+      model.sphere.rbf_width_deg = io::number(weights.at("width"), ctx.key("width"));
+      if (!(model.sphere.rbf_width_deg > 0.0 && model.sphere.rbf_width_deg <= 180.0))
+        ctx.key("width").fail("expected degrees in (0, 180], got " + std::to_string(model.sphere.rbf_width_deg));
+    }
   }
 
   if (!doc.contains("keys") || !doc.at("keys").is_array())
@@ -326,6 +336,10 @@ std::string formatManifest(const RawViewDependentModel& model) {
   if (model.sphere.base_falloff_deg != ViewSphereSettings{}.base_falloff_deg)
     doc["base_falloff_deg"] = model.sphere.base_falloff_deg;
   if (model.sphere.scheme != WeightScheme::Linear) doc["weights"] = {{"scheme", weightSchemeName(model.sphere.scheme)}};
+  if (model.sphere.scheme == WeightScheme::Rbf) {
+    doc["weights"]["kernel"] = rbfKernelName(model.sphere.rbf_kernel);
+    doc["weights"]["width"] = model.sphere.rbf_width_deg;
+  }
   nlohmann::ordered_json keys = nlohmann::ordered_json::array();
   for (const RawKey& key : model.keys) {
     nlohmann::ordered_json entry;

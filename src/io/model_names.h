@@ -15,8 +15,14 @@ inline constexpr std::pair<const char*, Uncovered> kUncoveredNames[] = {
     {"base", Uncovered::Base}, {"cosine", Uncovered::Cosine}, {"cosine2", Uncovered::Cosine2}};
 
 // "weights": {"scheme": ...}: how a view's weights follow from its hull triangle (issue 29).
-inline constexpr std::pair<const char*, WeightScheme> kWeightSchemeNames[] = {{"linear", WeightScheme::Linear},
-                                                                              {"smooth", WeightScheme::Smooth}};
+inline constexpr std::pair<const char*, WeightScheme> kWeightSchemeNames[] = {
+    {"linear", WeightScheme::Linear}, {"smooth", WeightScheme::Smooth}, {"rbf", WeightScheme::Rbf}};
+
+// "weights": {"kernel": ...}: the rbf scheme's radial kernel (view_sphere.h, "Weight schemes").
+inline constexpr std::pair<const char*, RbfKernel> kRbfKernelNames[] = {
+    {"gaussian", RbfKernel::Gaussian},
+    {"inverse-multiquadric", RbfKernel::InverseMultiquadric},
+    {"wendland", RbfKernel::Wendland}};
 
 // "offsets": the space a key's offsets from the base are held in (Rademacher 99, section 4).
 inline constexpr std::pair<const char*, OffsetSpace> kOffsetSpaceNames[] = {{"world", OffsetSpace::kWorld},

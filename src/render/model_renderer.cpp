@@ -200,6 +200,7 @@ struct ModelRenderer::Impl {
 };
 
 ModelRenderer::ModelRenderer(const ViewDependentModel& model, const FrameOptions& options) {
+  model.requireThreeKeyWeights("the renderer (vdg render, run)");
   checkSize(options.width, options.height, "image size");
   const int image_width = options.observer ? options.width * 2 : options.width;
   checkSize(image_width, options.height, "image size with the observer panel");

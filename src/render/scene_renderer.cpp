@@ -109,6 +109,7 @@ struct SceneRenderer::Impl {
       if (fresh) {
         Object obj;
         if (const auto* m = scene.model(i); m && options.gpu_blend) {
+          m->requireThreeKeyWeights("the GPU blend (--gpu-blend; the CPU blend evaluates it)");
           obj.blend_handle = renderer.addBlendModel(*m);
         } else {
           obj.handle = topology ? renderer.addSurface(*base, *topology)

@@ -76,10 +76,17 @@ CameraPathBake bakeCameras(std::span<const Camera> cameras, double fps, double a
 CameraPathBake bakeCameraPath(const ViewDependentModel& model, std::span<const Camera> cameras, double fps,
                               double aspect, double sharpness, bool close_loop) {
   const std::size_t keys = model.keyCount();
+  const bool rbf = model.sphere().settings().scheme == WeightScheme::Rbf;
+  std::vector<float> dense(rbf ? keys + 1 : 0);  // the rbf scheme weighs every key
   // The clip planes hold what the model draws: the base and every key (extentRadius()).
   return bakeCameras(cameras, fps, aspect, close_loop, model.center(), model.extentRadius(), keys,
                      [&](std::size_t s, const Camera& camera, float* weights) {
                        const Eigen::Vector3d view = model.viewFromEye(camera.eye);
+                       if (rbf) {
+                         if (view.isZero() || !model.denseWeights(view, sharpness, dense)) noView(s % cameras.size());
+                         for (std::size_t k = 0; k < keys; ++k) weights[k] += dense[k];
+                         return;
+                       }
                        ViewWeights w;
                        if (view.isZero() || !model.weights(view, sharpness, w)) noView(s % cameras.size());
                        for (int slot = 0; slot < 3; ++slot)

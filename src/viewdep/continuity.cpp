@@ -49,6 +49,7 @@ void denseWeights(const ViewWeights& w, std::vector<double>& out) {
 struct PathState {
   std::vector<float> x[3];
   std::vector<double> w[3];
+  std::vector<float> dense;  // the rbf scheme's weights of the newest sample
   int filled = 0;
 };
 
@@ -58,6 +59,7 @@ void walkCircle(const ViewDependentModel& model, const Vector3d& normal, const C
   const int steps = static_cast<int>(std::ceil(360.0 / s.step_deg));
   const double step_rad = s.step_deg * std::numbers::pi / 180.0;
   const double scale = 1.0 / (s.step_deg * report.size);
+  const bool rbf = model.sphere().settings().scheme == WeightScheme::Rbf;
   state.filled = 0;
   int hint = -1;
   for (int n = 0; n <= steps + 1; ++n) {
@@ -65,10 +67,16 @@ void walkCircle(const ViewDependentModel& model, const Vector3d& normal, const C
     const Vector3d view = std::cos(angle) * a + std::sin(angle) * b;
     std::rotate(std::begin(state.x), std::begin(state.x) + 2, std::end(state.x));  // newest into x[0]
     std::rotate(std::begin(state.w), std::begin(state.w) + 2, std::end(state.w));
-    ViewWeights w;
-    if (!model.weights(view, s.sharpness, w, &hint) || !model.blend(w, state.x[0]))
-      throw Error("continuity: the model refused a view on its path (internal error)");
-    denseWeights(w, state.w[0]);
+    if (rbf) {  // weights over every key (view_sphere.h, "Weight schemes")
+      if (!model.denseWeights(view, s.sharpness, state.dense, &hint) || !model.blendDense(state.dense, state.x[0]))
+        throw Error("continuity: the model refused a view on its path (internal error)");
+      std::copy(state.dense.begin(), state.dense.end(), state.w[0].begin());
+    } else {
+      ViewWeights w;
+      if (!model.weights(view, s.sharpness, w, &hint) || !model.blend(w, state.x[0]))
+        throw Error("continuity: the model refused a view on its path (internal error)");
+      denseWeights(w, state.w[0]);
+    }
     ++report.samples;
     state.filled = std::min(state.filled + 1, 3);
     if (state.filled < 2) continue;
@@ -109,6 +117,7 @@ ContinuityReport measureContinuity(const ViewDependentModel& model, const Contin
     state.x[i].assign(3 * model.vertexCount(), 0.0f);
     state.w[i].assign(model.keyCount() + 1, 0.0);
   }
+  state.dense.assign(model.keyCount() + 1, 0.0f);
   for (const Vector3d& normal : circleNormals(model, s)) {
     walkCircle(model, normal, s, state, report);
     ++report.paths;

@@ -3,6 +3,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -503,6 +504,41 @@ bool ViewDependentModel::blend(const ViewWeights& w, std::span<float> out) const
   return true;
 }
 
+bool ViewDependentModel::denseWeights(const Eigen::Vector3d& view, double sharpness, std::span<float> out,
+                                      int* hint) const {
+  if (!std::isfinite(sharpness)) return false;
+  return sphere_.denseWeights(view, sharpness > 0.0 ? sharpness : sharpness_, out, hint);
+}
+
+// Section 3.2.3 over every key (the rbf scheme's blend): base + sum_k w_k (v^k - base).
+bool ViewDependentModel::blendDense(std::span<const float> weights, std::span<float> out) const {
+  const std::size_t n = base_.positions.size();
+  if (out.size() != n || weights.size() != keys_.size() + 1) return false;
+  for (const float w : weights)
+    if (!std::isfinite(w)) return false;
+  std::memcpy(out.data(), base_.positions.data(), n * sizeof(float));
+  Eigen::Map<Eigen::ArrayXf> dst(out.data(), static_cast<Eigen::Index>(n));
+  for (std::size_t k = 0; k < keys_.size(); ++k) {
+    if (weights[k] == 0.0f) continue;
+    if (keys_[k].dense) {
+      dst += weights[k] * Eigen::Map<const Eigen::ArrayXf>(keys_[k].deltas.data(), static_cast<Eigen::Index>(n));
+      continue;
+    }
+    ViewWeights one;
+    one.key[0] = static_cast<int>(k);
+    one.weight[0] = weights[k];
+    scatterSparse(one, out.data());
+  }
+  return true;
+}
+
+void ViewDependentModel::requireThreeKeyWeights(const std::string& where) const {
+  if (sphere_.settings().scheme != WeightScheme::Rbf) return;
+  throw Error("the 'rbf' weight scheme is not supported by " + where +
+              ": it blends at most three keys per view and rbf weighs every key (use 'linear' or 'smooth' there; "
+              "vdg weights and the Python module evaluate rbf)");
+}
+
 bool ViewDependentModel::keyPositions(std::size_t key, std::span<float> out) const {
   if (key >= keys_.size()) return false;
   ViewWeights w;
@@ -518,9 +554,16 @@ bool ViewDependentModel::evaluate(const Eigen::Vector3d& view, double sharpness,
   if (out_positions.size() != base_.positions.size()) return false;
   if (!out_normals.empty() && out_normals.size() != base_.positions.size()) return false;
   int local_hint = hint ? *hint : -1;
-  ViewWeights w;
-  if (!weights(view, sharpness, w, &local_hint)) return false;
-  if (!blend(w, out_positions)) return false;  // cannot fail: w comes from this model's sphere
+  if (sphere_.settings().scheme == WeightScheme::Rbf) {  // every key: dense weights on the stack
+    std::array<float, ViewSphere::kRbfMaxKeys + 1> buffer;
+    const std::span<float> dense(buffer.data(), keys_.size() + 1);
+    if (!denseWeights(view, sharpness, dense, &local_hint)) return false;
+    if (!blendDense(dense, out_positions)) return false;  // cannot fail: the weights come from this sphere
+  } else {
+    ViewWeights w;
+    if (!weights(view, sharpness, w, &local_hint)) return false;
+    if (!blend(w, out_positions)) return false;  // cannot fail: w comes from this model's sphere
+  }
   if (!out_normals.empty() && !computeVertexNormals(surface_, out_positions, out_normals)) return false;
   if (hint) *hint = local_hint;
   return true;

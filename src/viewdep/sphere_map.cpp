@@ -197,6 +197,7 @@ int SphereMap::cellOf(const Eigen::Vector3d& d) const {
 }
 
 SphereMap computeSphereMap(const ViewDependentModel& model, const SphereMapSettings& settings) {
+  model.requireThreeKeyWeights("the sphere map (its cells hold a view's triangle)");
   checkSettings(settings);
   MapInput in;
   in.sphere = &model.sphere();

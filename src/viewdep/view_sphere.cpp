@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <map>
 #include <numbers>
 #include <string>
@@ -147,8 +148,9 @@ Vector3d faceDirection(int face, double s, double t) {
 // Multiplications for small integer alpha (the same value to double rounding) without
 // data-dependent branches (random views on the per-frame hot path would mispredict them),
 // std::pow otherwise.
-void sharpenRelative(double (&p)[3], double alpha) {
-  const double largest = std::max({p[0], p[1], p[2]});
+// The rbf scheme sharpens all its weights (keys and base) the same way: the pointer form.
+void sharpenRelative(std::span<double> p, double alpha) {
+  const double largest = *std::max_element(p.begin(), p.end());
   const double inverse = 1.0 / largest;
   if (alpha == 2.0) {
     for (double& x : p) x = (x * inverse) * (x * inverse);
@@ -162,6 +164,35 @@ void sharpenRelative(double (&p)[3], double alpha) {
   } else {
     for (double& x : p) x = x == largest ? 1.0 : std::pow(x * inverse, alpha);  // pow(r < 1, +inf) = 0
   }
+}
+void sharpenRelative(double (&p)[3], double alpha) { sharpenRelative(std::span<double>(p, 3), alpha); }
+
+// The rbf scheme's kernel g of the scaled squared chord q = (chord / chord(width))^2 (view_sphere.h,
+// "Weight schemes"; Buhmann 2003 for the Gaussian and the inverse multiquadric, Wendland 1995 for
+// the compactly supported psi_{3,1}, positive definite in R^3).
+double rbfKernelOfChord2(RbfKernel kernel, double q) {
+  switch (kernel) {
+    case RbfKernel::InverseMultiquadric:
+      return 1.0 / std::sqrt(1.0 + q);
+    case RbfKernel::Wendland: {
+      const double r = std::sqrt(q);
+      if (r >= 1.0) return 0.0;
+      const double u = 1.0 - r;
+      return u * u * u * u * (4.0 * r + 1.0);
+    }
+    case RbfKernel::Gaussian:
+      break;
+  }
+  return std::exp(-q);
+}
+
+// The rbf scheme's C1 positive part P (view_sphere.h): 0 below 0, r^2 (2e - r) / e^2 on (0, e),
+// r from e on (value and slope match at 0 and at e).
+double rbfPositivePart(double r) {
+  constexpr double e = ViewSphere::kRbfPositiveSoftness;
+  if (r >= e) return r;
+  if (r <= 0.0) return 0.0;
+  return r * r * (2.0 * e - r) / (e * e);
 }
 
 // The smooth scheme (issue 29; view_sphere.h, "Weight schemes"). F(t) = 3t^2 - 2t^3 on [0, 1],
@@ -259,7 +290,29 @@ void boundingCaps(const std::vector<Vector3d>& points, const std::vector<std::ar
 
 }  // namespace
 
-const char* weightSchemeName(WeightScheme scheme) { return scheme == WeightScheme::Smooth ? "smooth" : "linear"; }
+const char* weightSchemeName(WeightScheme scheme) {
+  switch (scheme) {
+    case WeightScheme::Smooth:
+      return "smooth";
+    case WeightScheme::Rbf:
+      return "rbf";
+    case WeightScheme::Linear:
+      break;
+  }
+  return "linear";
+}
+
+const char* rbfKernelName(RbfKernel kernel) {
+  switch (kernel) {
+    case RbfKernel::InverseMultiquadric:
+      return "inverse-multiquadric";
+    case RbfKernel::Wendland:
+      return "wendland";
+    case RbfKernel::Gaussian:
+      break;
+  }
+  return "gaussian";
+}
 
 const char* uncoveredName(Uncovered uncovered) {
   switch (uncovered) {
@@ -278,6 +331,12 @@ ViewSphere ViewSphere::build(std::span<const Eigen::Vector3d> key_directions, co
   if (key_directions.empty()) throw Error("view sphere: a view-dependent model needs at least one key");
   if (!(settings.base_falloff_deg > 0.0 && settings.base_falloff_deg <= 70.0))
     throw Error("view sphere: base_falloff_deg must be in (0, 70] degrees");
+  if (!(settings.rbf_width_deg > 0.0 && settings.rbf_width_deg <= 180.0))
+    throw Error("view sphere: the rbf width must be in (0, 180] degrees, got " +
+                std::to_string(settings.rbf_width_deg));
+  if (settings.scheme == WeightScheme::Rbf && key_directions.size() > kRbfMaxKeys)
+    throw Error("view sphere: the rbf weights take at most " + std::to_string(kRbfMaxKeys) + " keys, got " +
+                std::to_string(key_directions.size()) + " (use the 'linear' or 'smooth' scheme)");
   if (!key_labels.empty() && key_labels.size() != key_directions.size())
     throw Error("view sphere: " + std::to_string(key_labels.size()) + " key labels for " +
                 std::to_string(key_directions.size()) + " keys (internal error)");
@@ -380,6 +439,7 @@ ViewSphere ViewSphere::build(std::span<const Eigen::Vector3d> key_directions, co
   }
   sphere.covered_fraction_ = std::min(1.0, covered / (4.0 * std::numbers::pi));
   sphere.buildIndex();
+  if (settings.scheme == WeightScheme::Rbf) sphere.buildRbf(key_labels);
   return sphere;
 }
 
@@ -551,7 +611,8 @@ void ViewSphere::finishWeights(ViewWeights& w, double sharpness) const {
   }
 }
 
-ViewWeights ViewSphere::falloff(const Eigen::Vector3d& v, std::span<const int> features, double& nearest_cos) const {
+ViewWeights ViewSphere::falloff(const Eigen::Vector3d& v, std::span<const int> features, double& nearest_cos,
+                                Eigen::Vector3d* nearest) const {
   // Nearest point p of the covered region, and its barycentric weights among the keys.
   double best_cos = -2.0;
   ViewWeights best;
@@ -562,6 +623,7 @@ ViewWeights ViewSphere::falloff(const Eigen::Vector3d& v, std::span<const int> f
       best = ViewWeights{};
       best.key[0] = k;
       best.weight[0] = 1.0f;
+      if (nearest) *nearest = points_[k];
     }
   };
   const int isolated = static_cast<int>(isolated_.size());
@@ -582,6 +644,7 @@ ViewWeights ViewSphere::falloff(const Eigen::Vector3d& v, std::span<const int> f
         best = ViewWeights{};
         best.key[0] = arc[0];
         best.key[1] = arc[1];
+        if (nearest) *nearest = (la * points_[arc[0]] + lb * points_[arc[1]]).normalized();
         if (settings_.scheme == WeightScheme::Smooth) {
           // The smooth edge weights at the arc's point p = normalize(la a + lb b) nearest to v
           // (view_sphere.h): continuous where the view leaves the covered region.
@@ -625,7 +688,7 @@ bool ViewSphere::checkQuery(const Eigen::Vector3d& view, double sharpness, const
 bool ViewSphere::weights(const Eigen::Vector3d& view, double sharpness, ViewWeights& out, int* hint) const {
   Vector3d v;
   int local_hint = -1;
-  if (!checkQuery(view, sharpness, hint, v, local_hint)) return false;
+  if (settings_.scheme == WeightScheme::Rbf || !checkQuery(view, sharpness, hint, v, local_hint)) return false;
   out = locate(v, sharpness, &local_hint);
   if (hint) *hint = local_hint;
   return true;
@@ -634,7 +697,7 @@ bool ViewSphere::weights(const Eigen::Vector3d& view, double sharpness, ViewWeig
 bool ViewSphere::weightsByScan(const Eigen::Vector3d& view, double sharpness, ViewWeights& out, int* hint) const {
   Vector3d v;
   int local_hint = -1;
-  if (!checkQuery(view, sharpness, hint, v, local_hint)) return false;
+  if (settings_.scheme == WeightScheme::Rbf || !checkQuery(view, sharpness, hint, v, local_hint)) return false;
   out = locateByScan(v, sharpness, &local_hint);
   if (hint) *hint = local_hint;
   return true;
@@ -673,12 +736,12 @@ ViewWeights ViewSphere::triangleWeights(int t, const Eigen::Vector3d& v, const E
   return w;
 }
 
-ViewWeights ViewSphere::uncoveredWeights(const Eigen::Vector3d& v, double sharpness,
-                                         std::span<const int> features) const {
+ViewWeights ViewSphere::uncoveredWeights(const Eigen::Vector3d& v, double sharpness, std::span<const int> features,
+                                         Eigen::Vector3d* nearest) const {
   // Section 3.3, cosine falloff towards the base model (generalised; see the header).
   ViewWeights result;
   double nearest_cos = 0.0;
-  result = falloff(v, features, nearest_cos);
+  result = falloff(v, features, nearest_cos, nearest);
   if (result.key[0] < 0) {
     result.base = 1.0f;
     return result;
@@ -736,7 +799,7 @@ ViewWeights ViewSphere::locateByScan(const Eigen::Vector3d& v, double sharpness,
   return uncoveredWeights(v, sharpness, all_features_);
 }
 
-ViewWeights ViewSphere::locate(const Eigen::Vector3d& v, double sharpness, int* hint) const {
+ViewWeights ViewSphere::locate(const Eigen::Vector3d& v, double sharpness, int* hint, Eigen::Vector3d* nearest) const {
   // Walk from the hint towards the view: across the edge that v lies farthest beyond.
   int t = *hint;
   for (int step = 0; t >= 0 && step <= kMaxWalkSteps; ++step) {
@@ -775,7 +838,122 @@ ViewWeights ViewSphere::locate(const Eigen::Vector3d& v, double sharpness, int* 
   // Cosine modes: no triangle listed in the cell contains v, so none does (the lists hold every
   // triangle that reaches into the cell).
   const std::uint32_t fbegin = cell_feature_start_[cell], fend = cell_feature_start_[cell + 1];
-  return uncoveredWeights(v, sharpness, std::span<const int>(cell_features_.data() + fbegin, fend - fbegin));
+  return uncoveredWeights(v, sharpness, std::span<const int>(cell_features_.data() + fbegin, fend - fbegin), nearest);
+}
+
+bool ViewSphere::denseWeights(const Eigen::Vector3d& view, double sharpness, std::span<float> out, int* hint) const {
+  Vector3d v;
+  int local_hint = -1;
+  if (out.size() != key_count_ + 1 || !checkQuery(view, sharpness, hint, v, local_hint)) return false;
+  if (settings_.scheme != WeightScheme::Rbf) {
+    const ViewWeights w = locate(v, sharpness, &local_hint);
+    std::fill(out.begin(), out.end(), 0.0f);
+    for (int k = 0; k < 3; ++k)
+      if (w.key[k] >= 0) out[static_cast<std::size_t>(w.key[k])] += w.weight[k];
+    out.back() = w.base;
+  } else if (settings_.uncovered == Uncovered::Base) {  // the whole sphere is covered
+    (void)locate(v, 1.0, &local_hint);                  // only to keep the hint's meaning
+    rbfWeightsAt(v, sharpness, 1.0, out);
+  } else {
+    // Cosine modes (view_sphere.h): the rbf weights at the view when it is covered, else at the
+    // nearest point p of the covered region, times the falloff f = max(0, v.p) (squared for cosine2).
+    Vector3d nearest = v;
+    const ViewWeights located = locate(v, 1.0, &local_hint, &nearest);
+    double f = 1.0;
+    if (located.triangle < 0) {
+      // No key at all only when the covered region is out of reach (falloff() found no feature);
+      // a key of zero falloff weight leaves its slot empty, so look at every slot.
+      const bool reached = located.key[0] >= 0 || located.key[1] >= 0 || located.key[2] >= 0;
+      f = reached ? std::max(0.0, v.dot(nearest)) : 0.0;
+      if (settings_.uncovered == Uncovered::Cosine2) f *= f;
+    }
+    rbfWeightsAt(located.triangle < 0 ? nearest : v, sharpness, f, out);
+  }
+  if (hint) *hint = local_hint;
+  return true;
+}
+
+// Rbf scheme (view_sphere.h, "Weight schemes"): r_o(x) = b_o + sum_j c_oj g(q_j) with q_j the scaled
+// squared chord to centre j, then the positive part, the normalisation and the sharpening; the
+// keys get scale x their weight, the base the rest. Stack buffers only (the per-frame rule).
+void ViewSphere::rbfWeightsAt(const Eigen::Vector3d& x, double sharpness, double scale, std::span<float> out) const {
+  constexpr std::size_t kMaxCentres = kRbfMaxKeys + kDummyCandidates;
+  std::array<double, kMaxCentres> phi;
+  std::array<double, kRbfMaxKeys + 1> w;
+  const std::size_t m = points_.size(), outputs = key_count_ + 1;
+  for (std::size_t j = 0; j < m; ++j)
+    phi[j] = rbfKernelOfChord2(settings_.rbf_kernel, (x - points_[j]).squaredNorm() / rbf_chord2_);
+  // Centre by centre (rbf_rows_: the constants b_o, then each centre's c_oj over the outputs), so
+  // that a compactly supported kernel skips the centres out of reach.
+  std::copy_n(rbf_rows_.data(), outputs, w.data());
+  for (std::size_t j = 0; j < m; ++j) {
+    if (phi[j] == 0.0) continue;
+    const double* row = rbf_rows_.data() + (j + 1) * outputs;
+    for (std::size_t o = 0; o < outputs; ++o) w[o] += row[o] * phi[j];
+  }
+  double sum = 0.0;
+  for (std::size_t o = 0; o < outputs; ++o) {
+    w[o] = rbfPositivePart(w[o]);
+    sum += w[o];
+  }
+  // sum >= P(max r) > 0: the r sum to 1 over keys + 1 outputs (see the header).
+  if (sharpness != 1.0) {
+    for (std::size_t o = 0; o < outputs; ++o) w[o] /= sum;
+    sharpenRelative(std::span<double>(w.data(), outputs), sharpness);
+    sum = 0.0;
+    for (std::size_t o = 0; o < outputs; ++o) sum += w[o];
+  }
+  const double factor = scale / sum;
+  for (std::size_t o = 0; o + 1 < outputs; ++o) out[o] = static_cast<float>(w[o] * factor);
+  out[outputs - 1] = static_cast<float>(w[outputs - 1] * factor + (1.0 - scale));
+}
+
+// Solves the rbf interpolation once (view_sphere.h): the saddle system [Phi 1; 1^T 0] for the data
+// of every output at once (Lewis et al. 2000's pose-space solve with a constant term, Buhmann 2003
+// ch. 2 for its solvability), refused when its reciprocal condition number is too small.
+void ViewSphere::buildRbf(std::span<const std::string> key_labels) {
+  const double half = 0.5 * settings_.rbf_width_deg * std::numbers::pi / 180.0;
+  const double chord = 2.0 * std::sin(half);
+  rbf_chord2_ = chord * chord;
+  const auto m = static_cast<Eigen::Index>(points_.size());
+  const auto outputs = static_cast<Eigen::Index>(key_count_ + 1);
+  Eigen::MatrixXd system = Eigen::MatrixXd::Zero(m + 1, m + 1);
+  Eigen::MatrixXd data = Eigen::MatrixXd::Zero(m + 1, outputs);
+  for (Eigen::Index i = 0; i < m; ++i) {
+    for (Eigen::Index j = 0; j < m; ++j)
+      system(i, j) = rbfKernelOfChord2(settings_.rbf_kernel, (points_[i] - points_[j]).squaredNorm() / rbf_chord2_);
+    system(i, m) = system(m, i) = 1.0;
+    data(i, isDummy(static_cast<int>(i)) ? outputs - 1 : i) = 1.0;
+  }
+  const Eigen::PartialPivLU<Eigen::MatrixXd> lu(system);
+  const double rcond = lu.rcond();
+  if (!(rcond * kRbfMaxCondition >= 1.0)) {
+    std::size_t a = 0, b = 0;
+    double closest = 1e300;
+    for (std::size_t i = 0; i < key_count_; ++i)
+      for (std::size_t j = 0; j < i; ++j)
+        if (const double d = angleBetween(points_[i], points_[j]); d < closest) {
+          closest = d;
+          a = i;
+          b = j;
+        }
+    auto label = [&](std::size_t i) { return key_labels.empty() ? "key " + std::to_string(i) : key_labels[i]; };
+    char numbers[160];
+    std::snprintf(numbers, sizeof(numbers), " (%.3g degrees apart) are too close for a %s width of %g degrees",
+                  closest * 180.0 / std::numbers::pi, rbfKernelName(settings_.rbf_kernel), settings_.rbf_width_deg);
+    const std::string pair = key_count_ < 2 ? std::string("the key and the dummy base points are too close")
+                                            : label(a) + " and " + label(b) + numbers;
+    std::snprintf(numbers, sizeof(numbers), "%.2g", rcond);
+    throw Error("view sphere: the rbf weights are ill-conditioned (reciprocal condition " + std::string(numbers) +
+                "): " + pair + "; lower 'width' or move the keys apart");
+  }
+  const Eigen::MatrixXd solution = lu.solve(data);
+  // Layout (rbfWeightsAt): the constants b_o (solution row m), then per centre j its c_oj.
+  rbf_rows_.assign(static_cast<std::size_t>(outputs * (m + 1)), 0.0);
+  for (Eigen::Index o = 0; o < outputs; ++o) {
+    rbf_rows_[static_cast<std::size_t>(o)] = solution(m, o);
+    for (Eigen::Index j = 0; j < m; ++j) rbf_rows_[static_cast<std::size_t>((j + 1) * outputs + o)] = solution(j, o);
+  }
 }
 
 std::size_t forEachCloseViewPair(std::span<const Eigen::Vector3d> directions, double max_angle_rad,

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -125,6 +126,48 @@ TEST(Cli, WeightSchemesAndContinuity) {
   EXPECT_NE(graph.err.find("--interactivity: the graph weighs the keys with the linear scheme only"), std::string::npos)
       << graph.err;
   EXPECT_FALSE(std::filesystem::exists(dir.file("s.glb")));
+}
+
+// The rbf weight scheme (docs/weights.md): every key weighs, exact at the keys, the example's
+// settings equal --scheme rbf's defaults, --continuity measures it as C1, its settings need it,
+// and the exports that blend three keys per view refuse it in one line.
+TEST(Cli, RbfWeightScheme) {
+  const std::string rbf = "examples/spot/spot-rbf.vdg.json";
+  const auto at_key = nlohmann::json::parse(run("weights " + rbf + " --view 0,0.15,-1 --json").out);
+  EXPECT_NEAR(at_key["keys"]["front"].get<double>(), 1.0, 1e-6) << at_key.dump();
+  const Result between = run("weights " + kSpot + " --scheme rbf --view 0,0.5,-0.8 --json");
+  ASSERT_EQ(between.code, 0) << between.err;
+  EXPECT_EQ(between.out, run("weights " + rbf + " --view 0,0.5,-0.8 --json").out);
+  const auto w = nlohmann::json::parse(between.out);
+  double sum = w["base"].get<double>();
+  for (const auto& [name, value] : w["keys"].items()) sum += value.get<double>();
+  EXPECT_NEAR(sum, 1.0, 1e-5) << between.out;
+  EXPECT_GT(w["keys"].size(), 3u) << "the rbf scheme weighs more than a triangle's keys: " << between.out;
+  EXPECT_NE(run("weights " + kSpot + " --scheme rbf --kernel wendland --width 50 --view 0,0.5,-0.8 --json").out,
+            between.out);
+  const Result linear = run("weights " + kSpot + " --continuity --step 0.5 --json");
+  const Result measured = run("weights " + kSpot + " --continuity --step 0.5 --json --scheme rbf");
+  ASSERT_EQ(measured.code, 0) << measured.err;
+  const auto l = nlohmann::json::parse(linear.out), r = nlohmann::json::parse(measured.out);
+  EXPECT_EQ(r["scheme"], "rbf");
+  EXPECT_EQ(r["kernel"], "gaussian");
+  EXPECT_EQ(r["width"], 60.0);
+  EXPECT_LT(r["velocity_jump"].get<double>(), l["velocity_jump"].get<double>()) << l.dump() << "\n" << r.dump();
+  EXPECT_LT(r["weight_jump"].get<double>(), l["weight_jump"].get<double>());
+  const Result needs = run("weights " + kSpot + " --width 30 --view 0,0,1");
+  EXPECT_EQ(needs.code, 2);
+  EXPECT_NE(needs.err.find("--kernel, --width: settings of the rbf scheme"), std::string::npos) << needs.err;
+  EXPECT_EQ(run("weights " + kSpot + " --scheme rbf --width 0 --view 0,0,1").code, 2);
+  vdg::testing::TempDir dir;
+  const Result obj = run("eval " + rbf + " --view 0.3,0.2,-0.9 -q -o " + dir.file("e.obj"));
+  EXPECT_EQ(obj.code, 0) << obj.err;
+  const Result glb = run("export " + rbf + " -q -o " + dir.file("r.glb"));
+  EXPECT_EQ(glb.code, 1);
+  EXPECT_NE(glb.err.find("the 'rbf' weight scheme is not supported by the glTF export"), std::string::npos) << glb.err;
+  EXPECT_EQ(std::count(glb.err.begin(), glb.err.end(), '\n'), 1) << glb.err;
+  const Result image = run("render " + rbf + " -o " + dir.file("frames"));
+  EXPECT_EQ(image.code, 1);
+  EXPECT_NE(image.err.find("the 'rbf' weight scheme is not supported by the renderer"), std::string::npos) << image.err;
 }
 
 TEST(Cli, EyeIsMeasuredFromTheModelCentre) {

@@ -149,11 +149,60 @@ TEST_F(ManifestV2, Version3CarriesTheWeightScheme) {
                 .find("m.vdg.json: 'weights'.'scheme': unknown value 'cubic'"),
             std::string::npos);
   EXPECT_NE(loadError(R"({"version": 3, "base": "k.obj", "weights": {"kernel": 1}, )" + key + "}")
-                .find("m.vdg.json: 'weights': unknown key 'kernel'"),
+                .find("m.vdg.json: 'weights'.'kernel': is a setting of the 'rbf' scheme only"),
+            std::string::npos);
+  EXPECT_NE(loadError(R"({"version": 3, "base": "k.obj", "weights": {"order": 1}, )" + key + "}")
+                .find("m.vdg.json: 'weights': unknown key 'order'"),
             std::string::npos);
   EXPECT_NE(loadError(R"({"version": 3, "base": "k.obj", "weights": "smooth", )" + key + "}")
                 .find("m.vdg.json: 'weights': expected an object"),
             std::string::npos);
+}
+
+// The rbf scheme's settings: kernel and width round trip; bad values are refused in one line naming
+// the key; keys too close for the width are refused when the model is built.
+TEST_F(ManifestV2, Version3CarriesTheRbfSettings) {
+  const std::string keys = R"("keys": [{"name": "a", "mesh": "k.obj", "view": [0, 0, 1]},
+                                         {"name": "b", "mesh": "k.obj", "view": [1, 0, 0]},
+                                         {"name": "c", "mesh": "k.obj", "view": [0, 1, 0.2]}])";
+  const std::string v3 = R"({"version": 3, "base": "k.obj",
+                             "weights": {"scheme": "rbf", "kernel": "wendland", "width": 75.5}, )" +
+                         keys + "}";
+  const RawViewDependentModel raw = loadManifest(write(v3));
+  EXPECT_EQ(raw.sphere.scheme, WeightScheme::Rbf);
+  EXPECT_EQ(raw.sphere.rbf_kernel, RbfKernel::Wendland);
+  EXPECT_EQ(raw.sphere.rbf_width_deg, 75.5);
+  const std::string text = formatManifest(raw);
+  EXPECT_NE(text.find("\"version\": 3"), std::string::npos) << text;
+  const RawViewDependentModel again = loadManifest(write(text));
+  EXPECT_EQ(again.sphere.scheme, WeightScheme::Rbf);
+  EXPECT_EQ(again.sphere.rbf_kernel, RbfKernel::Wendland);
+  EXPECT_EQ(again.sphere.rbf_width_deg, 75.5);
+  EXPECT_NO_THROW((void)ViewDependentModel::build(again));
+  const RawViewDependentModel defaults =
+      loadManifest(write(R"({"version": 3, "base": "k.obj", "weights": {"scheme": "rbf"}, )" + keys + "}"));
+  EXPECT_EQ(defaults.sphere.rbf_kernel, RbfKernel::Gaussian);
+  EXPECT_EQ(defaults.sphere.rbf_width_deg, 60.0);
+  const auto error = [&](const std::string& weights) {
+    return loadError(R"({"version": 3, "base": "k.obj", "weights": )" + weights + ", " + keys + "}");
+  };
+  EXPECT_NE(
+      error(R"({"scheme": "rbf", "width": 0})").find("m.vdg.json: 'weights'.'width': expected degrees in (0, 180]"),
+      std::string::npos);
+  EXPECT_NE(error(R"({"scheme": "rbf", "width": 200})").find("'weights'.'width'"), std::string::npos);
+  EXPECT_NE(error(R"({"scheme": "rbf", "kernel": "cubic"})").find("'weights'.'kernel': unknown value 'cubic'"),
+            std::string::npos);
+  EXPECT_NE(error(R"({"scheme": "smooth", "width": 30})").find("'weights'.'width': is a setting of the 'rbf' scheme"),
+            std::string::npos);
+  RawViewDependentModel close = defaults;
+  close.keys[1].view = Eigen::Vector3d(0.000003, 0, 1);
+  try {
+    (void)ViewDependentModel::build(close);
+    ADD_FAILURE() << "keys 0.0002 degrees apart accepted for a 60-degree Gaussian";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("ill-conditioned"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("keys[1]"), std::string::npos) << e.what();
+  }
 }
 
 TEST_F(ManifestV2, SequencePatterns) {

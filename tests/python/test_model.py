@@ -151,8 +151,36 @@ def test_smooth_scheme_round_trip(models: dict[str, vdg.Model], tmp_path: pathli
     assert vdg.load(tmp_path / "smooth.vdg.json").scheme == "smooth"
     smooth.export_gltf(tmp_path / "smooth.glb")
     assert vdg.load(tmp_path / "smooth.glb").scheme == "smooth"
-    with pytest.raises(ValueError, match="scheme: expected 'linear' or 'smooth'"):
+    with pytest.raises(ValueError, match="scheme: expected 'linear', 'smooth' or 'rbf'"):
         vdg.build(spot.base, spot.triangles, spot_keys(spot), scheme="cubic")
+
+
+def test_rbf_scheme(models: dict[str, vdg.Model], tmp_path: pathlib.Path) -> None:
+    """build(scheme="rbf") (docs/weights.md): exact at every key, every key weighs a view between
+    them, the weights sum to 1 and are never negative, evaluate() blends them, the scheme survives
+    save_manifest, and the glTF export refuses it in one line."""
+    spot = models["spot"]
+    rbf = vdg.build(spot.base, spot.triangles, spot_keys(spot), scheme="rbf")
+    assert rbf.scheme == "rbf"
+    for key in rbf.keys:
+        w = rbf.weights(key.view)
+        for name, value in w["keys"].items():
+            assert value == pytest.approx(1.0 if name == key.name else 0.0, abs=WEIGHT_TOL)
+    most = 0
+    for view in random_views(50, 5):
+        w = rbf.weights(view)
+        assert sum(w["keys"].values()) + w["base"] == pytest.approx(1.0, abs=WEIGHT_TOL)
+        assert min(w["keys"].values(), default=0.0) >= 0.0
+        most = max(most, sum(1 for value in w["keys"].values() if value > 0.0))
+    assert most > 3, "the rbf weights reach beyond one triangle's keys"
+    front = rbf.keys[0]
+    positions, normals = rbf.evaluate(front.view)
+    assert positions.shape == normals.shape == (len(spot.base), 3)
+    assert abs(positions - front.positions).max() < 1e-4, "a key's own view shows that key"
+    rbf.save_manifest(tmp_path / "rbf.vdg.json")
+    assert vdg.load(tmp_path / "rbf.vdg.json").scheme == "rbf"
+    with pytest.raises(vdg.Error, match="'rbf' weight scheme is not supported by the glTF export"):
+        rbf.export_gltf(tmp_path / "rbf.glb")
 
 
 def test_build_animated_round_trip(models: dict[str, vdg.Model], tmp_path: pathlib.Path) -> None:

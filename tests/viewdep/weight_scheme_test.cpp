@@ -41,6 +41,11 @@ constexpr int kPaths = 16;
 using testing::denseWeights;
 
 std::vector<double> denseAt(const ViewSphere& s, const Vector3d& view, double sharpness = 1.0) {
+  if (s.settings().scheme == WeightScheme::Rbf) {  // weights over every key: the dense query only
+    std::vector<float> f(s.keyCount() + 1);
+    EXPECT_TRUE(s.denseWeights(view, sharpness, f)) << view.transpose();
+    return {f.begin(), f.end()};
+  }
   ViewWeights w;
   EXPECT_TRUE(s.weights(view, sharpness, w)) << view.transpose();
   return denseWeights(s, w);
@@ -233,7 +238,7 @@ TEST(SmoothWeights, BlendedPositionsHaveNoVelocityJumps) {
     }
     raw.keys.push_back(std::move(key));
   }
-  for (const WeightScheme scheme : {WeightScheme::Smooth, WeightScheme::Linear}) {
+  for (const WeightScheme scheme : {WeightScheme::Smooth, WeightScheme::Rbf, WeightScheme::Linear}) {
     raw.sphere.scheme = scheme;
     const ViewDependentModel model = ViewDependentModel::build(raw);
     ContinuitySettings settings;
@@ -245,8 +250,9 @@ TEST(SmoothWeights, BlendedPositionsHaveNoVelocityJumps) {
     EXPECT_GT(coarse.popping, 0.0);
     const double ratio = coarse.velocity_jump / fine.velocity_jump;
     // velocity_jump is a second difference divided by the step: O(step) for C1, O(1) at kinks.
-    if (scheme == WeightScheme::Smooth)
-      EXPECT_GT(ratio, kC1Ratio / 2) << "velocity jumps " << coarse.velocity_jump << " -> " << fine.velocity_jump;
+    if (scheme != WeightScheme::Linear)
+      EXPECT_GT(ratio, kC1Ratio / 2) << weightSchemeName(scheme) << ": velocity jumps " << coarse.velocity_jump
+                                     << " -> " << fine.velocity_jump;
     else
       EXPECT_LT(ratio, kKinkRatio / 2) << "velocity jumps " << coarse.velocity_jump << " -> " << fine.velocity_jump;
     EXPECT_GT(ratio, 0.8) << "a velocity jump that grows as the step shrinks is a jump in the positions";
@@ -254,6 +260,189 @@ TEST(SmoothWeights, BlendedPositionsHaveNoVelocityJumps) {
   ContinuitySettings bad;
   bad.step_deg = 0.0;
   EXPECT_THROW(measureContinuity(ViewDependentModel::build(raw), bad), Error);
+}
+
+// ---- The rbf scheme (view_sphere.h, "Weight schemes"): radial basis functions over every key.
+
+ViewSphere buildRbf(const std::vector<Vector3d>& keys, Uncovered mode, RbfKernel kernel = RbfKernel::Gaussian,
+                    double width_deg = 60.0) {
+  ViewSphereSettings settings;
+  settings.uncovered = mode;
+  settings.scheme = WeightScheme::Rbf;
+  settings.rbf_kernel = kernel;
+  settings.rbf_width_deg = width_deg;
+  return ViewSphere::build(keys, settings);
+}
+
+const RbfKernel kKernels[] = {RbfKernel::Gaussian, RbfKernel::InverseMultiquadric, RbfKernel::Wendland};
+
+TEST(RbfWeights, EachKeyViewGivesThatKeyAlone) {
+  for (const auto& [name, keys] : keySets())
+    for (const Uncovered mode : kModes)
+      for (const RbfKernel kernel : kKernels) {
+        const ViewSphere s = buildRbf(keys, mode, kernel);
+        for (std::size_t k = 0; k < keys.size(); ++k)
+          for (const double alpha : {0.7, 1.0, 3.0}) {
+            const auto d = denseAt(s, keys[k], alpha);
+            for (std::size_t j = 0; j < d.size(); ++j)
+              EXPECT_NEAR(d[j], j == k ? 1.0 : 0.0, kKeyTol)
+                  << name << ", " << rbfKernelName(kernel) << ", key " << k << ", weight " << j;
+          }
+      }
+}
+
+// Every key moves the view (not only a triangle's three), and the weights still sum to 1 and are
+// never negative (the interpolant's overshoot is cut by the C1 positive part).
+TEST(RbfWeights, PartitionOfUnityNonNegativeAndGlobal) {
+  std::mt19937 rng(6);
+  for (const auto& [name, keys] : keySets())
+    for (const Uncovered mode : kModes)
+      for (const RbfKernel kernel : kKernels) {
+        const ViewSphere s = buildRbf(keys, mode, kernel);
+        std::size_t most_keys = 0;
+        for (int n = 0; n < kRandomViews / 20; ++n) {
+          const auto d = denseAt(s, randomDirection(rng));
+          double sum = 0.0;
+          std::size_t moving = 0;
+          for (std::size_t j = 0; j < d.size(); ++j) {
+            EXPECT_GE(d[j], 0.0) << name;
+            sum += d[j];
+            moving += j + 1 < d.size() && d[j] > 0.0;
+          }
+          most_keys = std::max(most_keys, moving);
+          EXPECT_NEAR(sum, 1.0, kWeightTol) << name << ", " << rbfKernelName(kernel);
+        }
+        if (kernel == RbfKernel::Gaussian && keys.size() > 3) {
+          EXPECT_GT(most_keys, 3u) << name << ": the rbf weights reach beyond a triangle";
+        }
+      }
+}
+
+TEST(RbfWeights, DenseQueryMatchesTheThreeSlotOneForTheOtherSchemes) {
+  std::mt19937 rng(8);
+  const auto keys = keySets()["keys in one hemisphere"];
+  for (const WeightScheme scheme : {WeightScheme::Linear, WeightScheme::Smooth})
+    for (const Uncovered mode : kModes) {
+      const ViewSphere s = build(keys, mode, scheme);
+      std::vector<float> dense(s.keyCount() + 1);
+      for (int n = 0; n < 200; ++n) {
+        const Vector3d v = randomDirection(rng);
+        ASSERT_TRUE(s.denseWeights(v, 2.0, dense));
+        const auto expected = denseAt(s, v, 2.0);
+        for (std::size_t j = 0; j < dense.size(); ++j) EXPECT_EQ(dense[j], static_cast<float>(expected[j]));
+      }
+    }
+}
+
+TEST(RbfWeights, RbfIsC1AlongPaths) {
+  for (const char* name : {"octahedron", "tetrahedron", "twenty random keys", "keys in one hemisphere"})
+    for (const RbfKernel kernel : kKernels) {
+      const auto keys = keySets()[name];
+      const auto normals = pathNormals(keys);
+      const ViewSphere s = buildRbf(keys, Uncovered::Base, kernel);  // base mode covers the whole sphere
+      const double coarse = largestSecondDifference(s, kPathStepRad, normals);
+      const double fine = largestSecondDifference(s, kPathStepRad / 2, normals);
+      ASSERT_GT(fine, 0.0);
+      EXPECT_GT(coarse / fine, kC1Ratio) << name << ", " << rbfKernelName(kernel) << ": second differences " << coarse
+                                         << " -> " << fine;
+    }
+}
+
+TEST(RbfWeights, SharpnessKeepsItsMeaning) {
+  const ViewSphere s = buildRbf(keySets()["octahedron"], Uncovered::Base);
+  const Vector3d view(1, 0.6, 0.3);
+  double previous = 0.0;
+  for (const double alpha : {0.5, 1.0, 2.0, 4.0, 16.0}) {
+    const double w = denseAt(s, view, alpha)[0];
+    EXPECT_GT(w, previous) << "alpha " << alpha;
+    previous = w;
+  }
+  EXPECT_NEAR(denseAt(s, view, 5000.0)[0], 1.0, kWeightTol) << "a huge alpha picks the largest weight";
+}
+
+// Cosine modes: a covered view gets the rbf weights, an uncovered one those at the nearest covered
+// point times the paper's falloff; continuous at the border, and behind a single key the paper's
+// max(0, cos) blend to the base.
+TEST(RbfWeights, UncoveredModesKeepTheirMeaning) {
+  constexpr double kLipschitz = 60.0;
+  const auto keys = keySets()["keys in one hemisphere"];
+  for (const Uncovered mode : {Uncovered::Cosine, Uncovered::Cosine2}) {
+    const ViewSphere s = buildRbf(keys, mode);
+    for (const Vector3d& normal : pathNormals(keys)) {
+      const Vector3d a = normal.unitOrthogonal(), b = normal.cross(a);
+      std::vector<double> previous = denseAt(s, a);
+      for (int n = 1; n * kPathStepRad < 2.0 * std::numbers::pi; ++n) {
+        const std::vector<double> d = denseAt(s, std::cos(n * kPathStepRad) * a + std::sin(n * kPathStepRad) * b);
+        double change = 0.0;
+        for (std::size_t k = 0; k < d.size(); ++k) change += std::abs(d[k] - previous[k]);
+        ASSERT_LT(change, kLipschitz * kPathStepRad) << "a jump at step " << n;
+        previous = d;
+      }
+    }
+    EXPECT_NEAR(denseAt(s, Vector3d(0, -1, 0)).back(), 1.0, kWeightTol) << "far below the keys: the base";
+  }
+  const ViewSphere one = buildRbf({Vector3d(0, 0, 1)}, Uncovered::Cosine);
+  const Vector3d view(0, std::sin(0.7), std::cos(0.7));
+  EXPECT_NEAR(denseAt(one, view)[0], std::cos(0.7), kWeightTol) << "the paper's single-key falloff";
+  const ViewSphere based = buildRbf(keySets()["keys in one hemisphere"], Uncovered::Base);
+  ASSERT_GT(based.points().size(), based.keyCount()) << "dummy base points below the keys";
+  for (std::size_t p = based.keyCount(); p < based.points().size(); ++p)
+    EXPECT_NEAR(denseAt(based, based.points()[p]).back(), 1.0, kKeyTol) << "at a dummy base point: the base";
+  EXPECT_GT(denseAt(based, Vector3d(0, -1, 0)).back(), 0.99) << "far below the keys: nearly the base";
+}
+
+// Figure 13's head (four keys, cosine falloff): a view level with three of the keys, just below
+// them, falls off towards the nearest key as in the other schemes (a view exactly on the keys'
+// great circle once lost its nearest point).
+TEST(RbfWeights, FalloffAtTheBorderOfTheKeysGreatCircle) {
+  const std::vector<Vector3d> keys = {Vector3d(0, 0, 1), Vector3d(-1, 0, 0), Vector3d(1, 0, 0), Vector3d(0, 1, 0)};
+  const ViewSphere rbf = buildRbf(keys, Uncovered::Cosine);
+  const ViewSphere linear = build(keys, Uncovered::Cosine, WeightScheme::Linear);
+  for (const double z : {0.0, 1e-3, -1e-3}) {
+    const Vector3d view(0.9943572200697444, -0.1060835467693743, z);
+    const auto r = denseAt(rbf, view), l = denseAt(linear, view);
+    EXPECT_NEAR(r.back(), l.back(), kWeightTol) << "z " << z << ": the same falloff in both schemes";
+    EXPECT_GT(r[2], 0.99) << "z " << z << ": the nearest key, 'right'";
+  }
+}
+
+TEST(RbfWeights, SettingsAndIllConditionedKeysAreRefusedInOneLine) {
+  const auto keys = keySets()["octahedron"];
+  for (const double width : {0.0, -5.0, 181.0, std::nan("")}) {
+    try {
+      (void)buildRbf(keys, Uncovered::Base, RbfKernel::Gaussian, width);
+      ADD_FAILURE() << "width " << width << " accepted";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("width"), std::string::npos) << e.what();
+    }
+  }
+  // Two keys 0.0002 degree apart cannot be told apart by a 60-degree Gaussian.
+  std::vector<Vector3d> close = keys;
+  close.push_back(fromAngles(0.0002, 0.0));
+  const std::vector<std::string> labels = {"a", "b", "c", "d", "front", "f", "nearly front"};
+  ViewSphereSettings settings;
+  settings.scheme = WeightScheme::Rbf;
+  try {
+    (void)ViewSphere::build(close, settings, labels);
+    ADD_FAILURE() << "an ill-conditioned rbf system accepted";
+  } catch (const Error& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("ill-conditioned"), std::string::npos) << m;
+    EXPECT_NE(m.find("nearly front"), std::string::npos) << m;
+    EXPECT_EQ(m.find('\n'), std::string::npos) << m;
+  }
+  settings.rbf_width_deg = 0.001;  // a narrow kernel tells them apart
+  EXPECT_NO_THROW((void)ViewSphere::build(close, settings, labels));
+  // The three-slot queries refuse an rbf sphere (its weights are over every key).
+  const ViewSphere s = buildRbf(keys, Uncovered::Base);
+  ViewWeights w;
+  EXPECT_FALSE(s.weights(Vector3d(1, 0, 0), 1.0, w));
+  EXPECT_FALSE(s.weightsByScan(Vector3d(1, 0, 0), 1.0, w));
+  std::vector<float> wrong(s.keyCount());
+  EXPECT_FALSE(s.denseWeights(Vector3d(1, 0, 0), 1.0, wrong));
+  std::vector<float> right(s.keyCount() + 1);
+  EXPECT_FALSE(s.denseWeights(Vector3d(0, 0, 0), 1.0, right));
+  EXPECT_FALSE(s.denseWeights(Vector3d(1, 0, 0), -1.0, right));
 }
 
 }  // namespace

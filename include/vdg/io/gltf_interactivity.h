@@ -53,7 +53,8 @@ inline constexpr const char* kInteractivityAnimatedRefusal =
 
 // Why a model whose weights are not linear gets no graph (after "WHERE: --interactivity: ").
 inline constexpr const char* kInteractivitySchemeRefusal =
-    "the graph weighs the keys with the linear scheme only; this model's weights are \"smooth\" (export it without "
+    "the graph weighs the keys with the linear scheme only; this model's weights are not (\"smooth\" or \"rbf\"; "
+    "export it without "
     "--interactivity, or with \"weights\": {\"scheme\": \"linear\"}; docs/weights.md)";
 
 // What the graph is built from: exactly the export's extras v2 sphere and settings.

@@ -11,7 +11,8 @@ namespace vdg {
 
 // Current manifest format version (the "version" field of *.vdg.json). Version 2 added animated
 // bases ("base_animation", "offsets", each key's "frame"), version 3 the weight scheme ("weights":
-// {"scheme": "linear" | "smooth"}, issue 29); older files load unchanged, and saveManifest writes
+// {"scheme": "linear" | "smooth" | "rbf"}, the rbf scheme with "kernel" and "width" (degrees),
+// issue 29); older files load unchanged, and saveManifest writes
 // the oldest version that holds the model (2 for the linear scheme, 3 otherwise).
 inline constexpr int kManifestVersion = 3;
 

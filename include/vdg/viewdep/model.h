@@ -174,12 +174,24 @@ class ViewDependentModel {
 
   // Weights of a view direction into `out`. sharpness <= 0 means "the model's own"; `hint` as in
   // ViewSphere::weights (-1 or a triangle index of sphere()). Violations: a zero or non-finite
-  // view, a non-finite sharpness, a hint out of range.
+  // view, a non-finite sharpness, a hint out of range, an rbf model (use denseWeights()).
   [[nodiscard]] bool weights(const Eigen::Vector3d& view, double sharpness, ViewWeights& out,
                              int* hint = nullptr) const;
   // Blended positions for `w` into `out_positions` (#V x 3). Violations: out_positions.size() !=
   // 3 * vertexCount(); a slot's key index >= keyCount() or < -1; a non-finite weight.
   [[nodiscard]] bool blend(const ViewWeights& w, std::span<float> out_positions) const;
+  // Every key's weight and the base's (keyCount() + 1 floats, ViewSphere::denseWeights): the only
+  // weights query of an rbf model (weights() refuses one: its ViewWeights hold three keys).
+  // Violations: those of weights(); out.size() != keyCount() + 1.
+  [[nodiscard]] bool denseWeights(const Eigen::Vector3d& view, double sharpness, std::span<float> out,
+                                  int* hint = nullptr) const;
+  // Blended positions for dense weights (keyCount() + 1 floats, the base last) into out_positions
+  // (#V x 3): base + sum_k w_k (key_k - base), section 3.2.3 over every key. Violations: sizes
+  // other than stated, a non-finite weight.
+  [[nodiscard]] bool blendDense(std::span<const float> weights, std::span<float> out_positions) const;
+  // Throws vdg::Error "the 'rbf' weight scheme is not supported by WHERE ..." for an rbf model:
+  // the callers that blend at most three keys per view (ViewWeights) refuse it with this line.
+  void requireThreeKeyWeights(const std::string& where) const;
   // Positions of key `key` (its full mesh) into `out_positions` (#V x 3). Violations: key >=
   // keyCount(), out_positions.size() != 3 * vertexCount().
   [[nodiscard]] bool keyPositions(std::size_t key, std::span<float> out_positions) const;

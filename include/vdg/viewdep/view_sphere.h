@@ -49,6 +49,43 @@
 // cosine modes' falloff takes at the nearest point of a boundary arc the smooth edge weights (so
 // the weights stay continuous at the covered region's border; C1 holds inside the covered region).
 //
+// WeightScheme::Rbf (docs/weights.md, "The rbf scheme") interpolates the keys with spherical radial
+// basis functions over ALL keys, pose-space-deformation style (Lewis, Cordner & Fong 2000; RBF
+// theory after Buhmann 2003): the centres are the keys (and, in base mode, the dummy base points,
+// whose weights go to the base model), and for each output o (every key, then the base) the
+// weight is the interpolant
+//   r_o(v) = sum_j c_oj phi(d(v, x_j)) + b_o,  with sum_j c_oj = 0,
+// of the data "1 at o's own centres, 0 at every other", solved once by build() from the saddle
+// system [Phi 1; 1^T 0] [c; b] = [data; 0] (Phi_ij = phi(d(x_i, x_j))). The constant term b_o
+// makes the interpolation reproduce constants, so the r_o sum to exactly 1 at every view (the data
+// sum to 1 at every centre): a partition of unity by construction, not by dividing by the sum
+// (Shepard-style normalisation would lose exactness at the keys). The kernel is radial in the
+// geodesic distance d between directions, written through the chord 2 sin(d/2) (squared chord
+// |v - x_j|^2): phi = g(chord(d) / chord(width)), g(s) = exp(-s^2) ("gaussian", the default),
+// 1 / sqrt(1 + s^2) ("inverse-multiquadric") or Wendland's C2 (1 - s)^4 (4 s + 1) for s < 1
+// ("wendland", compactly supported: keys beyond `width` do not move a view). Through the chord each
+// kernel is the restriction to the sphere of a positive-definite function of R^3, so Phi is
+// positive definite for distinct keys and phi is smooth everywhere, also at a key's antipode (a
+// Gaussian of the geodesic angle itself is neither: Gneiting 2013).
+// The interpolant overshoots: between keys some r_o go negative (and others above their 1). vdg
+// keeps the weights non-negative with a C1 positive part P(r) = 0 (r <= 0), r^2 (2e - r) / e^2
+// (0 < r < e), r (r >= e), e = kRbfPositiveSoftness, and renormalises: w_o = P(r_o) / sum P(r).
+// Weights of at least e are the interpolant's (up to the common factor), so at a key (r = one-hot,
+// to the solve's rounding) the weights stay one-hot, they sum to 1, are >= 0 and stay C1 (P is C1,
+// and sum P >= P(max r) > 0 since max r >= 1 / (keys + 1)). Sharpness applies to the w_o as in the
+// other schemes ((w / w_max)^alpha / sum), C1 kept for alpha > 1/2 (P vanishes quadratically).
+// Uncovered modes keep their meaning: in base mode the dummy base points are centres whose weight
+// goes to the base, so the whole sphere is one C1 blend; in the cosine modes a covered view gets
+// the rbf weights at the view, an uncovered one the rbf weights at the nearest point p of the
+// covered region times the falloff f (the base 1 - f), as the smooth scheme does at the border.
+// build() refuses (vdg::Error, one line naming the closest two keys) a system whose reciprocal
+// condition number is below 1 / kRbfMaxCondition (keys too close for the width), more than
+// kRbfMaxKeys keys, and a width outside (0, 180] degrees. Cost per view: one kernel per centre and
+// keys + 1 multiply-adds per centre whose kernel is not 0 (every centre for the Gaussian and the
+// inverse multiquadric: O(keys^2); those within `width` for Wendland's), on the stack (no
+// allocation). The rbf weights are over all keys, so they come from denseWeights(); weights() and
+// weightsByScan(), whose ViewWeights hold three keys, refuse an rbf sphere (return false).
+//
 // Locating a view (spatial index). weightsByScan() tests every hull triangle: O(triangles) per
 // query, kept as the oracle for tests and debugging. weights() gets the same result faster:
 //  - with a hint, it tests the hint's triangle and, when the view lies beyond one of its edges,
@@ -90,15 +127,22 @@ enum class Uncovered { Base, Cosine, Cosine2 };
 const char* uncoveredName(Uncovered uncovered);
 
 // How a view's weights follow from the hull triangle it falls in (see "Weight schemes" above).
-enum class WeightScheme { Linear, Smooth };
-// "linear" or "smooth": the names the manifest ("weights": {"scheme": ...}) and the exports use.
+enum class WeightScheme { Linear, Smooth, Rbf };
+// "linear", "smooth" or "rbf": the names the manifest ("weights": {"scheme": ...}) and the exports use.
 const char* weightSchemeName(WeightScheme scheme);
+// The rbf scheme's kernel (see "Weight schemes" above).
+enum class RbfKernel { Gaussian, InverseMultiquadric, Wendland };
+// "gaussian", "inverse-multiquadric" or "wendland": the manifest's "weights": {"kernel": ...}.
+const char* rbfKernelName(RbfKernel kernel);
 
 struct ViewSphereSettings {
   Uncovered uncovered = Uncovered::Base;
   // Base mode: a dummy base point is placed only where every key is farther than this angle.
   double base_falloff_deg = 60.0;
   WeightScheme scheme = WeightScheme::Linear;
+  // Rbf scheme only: the kernel and its width (geodesic angle, degrees, in (0, 180]).
+  RbfKernel rbf_kernel = RbfKernel::Gaussian;
+  double rbf_width_deg = 60.0;
 };
 
 // Weights of one view: up to three real keys plus the base model; key[i] < 0 marks an unused slot.
@@ -135,7 +179,7 @@ class ViewSphere {
   // inputs are checked on entry; on a violation weights() returns false and has written nothing
   // (neither `out` nor `*hint`); it never throws and never allocates. Violations: a zero or
   // non-finite view, a sharpness that is not finite or not > 0, a hint other than -1 or an index
-  // into triangles().
+  // into triangles(), an rbf sphere (its weights are over every key: denseWeights()).
   [[nodiscard]] bool weights(const Eigen::Vector3d& view, double sharpness, ViewWeights& out,
                              int* hint = nullptr) const;
   // The same query by testing every hull triangle (and, in the cosine modes, every boundary arc
@@ -144,6 +188,19 @@ class ViewSphere {
   // throw, no allocation. The hint is tried first, then the triangles in index order.
   [[nodiscard]] bool weightsByScan(const Eigen::Vector3d& view, double sharpness, ViewWeights& out,
                                    int* hint = nullptr) const;
+
+  // Weights of every key and the base into `out` (keyCount() + 1 floats: the keys in order, then
+  // the base; they sum to 1), for any scheme: the rbf scheme's only query, and for the linear and
+  // smooth ones weights()' three slots spread out. Same contract as weights() (checked on entry,
+  // false with nothing written on a violation, no throw, no allocation); a further violation is
+  // out.size() != keyCount() + 1.
+  [[nodiscard]] bool denseWeights(const Eigen::Vector3d& view, double sharpness, std::span<float> out,
+                                  int* hint = nullptr) const;
+
+  // Rbf scheme limits (see "Weight schemes" above).
+  static constexpr std::size_t kRbfMaxKeys = 256;
+  static constexpr double kRbfMaxCondition = 1e10;
+  static constexpr double kRbfPositiveSoftness = 0.05;
 
   // Spatial index parameters (see "Locating a view" above).
   static constexpr int kMaxWalkSteps = 8;
@@ -188,7 +245,9 @@ class ViewSphere {
   bool checkQuery(const Eigen::Vector3d& view, double sharpness, const int* hint, Eigen::Vector3d& unit,
                   int& start) const;
   // After the checks (unit view, sharpness > 0, hint -1 or valid); *hint is updated as documented.
-  ViewWeights locate(const Eigen::Vector3d& v, double sharpness, int* hint) const;
+  // `nearest` (optional): for a view in an uncovered region (cosine modes), set to the nearest
+  // point of the covered region (unchanged otherwise).
+  ViewWeights locate(const Eigen::Vector3d& v, double sharpness, int* hint, Eigen::Vector3d* nearest = nullptr) const;
   ViewWeights locateByScan(const Eigen::Vector3d& v, double sharpness, int* hint) const;
   // Index of the grid cell that the unit direction v falls in.
   int cellOf(const Eigen::Vector3d& v) const;
@@ -196,8 +255,14 @@ class ViewSphere {
   int scanTriangles(const Eigen::Vector3d& v, Eigen::Vector3d& lambda) const;
   ViewWeights triangleWeights(int t, const Eigen::Vector3d& v, const Eigen::Vector3d& lambda, double sharpness) const;
   // Uncovered view (cosine modes): falloff towards the nearest of `features` (see features_).
-  ViewWeights uncoveredWeights(const Eigen::Vector3d& v, double sharpness, std::span<const int> features) const;
-  ViewWeights falloff(const Eigen::Vector3d& v, std::span<const int> features, double& nearest_cos) const;
+  ViewWeights uncoveredWeights(const Eigen::Vector3d& v, double sharpness, std::span<const int> features,
+                               Eigen::Vector3d* nearest = nullptr) const;
+  ViewWeights falloff(const Eigen::Vector3d& v, std::span<const int> features, double& nearest_cos,
+                      Eigen::Vector3d* nearest = nullptr) const;
+  // Rbf scheme: solves the interpolation (build), and the weights at the unit direction x times
+  // `scale` into out (keys, then the base, which also gets 1 - scale).
+  void buildRbf(std::span<const std::string> key_labels);
+  void rbfWeightsAt(const Eigen::Vector3d& x, double sharpness, double scale, std::span<float> out) const;
   void finishWeights(ViewWeights& w, double sharpness) const;
   // Geodesic distance (radians) from the unit direction x to a feature (see features_).
   double featureDistance(const Eigen::Vector3d& x, int feature) const;
@@ -211,6 +276,10 @@ class ViewSphere {
   std::vector<std::array<int, 2>> arcs_;
   std::vector<int> isolated_;  // cosine modes: keys that belong to no triangle and no arc
   double covered_fraction_ = 0.0;
+  // Rbf scheme: the constants b_o over the outputs (keys, then the base), then per centre j (the
+  // points) its coefficients c_oj over the outputs; and the width as a squared chord.
+  std::vector<double> rbf_rows_;
+  double rbf_chord2_ = 1.0;
   // Spatial index (built by buildIndex()). Features of the falloff: 0 .. isolated_.size() - 1 are
   // isolated_ keys, the following ones arcs_, in the order the scan considers them.
   std::vector<int> all_features_;               // 0, 1, ...: every feature (the scan's list)
