@@ -92,7 +92,7 @@ AnimatedViewDependentModel AnimatedViewDependentModel::build(const RawViewDepend
     labels.push_back("view of key '" + raw.keys[k].name + "' (keys[" + std::to_string(k) + "])");
   }
   if (raw.sphere.scheme == WeightScheme::Rbf)
-    throw Error(where(raw) +
+    throw Error(raw.where() +
                 ": the 'rbf' weight scheme is not supported for an animated base (use 'linear' or 'smooth')");
   try {
     model.sphere_ = ViewSphere::build(directions, raw.sphere, labels);
