@@ -70,10 +70,14 @@ std::map<std::string, std::vector<Vector3d>> keySets() {
   return c;
 }
 
-ViewSphere build(const std::vector<Vector3d>& keys, Uncovered mode, WeightScheme scheme) {
+// The rbf settings matter only when `scheme` is WeightScheme::Rbf.
+ViewSphere build(const std::vector<Vector3d>& keys, Uncovered mode, WeightScheme scheme,
+                 RbfKernel kernel = RbfKernel::Gaussian, double width_deg = 60.0) {
   ViewSphereSettings settings;
   settings.uncovered = mode;
   settings.scheme = scheme;
+  settings.rbf_kernel = kernel;
+  settings.rbf_width_deg = width_deg;
   return ViewSphere::build(keys, settings);
 }
 
@@ -271,12 +275,7 @@ TEST(SmoothWeights, BlendedPositionsHaveNoVelocityJumps) {
 
 ViewSphere buildRbf(const std::vector<Vector3d>& keys, Uncovered mode, RbfKernel kernel = RbfKernel::Gaussian,
                     double width_deg = 60.0) {
-  ViewSphereSettings settings;
-  settings.uncovered = mode;
-  settings.scheme = WeightScheme::Rbf;
-  settings.rbf_kernel = kernel;
-  settings.rbf_width_deg = width_deg;
-  return ViewSphere::build(keys, settings);
+  return build(keys, mode, WeightScheme::Rbf, kernel, width_deg);
 }
 
 const RbfKernel kKernels[] = {RbfKernel::Gaussian, RbfKernel::InverseMultiquadric, RbfKernel::Wendland};
