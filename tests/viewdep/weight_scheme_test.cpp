@@ -208,24 +208,30 @@ TEST(SmoothWeights, SharpnessKeepsItsMeaning) {
   expectSharpnessKeepsItsMeaning(build(keySets()["octahedron"], Uncovered::Base, WeightScheme::Smooth));
 }
 
+// Along great circles through and across the hull (pathNormals), stepping kPathStepRad, the
+// weights change by at most kLipschitz per radian: no jump where a view leaves the covered region.
+void expectNoJumpsAlongPaths(const ViewSphere& s, const std::vector<Vector3d>& keys) {
+  constexpr double kLipschitz = 60.0;
+  for (const Vector3d& normal : pathNormals(keys)) {
+    const Vector3d a = normal.unitOrthogonal(), b = normal.cross(a);
+    std::vector<double> previous = denseAt(s, a);
+    for (int n = 1; n * kPathStepRad < 2.0 * std::numbers::pi; ++n) {
+      const std::vector<double> d = denseAt(s, std::cos(n * kPathStepRad) * a + std::sin(n * kPathStepRad) * b);
+      double change = 0.0;
+      for (std::size_t k = 0; k < d.size(); ++k) change += std::abs(d[k] - previous[k]);
+      ASSERT_LT(change, kLipschitz * kPathStepRad) << "a jump at step " << n;
+      previous = d;
+    }
+  }
+}
+
 // Cosine modes: the weights stay continuous where a view leaves the covered region (the falloff
 // takes the smooth edge weights at the border); a path steps kPathStepRad at a time.
 TEST(SmoothWeights, CosineModesAreContinuousAtTheBorder) {
-  constexpr double kLipschitz = 60.0;
   const auto keys = keySets()["keys in one hemisphere"];
   for (const Uncovered mode : {Uncovered::Cosine, Uncovered::Cosine2}) {
     const ViewSphere s = build(keys, mode, WeightScheme::Smooth);
-    for (const Vector3d& normal : pathNormals(keys)) {
-      const Vector3d a = normal.unitOrthogonal(), b = normal.cross(a);
-      std::vector<double> previous = denseAt(s, a);
-      for (int n = 1; n * kPathStepRad < 2.0 * std::numbers::pi; ++n) {
-        const std::vector<double> d = denseAt(s, std::cos(n * kPathStepRad) * a + std::sin(n * kPathStepRad) * b);
-        double change = 0.0;
-        for (std::size_t k = 0; k < d.size(); ++k) change += std::abs(d[k] - previous[k]);
-        ASSERT_LT(change, kLipschitz * kPathStepRad) << "a jump at step " << n;
-        previous = d;
-      }
-    }
+    expectNoJumpsAlongPaths(s, keys);
   }
 }
 
@@ -360,21 +366,10 @@ TEST(RbfWeights, SharpnessKeepsItsMeaning) {
 // point times the paper's falloff; continuous at the border, and behind a single key the paper's
 // max(0, cos) blend to the base.
 TEST(RbfWeights, UncoveredModesKeepTheirMeaning) {
-  constexpr double kLipschitz = 60.0;
   const auto keys = keySets()["keys in one hemisphere"];
   for (const Uncovered mode : {Uncovered::Cosine, Uncovered::Cosine2}) {
     const ViewSphere s = buildRbf(keys, mode);
-    for (const Vector3d& normal : pathNormals(keys)) {
-      const Vector3d a = normal.unitOrthogonal(), b = normal.cross(a);
-      std::vector<double> previous = denseAt(s, a);
-      for (int n = 1; n * kPathStepRad < 2.0 * std::numbers::pi; ++n) {
-        const std::vector<double> d = denseAt(s, std::cos(n * kPathStepRad) * a + std::sin(n * kPathStepRad) * b);
-        double change = 0.0;
-        for (std::size_t k = 0; k < d.size(); ++k) change += std::abs(d[k] - previous[k]);
-        ASSERT_LT(change, kLipschitz * kPathStepRad) << "a jump at step " << n;
-        previous = d;
-      }
-    }
+    expectNoJumpsAlongPaths(s, keys);
     EXPECT_NEAR(denseAt(s, Vector3d(0, -1, 0)).back(), 1.0, kWeightTol) << "far below the keys: the base";
   }
   const ViewSphere one = buildRbf({Vector3d(0, 0, 1)}, Uncovered::Cosine);
