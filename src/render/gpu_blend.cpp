@@ -321,7 +321,9 @@ bool Renderer::drawBlendInstances(int handle, std::span<const InstanceBlend> ins
                     GL_COMMAND_BARRIER_BIT);
 
     // Shaded front faces of every instance of the batch, one instanced draw per material range.
-    frontFacesState();
+    frontFacesState(want_strokes
+                        ? std::max(want_silhouettes ? style.silhouette_width : 0.0f, want_creases ? crease_width : 0.0f)
+                        : 0.0f);
     const MeshProgram& p = *m.blend_program;
     glUseProgram(p.program.get());
     m.setMatrices(p.view, p.proj, view);
@@ -350,6 +352,7 @@ bool Renderer::drawBlendInstances(int handle, std::span<const InstanceBlend> ins
       glBindTexture(GL_TEXTURE_2D, 0);
     }
     glDisable(GL_CULL_FACE);
+    glDisable(GL_POLYGON_OFFSET_FILL);
     if (!want_strokes) continue;
 
     // Creases, then silhouettes and borders: thick lines, then round dots at the edge ends.
@@ -359,13 +362,12 @@ bool Renderer::drawBlendInstances(int handle, std::span<const InstanceBlend> ins
     glDepthMask(GL_FALSE);
     const auto strokes = [&](std::size_t command, float width) {
       const void* offset = reinterpret_cast<const void*>(command * 5 * sizeof(GLuint));
-      const float pull = style.silhouette_pull * width;
       glUseProgram(m.line_program->program.get());
-      m.setStroke(*m.line_program, view, width, style.silhouette_color, pull);
+      m.setStroke(*m.line_program, view, width, style.silhouette_color, 0.0f);
       glDrawElementsIndirect(GL_LINES, GL_UNSIGNED_INT, offset);
       glEnable(GL_SAMPLE_ALPHA_TO_COVERAGE);
       glUseProgram(m.dot_program->program.get());
-      m.setStroke(*m.dot_program, view, width, style.silhouette_color, pull);
+      m.setStroke(*m.dot_program, view, width, style.silhouette_color, 0.0f);
       glDrawElementsIndirect(GL_POINTS, GL_UNSIGNED_INT, offset);
       glDisable(GL_SAMPLE_ALPHA_TO_COVERAGE);
     };

@@ -83,13 +83,23 @@ GlProgram linkCompute(const char* what, const char* source) {
   return program;
 }
 
-void frontFacesState() {
+void frontFacesState(float widest_stroke_px) {
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glDepthMask(GL_TRUE);
   glEnable(GL_CULL_FACE);
   glCullFace(GL_BACK);
   glFrontFace(GL_CCW);
+  if (widest_stroke_px > 0.0f) {
+    // A stroke's pixels lie at most half its width from its edge, in any screen direction: a face
+    // there comes towards the eye by at most sqrt(2) x its largest depth slope per pixel (the
+    // slope glPolygonOffset scales) times that distance; one pixel more covers the line's
+    // antialiased fringe. The units term absorbs the rounding between the two rasterisations.
+    glEnable(GL_POLYGON_OFFSET_FILL);
+    glPolygonOffset(std::numbers::sqrt2_v<float> * 0.5f * widest_stroke_px + 1.0f, kStrokeOffsetUnits);
+  } else {
+    glDisable(GL_POLYGON_OFFSET_FILL);
+  }
 }
 
 void bufferData(const GlBuffer& buffer, std::size_t bytes, const void* data, GLenum usage) {
@@ -463,8 +473,13 @@ bool Renderer::drawMesh(int mesh_id, const View& view, const MeshStyle& style) {
   glBindFramebuffer(GL_FRAMEBUFFER, m.ms_fbo.get());
   m.setView(view);
 
-  // Pass 1: shaded front faces (back faces culled), one draw per material range.
-  frontFacesState();
+  const float crease_width = style.crease_width > 0.0f ? style.crease_width : 0.5f * style.silhouette_width;
+  const bool want_creases = style.crease_angle_deg > 0.0f && crease_width > 0.0f;
+  const float widest_stroke = std::max(std::max(style.silhouette_width, 0.0f), want_creases ? crease_width : 0.0f);
+
+  // Pass 1: shaded front faces (back faces culled), one draw per material range, pushed back under
+  // the strokes of pass 2 (frontFacesState).
+  frontFacesState(widest_stroke);
   glUseProgram(m.mesh_program->program.get());
   m.setMatrices(m.mesh_program->view, m.mesh_program->proj, view);
   MeshStyle shaded = style;
@@ -490,8 +505,7 @@ bool Renderer::drawMesh(int mesh_id, const View& view, const MeshStyle& style) {
     glBindTexture(GL_TEXTURE_2D, 0);
   }
   glDisable(GL_CULL_FACE);
-  const float crease_width = style.crease_width > 0.0f ? style.crease_width : 0.5f * style.silhouette_width;
-  const bool want_creases = style.crease_angle_deg > 0.0f && crease_width > 0.0f;
+  glDisable(GL_POLYGON_OFFSET_FILL);
   if (style.silhouette_width <= 0.0f && !want_creases) {
     glBindVertexArray(0);
     return true;
@@ -525,13 +539,12 @@ bool Renderer::drawMesh(int mesh_id, const View& view, const MeshStyle& style) {
   const auto strokes = [&](std::size_t first, std::size_t count, float width) {
     if (count == 0) return;
     const void* offset = reinterpret_cast<const void*>(first * sizeof(std::uint32_t));
-    const float pull = style.silhouette_pull * width;
     glUseProgram(m.line_program->program.get());
-    m.setStroke(*m.line_program, view, width, style.silhouette_color, pull);
+    m.setStroke(*m.line_program, view, width, style.silhouette_color, 0.0f);
     glDrawElements(GL_LINES, static_cast<GLsizei>(count), GL_UNSIGNED_INT, offset);
     glEnable(GL_SAMPLE_ALPHA_TO_COVERAGE);
     glUseProgram(m.dot_program->program.get());
-    m.setStroke(*m.dot_program, view, width, style.silhouette_color, pull);
+    m.setStroke(*m.dot_program, view, width, style.silhouette_color, 0.0f);
     glDrawElements(GL_POINTS, static_cast<GLsizei>(count), GL_UNSIGNED_INT, offset);
     glDisable(GL_SAMPLE_ALPHA_TO_COVERAGE);
   };

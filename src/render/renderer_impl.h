@@ -162,7 +162,18 @@ static_assert(sizeof(GpuInstance) == 112);
 
 // The depth and culling state of the shaded pass: depth test and write, back faces culled, counter-
 // clockwise triangles in front.
-void frontFacesState();
+// The GL state of the shaded front faces (depth test LESS with writes, back faces culled). With
+// strokes to draw over them (widest_stroke_px > 0, the widest stroke's width in pixels), the faces
+// are also pushed back by glPolygonOffset in proportion to their depth slope, by as much as a
+// face can come towards the eye within half a stroke width of its edge, so a stroke drawn at its
+// edge's own depth is not buried in the faces beside it (the paper's thick back-face wireframe
+// shows whole). A slope-scaled offset pushes grazing faces (at silhouettes) back a lot and faces
+// seen head-on hardly at all, so hidden outlines just under a visible surface (a leg's end inside
+// a foot) stay hidden, as a constant pull of the strokes towards the eye would not (docs/render.md).
+// The caller disables GL_POLYGON_OFFSET_FILL after the faces.
+void frontFacesState(float widest_stroke_px);
+// Constant part of that offset, in the depth buffer's smallest steps.
+inline constexpr float kStrokeOffsetUnits = 4.0f;
 
 // glBufferData through the copy-write target, which no vertex array records.
 void bufferData(const GlBuffer& buffer, std::size_t bytes, const void* data, GLenum usage);

@@ -30,8 +30,9 @@
 // same picture is drawn from the silhouette edges themselves (found per frame on the CPU, see
 // silhouette.h): each edge becomes a screen-space quad of the requested width (geometry shader)
 // and each edge end a round dot of the same diameter (point sprite), which fills the cracks. Both
-// are depth-tested (LEQUAL) against the shaded front faces, after pulling the edge towards the eye
-// by `silhouette_pull` line widths so the inner half of the line is not buried in the surface.
+// are depth-tested (LEQUAL) against the shaded front faces, which are pushed back under them in
+// proportion to their depth slope (glPolygonOffset), so the inner half of a line is not buried in
+// the faces beside its edge while a hidden outline just under a visible surface stays hidden.
 //
 // GPU blend (addBlendModel / drawBlendInstances; OpenGL 4.3 compute shaders): many instances of
 // one view-dependent model, each blended for its own weights, in one call. The base positions
@@ -166,7 +167,6 @@ struct MeshStyle {
   bool flat = false;              // per-face normals instead of the mesh's vertex normals
   float silhouette_width = 3.0f;  // pixels; <= 0 draws no silhouettes (and no borders)
   Rgb silhouette_color{0.06f, 0.06f, 0.08f};
-  float silhouette_pull = 1.0f;  // depth offset towards the eye, in line widths
   // True open borders (edges of the welded surface with one face: holes, not seams) are drawn
   // with the silhouettes, as the paper's wireframe pass would.
   bool borders = true;
