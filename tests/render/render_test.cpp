@@ -598,6 +598,77 @@ TEST(StrokeWidth, AFigureTwiceAsFarGetsThinnerLinesClampedAtMinAndMax) {
             render(StrokeWidthMode::fixed, 0.7 * fit, 14.0f).rgba);
 }
 
+// ---------------------------------------------------------------------------------------------
+// Strokes against the faces: the slope-scaled face offset (renderer_impl.h, frontFacesState).
+
+// `inner` appended to `outer` as a second closed part of one mesh (parts that overlap, as the
+// walker's legs enter its feet).
+TriMesh withPart(TriMesh outer, const TriMesh& inner) {
+  const auto offset = static_cast<std::int32_t>(outer.vertexCount());
+  outer.positions.insert(outer.positions.end(), inner.positions.begin(), inner.positions.end());
+  for (const std::int32_t v : inner.triangles) outer.triangles.push_back(v + offset);
+  return outer;
+}
+
+// A flat lens (a unit sphere scaled to radius 0.3 and half-thickness 0.01) centred on the view axis
+// at depth `z`, inside the unit sphere and facing the eye on +z.
+TriMesh lensAt(double z) {
+  TriMesh lens = uvSphere(12, 24);
+  for (std::size_t i = 0; i < lens.vertexCount(); ++i) {
+    lens.positions[3 * i] *= 0.3f;
+    lens.positions[3 * i + 1] *= 0.3f;
+    lens.positions[3 * i + 2] = static_cast<float>(z + 0.01 * lens.positions[3 * i + 2]);
+  }
+  return lens;
+}
+
+long darkPixelsWithin(const Image& img, double radius_px) {
+  long n = 0;
+  const double cx = 0.5 * (img.width - 1), cy = 0.5 * (img.height - 1);
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x)
+      if (std::hypot(x - cx, y - cy) < radius_px && isDark(img, x, y)) ++n;
+  return n;
+}
+
+TEST(RenderImage, AnOutlineJustUnderAVisibleSurfaceStaysHidden) {
+  // Seen head-on from +z, the lens's rim (radius 0.3, depth 0.87) lies 0.084 under the sphere's
+  // surface (sqrt(1 - 0.3^2) = 0.954) where the surface leans 17.5 degrees from the view: less than
+  // a 6-pixel stroke's width of depth (about 0.14 here, the constant pull strokes once had, which
+  // showed such outlines as ink: the walker's ankles), about twice the slope-scaled offset of the
+  // faces there (at most 0.04). The sphere's own outline is at about 40 pixels from the centre.
+  constexpr double kInnerDiscPx = 35.0;
+  FrameOptions o = smallOptions();
+  o.silhouette_width = 6.0f;
+  const TriMesh sphere = uvSphere(48, 64);
+  const Camera head_on = cameraToward(Eigen::Vector3d(0, 0, 1));
+  Image img;
+  ModelRenderer(withPart(sphere, lensAt(0.87)), o).render(head_on, img);
+  EXPECT_EQ(darkPixelsWithin(img, kInnerDiscPx), 0) << "the hidden rim shows";
+  if (darkPixelsWithin(img, kInnerDiscPx) != 0) writePng(testing::TempDir() + "/hidden_rim_failure.png", img);
+  // The control: the lens on its own has its rim inked within the same disc.
+  ModelRenderer(lensAt(0.87), o).render(head_on, img);
+  EXPECT_GT(darkPixelsWithin(img, kInnerDiscPx), 50);
+}
+
+TEST(RenderImage, TheWholeStrokeWidthShowsOnASmoothSilhouette) {
+  // The faces beside a smooth silhouette are grazing: a constant pull left about half the stroke
+  // buried in them. With the slope-scaled offset the ink is as wide as asked: its dark core loses
+  // at most the antialiased pixel at each side.
+  constexpr int kCanvas = 256;
+  constexpr int kFringePx = 2;
+  FrameOptions o;
+  o.width = o.height = kCanvas;
+  const TriMesh sphere = uvSphere(24, 32);
+  for (const float width : {4.0f, 8.0f, 12.0f}) {
+    o.silhouette_width = width;
+    Image img;
+    ModelRenderer(sphere, o).render(cameraToward(Eigen::Vector3d(0, 0, 1)), img);
+    EXPECT_GE(inkRun(img), width - kFringePx) << "stroke width " << width;
+    EXPECT_LE(inkRun(img), width + 1) << "stroke width " << width;
+  }
+}
+
 TEST(RenderImage, TheSphereInsetLeavesTheModelVisible) {
   // The camera looks up and to the left of the model, so its picture fills the bottom-right
   // corner, where the inset goes by default: the inset moves to a free corner and hides none of
