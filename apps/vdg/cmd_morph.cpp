@@ -1,13 +1,16 @@
-// vdg morph SRC.png DST.png (--grid FILE | --lines FILE) (--t T -o OUT.png | --count N -o DIR) [--frames A-B] [--warp]
+// vdg morph SRC DST (--grid FILE | --lines FILE) (--t T -o OUT.png | --count N -o DIR) [--frames A-B] [--warp]
+//   SRC and DST: an image each, or a folder of frames (an animated sequence: output frame i morphs
+//   frame i of each; Parent 4.10, "morphing two animated sequences").
 // vdg morph --drawings KEYS.json --count N -o DIR [--frames A-B] [--format svg|png]
 //
 // 2D metamorphosis (Parent 4.10): the two-pass mesh warp over the user's curvilinear grids, or the
 // feature-based morph of Beier and Neely over pairs of feature lines; both warp the source and the
 // destination onto the features interpolated with t and cross-dissolve them (--warp: only the
 // source, warped, no dissolve). A key-framed grid file animates the grids over the output frames
-// (Catmull-Rom between keys). --drawings inbetweens key drawings (Parent 4.5) into SVG or PNG
-// frames. The mathematics lives in the morph library (vdg/morph/image_morph.h, inbetween.h), the
-// files in vdg/io/morph_files.h; this file reads, checks, calls and writes (PNG atomically).
+// (Catmull-Rom between keys), as the features of two animated sequences move. --drawings
+// inbetweens key drawings (Parent 4.5) into SVG or PNG frames. The mathematics lives in the morph
+// library (vdg/morph/image_morph.h, inbetween.h), the files in vdg/io/morph_files.h; this file
+// reads, checks, calls and writes (PNG atomically).
 // See docs/morph.md and docs/morph-files.md.
 
 #include <algorithm>
@@ -67,6 +70,11 @@ void parseFrames(MorphOptions& opt, bool count_given) {
                      std::to_string(opt.frames) + "), got " + quotedText(opt.frames_range));
 }
 
+bool isFolder(const std::string& path) {
+  std::error_code ec;
+  return !path.empty() && fs::is_directory(path, ec);
+}
+
 // The usage rules that need several options together (exit status 2).
 void checkUsage(const MorphOptions& opt) {
   if (opt.format != "svg" && opt.format != "png")
@@ -84,7 +92,8 @@ void checkUsage(const MorphOptions& opt) {
     if (opt.t_given == (opt.frames > 0))
       throw UsageError("give exactly one of --t T (one image) or --count N (a sequence)");
     if (opt.format_given) throw UsageError("--format: only for --drawings (image morphs write PNG)");
-    if (opt.frame_given && opt.grid.empty()) throw UsageError("--frame: only with a key-framed --grid file");
+    if (opt.frame_given && opt.grid.empty() && !isFolder(opt.src) && !isFolder(opt.dst))
+      throw UsageError("--frame: only with a key-framed --grid file or a sequence (a folder of frames)");
     if (opt.frame_given && !opt.t_given)
       throw UsageError("--frame: only with --t (with --count N, frame i is output frame i)");
   }
@@ -122,35 +131,87 @@ std::string framePath(const std::string& dir, int i, const char* ext) {
 
 // ---- image morphs --------------------------------------------------------------------------------
 
+// SRC or DST: one image (a still, used for every output frame) or an animated sequence, a folder
+// whose PNG and JPEG files, in name order, are its frames 0, 1, ... (zero-padded names, as every vdg
+// command writes them, sort in frame order). A sequence's frames are read one at a time, as the
+// output frames need them.
+class ImageSource {
+ public:
+  ImageSource(const std::string& path, const char* role) : path_(path), role_(role) {
+    if (!isFolder(path)) {
+      still_ = morph::imageFromRgba8(readImageFile(path, "image"));
+      return;
+    }
+    std::error_code ec;
+    for (fs::directory_iterator it(path, ec), end; !ec && it != end; it.increment(ec)) {
+      std::string ext = it->path().extension().string();
+      std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+      if ((ext == ".png" || ext == ".jpg" || ext == ".jpeg") && it->is_regular_file(ec))
+        frames_.push_back(it->path().string());
+    }
+    if (ec) throw Error(path + ": cannot list the folder (" + role_ + " sequence): " + ec.message());
+    if (frames_.empty()) throw Error(path + ": the folder holds no PNG or JPEG frames (" + role_ + " sequence)");
+    std::sort(frames_.begin(), frames_.end());
+  }
+
+  bool sequence() const { return !frames_.empty(); }
+  int frameCount() const { return static_cast<int>(frames_.size()); }
+  const std::string& path() const { return path_; }
+
+  // Output frame `frame`'s image: the still, or the sequence's frame of that number.
+  morph::Image at(int frame) const {
+    if (!sequence()) return still_;
+    return morph::imageFromRgba8(readImageFile(frames_[static_cast<std::size_t>(frame)], "image"));
+  }
+  // The file output frame `frame` reads (for messages).
+  const std::string& fileAt(int frame) const { return sequence() ? frames_[static_cast<std::size_t>(frame)] : path_; }
+
+  // Refuses (one line) a sequence too short for output frames up to `last`.
+  void requireFrames(int last, const std::string& why) const {
+    if (sequence() && last >= frameCount())
+      throw Error(path_ + ": the " + role_ + " sequence has " + std::to_string(frameCount()) + " frames; " + why +
+                  " needs frame " + std::to_string(last) + " (output frame i morphs frame i of each sequence)");
+  }
+
+ private:
+  std::string path_, role_;
+  morph::Image still_;
+  std::vector<std::string> frames_;
+};
+
 // What one output image needs: both images and the correspondence.
 class ImageMorph {
  public:
-  explicit ImageMorph(const MorphOptions& opt) : opt_(opt) {
+  explicit ImageMorph(const MorphOptions& opt) : opt_(opt), src_(opt.src, "source"), dst_(opt.dst, "destination") {
     if (!opt.grid.empty())
       grid_ = readMorphGrid(opt.grid);
     else
       lines_ = readMorphLines(opt.lines);
-    if (grid_.keyed != opt.frame_given && opt.t_given && !opt.grid.empty())
-      throw UsageError(grid_.keyed ? "--t with a key-framed grid (" + opt.grid +
-                                         ") needs --frame F, the output frame whose grids to use"
-                                   : "--frame: " + opt.grid + " is a still grid, not a key-framed one");
-    const TextureImage src = readImageFile(opt.src, "image");
-    const TextureImage dst = readImageFile(opt.dst, "image");
-    if (src.width != dst.width || src.height != dst.height)
-      throw Error(opt.dst + ": is " + size(dst) + " pixels and " + opt.src + " is " + size(src) +
-                  "; the two images must have the same size");
-    src_ = morph::imageFromRgba8(src);
-    dst_ = morph::imageFromRgba8(dst);
+    if (opt.t_given && !opt.grid.empty() && grid_.keyed && !opt.frame_given)
+      throw UsageError("--t with a key-framed grid (" + opt.grid +
+                       ") needs --frame F, the output frame whose grids to use");
+    if (opt.t_given && !opt.grid.empty() && !grid_.keyed && opt.frame_given && !sequences())
+      throw UsageError("--frame: " + opt.grid + " is a still grid, not a key-framed one");
+    const morph::Image first_src = src_.at(0), first_dst = dst_.at(0);
+    requireSameSize(first_src, src_.fileAt(0), first_dst, dst_.fileAt(0));
+    width_ = first_src.width;
+    height_ = first_src.height;
   }
 
-  int width() const { return src_.width; }
-  int height() const { return src_.height; }
+  int width() const { return width_; }
+  int height() const { return height_; }
+  bool sequences() const { return src_.sequence() || dst_.sequence(); }
+  // Refuses a sequence too short for the output frames up to `last`.
+  void requireFrames(int last, const std::string& why) const {
+    src_.requireFrames(last, why);
+    dst_.requireFrames(last, why);
+  }
 
   // Refuses, before any pixel is computed, a morph whose estimated work (vdg/morph/budget.h) is
   // past --budget: every written frame costs a warp or two of every pixel, by every feature line
   // (O(pixels x lines)) or along the grid's curves.
   void checkCost(int frames) const {
-    const int w = src_.width, h = src_.height;
+    const int w = width_, h = height_;
     const int images = opt_.warp ? 1 : 2;
     const double each = !opt_.grid.empty() ? (opt_.warp ? morph::meshWarpCost(w, h, grid_.rows, grid_.cols)
                                                         : morph::meshMorphCost(w, h, grid_.rows, grid_.cols))
@@ -167,44 +228,67 @@ class ImageMorph {
                            std::string(opt_.grid.empty() ? "lines" : "grid points") + ", pixels or frames");
   }
 
-  // The image at morph time t; `frame` picks a key-framed grid's grids. What the morph library
-  // refuses (a line collapsing at this t) is reported under the features' file.
+  // The image at morph time t; `frame` picks a key-framed grid's grids and each sequence's frame.
+  // What the morph library refuses (a line collapsing at this t) is reported under the features'
+  // file.
   morph::Image at(double t, double frame) const {
+    const int index = static_cast<int>(frame);  // a whole number whenever a sequence is given
+    const morph::Image src = src_.at(index);
+    const morph::Image dst = opt_.warp ? morph::Image{} : dst_.at(index);
+    requireSameSize(src, src_.fileAt(index), opt_.warp ? src : dst, dst_.fileAt(index));
     try {
-      return compute(t, frame);
+      return compute(t, frame, src, dst);
     } catch (const Error& e) {
       throw Error((opt_.grid.empty() ? opt_.lines : opt_.grid) + ": " + e.what());
     }
   }
 
  private:
-  morph::Image compute(double t, double frame) const {
+  morph::Image compute(double t, double frame, const morph::Image& src, const morph::Image& dst) const {
     if (!opt_.grid.empty()) {
       const morph::WarpGrid from = grid_.srcAt(frame), to = grid_.dstAt(frame);
-      if (opt_.warp) return morph::meshWarp(src_, from, morph::interpolateGrids(from, to, t));
-      return morph::meshMorph(src_, dst_, from, to, t);
+      if (opt_.warp) return morph::meshWarp(src, from, morph::interpolateGrids(from, to, t));
+      return morph::meshMorph(src, dst, from, to, t);
     }
     if (opt_.warp) {
       std::vector<morph::FeatureLine> to(lines_.src.size());
       for (std::size_t i = 0; i < to.size(); ++i)
         to[i] = {(1 - t) * lines_.src[i].p + t * lines_.dst[i].p, (1 - t) * lines_.src[i].q + t * lines_.dst[i].q};
-      return morph::featureWarp(src_, lines_.src, to, lines_.params);
+      return morph::featureWarp(src, lines_.src, to, lines_.params);
     }
-    return morph::featureMorph(src_, dst_, lines_.src, lines_.dst, t, lines_.params);
+    return morph::featureMorph(src, dst, lines_.src, lines_.dst, t, lines_.params);
   }
 
-  static std::string size(const TextureImage& image) {
-    return std::to_string(image.width) + "x" + std::to_string(image.height);
+  // Every image the morph reads has the first source frame's size.
+  void requireSameSize(const morph::Image& src, const std::string& src_file, const morph::Image& dst,
+                       const std::string& dst_file) const {
+    const auto size = [](const morph::Image& image) {
+      return std::to_string(image.width) + "x" + std::to_string(image.height);
+    };
+    if (src.width != dst.width || src.height != dst.height)
+      throw Error(dst_file + ": is " + size(dst) + " pixels and " + src_file + " is " + size(src) +
+                  "; the two images must have the same size");
+    if (width_ > 0 && (src.width != width_ || src.height != height_))
+      throw Error(src_file + ": is " + size(src) + " pixels and " + src_.fileAt(0) + " is " + std::to_string(width_) +
+                  "x" + std::to_string(height_) + "; every frame of a sequence must have the same size");
   }
 
   const MorphOptions& opt_;
   MorphGridFile grid_;
   MorphLinesFile lines_;
-  morph::Image src_, dst_;
+  ImageSource src_, dst_;
+  int width_ = 0, height_ = 0;
 };
 
 void runImageMorph(const MorphOptions& opt) {
   const ImageMorph morph(opt);
+  if (opt.t_given && morph.sequences()) {
+    if (!opt.frame_given || opt.frame != std::floor(opt.frame))
+      throw UsageError(
+          "--t with a sequence (a folder of frames) needs --frame F, the whole number of the frame to morph");
+    morph.requireFrames(static_cast<int>(opt.frame), "--frame " + std::to_string(static_cast<int>(opt.frame)));
+  }
+  if (!opt.t_given) morph.requireFrames(lastFrame(opt), "--count " + std::to_string(opt.frames));
   morph.checkCost(opt.t_given ? 1 : lastFrame(opt) - firstFrame(opt) + 1);
   if (opt.t_given) {
     const morph::Image image = morph.at(opt.t, opt.frame);
@@ -315,8 +399,10 @@ void addMorphCommand(CLI::App& app) {
   CLI::App* sub = app.add_subcommand(
       "morph",
       "Morph one image into another (two-pass mesh warp over grids, or feature lines), or inbetween key drawings");
-  sub->add_option("SRC", opt->src, "Source image (PNG or JPEG)");
-  sub->add_option("DST", opt->dst, "Destination image, the same size as SRC");
+  sub->add_option("SRC", opt->src,
+                  "Source image (PNG or JPEG), or a folder of frames: an animated sequence, whose frame i output "
+                  "frame i morphs");
+  sub->add_option("DST", opt->dst, "Destination image or folder of frames, the same size as SRC");
   sub->add_option("--grid", opt->grid,
                   "Grid file: the source's and destination's curvilinear grids, still or at key frames "
                   "(docs/morph-files.md)");
@@ -331,7 +417,8 @@ void addMorphCommand(CLI::App& app) {
                   "Write only frames A-B (or N) of the --count N (a farm node's share); the old '--frames N' for "
                   "a count is still read as --count N in this version, with a deprecation note");
   sub->add_option("--frame", opt->frame,
-                  "With --t and a key-framed grid (required then): the output frame whose grids to use")
+                  "With --t and a key-framed grid or a sequence (required then): the output frame whose grids and "
+                  "sequence frames to use")
       ->check(numberIn({0.0, End::kClosed, kMaxGridFrame, End::kClosed}));
   sub->add_option("-o,--output", opt->output, "OUT.png with --t; a folder with --frames")->required();
   sub->add_flag("--warp", opt->warp,

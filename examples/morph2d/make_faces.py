@@ -9,6 +9,15 @@ zlib for the PNG stream). Face A is round and warm-coloured with its eyes at (75
 mouth at y = 148. grid.json and lines.json in this folder mark the same features on both.
 Every shape is drawn anti-aliased from its signed distance (coverage = clamp(0.5 - d, 0, 1)).
 
+    python3 make_faces.py --sequences OUT_DIR
+
+writes two animated sequences instead (Parent 4.10, morphing two animated sequences):
+OUT_DIR/seq_a/frame_0000.png ... frame_0007.png, face A swaying left and right, and OUT_DIR/seq_b/,
+face B bobbing up and down, plus OUT_DIR/seq_grid.json, grid.json's grids at key frames 0, 2, 4, 6
+and 7, each moved with its face (the grid points inside the image follow the face; those on the
+image's border slide along it). The frames between the keys get their grids from `vdg morph`'s
+Catmull-Rom interpolation of the keys.
+
 Also writes OUT_DIR/drawings.json, the key drawings of `vdg morph --drawings` (Parent 4.5): the
 same face as line drawings at three keys (round and smiling, tall and frowning, wide and
 laughing), its outline drawn with a different number of points in each key (so the inbetweener
@@ -128,7 +137,58 @@ def drawings():
     return text.replace(', {"time"', ',\n  {"time"').replace('"keys": [{', '"keys": [\n  {') + "\n"
 
 
+kSequenceFrames = 8
+kSequenceKeys = (0, 2, 4, 6, 7)
+
+
+def sway(name, i):
+    """The face's offset (dx, dy) in frame i of its sequence: A sways sideways, B bobs."""
+    phase = 2.0 * math.pi * i / kSequenceFrames
+    return (round(12.0 * math.sin(phase), 3), 0.0) if name == "face_a" else (0.0, round(-9.0 * math.sin(phase), 3))
+
+
+def moved(face, d):
+    """The face dict with every position moved by d (the nose and mouth by their rows only)."""
+    dx, dy = d
+    f = dict(face)
+    f["centre"] = (face["centre"][0] + dx, face["centre"][1] + dy)
+    f["eyes"] = tuple((x + dx, y + dy) for x, y in face["eyes"])
+    f["nose"] = (face["nose"][0] + dy, face["nose"][1] + dy)
+    f["mouth_y"] = face["mouth_y"] + dy
+    return f
+
+
+def moved_points(points, d):
+    """Grid points moved by d; those on the image's border stay on it (they slide along it)."""
+    out = []
+    for x, y in points:
+        nx = x if x in (0, kSize) else x + d[0]
+        ny = y if y in (0, kSize) else y + d[1]
+        out.append([round(nx, 3), round(ny, 3)])
+    return out
+
+
+def sequences(out):
+    here = os.path.dirname(os.path.abspath(__file__))
+    with open(os.path.join(here, "grid.json")) as f:
+        grid = json.load(f)
+    for name, folder in (("face_a", "seq_a"), ("face_b", "seq_b")):
+        os.makedirs(os.path.join(out, folder), exist_ok=True)
+        for i in range(kSequenceFrames):
+            with open(os.path.join(out, folder, "frame_%04d.png" % i), "wb") as f:
+                f.write(png(draw(moved(kFaces[name], sway(name, i)))))
+    keys = [{"frame": i, "src": moved_points(grid["src"], sway("face_a", i)),
+             "dst": moved_points(grid["dst"], sway("face_b", i))} for i in kSequenceKeys]
+    doc = {"version": 1, "rows": grid["rows"], "cols": grid["cols"], "keys": keys}
+    with open(os.path.join(out, "seq_grid.json"), "w") as f:
+        json.dump(doc, f, indent=1)
+        f.write("\n")
+
+
 def main():
+    if len(sys.argv) > 2 and sys.argv[1] == "--sequences":
+        sequences(sys.argv[2])
+        return
     out = sys.argv[1] if len(sys.argv) > 1 else os.path.dirname(os.path.abspath(__file__))
     os.makedirs(out, exist_ok=True)
     with open(os.path.join(out, "drawings.json"), "w") as f:

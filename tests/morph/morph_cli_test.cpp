@@ -208,6 +208,63 @@ TEST_F(MorphCli, KeyFramedGridAnimatesTheGrids) {
                 "use (see vdg morph --help)");
 }
 
+// Two animated sequences (Parent 4.10): folders of frames whose squares move, and key grids that
+// follow each square. Output frame i morphs frame i of each sequence with the grids of frame i at
+// t = i / (N - 1): the image the still morph of that pair of frames gives, byte for byte.
+TEST_F(MorphCli, SequencesMorphFrameByFrame) {
+  fs::create_directories(file("seq_a"));
+  fs::create_directories(file("seq_b"));
+  MorphGridFile keyed;
+  keyed.rows = keyed.cols = 3;
+  keyed.keyed = true;
+  for (int i = 0; i < 3; ++i) {
+    render::writePng(file("seq_a/frame_000" + std::to_string(i) + ".png"), pattern(kW, kH, 6 + 4 * i, 6, 200));
+    render::writePng(file("seq_b/frame_000" + std::to_string(i) + ".png"), pattern(kW, kH, 24 - 2 * i, 16, 90));
+    morph::WarpGrid a = identity_, b = identity_;
+    a.at(1, 1) = {10.0 + 4 * i, 10};
+    b.at(1, 1) = {28.0 - 2 * i, 20};
+    keyed.src.push_back({static_cast<double>(i), a});
+    keyed.dst.push_back({static_cast<double>(i), b});
+  }
+  writeMorphGrid(file("keys.json"), keyed);
+  ASSERT_EQ(vdg("morph seq_a seq_b --grid keys.json --count 3 -o out -q"), 0) << err_;
+  for (int i = 0; i < 3; ++i) {
+    const std::string n = std::to_string(i), still = "still_" + n + ".png";
+    ASSERT_EQ(vdg("morph seq_a/frame_000" + n + ".png seq_b/frame_000" + n + ".png --grid keys.json --t " +
+                  std::to_string(i / 2.0) + " --frame " + n + " -o " + still + " -q"),
+              0)
+        << err_;
+    EXPECT_EQ(maxDifference(read("out/frame_000" + n + ".png"), read(still)), 0) << "frame " << i;
+    // --t with --frame on the sequences themselves reads the same pair of frames.
+    ASSERT_EQ(vdg("morph seq_a seq_b --grid keys.json --t " + std::to_string(i / 2.0) + " --frame " + n + " -o pick_" +
+                  n + ".png -q"),
+              0)
+        << err_;
+    EXPECT_EQ(maxDifference(read("pick_" + n + ".png"), read(still)), 0) << "frame " << i;
+  }
+  EXPECT_LE(maxDifference(read("out/frame_0000.png"), read("seq_a/frame_0000.png")), kRounding);
+  EXPECT_LE(maxDifference(read("out/frame_0002.png"), read("seq_b/frame_0002.png")), kRounding);
+  // A still and a sequence: the still is every frame of its side.
+  ASSERT_EQ(vdg("morph src.png seq_b --lines lines.json --count 3 -o mixed -q"), 0) << err_;
+  EXPECT_LE(maxDifference(read("mixed/frame_0002.png"), read("seq_b/frame_0002.png")), kRounding);
+
+  expectRefused("morph seq_a seq_b --grid keys.json --count 4 -o x", 1,
+                "vdg: error: seq_a: the source sequence has 3 frames; --count 4 needs frame 3 (output frame i "
+                "morphs frame i of each sequence)");
+  expectRefused("morph seq_a seq_b --grid grid.json --t 0.5 -o x.png", 2,
+                "vdg: morph: --t with a sequence (a folder of frames) needs --frame F, the whole number of the "
+                "frame to morph (see vdg morph --help)");
+  fs::create_directories(file("empty"));
+  expectRefused("morph empty seq_b --grid grid.json --count 3 -o x", 1,
+                "vdg: error: empty: the folder holds no PNG or JPEG frames (source sequence)");
+  fs::create_directories(file("seq_c"));
+  for (int i = 0; i < 3; ++i)
+    render::writePng(file("seq_c/frame_000" + std::to_string(i) + ".png"), pattern(i == 1 ? 20 : kW, kH, 0, 0, 0));
+  expectRefused("morph seq_a seq_c --grid grid.json --count 3 -o x", 1,
+                "vdg: error: seq_c/frame_0001.png: is 20x30 pixels and seq_a/frame_0001.png is 40x30; the two "
+                "images must have the same size");
+}
+
 TEST_F(MorphCli, DrawingsAreInbetweenedIntoSvgOrPngFrames) {
   testing::writeText(file("draw.json"), R"({"version": 1, "width": 32, "height": 32, "keys": [
       {"time": 0, "strokes": [[[4, 4], [28, 4]]]},
