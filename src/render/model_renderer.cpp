@@ -94,6 +94,33 @@ void checkStrokeRange(const FrameSettings& s) {
                 numberText(s.stroke_min) + " and " + numberText(s.stroke_max) + ")");
 }
 
+namespace {
+
+// An rbf model's dense weights as a ViewWeights (what render() reports, and the inset marks): the
+// three heaviest keys with their weights, and as `base` the rest (the base's weight and the other
+// keys'), so the four still sum to 1. The blend itself used every key.
+ViewWeights heaviestKeys(std::span<const float> dense) {
+  ViewWeights w;
+  const std::size_t keys = dense.size() - 1;
+  float rest = 1.0f;
+  for (int slot = 0; slot < 3; ++slot) {
+    int best = -1;
+    for (std::size_t k = 0; k < keys; ++k) {
+      const bool taken = std::find(w.key.begin(), w.key.end(), static_cast<int>(k)) != w.key.end();
+      if (!taken && dense[k] > 0.0f && (best < 0 || dense[k] > dense[static_cast<std::size_t>(best)]))
+        best = static_cast<int>(k);
+    }
+    if (best < 0) break;
+    w.key[slot] = best;
+    w.weight[slot] = dense[static_cast<std::size_t>(best)];
+    rest -= w.weight[slot];
+  }
+  w.base = std::max(0.0f, rest);
+  return w;
+}
+
+}  // namespace
+
 struct ModelRenderer::Impl {
   const ViewDependentModel* model = nullptr;
   const AnimatedViewDependentModel* animated = nullptr;  // section 4; `model` is then null
@@ -104,6 +131,7 @@ struct ModelRenderer::Impl {
   int mesh_id = -1;
   int blend_id = -1;                 // options.gpu_blend: the model's GPU blend handle
   std::vector<float> positions;      // this frame's; the renderer computes the normals per smoothing group
+  std::vector<float> dense;          // an rbf model: every key's weight and the base's (keyCount() + 1)
   std::vector<float> screen_points;  // the vertices projected, for the inset's corner (x, y pairs)
   Eigen::Vector3d center = Eigen::Vector3d::Zero();
   double radius = 1.0;
@@ -124,6 +152,7 @@ struct ModelRenderer::Impl {
   void setup() {
     const TriMesh& mesh = base();
     positions = mesh.positions;
+    if (model && model->sphere().settings().scheme == WeightScheme::Rbf) dense.resize(model->keyCount() + 1);
     screen_points.resize(positions.size() / 3 * 2);
     // The GPU blend registers the model itself (below); the CPU path draws a surface.
     if (!(options.gpu_blend && model)) mesh_id = renderer.addSurface(mesh, SurfaceTopology::build(mesh));
@@ -200,7 +229,7 @@ struct ModelRenderer::Impl {
 };
 
 ModelRenderer::ModelRenderer(const ViewDependentModel& model, const FrameOptions& options) {
-  model.requireThreeKeyWeights("the renderer (vdg render, run)");
+  if (options.gpu_blend) model.requireThreeKeyWeights("the GPU blend (--gpu-blend; the CPU blend evaluates it)");
   checkSize(options.width, options.height, "image size");
   const int image_width = options.observer ? options.width * 2 : options.width;
   checkSize(image_width, options.height, "image size with the observer panel");
@@ -256,14 +285,21 @@ ViewWeights ModelRenderer::render(const Camera& camera, Image& out) {
     // (for a parallel camera, the reversed viewing axis).
     view = camera.isOrtho() ? Eigen::Vector3d((camera.eye - camera.target).normalized())
                             : m.model->viewFromEye(camera.eye);
-    if (!o.base_only && view.allFinite() && view.norm() > 0.0) {
+    const bool viewed = !o.base_only && view.allFinite() && view.norm() > 0.0;
+    if (viewed && !m.dense.empty()) {  // the rbf scheme: every key weighs (view_sphere.h)
+      check(m.model->denseWeights(view, o.sharpness, m.dense), "denseWeights");
+      w = heaviestKeys(m.dense);
+    } else if (viewed) {
       check(m.model->weights(view, o.sharpness, w), "weights");
     } else {  // the base only, or the eye at the model's centre (no view direction): the base model
       w = ViewWeights{};
       w.base = 1.0f;
     }
     if (m.blend_id < 0) {
-      check(m.model->blend(w, m.positions), "blend");
+      if (viewed && !m.dense.empty())
+        check(m.model->blendDense(m.dense, m.positions), "blendDense");
+      else
+        check(m.model->blend(w, m.positions), "blend");
       check(m.renderer.updateMesh(m.mesh_id, m.positions, {}), "updateMesh");
     }
   } else if (m.animated) {

@@ -733,6 +733,48 @@ TEST(RenderImage, KeyViewRendersExactlyTheKeyMesh) {
   }
 }
 
+// The rbf scheme (every key weighs every view) renders through the dense blend: at a key's view the
+// key mesh, at any other view the picture of ViewDependentModel::blendDense's positions; render()
+// reports the heaviest keys, summing to 1 with the base.
+TEST(RenderImage, AnRbfModelRendersTheBlendOfEveryKey) {
+  constexpr int kChannel = 8;
+  constexpr double kMaxDiffering = 0.001;
+  RawViewDependentModel raw = bumpyModel();
+  raw.sphere.scheme = WeightScheme::Rbf;
+  const ViewDependentModel model = ViewDependentModel::build(raw);
+  const FrameOptions o = smallOptions();
+  ModelRenderer blended(model, o);
+  std::vector<Eigen::Vector3d> views;
+  for (std::size_t k = 0; k < model.keyCount(); ++k) views.push_back(model.keyView(k));
+  views.push_back(Eigen::Vector3d(0.6, 0.5, 0.6));
+  views.push_back(Eigen::Vector3d(-0.3, 0.2, 0.9));
+  std::vector<float> dense(model.keyCount() + 1);
+  for (const Eigen::Vector3d& view : views) {
+    TriMesh expected = model.base();
+    ASSERT_TRUE(model.denseWeights(view, 0.0, dense));
+    ASSERT_TRUE(model.blendDense(dense, expected.positions));
+    const Camera cam = cameraToward(view);
+    Image a, b;
+    const ViewWeights w = blended.render(cam, a);
+    ModelRenderer(expected, o).render(cam, b);
+    EXPECT_NEAR(w.weight[0] + w.weight[1] + w.weight[2] + w.base, 1.0f, 1e-5f);
+    EXPECT_EQ(w.triangle, -1);
+    const ImageDiff d = compareImages(a, b, kChannel);
+    EXPECT_LE(d.differing_fraction, kMaxDiffering) << "view " << view.transpose() << ": " << d.differing_pixels;
+  }
+  // At a key's view the key alone (the interpolation is exact there).
+  TriMesh front = model.base();
+  ASSERT_TRUE(model.keyPositions(0, front.positions));
+  Image a, b;
+  EXPECT_EQ(blended.render(cameraToward(model.keyView(0)), a).key[0], 0);
+  ModelRenderer(front, o).render(cameraToward(model.keyView(0)), b);
+  EXPECT_LE(compareImages(a, b, kChannel).differing_fraction, kMaxDiffering);
+  // The GPU blend weighs three keys per instance: refused in one line.
+  FrameOptions gpu = o;
+  gpu.gpu_blend = true;
+  EXPECT_THROW(ModelRenderer(model, gpu), Error);
+}
+
 TEST(RenderImage, OrbitFramesDifferWhereKeysDiffer) {
   const ViewDependentModel& model = testModel();
   const FrameOptions o = smallOptions();

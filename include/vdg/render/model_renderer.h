@@ -77,7 +77,10 @@ class ModelRenderer {
   void setFrame(int frame);
 
   // Renders the frame seen by `camera` into `out`. Returns the blending weights used (all-base
-  // for a plain mesh, and for an eye at the model's centre, which has no view direction).
+  // for a plain mesh, and for an eye at the model's centre, which has no view direction). A model
+  // with the rbf weight scheme is blended over every key (ViewDependentModel::blendDense); the
+  // returned weights are then its three heaviest keys, with the base's and the other keys' weight
+  // together as `base`, and no triangle.
   // Throws vdg::Error for a degenerate camera (see cameraFrame), and "render: ... (internal
   // error)" if an evaluation or draw call it makes refuses its input (a bug, never bad data).
   ViewWeights render(const Camera& camera, Image& out);
