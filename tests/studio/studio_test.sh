@@ -232,6 +232,17 @@ else
   fail "(h) vdg studio --replay of feature lines failed: $(cat "$TMP/h.err")"
 fi
 
+# ---- (i) an rbf model: K (where to key needs key triangles) leaves a note instead of ending the session,
+# and the Preview blends every key --------------------------------------------------------------------------
+mkdir -p "$TMP/i" && cp -r "$SRC"/examples/spot "$TMP/i/"
+$TOOL events "$TMP/rbf.json" $W $H "1:key_down:K" "2:key_up:K" "3:key_down:P" "4:key_up:P"
+if studio "$TMP/i/spot/spot-rbf.vdg.json" --replay "$TMP/rbf.json" --count 6 --screenshot "$TMP/i.png" 2>"$TMP/i.err" &&
+  [ -s "$TMP/i.png" ]; then
+  pass "(i) an rbf model: K leaves a note, the Preview draws it"
+else
+  fail "(i) rbf model: $(cat "$TMP/i.err")"
+fi
+
 # ---- usage --------------------------------------------------------------------------------------------
 "$VDG" studio "$TMP/a/building.vdg.json" --recover --discard-recovery >/dev/null 2>&1
 [ $? -eq 2 ] && pass "usage: --recover with --discard-recovery is exit 2" || fail "usage: expected exit 2"

@@ -275,8 +275,8 @@ struct Studio::Impl {
       lines_tool = !lines_tool;
     else if (k == "Enter" && lines_tool && mode == Mode::kDeform)
       applyLines();
-    else if (k == "K" && sphereDisabled())
-      status = sphereDisabled();
+    else if (k == "K" && heatDisabled())
+      status = heatDisabled();
     else if (k == "K") {  // where to key: the inset's heat map (it shows the inset)
       style.sphere_heat = !style.sphere_heat;
       style.sphere_inset = style.sphere_inset || style.sphere_heat;
@@ -405,6 +405,13 @@ struct Studio::Impl {
     return session->animated() ? "the sphere inset shows a static model's key views; the Preview (P) shows this "
                                  "animated model's keys by frame and view"
                                : nullptr;
+  }
+  const char* heatDisabled() const {
+    if (const char* why = sphereDisabled()) return why;
+    return session->model().sphere.scheme == WeightScheme::Rbf
+               ? "where to key maps which key triangle holds each view; this model's rbf weights weigh every key "
+                 "(docs/weights.md)"
+               : nullptr;
   }
   const char* pairsDisabled() const {
     return drawing ? nullptr : "no drawing to align to: open one with vdg studio MODEL --drawing IMAGE";
@@ -583,7 +590,9 @@ struct Studio::Impl {
     ImGui::Checkbox("sphere (I)", &style.sphere_inset);
     endDisabledFor(sphereDisabled());
     if (style.sphere_inset && !sphereDisabled()) {
+      beginDisabledFor(heatDisabled());
       ImGui::Checkbox("where to key (K)", &style.sphere_heat);
+      endDisabledFor(heatDisabled());
       if (ImGui::IsItemHovered())
         ImGui::SetTooltip(
             "Colour the sphere by where a new key would help (docs/where-to-key.md); cyan: the suggestion");
