@@ -94,33 +94,6 @@ void checkStrokeRange(const FrameSettings& s) {
                 numberText(s.stroke_min) + " and " + numberText(s.stroke_max) + ")");
 }
 
-namespace {
-
-// An rbf model's dense weights as a ViewWeights (what render() reports, and the inset marks): the
-// three heaviest keys with their weights, and as `base` the rest (the base's weight and the other
-// keys'), so the four still sum to 1. The blend itself used every key.
-ViewWeights heaviestKeys(std::span<const float> dense) {
-  ViewWeights w;
-  const std::size_t keys = dense.size() - 1;
-  float rest = 1.0f;
-  for (int slot = 0; slot < 3; ++slot) {
-    int best = -1;
-    for (std::size_t k = 0; k < keys; ++k) {
-      const bool taken = std::find(w.key.begin(), w.key.end(), static_cast<int>(k)) != w.key.end();
-      if (!taken && dense[k] > 0.0f && (best < 0 || dense[k] > dense[static_cast<std::size_t>(best)]))
-        best = static_cast<int>(k);
-    }
-    if (best < 0) break;
-    w.key[slot] = best;
-    w.weight[slot] = dense[static_cast<std::size_t>(best)];
-    rest -= w.weight[slot];
-  }
-  w.base = std::max(0.0f, rest);
-  return w;
-}
-
-}  // namespace
-
 struct ModelRenderer::Impl {
   const ViewDependentModel* model = nullptr;
   const AnimatedViewDependentModel* animated = nullptr;  // section 4; `model` is then null

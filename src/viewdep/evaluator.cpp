@@ -25,12 +25,21 @@ void copyFloats(const float* from, float* to, std::size_t n) {
 
 ModelEvaluator::ModelEvaluator(const ViewDependentModel& model)
     : model_(&model), positions_(model.base().positions), normals_(model.base_normals_) {
-  model.requireThreeKeyWeights("the per-frame evaluator (vdg run, studio)");
+  if (model.sphere().settings().scheme == WeightScheme::Rbf) dense_.resize(model.keyCount() + 1);
   weights_.base = 1.0f;
 }
 
 bool ModelEvaluator::evaluate(const Eigen::Vector3d& view, double sharpness, int* hint) {
   int local_hint = hint ? *hint : -1;
+  if (!dense_.empty()) {  // the rbf scheme: every key weighs, every vertex may move (a full frame)
+    if (!model_->denseWeights(view, sharpness, dense_, &local_hint)) return false;
+    (void)model_->blendDense(dense_, positions_);  // sizes and weights checked
+    (void)computeVertexNormals(model_->surface(), positions_, normals_);
+    weights_ = heaviestKeys(dense_);
+    full_frame_ = true;
+    if (hint) *hint = local_hint;
+    return true;
+  }
   ViewWeights w;
   if (!model_->weights(view, sharpness, w, &local_hint)) return false;
   if (!apply(w)) return false;  // cannot fail: w comes from the model's sphere
@@ -47,6 +56,8 @@ bool ModelEvaluator::apply(const ViewWeights& w) {
     if (active(w, slot) && keys[static_cast<std::size_t>(w.key[slot])].dense) dense_now = true;
     if (active(weights_, slot) && keys[static_cast<std::size_t>(weights_.key[slot])].dense) dense_before = true;
   }
+  dense_before = dense_before || full_frame_;  // an rbf frame moved more than weights_ lists
+  full_frame_ = false;
   if (dense_now) {
     (void)m.blend(w, positions_);  // sizes and weights checked
     (void)computeVertexNormals(m.surface(), positions_, normals_);

@@ -1022,4 +1022,24 @@ std::size_t nearlySameViewPairs(std::span<const Eigen::Vector3d> unit_directions
   return count;
 }
 
+ViewWeights heaviestKeys(std::span<const float> dense) {
+  ViewWeights w;
+  const std::size_t keys = dense.size() - 1;
+  float rest = 1.0f;
+  for (int slot = 0; slot < 3; ++slot) {
+    int best = -1;
+    for (std::size_t k = 0; k < keys; ++k) {
+      const bool taken = std::find(w.key.begin(), w.key.end(), static_cast<int>(k)) != w.key.end();
+      if (!taken && dense[k] > 0.0f && (best < 0 || dense[k] > dense[static_cast<std::size_t>(best)]))
+        best = static_cast<int>(k);
+    }
+    if (best < 0) break;
+    w.key[slot] = best;
+    w.weight[slot] = dense[static_cast<std::size_t>(best)];
+    rest -= w.weight[slot];
+  }
+  w.base = std::max(0.0f, rest);
+  return w;
+}
+
 }  // namespace vdg

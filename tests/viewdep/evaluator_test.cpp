@@ -289,6 +289,48 @@ TEST(ModelEvaluator, EvaluateMatchesTheModelsEvaluate) {
   }
 }
 
+// The rbf scheme weighs every key: an evaluate() is a full frame (positions and normals of
+// ViewDependentModel::evaluate, bit for bit), and the incremental frames after it (apply) start
+// again from the base, since every vertex may have moved.
+TEST(ModelEvaluator, RbfFramesAreFullFramesAndTheFramesAfterThemStillEqualAFreshEvaluation) {
+  RawViewDependentModel raw = randomModel(9, 11, 4, 0.25);
+  const std::array<Vector3d, 4> views{Vector3d(0, 0, 1), Vector3d(1, 0.2, 0), Vector3d(-0.6, 0.3, -0.7),
+                                      Vector3d(0.1, 1, 0.2)};
+  for (std::size_t k = 0; k < views.size(); ++k) raw.keys[k].view = views[k];
+  raw.sphere.scheme = WeightScheme::Rbf;
+  const Built b = built(raw);
+  ModelEvaluator e(*b.model);
+  std::vector<float> positions(raw.base.positions.size()), normals(positions.size());
+  std::vector<float> dense(b.model->keyCount() + 1);
+  Vector3d view = randomView();
+  int hint = -1, model_hint = -1;
+  for (int step = 0; step < 40; ++step) {
+    const std::string what = "step " + std::to_string(step);
+    if (step % 3 == 2) {  // three-key weights given: the incremental path
+      ViewWeights w;
+      w.key = {static_cast<int>(step % 4), -1, static_cast<int>((step + 1) % 4)};
+      w.weight = {0.6f, 0.0f, 0.3f};
+      ASSERT_TRUE(e.apply(w)) << what;
+      expectFresh(e, what);
+      continue;
+    }
+    view = (view.normalized() + 0.3 * randomView().normalized()).normalized();
+    ASSERT_TRUE(e.evaluate(view, 0.0, &hint)) << what;
+    ASSERT_TRUE(b.model->evaluate(view, 0.0, positions, normals, &model_hint)) << what;
+    for (std::size_t j = 0; j < positions.size(); ++j) {
+      ASSERT_EQ(e.positions()[j], positions[j]) << what;
+      ASSERT_EQ(e.normals()[j], normals[j]) << what;
+    }
+    // What weights() reports: the heaviest keys of the dense weights, the rest as the base.
+    ASSERT_TRUE(b.model->denseWeights(view, 0.0, dense));
+    const ViewWeights w = e.weights();
+    EXPECT_EQ(w.triangle, -1);
+    EXPECT_NEAR(w.weight[0] + w.weight[1] + w.weight[2] + w.base, 1.0f, 1e-5f) << what;
+    ASSERT_GE(w.key[0], 0) << what;
+    EXPECT_EQ(w.weight[0], *std::max_element(dense.begin(), dense.end() - 1)) << what;
+  }
+}
+
 // --- contract and allocations ---------------------------------------------------------------
 
 TEST(ModelEvaluator, ViolationsChangeNothing) {

@@ -14,6 +14,10 @@
 // (a dense key now or before) it evaluates everything, threaded, like ViewDependentModel::evaluate.
 // Either way positions() and normals() equal what ViewDependentModel::evaluate would write for the
 // same weights (bit for bit: the same float operations in the same order, slot by slot).
+// A model with the rbf weight scheme weighs every key at every view: evaluate() then blends every
+// key (ViewDependentModel::blendDense) and recomputes every normal, as ViewDependentModel::evaluate
+// does, and weights() reports the three heaviest keys (heaviestKeys, view_sphere.h); apply() takes
+// three-key weights for any model.
 #pragma once
 
 #include <span>
@@ -43,13 +47,15 @@ class ModelEvaluator {
 
   std::span<const float> positions() const { return positions_; }  // #V x 3
   std::span<const float> normals() const { return normals_; }      // #V x 3, unit or (0, 0, 0)
-  const ViewWeights& weights() const { return weights_; }          // of the last successful call
+  const ViewWeights& weights() const { return weights_; }          // of the last successful call (see above)
   const ViewDependentModel& model() const { return *model_; }
 
  private:
   const ViewDependentModel* model_;
   std::vector<float> positions_, normals_;
+  std::vector<float> dense_;  // an rbf model: every key's weight and the base's (keyCount() + 1)
   ViewWeights weights_;
+  bool full_frame_ = false;  // the last frame was an rbf frame: every vertex may differ from the base
 };
 
 }  // namespace vdg

@@ -156,6 +156,13 @@ struct ViewWeights {
   int triangle = -1;
 };
 
+// Dense weights (every key's, then the base's: ViewSphere::denseWeights) as a ViewWeights, for what
+// shows or reports three keys (the renderer's inset, the studio's Preview, ModelEvaluator::weights):
+// the three heaviest keys with their weights (ties to the lower key index), and as `base` the rest
+// (the base's weight and the other keys'), so the four still sum to 1; no triangle. dense.size()
+// must be at least 1.
+ViewWeights heaviestKeys(std::span<const float> dense);
+
 class ViewSphere {
  public:
   static constexpr int kDummyCandidates = 64;
