@@ -302,6 +302,7 @@ def test_parts_follow_their_own_views(tmp_path: pathlib.Path) -> None:
     examples = pathlib.Path(__file__).resolve().parents[2] / "examples" / "spot"
     cubist = vdg.load(str(examples / "spot-cubist.vdg.json"))
     plain = vdg.load(str(examples / "spot.vdg.json"))
+    assert cubist.parts == ["head"] and plain.parts == []
     side, front = (1.0, 0.1, 0.0), (0.0, 0.15, -1.0)
     w = cubist.weights(side)
     assert [p["name"] for p in w["parts"]] == ["head", "rest"]
