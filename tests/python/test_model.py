@@ -316,6 +316,10 @@ def test_parts_follow_their_own_views(tmp_path: pathlib.Path) -> None:
     head, body = z < -0.3, z > -0.3 + 0.2  # the head's selection, and beyond its 0.2 border
     np.testing.assert_allclose(positions[head], at_front[head], atol=KEY_MESH_TOL)
     np.testing.assert_allclose(positions[body], at_side[body], atol=KEY_MESH_TOL)
+    cubist.save_manifest(str(tmp_path / "copy.vdg.json"))  # parts kept, the same positions
+    again = vdg.load(str(tmp_path / "copy.vdg.json"))
+    assert again.parts == ["head"]
+    np.testing.assert_array_equal(again.evaluate(side)[0], positions)
     with pytest.raises(vdg.Error, match="model parts"):
         cubist.export_gltf(str(tmp_path / "never.glb"))
     assert not (tmp_path / "never.glb").exists()
