@@ -437,6 +437,38 @@ TEST(ModelParts, EachPartTakesItsKeyAtItsOwnView) {
   EXPECT_FLOAT_EQ(w[6], 0.0f);
 }
 
+// A material selection takes every vertex of the material's triangles, and nothing else with a hard
+// border (uvSphere's seam copies of a selected vertex excepted: they share its position).
+TEST(ModelParts, AMaterialSelectsItsTrianglesVertices) {
+  RawViewDependentModel raw = twoKeySets();
+  raw.base.materials.resize(1);
+  raw.base.materials[0].name = "cap";
+  raw.base.face_materials.assign(raw.base.triangleCount(), -1);
+  std::vector<std::uint8_t> on(raw.base.vertexCount(), 0);
+  for (std::size_t t = 0; t < raw.base.triangleCount(); ++t) {
+    if (raw.base.positions[3 * static_cast<std::size_t>(raw.base.triangles[3 * t]) + 1] <= 0.7f) continue;
+    raw.base.face_materials[t] = 0;
+    for (std::size_t c = 0; c < 3; ++c) on[static_cast<std::size_t>(raw.base.triangles[3 * t + c])] = 1;
+  }
+  RawPart part = partOf("cap", {}, 0.0, {"a0", "a1", "a2", "a3", "a4", "a5"});
+  part.select = RawPart::Select::kMaterial;
+  part.material = "cap";
+  raw.parts.push_back(part);
+  raw.validate();
+  const std::vector<std::vector<float>> masks = computePartMasks(raw);
+  std::size_t selected = 0;
+  for (std::size_t v = 0; v < raw.base.vertexCount(); ++v) {
+    if (on[v]) {
+      EXPECT_EQ(masks[0][v], 1.0f) << "vertex " << v;
+    }
+    selected += on[v];
+    EXPECT_TRUE(masks[0][v] == 0.0f || masks[0][v] == 1.0f) << "a hard border, vertex " << v;
+  }
+  EXPECT_GT(selected, 0u);
+  EXPECT_EQ(ViewDependentModel::build(raw).partVertexCount(0),
+            static_cast<std::size_t>(std::count(masks[0].begin(), masks[0].end(), 1.0f)));
+}
+
 TEST(ModelParts, ContractsAndRefusals) {
   RawViewDependentModel raw = twoKeySets();
   EXPECT_THROW(

@@ -256,7 +256,7 @@ class ViewDependentModel {
   //   p(v) = base(v) + sum_parts m_p(v) sum_{k in p} w_pk(view_p) (key_k(v) - base(v)),
   // m_p the masks of computePartMasks(). build() stores each key's delta already multiplied by its
   // part's mask (sparse: only vertices the masked key moves), so keyPositions() gives a key as its
-  // part sees it and a frame costs what the plain blend of the same keys costs. For a model with
+  // part sees it (and keyMovedCount() the vertices it moves there) and a frame costs what the plain blend of the same keys costs. For a model with
   // parts, sphere() is empty, and weights() and denseWeights() return false (use partWeights()).
   bool hasParts() const { return !parts_.empty(); }
   std::size_t partCount() const { return parts_.size(); }
