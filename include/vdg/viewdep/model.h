@@ -170,7 +170,9 @@ struct RawViewDependentModel {
 // p (RawPart: 1 on its selection, falling over `border`), the masks are
 //   m_p(v) = s_p(v) / max(1, sum_q s_q(v)),   m_rest(v) = 1 - sum_p m_p(v),
 // a partition of unity with every mask in [0, 1]; parts that do not overlap keep their s_p. Cost:
-// O(#V) with a uniform grid of cell `border` over each selection. Expects a validated model.
+// a uniform grid of cell `border` over each selection; every vertex compares itself with the
+// selected vertices of its 27 neighbouring cells (O(#V) for a border of a few edge lengths,
+// O(#V x selected vertices) at worst, for a border as large as the model). Expects a validated model.
 std::vector<std::vector<float>> computePartMasks(const RawViewDependentModel& raw);
 
 class ViewDependentModel {
@@ -256,8 +258,9 @@ class ViewDependentModel {
   //   p(v) = base(v) + sum_parts m_p(v) sum_{k in p} w_pk(view_p) (key_k(v) - base(v)),
   // m_p the masks of computePartMasks(). build() stores each key's delta already multiplied by its
   // part's mask (sparse: only vertices the masked key moves), so keyPositions() gives a key as its
-  // part sees it (and keyMovedCount() the vertices it moves there) and a frame costs what the plain blend of the same keys costs. For a model with
-  // parts, sphere() is empty, and weights() and denseWeights() return false (use partWeights()).
+  // part sees it (and keyMovedCount() the vertices it moves there) and a frame costs what the plain blend of the same
+  // keys costs. For a model with parts, sphere() is empty, and weights() and denseWeights() return false (use
+  // partWeights()).
   bool hasParts() const { return !parts_.empty(); }
   std::size_t partCount() const { return parts_.size(); }
   // Accessors by part index (< partCount(); out of range throws vdg::Error, as the key accessors).
