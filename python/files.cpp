@@ -114,6 +114,8 @@ RawViewDependentModel queueFiles(const Model& m, const fs::path& folder, const s
     key.mesh_path = mesh_folder + "/" + meshFileStem(key.name, used) + ".obj";
     queueKey(key.mesh_path, key.mesh, "vdg (Python): key '" + key.name + "'");
   }
+  // A part's mask file stays where it was: the saved manifest holds the mask itself.
+  for (RawPart& part : out.parts) part.mask_path.clear();
   return out;
 }
 

@@ -3,6 +3,7 @@
 // evaluated mesh (3.2.3), and for an animated base the key frames' time coefficients (section 4.2).
 // The numbers are the library's own: the same calls `vdg weights` and `vdg eval` make.
 #include <cmath>
+#include <span>
 #include <vector>
 
 #include "binding.h"
@@ -103,6 +104,31 @@ double sharpnessArg(py::handle sharpness) {
   return a;
 }
 
+// A model with parts, as `vdg weights --json`: {"parts": [{"name", "view", "keys", "base"}, ...]},
+// each part weighed at its driving view (its fixed view, or `view`).
+py::dict partWeights(const ViewDependentModel& model, const Eigen::Vector3d& view, double sharpness) {
+  std::vector<Eigen::Vector3d> views(model.partCount());
+  if (!model.partViews(view, views)) refused("weights");
+  py::list parts;
+  for (std::size_t p = 0; p < model.partCount(); ++p) {
+    const std::span<const std::size_t> keys = model.partKeys(p);
+    std::vector<float> w(keys.size() + 1);
+    if (!model.partWeights(p, views[p], sharpness, w)) refused("weights");
+    py::dict names;
+    for (std::size_t i = 0; i < keys.size(); ++i)
+      if (w[i] != 0.0f) names[py::str(model.keyName(keys[i]))] = static_cast<double>(w[i]);
+    py::dict part;
+    part["name"] = model.partName(p);
+    part["view"] = py::make_tuple(views[p].x(), views[p].y(), views[p].z());
+    part["keys"] = names;
+    part["base"] = static_cast<double>(w.back());
+    parts.append(part);
+  }
+  py::dict out;
+  out["parts"] = parts;
+  return out;
+}
+
 py::dict modelWeights(const Model& m, py::handle view, py::handle sharpness, py::handle frame) {
   const Eigen::Vector3d v = viewVector(view, "view");
   const double a = sharpnessArg(sharpness);
@@ -114,6 +140,7 @@ py::dict modelWeights(const Model& m, py::handle view, py::handle sharpness, py:
   }
   if (at && *at != 0.0)
     throw py::value_error("frame: the model is not animated; frame applies to animated models only");
+  if (m.model->hasParts()) return partWeights(*m.model, v, a);
   py::dict keys = zeroKeys(m);
   std::vector<float> dense(m.model->keyCount() + 1);  // every scheme's weights, the rbf's over every key
   if (!m.model->denseWeights(v, a, dense)) refused("weights");

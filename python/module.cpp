@@ -3,6 +3,9 @@
 // docstrings; the work is in arrays.cpp, model.cpp, build.cpp and files.cpp (binding.h).
 #include <pybind11/stl.h>
 
+#include <string>
+#include <vector>
+
 #include "binding.h"
 #include "vdg/geom/error.h"
 #include "vdg/version.h"
@@ -111,6 +114,16 @@ void bindModelProperties(py::class_<Model>& c) {
           "scheme", [](const Model& m) { return weightSchemeName(m.raw.sphere.scheme); },
           "The weight scheme: 'linear' (the paper's barycentric blend), 'smooth' (C1) or 'rbf' (radial basis "
           "functions over every key, with the manifest's kernel and width; docs/weights.md).")
+      .def_property_readonly(
+          "parts",
+          [](const Model& m) {
+            std::vector<std::string> names;
+            for (const RawPart& part : m.raw.parts) names.push_back(part.name);
+            return names;
+          },
+          "The names of the model's parts (manifest 'parts', per-part key sets; docs/weights.md), without the "
+          "implicit 'rest'; empty for a model without parts. weights() of a model with parts returns {'parts': "
+          "[{'name', 'view', 'keys', 'base'}, ...]}.")
       .def_property_readonly(
           "base_falloff_deg", [](const Model& m) { return m.raw.sphere.base_falloff_deg; },
           "Angle beyond every key where dummy base points go (uncovered='base').")

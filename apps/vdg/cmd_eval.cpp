@@ -4,6 +4,7 @@
 // required for an animated model and refused (usage error) for a static one.
 #include <cstdio>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -44,6 +45,26 @@ std::string evalStaticWeights(const ViewDependentModel& model, const Eigen::Vect
   for (std::size_t k = 0; k < model.keyCount(); ++k)
     if (dense[k] != 0.0f) text += " " + model.keyName(k) + "=" + std::to_string(dense[k]);
   return text + " base=" + std::to_string(dense.back());
+}
+
+// A model with parts: evaluates with one driving view per part into `out` and returns, per part,
+// "\npart NAME view X Y Z weights: NAME=W ... base=W".
+std::string evalPartWeights(const ViewDependentModel& model, const std::vector<Eigen::Vector3d>& views,
+                            double sharpness, TriMesh& out) {
+  if (!model.evaluateParts(views, sharpness, out.positions))
+    throw Error("eval: the model refused its part views (internal error)");
+  std::string text;
+  for (std::size_t p = 0; p < model.partCount(); ++p) {
+    const std::span<const std::size_t> keys = model.partKeys(p);
+    std::vector<float> w(keys.size() + 1);
+    if (!model.partWeights(p, views[p], sharpness, w))
+      throw Error("eval: the model refused a part view (internal error)");
+    text += "\npart " + model.partName(p) + " view " + viewText(views[p]) + " weights:";
+    for (std::size_t i = 0; i < keys.size(); ++i)
+      if (w[i] != 0.0f) text += " " + model.keyName(keys[i]) + "=" + std::to_string(w[i]);
+    text += " base=" + std::to_string(w.back());
+  }
+  return text;
 }
 
 }  // namespace
@@ -101,7 +122,11 @@ void addEvalCommand(CLI::App& app) {
       const ViewDependentModel& model = *input.model;
       const Eigen::Vector3d view = opt->view.resolve(model);
       out = model.base();
-      header += "\nview " + viewText(view) + "\nweights:" + evalStaticWeights(model, view, opt->view.sharpness, out);
+      if (model.hasParts() || !opt->view.part_views.empty())
+        header += "\nview " + viewText(view) +
+                  evalPartWeights(model, opt->view.resolveParts(model, view), opt->view.sharpness, out);
+      else
+        header += "\nview " + viewText(view) + "\nweights:" + evalStaticWeights(model, view, opt->view.sharpness, out);
     }
     if (input.animated) header += " base=" + std::to_string(w.base);
     writeObj(opt->output, out, header);

@@ -325,6 +325,69 @@ void printInteractivityOfFile(const std::string& path) {
 // "  (FILE)" after a key read from a mesh file; nothing for a key stored in a glTF model.
 std::string meshNote(const std::string& mesh_path) { return mesh_path.empty() ? "" : "  (" + mesh_path + ")"; }
 
+// vdg info on a model with parts (per-part key sets, docs/weights.md): the keys, then each part's
+// vertices, keys and driving view. Nothing is exported (the glTF extras weigh one key set).
+void describeParts(const std::string& path, const RawViewDependentModel& raw, const ViewDependentModel& model,
+                   bool json) {
+  const auto viewOf = [&](std::size_t p) {
+    const auto& v = model.partView(p);
+    return v ? nlohmann::ordered_json{v->x(), v->y(), v->z()} : nlohmann::ordered_json("main");
+  };
+  if (json) {
+    nlohmann::ordered_json out;
+    out["model"] = path;
+    out["base"] = raw.base_path;
+    out["weights"] = weightSchemeName(raw.sphere.scheme);
+    out["export_targets"] = nullptr;
+    addShapeFields(model, out);
+    out["keys"] = nlohmann::ordered_json::array();
+    for (std::size_t k = 0; k < model.keyCount(); ++k) {
+      const auto& v = model.keyView(k);
+      out["keys"].push_back({{"name", model.keyName(k)},
+                             {"mesh", raw.keys[k].mesh_path},
+                             {"view", {v.x(), v.y(), v.z()}},
+                             {"moved_vertices", model.keyMovedCount(k)}});
+    }
+    out["parts"] = nlohmann::ordered_json::array();
+    for (std::size_t p = 0; p < model.partCount(); ++p) {
+      nlohmann::ordered_json keys = nlohmann::ordered_json::array();
+      for (const std::size_t k : model.partKeys(p)) keys.push_back(model.keyName(k));
+      out["parts"].push_back(
+          {{"name", model.partName(p)}, {"vertices", model.partVertexCount(p)}, {"keys", keys}, {"view", viewOf(p)}});
+    }
+    std::cout << out.dump(2) << "\n";
+    return;
+  }
+  std::printf("model      %s\n", path.c_str());
+  std::printf("base       %s: %zu vertices, %zu triangles\n", raw.base_path.c_str(), model.vertexCount(),
+              model.base().triangleCount());
+  printSurface(model.base());
+  std::printf("centre     (%.4g, %.4g, %.4g)\n", model.center().x(), model.center().y(), model.center().z());
+  std::printf("sharpness  %g\n", model.sharpness());
+  std::printf("uncovered  %s\n", uncoveredName(raw.sphere.uncovered));
+  std::printf("weights    %s, per part\n", weightSchemeName(raw.sphere.scheme));
+  std::printf("keys       %zu\n", model.keyCount());
+  for (std::size_t k = 0; k < model.keyCount(); ++k) {
+    const auto& v = model.keyView(k);
+    std::printf("  %-16s view (%7.4f, %7.4f, %7.4f)  moves %zu vertices%s\n", model.keyName(k).c_str(), v.x(), v.y(),
+                v.z(), model.keyMovedCount(k), meshNote(raw.keys[k].mesh_path).c_str());
+  }
+  std::printf("parts      %zu (the last holds the vertices and keys of no part)\n", model.partCount());
+  for (std::size_t p = 0; p < model.partCount(); ++p) {
+    std::string keys;
+    for (const std::size_t k : model.partKeys(p)) keys += (keys.empty() ? "" : ", ") + model.keyName(k);
+    const auto& v = model.partView(p);
+    char view[96];
+    if (v)
+      std::snprintf(view, sizeof(view), "view (%.4f, %.4f, %.4f)", v->x(), v->y(), v->z());
+    else
+      std::snprintf(view, sizeof(view), "the main view");
+    std::printf("  %-16s %zu vertices, follows %s, keys: %s\n", model.partName(p).c_str(), model.partVertexCount(p),
+                view, keys.empty() ? "none (the base)" : keys.c_str());
+  }
+  std::printf("export     none: glTF extras weigh one key set for the whole mesh (docs/weights.md)\n");
+}
+
 void describeAnimated(const std::string& path, const RawViewDependentModel& raw,
                       const AnimatedViewDependentModel& model, bool json) {
   const BaseAnimationSpec& spec = *raw.base_animation;
@@ -684,6 +747,10 @@ void addInfoCommand(CLI::App& app) {
       return;
     }
     const ViewDependentModel& model = *input.model;
+    if (model.hasParts()) {
+      describeParts(opt->model, raw, model, opt->json);
+      return;
+    }
     const ViewSphere& sphere = model.sphere();
     const std::size_t dummies = sphere.points().size() - sphere.keyCount();
     const auto warnings = modelWarnings(model);

@@ -102,7 +102,35 @@ void animatedWeights(const AnimatedViewDependentModel& model, const ViewOptions&
   std::printf("  %-20s %.6f\n", "(base)", w.base);
 }
 
+// A model with parts: each part's driving view and the weights of its keys and the base.
+// JSON: {"parts": [{"name": N, "view": [x, y, z], "keys": {name: w, ...}, "base": w}, ...]}.
+void partWeights(const ViewDependentModel& model, const std::vector<Eigen::Vector3d>& views, double sharpness,
+                 bool json) {
+  nlohmann::ordered_json out{{"parts", nlohmann::ordered_json::array()}};
+  for (std::size_t p = 0; p < model.partCount(); ++p) {
+    const std::span<const std::size_t> keys = model.partKeys(p);
+    std::vector<float> w(keys.size() + 1);
+    if (!model.partWeights(p, views[p], sharpness, w)) refused(views[p]);  // a unit view; sharpness > 0
+    nlohmann::ordered_json part{{"name", model.partName(p)},
+                                {"view", {views[p].x(), views[p].y(), views[p].z()}},
+                                {"keys", nlohmann::ordered_json::object()}};
+    for (std::size_t i = 0; i < keys.size(); ++i)
+      if (w[i] > 0.0f) part["keys"][model.keyName(keys[i])] = floatDigits(w[i]);
+    part["base"] = floatDigits(w.back());
+    if (!json) {
+      std::printf("part %s (%zu vertices), view (%.6f, %.6f, %.6f)\n", model.partName(p).c_str(),
+                  model.partVertexCount(p), views[p].x(), views[p].y(), views[p].z());
+      for (std::size_t i = 0; i < keys.size(); ++i)
+        if (w[i] > 0.0f) std::printf("  %-20s %.6f\n", model.keyName(keys[i]).c_str(), w[i]);
+      std::printf("  %-20s %.6f\n", "(base)", w.back());
+    }
+    out["parts"].push_back(std::move(part));
+  }
+  if (json) std::cout << out.dump() << "\n";
+}
+
 void batchWeights(const OpenedInput& input, const std::string& path, double sharpness) {
+  if (input.model) input.model->requireNoParts("vdg weights --views (give one --view per call)");
   const Eigen::Vector3d center = input.animated ? input.animated->center() : input.model->center();
   nlohmann::ordered_json out = nlohmann::ordered_json::array();
   int hint = -1;
@@ -234,6 +262,10 @@ void addWeightsCommand(CLI::App& app) {
     }
     const ViewDependentModel& model = *input.model;
     const Eigen::Vector3d view = opt->view.resolve(model);
+    if (model.hasParts() || !opt->view.part_views.empty()) {
+      partWeights(model, opt->view.resolveParts(model, view), opt->view.sharpness, opt->json);
+      return;
+    }
     std::vector<float> dense(model.keyCount() + 1);
     if (!model.denseWeights(view, opt->view.sharpness, dense)) refused(view);  // a unit view; sharpness > 0
     if (opt->json) {

@@ -3,6 +3,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "cli.h"
 #include "vdg/geom/normalize.h"
@@ -13,7 +14,8 @@ namespace vdg::cli {
 struct ViewOptions {
   std::string view_text;
   std::string eye_text;
-  double sharpness = 0.0;  // 0: the model's own
+  double sharpness = 0.0;               // 0: the model's own
+  std::vector<std::string> part_views;  // --part-view NAME=X,Y,Z, repeatable
 
   void add(CLI::App& sub) {
     auto* view = sub.add_option("--view", view_text, "View direction X,Y,Z from the model centre towards the eye");
@@ -21,6 +23,32 @@ struct ViewOptions {
     view->excludes(eye);
     sub.add_option("--sharpness", sharpness, "Sharpness alpha of the blend (default: the model's)")
         ->check(positiveNumber());
+    sub.add_option("--part-view", part_views,
+                   "NAME=X,Y,Z: drive model part NAME by this view direction instead of its own (repeatable)");
+  }
+
+  // The driving view of every part of a model with parts (ViewDependentModel::partViews) for the
+  // main view `view`, with --part-view's overrides; usage errors name an unknown part, a model
+  // without parts, or a malformed value.
+  std::vector<Eigen::Vector3d> resolveParts(const ViewDependentModel& model, const Eigen::Vector3d& view) const {
+    if (!part_views.empty() && !model.hasParts())
+      throw UsageError("--part-view: the model has no parts (manifest 'parts'; docs/weights.md)");
+    std::vector<Eigen::Vector3d> views(model.partCount());
+    (void)model.partViews(view, views);  // the size is partCount()
+    for (const std::string& text : part_views) {
+      const std::size_t eq = text.find('=');
+      if (eq == std::string::npos) throw UsageError("--part-view: expected NAME=X,Y,Z, got " + quotedText(text));
+      const std::string name = text.substr(0, eq);
+      std::size_t p = 0;
+      while (p < model.partCount() && model.partName(p) != name) ++p;
+      if (p == model.partCount()) {
+        std::string names;
+        for (std::size_t q = 0; q < model.partCount(); ++q) names += (q ? ", " : "") + model.partName(q);
+        throw UsageError("--part-view: the model has no part " + quotedText(name) + " (its parts: " + names + ")");
+      }
+      views[p] = parseDirection(text.substr(eq + 1), "--part-view " + name);
+    }
+    return views;
   }
 
   // The view direction; throws UsageError unless exactly one of --view / --eye was given.

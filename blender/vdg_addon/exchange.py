@@ -161,6 +161,10 @@ def import_model(context: Any, path: str) -> Any:
         m = vdg.load(path)
     except (vdg.Error, ValueError, TypeError, OSError) as e:
         raise model.AddonError(str(e)) from e
+    if getattr(m, "parts", []):
+        raise model.AddonError(
+            f"{path}: model parts ('parts') are not supported by the Blender add-on: its shape keys weigh one key set "
+            "for the whole mesh (vdg weights, eval and the Python module evaluate parts)")
     name = os.path.basename(path)
     for suffix in (".vdg.json", ".json", ".gltf", ".glb"):
         if name.endswith(suffix):

@@ -919,6 +919,7 @@ void appendU32(std::string& out, std::uint32_t x) {
 }  // namespace
 
 GltfExportInput gltfExportInput(const ViewDependentModel& model) {
+  model.requireNoParts("the glTF export (vdg export, bake, view, the Python module and the Blender add-on)");
   GltfExportInput in;
   in.base = model.base();
   const std::size_t n = in.base.positions.size();

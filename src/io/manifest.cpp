@@ -2,8 +2,10 @@
 #include "vdg/io/manifest.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <filesystem>
 #include <span>
 
@@ -162,6 +164,75 @@ void loadGltfBaseAnimation(RawViewDependentModel& model, const fs::path& folder,
   model.base.positions = model.base_frames.front();
 }
 
+// "parts" (version 4): the raw parts; the checks that need the base and the keys are validate()'s.
+void parseParts(const Json& parts, const Ctx& ctx, RawViewDependentModel& model) {
+  if (!parts.is_array()) ctx.fail("expected an array of {name, select, border, keys, view}");
+  if (parts.size() > kMaxParts)
+    ctx.fail("has " + std::to_string(parts.size()) + " parts, more than the limit of " + std::to_string(kMaxParts));
+  for (std::size_t p = 0; p < parts.size(); ++p) {
+    const Json& entry = parts[p];
+    Ctx pctx = ctx.index(p);
+    io::allowKeys(entry, pctx, {"name", "select", "border", "keys", "view"});
+    RawPart part;
+    part.name = io::string(io::required(entry, "name", pctx), pctx.key("name"));
+    pctx = pctx.labelled("part '" + part.name + "' (parts[" + std::to_string(p) + "])");
+    const Json& select = io::required(entry, "select", pctx);
+    const Ctx sctx = pctx.key("select");
+    if (!select.is_object() || select.size() != 1)
+      sctx.fail("expected one of {\"vertices\": [...]}, {\"material\": \"NAME\"} or {\"weights\": \"FILE\" | [...]}");
+    io::allowKeys(select, sctx, {"vertices", "material", "weights"});
+    if (select.contains("vertices")) {
+      part.select = RawPart::Select::kVertices;
+      const Json& list = select.at("vertices");
+      if (!list.is_array()) sctx.key("vertices").fail("expected an array of vertex indices");
+      for (std::size_t i = 0; i < list.size(); ++i)
+        part.vertices.push_back(
+            static_cast<std::int32_t>(io::integer(list[i], sctx.key("vertices").index(i), 0, INT32_MAX)));
+    } else if (select.contains("material")) {
+      part.select = RawPart::Select::kMaterial;
+      part.material = io::string(select.at("material"), sctx.key("material"));
+    } else {
+      part.select = RawPart::Select::kWeights;
+      const Json& weights = select.at("weights");
+      if (weights.is_string()) {
+        part.mask_path = weights.get<std::string>();
+        if (part.mask_path.empty()) sctx.key("weights").fail("expected a mask file name, got an empty string");
+      } else {
+        if (!weights.is_array()) sctx.key("weights").fail("expected a mask file name or an array of numbers in [0, 1]");
+        for (std::size_t i = 0; i < weights.size(); ++i)
+          part.mask.push_back(static_cast<float>(io::number(weights[i], sctx.key("weights").index(i))));
+      }
+    }
+    if (entry.contains("border")) part.border = io::number(entry.at("border"), pctx.key("border"));
+    const Json& keys = io::required(entry, "keys", pctx);
+    if (!keys.is_array()) pctx.key("keys").fail("expected an array of key names");
+    for (std::size_t i = 0; i < keys.size(); ++i) part.keys.push_back(io::string(keys[i], pctx.key("keys").index(i)));
+    if (entry.contains("view")) part.view = io::vector3(entry.at("view"), pctx.key("view"));
+    model.parts.push_back(std::move(part));
+  }
+}
+
+// A part's mask file: one number per vertex, separated by white space.
+std::vector<float> readMaskFile(const fs::path& folder, const std::string& relative, const std::string& where) {
+  const fs::path path = fs::path(relative).is_absolute() ? fs::path(relative) : folder / relative;
+  const std::string text = readFileLimited(path.string(), where + ": mask", kMaxJsonFileBytes);
+  std::vector<float> mask;
+  const char* at = text.c_str();
+  const char* end = at + text.size();
+  while (true) {
+    while (at < end && std::isspace(static_cast<unsigned char>(*at))) ++at;
+    if (at >= end) break;
+    char* next = nullptr;
+    const double value = std::strtod(at, &next);
+    if (next == at || (next < end && !std::isspace(static_cast<unsigned char>(*next))) || !std::isfinite(value))
+      throw Error(where + ": mask file '" + relative + "': value " + std::to_string(mask.size()) +
+                  " is not a finite number");
+    mask.push_back(static_cast<float>(value));
+    at = next;
+  }
+  return mask;
+}
+
 }  // namespace
 
 std::string sequenceFileName(const std::string& pattern, int number) {
@@ -208,9 +279,11 @@ RawViewDependentModel parseManifest(const std::string& text, const std::string& 
   } else {
     if (version == 2 && doc.is_object() && doc.contains("weights"))
       top.key("weights").fail("needs manifest version 3 (this file says \"version\": 2)");
+    if (version < 4 && doc.is_object() && doc.contains("parts"))
+      top.key("parts").fail("needs manifest version 4 (this file says \"version\": " + std::to_string(version) + ")");
     io::allowKeys(doc, top,
                   {"version", "base", "base_animation", "offsets", "keys", "sharpness", "uncovered", "base_falloff_deg",
-                   "center", "comment", "weights"});
+                   "center", "comment", "weights", "parts"});
   }
 
   RawViewDependentModel model;
@@ -285,6 +358,7 @@ RawViewDependentModel parseManifest(const std::string& text, const std::string& 
     if (has_camera) key.camera = io::cameraFrom(entry.at("camera"), ctx.key("camera"));
     model.keys.push_back(std::move(key));
   }
+  if (doc.contains("parts")) parseParts(doc.at("parts"), top.key("parts"), model);
   return model;
 }
 
@@ -302,15 +376,46 @@ RawViewDependentModel loadManifest(const std::string& path, const MeshReadOption
     key.mesh =
         readReferencedMesh(folder, key.mesh_path, path + ": key '" + key.name + "' (keys[" + std::to_string(k) + "])");
   }
+  for (std::size_t p = 0; p < model.parts.size(); ++p) {
+    RawPart& part = model.parts[p];
+    if (!part.mask_path.empty())
+      part.mask =
+          readMaskFile(folder, part.mask_path, path + ": part '" + part.name + "' (parts[" + std::to_string(p) + "])");
+  }
   model.resolveViews();
   model.validate();
   return model;
 }
 
+namespace {
+
+nlohmann::ordered_json partsJson(const std::vector<RawPart>& parts) {
+  nlohmann::ordered_json out = nlohmann::ordered_json::array();
+  for (const RawPart& part : parts) {
+    nlohmann::ordered_json entry;
+    entry["name"] = part.name;
+    if (part.select == RawPart::Select::kVertices)
+      entry["select"]["vertices"] = part.vertices;
+    else if (part.select == RawPart::Select::kMaterial)
+      entry["select"]["material"] = part.material;
+    else if (!part.mask_path.empty())
+      entry["select"]["weights"] = part.mask_path;  // the file is kept as it is, as the meshes are
+    else
+      entry["select"]["weights"] = part.mask;
+    if (part.border != 0.0) entry["border"] = part.border;
+    entry["keys"] = part.keys;
+    if (part.view) entry["view"] = {part.view->x(), part.view->y(), part.view->z()};
+    out.push_back(std::move(entry));
+  }
+  return out;
+}
+
+}  // namespace
+
 std::string formatManifest(const RawViewDependentModel& model) {
   nlohmann::ordered_json doc;
   // The oldest version that holds the model, so that older vdgs still read linear models.
-  doc["version"] = model.sphere.scheme == WeightScheme::Linear ? 2 : kManifestVersion;
+  doc["version"] = !model.parts.empty() ? 4 : model.sphere.scheme == WeightScheme::Linear ? 2 : 3;
   if (!model.comment.empty()) doc["comment"] = model.comment;
   if (model.base_animation) {
     const BaseAnimationSpec& spec = *model.base_animation;
@@ -353,6 +458,7 @@ std::string formatManifest(const RawViewDependentModel& model) {
     keys.push_back(std::move(entry));
   }
   doc["keys"] = std::move(keys);
+  if (!model.parts.empty()) doc["parts"] = partsJson(model.parts);
   return compactScalarArrays(doc.dump(2)) + "\n";
 }
 

@@ -11,6 +11,7 @@
 
 #include "extent.h"
 #include "key_views.h"
+#include "parts.h"
 #include "vdg/geom/error.h"
 #include "vdg/geom/normalize.h"
 #include "vdg/geom/parallel.h"
@@ -263,11 +264,12 @@ void validateRaw(const RawViewDependentModel& raw, bool check_view_pairs) {
       throw Error(label + (key.camera ? ": camera eye is at the model centre, so it gives no view direction"
                                       : ": view direction has zero length"));
   }
+  detail::validateParts(raw, check_view_pairs);  // parts.cpp; refuses parts on an animated base
   if (raw.animated()) {
     validateAnimatedKeys(raw);
     return;
   }
-  if (!check_view_pairs) return;
+  if (!check_view_pairs || !raw.parts.empty()) return;  // with parts, views may repeat across parts
   std::vector<Eigen::Vector3d> views;
   views.reserve(keys.size());
   for (const RawKey& key : keys) views.push_back(*normalizedOrNone(key.view));
@@ -296,37 +298,18 @@ ViewDependentModel ViewDependentModel::build(const RawViewDependentModel& raw) {
     views.push_back(raw.keys[k].view);
     labels.push_back(rawKeyName(raw, k));
   }
-  try {
-    model.sphere_ = ViewSphere::build(views, raw.sphere, labels);
-  } catch (const Error& e) {
-    throw Error(raw.where() + ": " + e.what());
+  if (raw.parts.empty()) {  // with parts, each part has a sphere of its own (buildParts)
+    try {
+      model.sphere_ = ViewSphere::build(views, raw.sphere, labels);
+    } catch (const Error& e) {
+      throw Error(raw.where() + ": " + e.what());
+    }
   }
   const std::size_t nv = raw.base.vertexCount();
-  for (const RawKey& raw_key : raw.keys) {
-    Key key;
-    key.name = raw_key.name;
-    key.camera = raw_key.camera;
-    std::vector<std::uint32_t> moved;
-    for (std::size_t v = 0; v < nv; ++v) {
-      const float* b = &raw.base.positions[3 * v];
-      const float* k = &raw_key.mesh.positions[3 * v];
-      if (b[0] != k[0] || b[1] != k[1] || b[2] != k[2]) moved.push_back(static_cast<std::uint32_t>(v));
-    }
-    key.moved_count = moved.size();
-    // Sparse storage pays an index per moved vertex; past half the vertices dense is cheaper.
-    key.dense = moved.size() * 2 > nv;
-    if (key.dense) {
-      key.deltas.resize(3 * nv);
-      for (std::size_t i = 0; i < 3 * nv; ++i) key.deltas[i] = raw_key.mesh.positions[i] - raw.base.positions[i];
-    } else {
-      key.indices = std::move(moved);
-      key.deltas.reserve(3 * key.indices.size());
-      for (const std::uint32_t v : key.indices)
-        for (int c = 0; c < 3; ++c)
-          key.deltas.push_back(raw_key.mesh.positions[3 * v + c] - raw.base.positions[3 * v + c]);
-    }
-    model.keys_.push_back(std::move(key));
-  }
+  if (raw.parts.empty())
+    model.storeDeltas(raw, {}, {});
+  else
+    model.buildParts(raw, labels);  // the part spheres and the masked deltas (parts.cpp)
   // Cached for ModelEvaluator: the base's normals, and per sparse key the vertices whose normal a
   // move of that key can change.
   model.base_normals_.resize(3 * nv);
@@ -339,6 +322,45 @@ ViewDependentModel ViewDependentModel::build(const RawViewDependentModel& raw) {
   model.extent_ = extent.box();
   model.extent_radius_ = extent.radius();
   return model;
+}
+
+void ViewDependentModel::storeDeltas(const RawViewDependentModel& raw, std::span<const std::vector<float>> masks,
+                                     std::span<const std::size_t> part_of_key) {
+  const std::size_t nv = raw.base.vertexCount();
+  for (std::size_t k = 0; k < raw.keys.size(); ++k) {
+    const RawKey& raw_key = raw.keys[k];
+    Key key;
+    key.name = raw_key.name;
+    key.camera = raw_key.camera;
+    key.view = *normalizedOrNone(raw_key.view);  // validated non-zero and finite
+    // With parts, the key's delta is its part's mask times its offset (parts.cpp).
+    const float* mask = masks.empty() ? nullptr : masks[part_of_key[k]].data();
+    const auto delta = [&](std::size_t i) {
+      const float d = raw_key.mesh.positions[i] - raw.base.positions[i];
+      return mask ? mask[i / 3] * d : d;
+    };
+    std::vector<std::uint32_t> moved;
+    for (std::size_t v = 0; v < nv; ++v) {
+      const float* b = &raw.base.positions[3 * v];
+      const float* p = &raw_key.mesh.positions[3 * v];
+      const bool moves = mask ? (delta(3 * v) != 0.0f || delta(3 * v + 1) != 0.0f || delta(3 * v + 2) != 0.0f)
+                              : (b[0] != p[0] || b[1] != p[1] || b[2] != p[2]);
+      if (moves) moved.push_back(static_cast<std::uint32_t>(v));
+    }
+    key.moved_count = moved.size();
+    // Sparse storage pays an index per moved vertex; past half the vertices dense is cheaper.
+    key.dense = moved.size() * 2 > nv;
+    if (key.dense) {
+      key.deltas.resize(3 * nv);
+      for (std::size_t i = 0; i < 3 * nv; ++i) key.deltas[i] = delta(i);
+    } else {
+      key.indices = std::move(moved);
+      key.deltas.reserve(3 * key.indices.size());
+      for (const std::uint32_t v : key.indices)
+        for (std::size_t c = 0; c < 3; ++c) key.deltas.push_back(delta(3 * v + c));
+    }
+    keys_.push_back(std::move(key));
+  }
 }
 
 // A moved vertex m changes the area-weighted normal of every triangle at m, so the normals of the
@@ -407,7 +429,7 @@ const std::string& ViewDependentModel::keyName(std::size_t key) const {
 
 const Eigen::Vector3d& ViewDependentModel::keyView(std::size_t key) const {
   if (key >= keys_.size()) throwKeyOutOfRange(key, keys_.size());
-  return sphere_.points()[key];
+  return keys_[key].view;
 }
 
 const std::optional<Camera>& ViewDependentModel::keyCamera(std::size_t key) const {
@@ -421,7 +443,7 @@ std::size_t ViewDependentModel::keyMovedCount(std::size_t key) const {
 }
 
 bool ViewDependentModel::weights(const Eigen::Vector3d& view, double sharpness, ViewWeights& out, int* hint) const {
-  if (!std::isfinite(sharpness)) return false;
+  if (!std::isfinite(sharpness) || !parts_.empty()) return false;
   return sphere_.weights(view, sharpness > 0.0 ? sharpness : sharpness_, out, hint);
 }
 
@@ -506,7 +528,7 @@ bool ViewDependentModel::blend(const ViewWeights& w, std::span<float> out) const
 
 bool ViewDependentModel::denseWeights(const Eigen::Vector3d& view, double sharpness, std::span<float> out,
                                       int* hint) const {
-  if (!std::isfinite(sharpness)) return false;
+  if (!std::isfinite(sharpness) || !parts_.empty()) return false;
   return sphere_.denseWeights(view, sharpness > 0.0 ? sharpness : sharpness_, out, hint);
 }
 
@@ -533,6 +555,7 @@ bool ViewDependentModel::blendDense(std::span<const float> weights, std::span<fl
 }
 
 void ViewDependentModel::requireThreeKeyWeights(const std::string& where) const {
+  requireNoParts(where);
   if (sphere_.settings().scheme != WeightScheme::Rbf) return;
   throw Error("the 'rbf' weight scheme is not supported by " + where +
               ": it blends at most three keys per view and rbf weighs every key (use 'linear' or 'smooth' there; "
@@ -553,6 +576,11 @@ bool ViewDependentModel::evaluate(const Eigen::Vector3d& view, double sharpness,
   // weights() on a local hint, which is only stored once everything has succeeded.
   if (out_positions.size() != base_.positions.size()) return false;
   if (!out_normals.empty() && out_normals.size() != base_.positions.size()) return false;
+  if (!parts_.empty()) {  // one driving view per part, on the stack (at most kMaxParts + 1)
+    std::array<Eigen::Vector3d, kMaxParts + 1> buffer;
+    const std::span<Eigen::Vector3d> views(buffer.data(), parts_.size());
+    return partViews(view, views) && evaluateParts(views, sharpness, out_positions, out_normals);
+  }
   int local_hint = hint ? *hint : -1;
   if (sphere_.settings().scheme == WeightScheme::Rbf) {  // every key: dense weights on the stack
     std::array<float, ViewSphere::kRbfMaxKeys + 1> buffer;

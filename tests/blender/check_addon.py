@@ -272,6 +272,15 @@ def case_roundtrip(vdg_tool, src, out):
         if "Traceback" in str(e) or ".vdg.json" not in str(e):
             raise AssertionError(f"the export error is not one clear line: {e}") from None
         print(f"check: a wrong file name is one report line: {str(e).strip()}")
+    # A model with per-part key sets (docs/weights.md) is refused on import, in one report line.
+    cubist = os.path.join(src, "examples", "spot", "spot-cubist.vdg.json")
+    try:
+        bpy.ops.vdg.import_model(filepath=cubist)
+        raise AssertionError("importing a model with parts did not fail")
+    except RuntimeError as e:
+        if "Traceback" in str(e) or "model parts ('parts') are not supported by the Blender add-on" not in str(e):
+            raise AssertionError(f"the parts refusal is not one clear line: {e}") from None
+        print(f"check: a model with parts is one report line: {str(e).strip()}")
     bpy.ops.preferences.addon_disable(module="vdg_addon")
     left = [n for n in ("vdg", "vdg_live_preview") if hasattr(bpy.types.Object, n) or hasattr(bpy.types.Scene, n)]
     handlers = [h.__name__ for h in bpy.app.handlers.depsgraph_update_post + bpy.app.handlers.frame_change_post

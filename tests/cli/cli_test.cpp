@@ -175,6 +175,48 @@ TEST(Cli, RbfWeightScheme) {
   EXPECT_EQ(std::count(gpu.err.begin(), gpu.err.end(), '\n'), 1) << gpu.err;
 }
 
+// Per-part key sets (docs/weights.md): the cubist Spot's head follows its fixed front view, the rest
+// the camera; --part-view overrides a part's view; info lists the parts; what weighs one key set
+// for the whole mesh refuses the model in one line; the evaluated mesh renders as a plain mesh.
+TEST(Cli, PerPartKeySets) {
+  const std::string cubist = "examples/spot/spot-cubist.vdg.json";
+  const Result side = run("weights " + cubist + " --view 1,0.1,0 --json");
+  ASSERT_EQ(side.code, 0) << side.err;
+  const auto w = nlohmann::json::parse(side.out);
+  ASSERT_EQ(w["parts"].size(), 2u) << side.out;
+  EXPECT_EQ(w["parts"][0]["name"], "head");
+  EXPECT_NEAR(w["parts"][0]["keys"]["head-front"].get<double>(), 1.0, kSumTol) << side.out;
+  EXPECT_NEAR(w["parts"][1]["keys"]["body-right"].get<double>(), 1.0, kSumTol) << side.out;
+  const auto over =
+      nlohmann::json::parse(run("weights " + cubist + " --view 1,0.1,0 --part-view head=1,0.1,0 --json").out);
+  EXPECT_NEAR(over["parts"][0]["keys"]["head-right"].get<double>(), 1.0, kSumTol) << over.dump();
+  const Result unknown = run("weights " + cubist + " --view 1,0,0 --part-view nose=1,0,0");
+  EXPECT_EQ(unknown.code, 2);
+  EXPECT_NE(unknown.err.find("the model has no part 'nose' (its parts: head, rest)"), std::string::npos) << unknown.err;
+  EXPECT_EQ(run("weights " + kSpot + " --view 1,0,0 --part-view head=1,0,0").code, 2);
+  const auto info = nlohmann::json::parse(run("info " + cubist + " --json").out);
+  ASSERT_EQ(info["parts"].size(), 2u);
+  EXPECT_EQ(info["parts"][0]["keys"].size(), 5u);
+  EXPECT_EQ(info["parts"][1]["view"], "main");
+  vdg::testing::TempDir dir;
+  const Result eval = run("eval " + cubist + " --view 1,0.1,0 -q -o " + dir.file("side.obj"));
+  ASSERT_EQ(eval.code, 0) << eval.err;
+  EXPECT_NE(vdg::testing::readText(dir.file("side.obj")).find("# part head view"), std::string::npos);
+  const Result frame =
+      run("render " + dir.file("side.obj") + " --azimuth 90 --elevation 6 --size 96x96 -o " + dir.file("frames"));
+  EXPECT_EQ(frame.code, 0) << frame.err;
+  EXPECT_TRUE(std::filesystem::exists(dir.file("frames/frame_0000.png")));
+  for (const std::string& args :
+       {"render " + cubist + " -o " + dir.file("r"), "export " + cubist + " -q -o " + dir.file("c.glb"),
+        "weights " + cubist + " --continuity --step 2"}) {
+    const Result refused = run(args);
+    EXPECT_EQ(refused.code, 1) << args;
+    EXPECT_NE(refused.err.find("model parts ('parts') are not supported by"), std::string::npos) << refused.err;
+    EXPECT_EQ(std::count(refused.err.begin(), refused.err.end(), '\n'), 1) << refused.err;
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir.file("c.glb")));
+}
+
 TEST(Cli, EyeIsMeasuredFromTheModelCentre) {
   const auto info = nlohmann::json::parse(run("info " + kSpot + " --json").out);
   const auto c = info["center"];

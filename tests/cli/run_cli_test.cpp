@@ -106,13 +106,14 @@ TEST(RunCli, AMissingScriptIsOneLine) {
 // `make demo` renders.
 TEST(RunCli, TheExampleScriptsRun) {
   vdg::testing::TempDir dir;
-  for (const char* example : {"figure13/figure13.lua", "crowd/crowd.lua", "solar/solar.lua", "bounce/bounce.lua"}) {
+  for (const char* example :
+       {"figure13/figure13.lua", "crowd/crowd.lua", "solar/solar.lua", "bounce/bounce.lua", "spot/cubist.lua"}) {
     const Result r = runVdg(std::string("run examples/") + example + " --root examples --frames 0 --quiet -o '" +
                             dir.file("out") + "'");
     EXPECT_EQ(r.code, 0) << example << ": " << r.err;
   }
   for (const char* frame : {"out/figure13/frame_0000.png", "out/crowd/frame_0000.png", "out/solar/frame_0000.png",
-                            "out/bounce/frame_0000.png"})
+                            "out/bounce/frame_0000.png", "out/cubist/frame_0000.png"})
     EXPECT_TRUE(fs::exists(dir.file(frame))) << frame;
 }
 

@@ -107,8 +107,8 @@ TEST_F(ManifestTest, EveryValidationErrorNamesTheFileAndTheKey) {
       {"{", "m.vdg.json: not valid JSON"},
       {"[]", "m.vdg.json: expected a JSON object"},
       {R"({"base": "base.obj", "keys": []})", "m.vdg.json: missing 'version'"},
-      {R"({"version": 4, "base": "base.obj", "keys": []})",
-       "m.vdg.json: 'version': this vdg reads model manifests versions 1 to 3, got 4"},
+      {R"({"version": 5, "base": "base.obj", "keys": []})",
+       "m.vdg.json: 'version': this vdg reads model manifests versions 1 to 4, got 5"},
       {R"({"version": 1, "base": "base.obj", "keys": [], "colour": 1})", "m.vdg.json: unknown key 'colour'"},
       {R"({"version": 1, "base": "nope.obj", "keys": []})", "m.vdg.json: base: "},
       {R"({"version": 1, "base": "base.obj", "keys": [{"mesh": "missing.obj", "view": [0,0,1]}]})",
@@ -137,7 +137,7 @@ TEST_F(ManifestTest, EveryValidationErrorNamesTheFileAndTheKey) {
       {R"({"version": 1, "base": "base.obj", "keys": [{"mesh": "a.obj", "view": [0,0,1], "frame": 3}]})",
        "'frame' needs an animated base model"},
       {R"({"version": 4294967297, "base": "base.obj", "keys": []})",
-       "m.vdg.json: 'version': this vdg reads model manifests versions 1 to 3, got 4294967297"},
+       "m.vdg.json: 'version': this vdg reads model manifests versions 1 to 4, got 4294967297"},
       {"{\"version\": " + std::string(70'000, '[') + std::string(70'000, ']') + "}",
        "m.vdg.json: JSON nested deeper than 64 levels"},
       {R"({"version": 1, "base": "", "keys": []})", "m.vdg.json: 'base': expected a mesh file name"},
@@ -149,6 +149,79 @@ TEST_F(ManifestTest, EveryValidationErrorNamesTheFileAndTheKey) {
     EXPECT_NE(message.find(c.expected), std::string::npos) << "expected '" << c.expected << "' in '" << message << "'";
     EXPECT_NE(message.find("m.vdg.json"), std::string::npos) << message;
   }
+}
+
+// Per-part key sets (manifest version 4, docs/weights.md): parts load, save and load again, a mask
+// file is read beside the manifest, and every bad part is refused naming the part and what is wrong.
+TEST_F(ManifestTest, PartsLoadSaveAndRefuseBadInput) {
+  std::string mask;
+  for (std::size_t v = 0; v < base_.vertexCount(); ++v) mask += v % 2 ? "0.5\n" : "1 ";
+  testing::writeText(dir_.file("mask.txt"), mask);
+  const std::string keys = R"("keys": [{"mesh": "a.obj", "view": [0,0,1]}, {"mesh": "b.obj", "view": [0,0,1]}])";
+  const auto manifest = [&](const std::string& parts) {
+    return R"({"version": 4, "base": "base.obj", )" + keys + R"(, "parts": )" + parts + "}";
+  };
+  const RawViewDependentModel raw = loadManifest(write(manifest(
+      R"([{"name": "top", "select": {"vertices": [0, 1, 2]}, "border": 0.5, "keys": ["a"], "view": [1, 0, 0]},
+          {"name": "painted", "select": {"weights": "mask.txt"}, "keys": ["b"]}])")));
+  ASSERT_EQ(raw.parts.size(), 2u);
+  EXPECT_EQ(raw.parts[0].vertices, (std::vector<std::int32_t>{0, 1, 2}));
+  EXPECT_EQ(raw.parts[0].border, 0.5);
+  ASSERT_TRUE(raw.parts[0].view.has_value());
+  ASSERT_EQ(raw.parts[1].mask.size(), base_.vertexCount());
+  EXPECT_EQ(raw.parts[1].mask[1], 0.5f);
+  saveManifest(dir_.file("copy.vdg.json"), raw);
+  EXPECT_NE(testing::readText(dir_.file("copy.vdg.json")).find("\"version\": 4"), std::string::npos);
+  const RawViewDependentModel back = loadManifest(dir_.file("copy.vdg.json"));
+  ASSERT_EQ(back.parts.size(), 2u);
+  EXPECT_EQ(back.parts[0].keys, raw.parts[0].keys);
+  EXPECT_EQ(back.parts[1].mask_path, "mask.txt");
+  EXPECT_EQ(back.parts[1].mask, raw.parts[1].mask);
+  // Keys of different parts may share a view; the model builds.
+  EXPECT_EQ(ViewDependentModel::build(back).partCount(), 3u);
+
+  const std::string v = std::to_string(base_.vertexCount());
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {R"([{"name": "p", "select": {"vertices": [0]}, "keys": ["c"]}])", "part 'p' (parts[0]): unknown key 'c'"},
+      {R"([{"name": "p", "select": {"vertices": [0]}, "keys": ["a"]}, {"name": "q", "select": {"vertices": [1]}, "keys": ["a"]}])",
+       "part 'q' (parts[1]): key 'a' already belongs to part 'p'"},
+      {R"([{"name": "p", "select": {"vertices": [0, )" + v + R"(]}, "keys": ["a"]}])",
+       "part 'p' (parts[0]): vertex " + v + " is out of range"},
+      {R"([{"name": "p", "select": {"material": "skin"}, "keys": ["a"]}])", "the base has no material 'skin'"},
+      {R"([{"name": "p", "select": {"weights": [2]}, "keys": ["a"]}])", "the mask has 1 values but the base has"},
+      {R"([{"name": "p", "select": {"weights": "missing.txt"}, "keys": ["a"]}])", "part 'p' (parts[0]): mask"},
+      {R"([{"name": "p", "select": {"vertices": [0]}, "border": -1, "keys": ["a"]}])", "'border' must be a finite"},
+      {R"([{"name": "p", "select": {"vertices": [0]}, "keys": []}])", "part 'p' (parts[0]): has no keys"},
+      {R"([{"name": "rest", "select": {"vertices": [0]}, "keys": ["a"]}])", "the name 'rest' is the implicit part"},
+      {R"([{"name": "p", "select": {"vertices": [0]}, "keys": ["a"], "view": [0, 0, 0]}])",
+       "the driving 'view' must be a finite, non-zero direction"},
+      {R"([{"name": "p", "select": {"vertices": [0], "material": "x"}, "keys": ["a"]}])", "'select': expected one of"},
+      {R"([{"name": "p", "select": {"vertices": [0]}, "keys": ["a"], "colour": 1}])", "unknown key 'colour'"},
+      {R"([{"name": "p", "select": {"vertices": [-1]}, "keys": ["a"]}])", "'vertices'[0]"},
+  };
+  for (const auto& [parts, expected] : cases) {
+    const std::string message = loadError(manifest(parts));
+    EXPECT_NE(message.find(expected), std::string::npos) << "expected '" << expected << "' in '" << message << "'";
+    EXPECT_NE(message.find("m.vdg.json"), std::string::npos) << message;
+  }
+  // Mask values outside [0, 1], from a file.
+  std::string bad = "0.5 1.5";
+  for (std::size_t i = 2; i < base_.vertexCount(); ++i) bad += " 0";
+  testing::writeText(dir_.file("bad.txt"), bad);
+  EXPECT_NE(loadError(manifest(R"([{"name": "p", "select": {"weights": "bad.txt"}, "keys": ["a"]}])"))
+                .find("part 'p' (parts[0]): vertex 1: mask value 1.500000 is outside [0, 1]"),
+            std::string::npos);
+  testing::writeText(dir_.file("bad.txt"), "0.5 x");
+  EXPECT_NE(loadError(manifest(R"([{"name": "p", "select": {"weights": "bad.txt"}, "keys": ["a"]}])"))
+                .find("mask file 'bad.txt': value 1 is not a finite number"),
+            std::string::npos);
+  // Version 3 does not know parts; keys of one part must not share a view.
+  EXPECT_NE(loadError(R"({"version": 3, "base": "base.obj", "keys": [], "parts": []})")
+                .find("'parts': needs manifest version 4"),
+            std::string::npos);
+  EXPECT_NE(loadError(manifest(R"([{"name": "p", "select": {"vertices": [0]}, "keys": ["a", "b"]}])"))
+                .find("part 'p' (parts[0]): key 'b' has the same view direction as key 'a'"),
+            std::string::npos);
 }
 
 TEST_F(ManifestTest, AModelWithoutKeysLoadsButDoesNotBuild) {

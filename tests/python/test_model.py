@@ -293,3 +293,33 @@ def test_colour_without_texture_and_faces_without_material(tmp_path: pathlib.Pat
     assert names[0] == "red_paint" and loaded.materials[0]["base_color"] == (1.0, 0.25, 0.0)
     assert loaded.materials[0]["texture"] is None
     assert [names[i] for i in loaded.face_materials] == ["red_paint", "red_paint", "vdg-plain", "red_paint"]
+
+
+def test_parts_follow_their_own_views(tmp_path: pathlib.Path) -> None:
+    """Per-part key sets (docs/weights.md): the cubist Spot's head keeps its fixed front view while
+    the rest follows the camera; away from the head's border each region equals plain Spot at its
+    part's view, and weights() lists the parts as `vdg weights --json` does."""
+    examples = pathlib.Path(__file__).resolve().parents[2] / "examples" / "spot"
+    cubist = vdg.load(str(examples / "spot-cubist.vdg.json"))
+    plain = vdg.load(str(examples / "spot.vdg.json"))
+    assert cubist.parts == ["head"] and plain.parts == []
+    side, front = (1.0, 0.1, 0.0), (0.0, 0.15, -1.0)
+    w = cubist.weights(side)
+    assert [p["name"] for p in w["parts"]] == ["head", "rest"]
+    assert w["parts"][0]["keys"] == pytest.approx({"head-front": 1.0}, abs=WEIGHT_TOL)
+    assert w["parts"][1]["keys"] == pytest.approx({"body-right": 1.0}, abs=WEIGHT_TOL)
+    positions, _ = cubist.evaluate(side)
+    at_side, _ = plain.evaluate(side)
+    at_front, _ = plain.evaluate(front)
+    base, _ = plain.evaluate((0.0, -1.0, 0.0))  # below the keys: the base
+    z = base[:, 2]
+    head, body = z < -0.3, z > -0.3 + 0.2  # the head's selection, and beyond its 0.2 border
+    np.testing.assert_allclose(positions[head], at_front[head], atol=KEY_MESH_TOL)
+    np.testing.assert_allclose(positions[body], at_side[body], atol=KEY_MESH_TOL)
+    cubist.save_manifest(str(tmp_path / "copy.vdg.json"))  # parts kept, the same positions
+    again = vdg.load(str(tmp_path / "copy.vdg.json"))
+    assert again.parts == ["head"]
+    np.testing.assert_array_equal(again.evaluate(side)[0], positions)
+    with pytest.raises(vdg.Error, match="model parts"):
+        cubist.export_gltf(str(tmp_path / "never.glb"))
+    assert not (tmp_path / "never.glb").exists()

@@ -158,5 +158,34 @@ TEST_P(Allocation, RefusedCallsAllocateNothingEither) {
 INSTANTIATE_TEST_SUITE_P(Modes, Allocation, ::testing::Values(Uncovered::Base, Uncovered::Cosine, Uncovered::Cosine2),
                          [](const auto& mode) { return std::string(uncoveredName(mode.param)); });
 
+// A model with parts (one key per part, a fixed driving view on one) evaluates without allocating,
+// through evaluate() and evaluateParts(), for every weight scheme.
+TEST(AllocationParts, EvaluatePartsAllocatesNothing) {
+  for (const WeightScheme scheme : {WeightScheme::Linear, WeightScheme::Smooth, WeightScheme::Rbf}) {
+    RawViewDependentModel raw = fourKeyModel(Uncovered::Base);
+    raw.sphere.scheme = scheme;
+    RawPart part;
+    part.name = "cap";
+    part.vertices = {0, 1, 2, 3};
+    part.border = 0.5;
+    part.keys = {"k0", "k1"};
+    part.view = Eigen::Vector3d(0, 0, 1);
+    raw.parts.push_back(part);
+    const ViewDependentModel model = ViewDependentModel::build(raw);
+    std::vector<float> positions(raw.base.positions.size()), normals(positions.size());
+    std::vector<Eigen::Vector3d> views(model.partCount(), Eigen::Vector3d(1, 0.2, 0));
+    bool ok = true;
+    const long count = allocationsDuring([&] {
+      for (int f = 0; f < kFrames; ++f) {
+        ok = model.evaluate(orbit(f), 0.0, positions, normals) && ok;
+        views[0] = orbit(f);
+        ok = model.evaluateParts(views, 0.0, positions, normals) && ok;
+      }
+    });
+    EXPECT_TRUE(ok) << weightSchemeName(scheme);
+    EXPECT_EQ(count, 0) << weightSchemeName(scheme);
+  }
+}
+
 }  // namespace
 }  // namespace vdg

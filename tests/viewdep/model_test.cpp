@@ -270,5 +270,243 @@ TEST(ViewDependentModelExtent, AKeyRaisingTheTopRaisesTheExtent) {
   EXPECT_NEAR(model.extentRadius(), 1.8, kPositionTol);  // the centre is the base's box centre, the origin
 }
 
+// Per-part key sets (docs/weights.md, "Per-part key sets").
+constexpr double kMaskSumTol = 1e-6;      // the masks sum to 1 (float rounding of 1 - sum)
+constexpr double kSmoothstepSlope = 1.5;  // max of d/dt (1 - 3t^2 + 2t^3) over [0, 1]
+constexpr float kMaskedTol = 1e-5f;       // float rounding of base + m * w * (key - base), summed over parts
+
+// bulgeModel's octahedron keys twice: "a0".."a5" and "b0".."b5", the same meshes and views.
+RawViewDependentModel twoKeySets() {
+  RawViewDependentModel raw = bulgeModel(kOctahedron);
+  const std::size_t n = raw.keys.size();
+  for (std::size_t k = 0; k < n; ++k) {
+    RawKey copy = raw.keys[k];
+    raw.keys[k].name = "a" + std::to_string(k);
+    copy.name = "b" + std::to_string(k);
+    raw.keys.push_back(std::move(copy));
+  }
+  return raw;
+}
+
+std::vector<std::int32_t> verticesWhere(const TriMesh& mesh, const std::function<bool(const Vector3d&)>& pick) {
+  std::vector<std::int32_t> out;
+  for (std::size_t v = 0; v < mesh.vertexCount(); ++v)
+    if (pick(Vector3d(mesh.positions[3 * v], mesh.positions[3 * v + 1], mesh.positions[3 * v + 2])))
+      out.push_back(static_cast<std::int32_t>(v));
+  return out;
+}
+
+RawPart partOf(const std::string& name, std::vector<std::int32_t> vertices, double border,
+               std::vector<std::string> keys) {
+  RawPart part;
+  part.name = name;
+  part.vertices = std::move(vertices);
+  part.border = border;
+  part.keys = std::move(keys);
+  return part;
+}
+
+TEST(ModelParts, AModelWithoutPartsHasNone) {
+  const ViewDependentModel model = ViewDependentModel::build(bulgeModel(kOctahedron));
+  EXPECT_FALSE(model.hasParts());
+  EXPECT_EQ(model.partCount(), 0u);
+  EXPECT_NO_THROW(model.requireNoParts("anything"));
+  std::vector<float> out(3 * model.vertexCount());
+  const std::vector<Vector3d> views;
+  EXPECT_FALSE(model.evaluateParts(views, 0.0, out)) << "evaluateParts needs parts";
+}
+
+TEST(ModelParts, OnePartCoveringEverythingEqualsThePlainModel) {
+  for (const WeightScheme scheme : {WeightScheme::Linear, WeightScheme::Smooth, WeightScheme::Rbf}) {
+    RawViewDependentModel raw = bulgeModel(kOctahedron);
+    raw.sphere.scheme = scheme;
+    const ViewDependentModel plain = ViewDependentModel::build(raw);
+    std::vector<std::string> names;
+    for (const RawKey& key : raw.keys) names.push_back(key.name);
+    raw.parts.push_back(partOf("all", verticesWhere(raw.base, [](const Vector3d&) { return true; }), 0.0, names));
+    const ViewDependentModel parts = ViewDependentModel::build(raw);
+    ASSERT_EQ(parts.partCount(), 2u);
+    EXPECT_EQ(parts.partVertexCount(0), raw.base.vertexCount());
+    EXPECT_EQ(parts.partVertexCount(1), 0u);
+    EXPECT_EQ(parts.partName(1), kRestPartName);
+    std::vector<float> a(raw.base.positions.size()), b(a.size()), na(a.size()), nb(a.size());
+    for (const Vector3d& view : {Vector3d(1, 0.3, 0.2), Vector3d(-0.4, -1, 0.1), Vector3d(0.2, 0.1, -1)}) {
+      ASSERT_TRUE(plain.evaluate(view, 0.0, a, na));
+      ASSERT_TRUE(parts.evaluate(view, 0.0, b, nb));
+      for (std::size_t i = 0; i < a.size(); ++i) {
+        ASSERT_NEAR(a[i], b[i], kPositionTol) << weightSchemeName(scheme) << " coordinate " << i;
+        ASSERT_NEAR(na[i], nb[i], kPositionTol * 10) << weightSchemeName(scheme) << " normal " << i;
+      }
+    }
+  }
+}
+
+TEST(ModelParts, MasksAreASmoothPartitionOfUnity) {
+  RawViewDependentModel raw = twoKeySets();
+  constexpr double kTopBorder = 0.4, kSideBorder = 0.3;
+  raw.parts.push_back(partOf("top", verticesWhere(raw.base, [](const Vector3d& p) { return p.y() > 0.6; }), kTopBorder,
+                             {"a0", "a2", "a3", "a4", "a5"}));
+  raw.parts.push_back(
+      partOf("bottom", verticesWhere(raw.base, [](const Vector3d& p) { return p.y() < -0.6; }), kSideBorder, {"a1"}));
+  raw.validate();
+  const std::vector<std::vector<float>> masks = computePartMasks(raw);
+  ASSERT_EQ(masks.size(), 3u);
+  const std::size_t nv = raw.base.vertexCount();
+  for (std::size_t v = 0; v < nv; ++v) {
+    double sum = 0.0;
+    for (const auto& m : masks) {
+      ASSERT_GE(m[v], 0.0f);
+      ASSERT_LE(m[v], 1.0f);
+      sum += m[v];
+    }
+    ASSERT_NEAR(sum, 1.0, kMaskSumTol) << "vertex " << v;
+  }
+  for (const std::int32_t v : raw.parts[0].vertices) EXPECT_EQ(masks[0][static_cast<std::size_t>(v)], 1.0f);
+  const auto at = [&](std::size_t v) {
+    return Vector3d(raw.base.positions[3 * v], raw.base.positions[3 * v + 1], raw.base.positions[3 * v + 2]);
+  };
+  // Bounded change along every edge: |m(a) - m(b)| <= 1.5 |a - b| / border (the smoothstep's
+  // slope); the rest's mask is 1 minus the two, whose borders here do not meet.
+  const double slope[3] = {kSmoothstepSlope / kTopBorder, kSmoothstepSlope / kSideBorder,
+                           kSmoothstepSlope / kTopBorder + kSmoothstepSlope / kSideBorder};
+  std::size_t between = 0;
+  for (std::size_t t = 0; t < raw.base.triangleCount(); ++t)
+    for (int c = 0; c < 3; ++c) {
+      const auto a = static_cast<std::size_t>(raw.base.triangles[3 * t + c]);
+      const auto b = static_cast<std::size_t>(raw.base.triangles[3 * t + (c + 1) % 3]);
+      const double length = (at(a) - at(b)).norm();
+      for (std::size_t p = 0; p < 3; ++p)
+        ASSERT_LE(std::abs(masks[p][a] - masks[p][b]), slope[p] * length + kMaskSumTol) << "part " << p;
+    }
+  for (std::size_t v = 0; v < nv; ++v) between += masks[0][v] > 0.0f && masks[0][v] < 1.0f;
+  EXPECT_GT(between, 0u) << "the border blends some vertices";
+}
+
+TEST(ModelParts, OverlappingPartsShareAVertexAndSeamCopiesAgree) {
+  RawViewDependentModel raw = twoKeySets();
+  const std::vector<std::int32_t> all = verticesWhere(raw.base, [](const Vector3d&) { return true; });
+  raw.parts.push_back(partOf("one", all, 0.0, {"a0", "a1", "a2"}));
+  raw.parts.push_back(partOf("two", {0, 1, 2}, 0.0, {"a3", "a4", "a5"}));
+  const std::vector<std::vector<float>> masks = computePartMasks(raw);
+  EXPECT_FLOAT_EQ(masks[0][1], 0.5f);
+  EXPECT_FLOAT_EQ(masks[1][1], 0.5f);
+  EXPECT_FLOAT_EQ(masks[2][1], 0.0f);
+  // Vertices at the same position (uvSphere's seam copies) get the same masks, hard border or not.
+  for (std::size_t u = 0; u < raw.base.vertexCount(); ++u) {
+    for (std::size_t v = u + 1; v < raw.base.vertexCount(); ++v) {
+      if (!std::equal(&raw.base.positions[3 * u], &raw.base.positions[3 * u + 3], &raw.base.positions[3 * v])) continue;
+      for (const auto& m : masks) ASSERT_EQ(m[u], m[v]) << u << " and " << v;
+    }
+  }
+}
+
+// The cubist case: the top follows a fixed view (+x, key a0's), the rest follows the camera. At
+// the camera view of key b1 every vertex is base + m_top (a0 - base) + m_rest (b1 - base): fully the
+// a0 key on the top, fully the b1 key away from it, blended across the border.
+TEST(ModelParts, EachPartTakesItsKeyAtItsOwnView) {
+  RawViewDependentModel raw = twoKeySets();
+  RawPart top = partOf("top", verticesWhere(raw.base, [](const Vector3d& p) { return p.y() > 0.5; }), 0.3,
+                       {"a0", "a1", "a2", "a3", "a4", "a5"});
+  top.view = Vector3d(2, 0, 0);
+  raw.parts.push_back(top);
+  const ViewDependentModel model = ViewDependentModel::build(raw);
+  ASSERT_EQ(model.partCount(), 2u);
+  ASSERT_TRUE(model.partView(0).has_value());
+  EXPECT_NEAR((*model.partView(0) - Vector3d(1, 0, 0)).norm(), 0.0, 1e-12);
+  EXPECT_FALSE(model.partView(1).has_value());
+  EXPECT_EQ(model.partKeys(1).size(), 6u) << "the b keys drive the rest";
+  const std::vector<std::vector<float>> masks = computePartMasks(raw);
+  const auto expectBlend = [&](const std::vector<float>& out, std::size_t top_key, std::size_t rest_key) {
+    for (std::size_t i = 0; i < out.size(); ++i) {
+      const double base = raw.base.positions[i];
+      const double expected = base + masks[0][i / 3] * (raw.keys[top_key].mesh.positions[i] - base) +
+                              masks[1][i / 3] * (raw.keys[rest_key].mesh.positions[i] - base);
+      ASSERT_NEAR(out[i], expected, kMaskedTol) << "coordinate " << i;
+    }
+  };
+  std::vector<float> out(raw.base.positions.size());
+  ASSERT_TRUE(model.evaluate(kOctahedron[1], 0.0, out));
+  expectBlend(out, 0, 6 + 1);
+  // evaluateParts: every part's view chosen by the caller (vdg eval --part-view).
+  const std::vector<Vector3d> views = {kOctahedron[4], kOctahedron[2]};
+  ASSERT_TRUE(model.evaluateParts(views, 0.0, out));
+  expectBlend(out, 4, 6 + 2);
+  std::vector<float> w(7);
+  ASSERT_TRUE(model.partWeights(0, kOctahedron[4], 0.0, w));
+  EXPECT_FLOAT_EQ(w[4], 1.0f);
+  EXPECT_FLOAT_EQ(w[6], 0.0f);
+}
+
+// A material selection takes every vertex of the material's triangles, and nothing else with a hard
+// border (uvSphere's seam copies of a selected vertex excepted: they share its position).
+TEST(ModelParts, AMaterialSelectsItsTrianglesVertices) {
+  RawViewDependentModel raw = twoKeySets();
+  raw.base.materials.resize(1);
+  raw.base.materials[0].name = "cap";
+  raw.base.face_materials.assign(raw.base.triangleCount(), -1);
+  std::vector<std::uint8_t> on(raw.base.vertexCount(), 0);
+  for (std::size_t t = 0; t < raw.base.triangleCount(); ++t) {
+    if (raw.base.positions[3 * static_cast<std::size_t>(raw.base.triangles[3 * t]) + 1] <= 0.7f) continue;
+    raw.base.face_materials[t] = 0;
+    for (std::size_t c = 0; c < 3; ++c) on[static_cast<std::size_t>(raw.base.triangles[3 * t + c])] = 1;
+  }
+  RawPart part = partOf("cap", {}, 0.0, {"a0", "a1", "a2", "a3", "a4", "a5"});
+  part.select = RawPart::Select::kMaterial;
+  part.material = "cap";
+  raw.parts.push_back(part);
+  raw.validate();
+  const std::vector<std::vector<float>> masks = computePartMasks(raw);
+  std::size_t selected = 0;
+  for (std::size_t v = 0; v < raw.base.vertexCount(); ++v) {
+    if (on[v]) {
+      EXPECT_EQ(masks[0][v], 1.0f) << "vertex " << v;
+    }
+    selected += on[v];
+    EXPECT_TRUE(masks[0][v] == 0.0f || masks[0][v] == 1.0f) << "a hard border, vertex " << v;
+  }
+  EXPECT_GT(selected, 0u);
+  EXPECT_EQ(ViewDependentModel::build(raw).partVertexCount(0),
+            static_cast<std::size_t>(std::count(masks[0].begin(), masks[0].end(), 1.0f)));
+}
+
+TEST(ModelParts, ContractsAndRefusals) {
+  RawViewDependentModel raw = twoKeySets();
+  EXPECT_THROW(
+      {
+        raw.parts.push_back(partOf("top", {0, 1}, 0.0, {"a0"}));
+        raw.validate();
+      },
+      Error)
+      << "a1 and b1 drive the rest from the same view";
+  raw.parts[0].keys = {"a0", "a1", "a2", "a3", "a4", "a5"};
+  const ViewDependentModel model = ViewDependentModel::build(raw);
+  ViewWeights w;
+  EXPECT_FALSE(model.weights(Vector3d(1, 0, 0), 0.0, w)) << "one key set for the whole mesh: partWeights";
+  std::vector<float> dense(model.keyCount() + 1), out(3 * model.vertexCount()), short_out(3);
+  EXPECT_FALSE(model.denseWeights(Vector3d(1, 0, 0), 0.0, dense));
+  const std::vector<Vector3d> one = {Vector3d(1, 0, 0)}, zero = {Vector3d(1, 0, 0), Vector3d::Zero()};
+  const std::vector<Vector3d> good = {Vector3d(1, 0, 0), Vector3d(0, 1, 0)};
+  EXPECT_FALSE(model.evaluateParts(one, 0.0, out));
+  EXPECT_FALSE(model.evaluateParts(zero, 0.0, out));
+  EXPECT_FALSE(model.evaluateParts(good, std::nan(""), out));
+  EXPECT_FALSE(model.evaluateParts(good, 0.0, short_out));
+  EXPECT_TRUE(model.evaluateParts(good, 0.0, out));
+  std::vector<float> pw(7);
+  EXPECT_FALSE(model.partWeights(2, Vector3d(1, 0, 0), 0.0, pw));
+  EXPECT_FALSE(model.partWeights(0, Vector3d(1, 0, 0), 0.0, dense));
+  EXPECT_THROW((void)model.partName(2), Error);
+  try {
+    model.requireThreeKeyWeights("the renderer");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("model parts ('parts') are not supported by the renderer"), std::string::npos)
+        << e.what();
+  }
+  raw.parts[0].name = "top";
+  raw.base_animation = BaseAnimationSpec{};
+  raw.base_frames = {raw.base.positions};
+  EXPECT_THROW(raw.validate(), Error);
+}
+
 }  // namespace
 }  // namespace vdg

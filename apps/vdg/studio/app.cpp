@@ -744,6 +744,7 @@ struct Studio::Impl {
     if (!session->animated() && !session->model().keys.empty()) {
       try {
         model = std::make_shared<const ViewDependentModel>(ViewDependentModel::build(session->model()));
+        if (model->hasParts()) model.reset();  // one sphere per part: the inset shows one sphere
       } catch (const std::exception&) {
         model.reset();
       }

@@ -12,9 +12,12 @@ namespace vdg {
 // Current manifest format version (the "version" field of *.vdg.json). Version 2 added animated
 // bases ("base_animation", "offsets", each key's "frame"), version 3 the weight scheme ("weights":
 // {"scheme": "linear" | "smooth" | "rbf"}, the rbf scheme with "kernel" and "width" (degrees),
-// issue 29); older files load unchanged, and saveManifest writes
-// the oldest version that holds the model (2 for the linear scheme, 3 otherwise).
-inline constexpr int kManifestVersion = 3;
+// issue 29), version 4 per-part key sets ("parts": [{"name", "select": {"vertices" | "material" |
+// "weights"}, "border", "keys", "view"}], issue 29; a "weights" mask is a list or a text file of
+// one number per vertex, relative to the manifest); older files load unchanged, and saveManifest
+// writes the oldest version that holds the model (2 for the linear scheme, 3 for another scheme,
+// 4 with parts).
+inline constexpr int kManifestVersion = 4;
 
 // Parses a manifest's text into a raw model WITHOUT reading any mesh: base_path and every key's
 // mesh_path are filled, the meshes are left empty. Throws vdg::Error naming `source` and the key
@@ -31,7 +34,8 @@ RawViewDependentModel parseManifest(const std::string& text, const std::string& 
 // for missing files, unknown fields, a wrong or missing version, bad values, and everything validate() checks.
 // The base mesh (or an animated base's first frame or glTF file) is read with `options` (materials,
 // textures and their warnings, vdg/io/mesh_read_options.h); key meshes and later frames are read
-// for their geometry only (materials belong to the base).
+// for their geometry only (materials belong to the base). A part's mask file is read too (one
+// number per vertex, whitespace-separated; errors name the manifest, the part and the file).
 RawViewDependentModel loadManifest(const std::string& path, const MeshReadOptions& options = {});
 // The manifest text saveManifest writes (for callers that write it themselves).
 std::string formatManifest(const RawViewDependentModel& model);

@@ -12,6 +12,7 @@
 // a key shears or bends the surface, and the NPR shading and silhouettes need the true normals.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <span>
 #include <string>
@@ -75,6 +76,38 @@ struct RawKey {
   int frame = 0;
 };
 
+// Per-part key sets (issue 29; docs/weights.md, "Per-part key sets"). A part is a set of vertices
+// with its own keys and, optionally, its own driving view, so that one region of the model follows
+// one view while the rest follows another (the "cubist" views of Chaudhuri et al.). What a part
+// selects (exactly one kind):
+//  - kVertices: the base's vertices `vertices` (indices < #V);
+//  - kMaterial: every vertex of a triangle whose material is named `material`;
+//  - kWeights:  a painted mask, `mask` (#V values in [0, 1]; `mask_path` names the file it came
+//    from, as the manifest writes it, or is empty for an inline list).
+// `border` (model units, finite, >= 0; kVertices and kMaterial only): the selection's weight falls
+// from 1 to 0 over this Euclidean distance from the nearest selected vertex, s = 1 - S(d / border)
+// with S(t) = 3t^2 - 2t^3; 0 keeps a hard border (1 on the selection and on vertices at the same
+// position, 0 elsewhere). `keys`: the names of the part's keys (at least one; a key belongs to at
+// most one part; keys in no part drive the rest of the model). `view`: a fixed driving view
+// (direction from the centre towards the eye, any finite non-zero length); none: the main view.
+struct RawPart {
+  enum class Select { kVertices, kMaterial, kWeights };
+  std::string name;
+  Select select = Select::kVertices;
+  std::vector<std::int32_t> vertices;
+  std::string material;
+  std::vector<float> mask;
+  std::string mask_path;
+  double border = 0.0;
+  std::vector<std::string> keys;
+  std::optional<Eigen::Vector3d> view;
+};
+
+// Most parts a model may have (the per-frame evaluation keeps one slot per part on the stack).
+inline constexpr std::size_t kMaxParts = 64;
+// The name of the implicit part that holds the vertices outside every part and the keys of none.
+inline constexpr const char* kRestPartName = "rest";
+
 struct RawViewDependentModel {
   std::string source;  // manifest path, used in messages (may be empty)
   // `source`, or "model" when it is empty: how messages name the model.
@@ -97,6 +130,9 @@ struct RawViewDependentModel {
   OffsetSpace offsets = OffsetSpace::kWorld;
   std::vector<std::vector<float>> base_frames;
   std::vector<std::vector<float>> base_skin;
+
+  // Per-part key sets (see RawPart); empty: one key set for the whole model (the paper's model).
+  std::vector<RawPart> parts;
 
   bool animated() const { return base_animation.has_value(); }
   // Frames of the base animation: base_frames.size() when animated, 1 for a static base.
@@ -121,8 +157,23 @@ struct RawViewDependentModel {
   // kMaxKeyFramesPerView key frames for one view. A static model refuses a key frame other than
   // 0, base_frames, base_skin and offsets kSkinned. For an animated base a key's offset is
   // measured from base_frames[frame], and must not overflow a float.
+  // Parts (RawPart) add, each naming the part: more than kMaxParts parts, an empty or repeated
+  // name or the name kRestPartName, no keys, an unknown key name or a key in two parts, a vertex
+  // index out of range, an empty vertex list, a material the base does not have, a mask that is
+  // not #V values in [0, 1], a border that is not finite and >= 0 (or any border on a mask), a
+  // driving view that is zero or not finite; and parts on an animated base.
   void validate() const;
 };
+
+// The per-vertex masks of the parts: raw.parts.size() + 1 arrays of #V floats, the parts in order
+// and the rest last (empty when the model has no parts). With s_p(v) the selection weight of part
+// p (RawPart: 1 on its selection, falling over `border`), the masks are
+//   m_p(v) = s_p(v) / max(1, sum_q s_q(v)),   m_rest(v) = 1 - sum_p m_p(v),
+// a partition of unity with every mask in [0, 1]; parts that do not overlap keep their s_p. Cost:
+// a uniform grid of cell `border` over each selection; every vertex compares itself with the
+// selected vertices of its 27 neighbouring cells (O(#V) for a border of a few edge lengths,
+// O(#V x selected vertices) at worst, for a border as large as the model). Expects a validated model.
+std::vector<std::vector<float>> computePartMasks(const RawViewDependentModel& raw);
 
 class ViewDependentModel {
  public:
@@ -191,7 +242,50 @@ class ViewDependentModel {
   [[nodiscard]] bool blendDense(std::span<const float> weights, std::span<float> out_positions) const;
   // Throws vdg::Error "the 'rbf' weight scheme is not supported by WHERE ..." for an rbf model:
   // the callers that blend at most three keys per view (ViewWeights) refuse it with this line.
+  // A model with parts is refused first, by requireNoParts(where).
   void requireThreeKeyWeights(const std::string& where) const;
+  // Throws vdg::Error "model parts ('parts') are not supported by WHERE ..." for a model with
+  // parts: the callers that weigh one key set for the whole mesh refuse it with this line.
+  void requireNoParts(const std::string& where) const;
+
+  // Per-part key sets (RawPart; docs/weights.md, "Per-part key sets"). A model with parts has
+  // partCount() = raw.parts.size() + 1 parts, the rest (kRestPartName: the vertices outside every
+  // part, the keys of no part, the main view) last; a model without parts has partCount() == 0
+  // and evaluates exactly as before. Each part has its own viewing sphere over its own keys (the
+  // model's ViewSphereSettings and sharpness; the rest may have no keys, then it keeps the base).
+  // Evaluation, after Rademacher 99, 3.2.3 (the blend is affine, so it is written with offsets)
+  // with one key set per part:
+  //   p(v) = base(v) + sum_parts m_p(v) sum_{k in p} w_pk(view_p) (key_k(v) - base(v)),
+  // m_p the masks of computePartMasks(). build() stores each key's delta already multiplied by its
+  // part's mask (sparse: only vertices the masked key moves), so keyPositions() gives a key as its
+  // part sees it (and keyMovedCount() the vertices it moves there) and a frame costs what the plain blend of the same
+  // keys costs. For a model with parts, sphere() is empty, and weights() and denseWeights() return false (use
+  // partWeights()).
+  bool hasParts() const { return !parts_.empty(); }
+  std::size_t partCount() const { return parts_.size(); }
+  // Accessors by part index (< partCount(); out of range throws vdg::Error, as the key accessors).
+  const std::string& partName(std::size_t part) const;
+  // The part's keys, as indices of the model's keys, in the order of its sphere.
+  std::span<const std::size_t> partKeys(std::size_t part) const;
+  // The part's fixed driving view (unit), or none when it follows the main view.
+  const std::optional<Eigen::Vector3d>& partView(std::size_t part) const;
+  // Vertices whose mask for this part is > 0.
+  std::size_t partVertexCount(std::size_t part) const;
+  // The driving view of every part for a main view: its fixed view, or `view` (partCount()
+  // entries). Violations: out.size() != partCount().
+  [[nodiscard]] bool partViews(const Eigen::Vector3d& view, std::span<Eigen::Vector3d> out) const;
+  // The weights of part `part`'s keys and the base at `view` into `out` (partKeys(part).size() + 1
+  // floats, the base last; a part without keys gives the base 1). Violations: part out of range,
+  // out of the wrong size, a zero or non-finite view, a non-finite sharpness.
+  [[nodiscard]] bool partWeights(std::size_t part, const Eigen::Vector3d& view, double sharpness,
+                                 std::span<float> out) const;
+  // Evaluation with one driving view per part (partCount() views; a part's fixed view is NOT
+  // applied here: the caller chooses every view, e.g. from partViews()). Violations: a model
+  // without parts, views.size() != partCount(), a zero or non-finite view, a non-finite
+  // sharpness, output sizes as evaluate(). For a model with parts, evaluate() is this with
+  // partViews(view); its hint is left as it is.
+  [[nodiscard]] bool evaluateParts(std::span<const Eigen::Vector3d> views, double sharpness,
+                                   std::span<float> out_positions, std::span<float> out_normals = {}) const;
   // Positions of key `key` (its full mesh) into `out_positions` (#V x 3). Violations: key >=
   // keyCount(), out_positions.size() != 3 * vertexCount().
   [[nodiscard]] bool keyPositions(std::size_t key, std::span<float> out_positions) const;
@@ -204,6 +298,7 @@ class ViewDependentModel {
  private:
   struct Key {
     std::string name;
+    Eigen::Vector3d view = Eigen::Vector3d::Zero();  // unit
     std::optional<Camera> camera;
     std::size_t moved_count = 0;
     std::vector<std::uint32_t> indices;  // sparse: moved vertex indices (empty when dense)
@@ -221,6 +316,20 @@ class ViewDependentModel {
   // Adds w's sparse keys' weighted deltas to out (#V x 3), slot by slot.
   void scatterSparse(const ViewWeights& w, float* out) const;
   void findNormalVertices();
+  struct Part {
+    std::string name;
+    std::vector<std::size_t> keys;        // model key indices
+    std::optional<ViewSphere> sphere;     // over `keys` (none when the part has no keys)
+    std::optional<Eigen::Vector3d> view;  // fixed driving view (unit)
+    std::size_t vertex_count = 0;         // vertices with a mask > 0
+  };
+  // Builds parts_ and the masked deltas (parts.cpp); `views` are the keys' unit views.
+  void buildParts(const RawViewDependentModel& raw, std::span<const std::string> labels);
+  // Adds weight * delta of key k to out (#V x 3).
+  void addKey(std::size_t k, float weight, float* out) const;
+  // Fills the keys' deltas from raw (each multiplied by masks[v] when masks is non-empty).
+  void storeDeltas(const RawViewDependentModel& raw, std::span<const std::vector<float>> masks,
+                   std::span<const std::size_t> part_of_key);
 
   TriMesh base_;
   SurfaceTopology surface_;
@@ -231,6 +340,7 @@ class ViewDependentModel {
   Bounds extent_;
   double extent_radius_ = 1e-6;
   std::vector<float> base_normals_;  // computeVertexNormals of the base, #V x 3
+  std::vector<Part> parts_;          // empty, or the raw parts then the rest
 };
 
 }  // namespace vdg
