@@ -96,6 +96,14 @@ int evaluateFrame(const Model& m, py::handle frame) {
 
 }  // namespace
 
+// Keys at distances (vdg/viewdep/key_space.h) weigh eye positions; the module's views are directions.
+void requirePython(const ViewDependentModel& model) {
+  if (model.weightSpace() == WeightSpace::Positions)
+    throw py::value_error(
+        "the 'positions' weight space is not supported by the Python module: it weighs view directions and the "
+        "model weighs eye positions (vdg weights --eye and vdg eval evaluate it)");
+}
+
 double sharpnessArg(py::handle sharpness) {
   if (sharpness.is_none()) return 0.0;
   const double a = finiteNumber(sharpness, "sharpness");
@@ -114,6 +122,7 @@ py::dict modelWeights(const Model& m, py::handle view, py::handle sharpness, py:
   }
   if (at && *at != 0.0)
     throw py::value_error("frame: the model is not animated; frame applies to animated models only");
+  requirePython(*m.model);
   py::dict keys = zeroKeys(m);
   std::vector<float> dense(m.model->keyCount() + 1);  // every scheme's weights, the rbf's over every key
   if (!m.model->denseWeights(v, a, dense)) refused("weights");
@@ -133,6 +142,7 @@ py::tuple modelEvaluate(const Model& m, py::handle view, py::handle frame, py::h
   py::array_t<float> positions({n, py::ssize_t{3}}), normals({n, py::ssize_t{3}});
   const std::span<float> p(positions.mutable_data(), static_cast<std::size_t>(3 * n));
   const std::span<float> q(normals.mutable_data(), static_cast<std::size_t>(3 * n));
+  if (m.model) requirePython(*m.model);
   bool ok = false;
   {
     // The evaluation touches no Python object: other Python threads run meanwhile.

@@ -305,7 +305,30 @@ std::string infoRbfSettingsText(const ViewSphere& sphere) {
 }
 
 // The graph repeats the paper's linear weights only (kInteractivitySchemeRefusal).
-bool linearWeights(const ViewDependentModel& model) { return model.sphere().settings().scheme == WeightScheme::Linear; }
+// A positions model has no graph either: the graph weighs view directions (key_space.h).
+bool linearWeights(const ViewDependentModel& model) {
+  return model.sphere().settings().scheme == WeightScheme::Linear && model.weightSpace() == WeightSpace::Directions;
+}
+
+// vdg info --json: "space", and for a positions model its tetrahedra, hull faces and falloff.
+void addSpaceFields(const ViewDependentModel& model, nlohmann::ordered_json& out) {
+  out["space"] = weightSpaceName(model.weightSpace());
+  if (const KeySpace* space = model.keySpace()) {
+    out["tetrahedra"] = space->tetrahedronCount();
+    out["hull_faces"] = space->hullFaceCount();
+    out["falloff"] = space->falloff();
+  }
+}
+
+// "directions", or "positions: T tetrahedra, F hull faces, D directions, falloff X" (key_space.h).
+std::string weightSpaceText(const ViewDependentModel& model) {
+  const KeySpace* space = model.keySpace();
+  if (!space) return "directions";
+  char buffer[160];
+  std::snprintf(buffer, sizeof(buffer), "positions: %zu tetrahedra, %zu hull faces, %zu directions, falloff %g",
+                space->tetrahedronCount(), space->hullFaceCount(), space->directionCount(), space->falloff());
+  return buffer;
+}
 nlohmann::ordered_json interactivityJson(const ViewDependentModel& model) {
   const InteractivitySize size = interactivityGraphSize(model);
   return {{"nodes", size.nodes}, {"declarations", size.declarations}, {"types", size.types}, {"ops", size.ops}};
@@ -694,6 +717,7 @@ void addInfoCommand(CLI::App& app) {
       out["export_targets"] = exportTargetsJson(model.keyCount(), 0);
       out["interactivity"] = linearWeights(model) ? interactivityJson(model) : nlohmann::ordered_json(nullptr);
       addShapeFields(model, out);
+      addSpaceFields(model, out);
       out["keys"] = nlohmann::ordered_json::array();
       for (std::size_t k = 0; k < model.keyCount(); ++k) {
         const auto& v = model.keyView(k);
@@ -713,6 +737,7 @@ void addInfoCommand(CLI::App& app) {
     std::printf("sharpness  %g\n", model.sharpness());
     std::printf("uncovered  %s\n", uncoveredName(sphere.settings().uncovered));
     std::printf("weights    %s%s\n", weightSchemeName(sphere.settings().scheme), infoRbfSettingsText(sphere).c_str());
+    std::printf("space      %s\n", weightSpaceText(model).c_str());
     std::printf("keys       %zu\n", model.keyCount());
     for (std::size_t k = 0; k < model.keyCount(); ++k) {
       const auto& v = model.keyView(k);
@@ -725,7 +750,7 @@ void addInfoCommand(CLI::App& app) {
     printExportTargets(model.keyCount(), 0);
     std::printf("graph      KHR_interactivity (vdg export --interactivity): %s\n",
                 linearWeights(model) ? interactivitySizeText(interactivityGraphSize(model)).c_str()
-                                     : "none (the graph weighs the linear scheme only)");
+                                     : "none (the graph weighs the linear scheme of view directions only)");
     for (const auto& w : warnings) std::printf("warning: %s\n", w.c_str());
   });
 }

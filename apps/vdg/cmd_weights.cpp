@@ -52,6 +52,11 @@ double floatDigits(float w) {
               std::to_string(view.z()) + " (internal error)");
 }
 
+[[noreturn]] void refusedEye(const Eigen::Vector3d& eye) {
+  throw Error("weights: the model refused eye " + std::to_string(eye.x()) + "," + std::to_string(eye.y()) + "," +
+              std::to_string(eye.z()) + " (the model centre, outside the key eyes' hull, has no view direction)");
+}
+
 nlohmann::ordered_json animatedJson(const AnimatedViewDependentModel& model, const ViewWeights& w) {
   nlohmann::ordered_json out;
   out["views"] = nlohmann::ordered_json::array();
@@ -80,6 +85,16 @@ nlohmann::ordered_json staticJson(const ViewDependentModel& model, std::span<con
   return out;
 }
 
+void printStaticWeights(const ViewDependentModel& model, std::span<const float> dense, bool json) {
+  if (json) {
+    std::cout << staticJson(model, dense).dump() << "\n";
+    return;
+  }
+  for (std::size_t k = 0; k < model.keyCount(); ++k)
+    if (dense[k] > 0.0f) std::printf("  %-20s %.6f\n", model.keyName(k).c_str(), dense[k]);
+  std::printf("  %-20s %.6f\n", "(base)", dense.back());
+}
+
 void animatedWeights(const AnimatedViewDependentModel& model, const ViewOptions& options, bool json) {
   const Eigen::Vector3d view = options.resolve(model.center());
   ViewWeights w;
@@ -102,7 +117,22 @@ void animatedWeights(const AnimatedViewDependentModel& model, const ViewOptions&
   std::printf("  %-20s %.6f\n", "(base)", w.base);
 }
 
+// A positions model (key_space.h): the --views file holds eyes.
+void batchEyeWeights(const ViewDependentModel& model, const std::string& path, double sharpness) {
+  nlohmann::ordered_json out = nlohmann::ordered_json::array();
+  int hint = -1;
+  std::vector<float> dense(model.keyCount() + 1);
+  for (const Eigen::Vector3d& eye :
+       parseEyeList(readFileLimited(path, "views file", kMaxJsonFileBytes), path + ": --views")) {
+    if (!model.denseWeightsAtEye(eye, sharpness, dense, &hint)) refusedEye(eye);
+    out.push_back(staticJson(model, dense));
+  }
+  std::cout << out.dump() << "\n";
+}
+
 void batchWeights(const OpenedInput& input, const std::string& path, double sharpness) {
+  if (input.model && input.model->weightSpace() == WeightSpace::Positions)
+    return batchEyeWeights(*input.model, path, sharpness);
   const Eigen::Vector3d center = input.animated ? input.animated->center() : input.model->center();
   nlohmann::ordered_json out = nlohmann::ordered_json::array();
   int hint = -1;
@@ -143,6 +173,7 @@ void continuityReport(const OpenedInput& input, const std::string& path, const C
                       bool json) {
   if (input.animated)
     throw UsageError("--continuity: " + quotedText(path) + " is animated; --continuity measures static models");
+  input.model->requireViewDirections("vdg weights --continuity (it walks great circles of view directions)");
   const ContinuityReport r = measureContinuity(*input.model, settings);
   const ViewSphereSettings& sphere = input.model->sphere().settings();
   const bool rbf = sphere.scheme == WeightScheme::Rbf;
@@ -233,17 +264,18 @@ void addWeightsCommand(CLI::App& app) {
       return;
     }
     const ViewDependentModel& model = *input.model;
-    const Eigen::Vector3d view = opt->view.resolve(model);
     std::vector<float> dense(model.keyCount() + 1);
-    if (!model.denseWeights(view, opt->view.sharpness, dense)) refused(view);  // a unit view; sharpness > 0
-    if (opt->json) {
-      std::cout << staticJson(model, dense).dump() << "\n";
+    if (model.weightSpace() == WeightSpace::Positions) {
+      const Eigen::Vector3d eye = opt->view.resolveEye();
+      if (!model.denseWeightsAtEye(eye, opt->view.sharpness, dense)) refusedEye(eye);
+      if (!opt->json) std::printf("eye (%.6f, %.6f, %.6f)\n", eye.x(), eye.y(), eye.z());
+      printStaticWeights(model, dense, opt->json);
       return;
     }
-    std::printf("view (%.6f, %.6f, %.6f)\n", view.x(), view.y(), view.z());
-    for (std::size_t k = 0; k < model.keyCount(); ++k)
-      if (dense[k] > 0.0f) std::printf("  %-20s %.6f\n", model.keyName(k).c_str(), dense[k]);
-    std::printf("  %-20s %.6f\n", "(base)", dense.back());
+    const Eigen::Vector3d view = opt->view.resolve(model);
+    if (!model.denseWeights(view, opt->view.sharpness, dense)) refused(view);  // a unit view; sharpness > 0
+    if (!opt->json) std::printf("view (%.6f, %.6f, %.6f)\n", view.x(), view.y(), view.z());
+    printStaticWeights(model, dense, opt->json);
   });
 }
 

@@ -919,6 +919,7 @@ void appendU32(std::string& out, std::uint32_t x) {
 }  // namespace
 
 GltfExportInput gltfExportInput(const ViewDependentModel& model) {
+  model.requireViewDirections("the glTF export (its runtimes blend the keys of one direction's hull triangle)");
   GltfExportInput in;
   in.base = model.base();
   const std::size_t n = in.base.positions.size();

@@ -12,9 +12,11 @@ namespace vdg {
 // Current manifest format version (the "version" field of *.vdg.json). Version 2 added animated
 // bases ("base_animation", "offsets", each key's "frame"), version 3 the weight scheme ("weights":
 // {"scheme": "linear" | "smooth" | "rbf"}, the rbf scheme with "kernel" and "width" (degrees),
-// issue 29); older files load unchanged, and saveManifest writes
-// the oldest version that holds the model (2 for the linear scheme, 3 otherwise).
-inline constexpr int kManifestVersion = 3;
+// issue 29), version 4 keys at distances ("weights": {"space": "directions" | "positions",
+// "falloff": model units} and a key's plain "eye" [x, y, z]; vdg/viewdep/key_space.h); older files
+// load unchanged, and saveManifest writes the oldest version that holds the model (2 for the
+// linear scheme, 3 for the others, 4 for the positions space or a key given by "eye").
+inline constexpr int kManifestVersion = 4;
 
 // Parses a manifest's text into a raw model WITHOUT reading any mesh: base_path and every key's
 // mesh_path are filled, the meshes are left empty. Throws vdg::Error naming `source` and the key
