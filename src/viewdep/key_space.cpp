@@ -135,6 +135,13 @@ KeySpace KeySpace::build(std::span<const Eigen::Vector3d> eyes, const Eigen::Vec
         for (int j = 0, n = 0; j < 4; ++j)
           if (j != i) face[static_cast<std::size_t>(n++)] = out.tets_[t][static_cast<std::size_t>(j)];
         out.hull_.push_back(face);
+        // The face's plane, its unit normal pointing away from the tetrahedron's fourth corner.
+        const Eigen::Vector3d& a = eyes[static_cast<std::size_t>(face[0])];
+        Eigen::Vector3d n =
+            (eyes[static_cast<std::size_t>(face[1])] - a).cross(eyes[static_cast<std::size_t>(face[2])] - a);
+        n.normalize();
+        if (n.dot(eyes[static_cast<std::size_t>(out.tets_[t][static_cast<std::size_t>(i)])] - a) > 0.0) n = -n;
+        out.hull_planes_.emplace_back(n.x(), n.y(), n.z(), -n.dot(a));
       }
   return out;
 }
@@ -171,10 +178,16 @@ bool KeySpace::locate(const Eigen::Vector3d& x, int start, int& tet, Eigen::Vect
   return false;
 }
 
+// The nearest point of a convex hull to an outside eye lies on a face whose plane the eye is in
+// front of (x - p is in the normal cone at p, a non-negative combination of the normals of the
+// faces at p, so one of them has a positive n . (x - p)); and a face whose plane is farther than
+// the best distance so far cannot be nearer. Both prune the triangle tests to a handful.
 int KeySpace::nearestHullFace(const Eigen::Vector3d& x, Eigen::Vector3d& bary, double& distance) const {
   int best = -1;
   distance = std::numeric_limits<double>::infinity();
   for (std::size_t f = 0; f < hull_.size(); ++f) {
+    const double plane = hull_planes_[f].head<3>().dot(x) + hull_planes_[f].w();
+    if (plane <= 0.0 || plane >= distance) continue;
     const Eigen::Vector3d& a = eyes_[static_cast<std::size_t>(hull_[f][0])];
     const Eigen::Vector3d& b = eyes_[static_cast<std::size_t>(hull_[f][1])];
     const Eigen::Vector3d& c = eyes_[static_cast<std::size_t>(hull_[f][2])];

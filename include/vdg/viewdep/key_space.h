@@ -36,8 +36,9 @@
 // tetrahedra from the hint (the previous frame's tetrahedron), across the face the eye is farthest
 // beyond; crossing a hull face means the eye is outside H (the hull is convex), so the walk stops.
 // A walk of more than kMaxWalkSteps steps falls back to testing every tetrahedron. Outside H the
-// nearest hull point is found by testing every hull face: O(hull faces), a few dozen for typical
-// key sets (docs/performance.md has the cost per query).
+// nearest hull point is searched among the hull faces whose plane the eye is in front of and
+// nearer than the best so far: one plane test per hull face, a few triangle tests
+// (docs/performance.md has the cost per query).
 #pragma once
 
 #include <array>
@@ -112,6 +113,7 @@ class KeySpace {
   std::vector<std::array<int, 4>> neighbours_;  // across the face opposite corner i; -1: hull face
   std::vector<Eigen::Matrix3d> inverse_;        // per tet: inverse of [b - a, c - a, d - a]
   std::vector<std::array<int, 3>> hull_;        // hull faces (key indices)
+  std::vector<Eigen::Vector4d> hull_planes_;    // per hull face: outward unit normal n, offset -n.a
   std::vector<Group> groups_;
   ViewSphere sphere_;
   Eigen::Vector3d center_ = Eigen::Vector3d::Zero();
