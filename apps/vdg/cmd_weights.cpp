@@ -173,7 +173,6 @@ void continuityReport(const OpenedInput& input, const std::string& path, const C
                       bool json) {
   if (input.animated)
     throw UsageError("--continuity: " + quotedText(path) + " is animated; --continuity measures static models");
-  input.model->requireViewDirections("vdg weights --continuity (it walks great circles of view directions)");
   const ContinuityReport r = measureContinuity(*input.model, settings);
   const ViewSphereSettings& sphere = input.model->sphere().settings();
   const bool rbf = sphere.scheme == WeightScheme::Rbf;
