@@ -231,3 +231,12 @@ def test_no_crash_on_odd_arguments(models: dict[str, vdg.Model]) -> None:
                     call(model, arg)
                 except (ValueError, TypeError, vdg.Error):
                     pass
+
+
+def test_positions_space_is_refused_in_one_line() -> None:
+    """Keys at distances (docs/weights.md) weigh eye positions; the module's views are directions."""
+    model = vdg.load(EXAMPLES / "spot" / "spot-dolly.vdg.json")
+    for call in (lambda: model.weights([0, 0.15, -1]), lambda: model.evaluate([0, 0.15, -1])):
+        with pytest.raises(ValueError, match="the 'positions' weight space is not supported by the Python module") as e:
+            call()
+        assert "\n" not in str(e.value)
