@@ -8,5 +8,6 @@ local spot = vdg.load("spot-dolly.vdg.json")
 local cow = vdg.node{name = "spot", object = spot}
 -- The front keys' eyes (spot-dolly.vdg.json): wide at distance 4, close-up at 1.6 from the centre.
 vdg.camera{name = "camera", look_at = cow, fov = 40,
-           path = {points = {{0, 1.2, -7}, {0, 0.70, -3.77}, {0, 0.35, -1.39}}, start = 0, ["end"] = 24}}
+           path = {points = {{0, 1.2, -7}, {0, 0.7017928231593482, -3.76569990571109},
+                             {0, 0.34577573612676116, -1.392252658827176}}, start = 0, ["end"] = 24}}
 vdg.render{frames = "0-24", size = {320, 240}, out = "dolly"}
