@@ -182,12 +182,19 @@ bool KeySpace::locate(const Eigen::Vector3d& x, int start, int& tet, Eigen::Vect
 // front of (x - p is in the normal cone at p, a non-negative combination of the normals of the
 // faces at p, so one of them has a positive n . (x - p)); and a face whose plane is farther than
 // the best distance so far cannot be nearer. Both prune the triangle tests to a handful.
+// An eye the walk found beyond a hull face by rounding alone (in front of no face's plane) gets the
+// unpruned search.
 int KeySpace::nearestHullFace(const Eigen::Vector3d& x, Eigen::Vector3d& bary, double& distance) const {
+  const int best = nearestHullFace(x, bary, distance, true);
+  return best >= 0 ? best : nearestHullFace(x, bary, distance, false);
+}
+
+int KeySpace::nearestHullFace(const Eigen::Vector3d& x, Eigen::Vector3d& bary, double& distance, bool prune) const {
   int best = -1;
   distance = std::numeric_limits<double>::infinity();
   for (std::size_t f = 0; f < hull_.size(); ++f) {
     const double plane = hull_planes_[f].head<3>().dot(x) + hull_planes_[f].w();
-    if (plane <= 0.0 || plane >= distance) continue;
+    if (prune && (plane <= 0.0 || plane >= distance)) continue;
     const Eigen::Vector3d& a = eyes_[static_cast<std::size_t>(hull_[f][0])];
     const Eigen::Vector3d& b = eyes_[static_cast<std::size_t>(hull_[f][1])];
     const Eigen::Vector3d& c = eyes_[static_cast<std::size_t>(hull_[f][2])];

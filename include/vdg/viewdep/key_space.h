@@ -107,6 +107,8 @@ class KeySpace {
   Eigen::Vector4d barycentric(int tet, const Eigen::Vector3d& x) const;
   // The nearest point of the hull to x: face index, its barycentric coordinates, squared distance.
   int nearestHullFace(const Eigen::Vector3d& x, Eigen::Vector3d& bary, double& distance) const;
+  // prune: skip the faces the eye is behind or whose plane is farther than the best so far.
+  int nearestHullFace(const Eigen::Vector3d& x, Eigen::Vector3d& bary, double& distance, bool prune) const;
 
   std::vector<Eigen::Vector3d> eyes_;
   std::vector<std::array<int, 4>> tets_;        // key indices
