@@ -101,7 +101,7 @@ void requirePython(const ViewDependentModel& model) {
   if (model.weightSpace() == WeightSpace::Positions)
     throw py::value_error(
         "the 'positions' weight space is not supported by the Python module: it weighs view directions and the "
-        "model weighs eye positions (vdg weights --eye and vdg eval evaluate it)");
+        "model weighs eye positions (use Model.weights_from_eye, or vdg eval --eye)");
 }
 
 double sharpnessArg(py::handle sharpness) {
@@ -126,6 +126,27 @@ py::dict modelWeights(const Model& m, py::handle view, py::handle sharpness, py:
   py::dict keys = zeroKeys(m);
   std::vector<float> dense(m.model->keyCount() + 1);  // every scheme's weights, the rbf's over every key
   if (!m.model->denseWeights(v, a, dense)) refused("weights");
+  for (std::size_t k = 0; k < m.model->keyCount(); ++k)
+    if (dense[k] != 0.0f) keys[py::str(m.model->keyName(k))] = static_cast<double>(dense[k]);
+  py::dict out;
+  out["keys"] = keys;
+  out["base"] = static_cast<double>(dense.back());
+  return out;
+}
+
+// weights(view_from_eye(eye)); a positions model (keys at distances, key_space.h) weighs the eye
+// itself, as `vdg weights --eye`.
+py::dict modelWeightsFromEye(const Model& m, py::handle eye, py::handle sharpness, py::handle frame) {
+  if (!m.model || m.model->weightSpace() != WeightSpace::Positions)
+    return modelWeights(m, vectorArray(modelViewFromEye(m, eye)), sharpness, frame);
+  const Eigen::Vector3d e = vector3(eye, "eye");
+  const double a = sharpnessArg(sharpness);
+  if (!frame.is_none() && finiteNumber(frame, "frame") != 0.0)
+    throw py::value_error("frame: the model is not animated; frame applies to animated models only");
+  std::vector<float> dense(m.model->keyCount() + 1);
+  if (!m.model->denseWeightsAtEye(e, a, dense))
+    throw py::value_error("eye: the model centre lies outside the key eyes' hull and gives no view direction");
+  py::dict keys = zeroKeys(m);
   for (std::size_t k = 0; k < m.model->keyCount(); ++k)
     if (dense[k] != 0.0f) keys[py::str(m.model->keyName(k))] = static_cast<double>(dense[k]);
   py::dict out;

@@ -598,8 +598,8 @@ bool ViewDependentModel::evaluateAtEye(const Eigen::Vector3d& eye, double sharpn
 void ViewDependentModel::requireViewDirections(const std::string& where) const {
   if (!key_space_) return;
   throw Error("the 'positions' weight space is not supported by " + where +
-              ": it weighs view directions and a positions model weighs eye positions (vdg weights and vdg eval "
-              "evaluate it)");
+              ": it weighs view directions and a positions model weighs eye positions (vdg weights, eval and run "
+              "and Python's weights_from_eye evaluate it)");
 }
 
 void ViewDependentModel::requireThreeKeyWeights(const std::string& where) const {
