@@ -3,6 +3,10 @@
 // faster). Goals (issue 12): <= 50 ns on a coherent camera path (with the hint), <= 150 ns for
 // random views (no hint), with 6 and with 200 keys, Base and Cosine modes, sharpness 1 and 2.
 // Scheme/...: the smooth and rbf weight schemes' cost per query as a multiple of the linear one's (issue 29).
+// Positions/...: keys at distances (KeySpace::weights, an eye position) as a multiple of the linear
+// direction sphere's query of the same key directions (issue 29, "Keys at distances"): eyes inside
+// the keys' hull (an orbit at radius 7, hinted), outside it (an orbit at radius 20: the nearest hull
+// face search) and random eyes in a box of side 30 (no hint).
 //
 // Key sets: "octahedron" (6 keys around the object, as bench/blend), "half6" (6 keys of a
 // character: front, back, sides, top, three-quarter above; the lower half is uncovered),
@@ -22,6 +26,7 @@
 #include <string>
 #include <vector>
 
+#include "vdg/viewdep/key_space.h"
 #include "vdg/viewdep/view_sphere.h"
 
 namespace {
@@ -176,6 +181,65 @@ void schemeBenchmark(benchmark::State& state, const std::string& keys, bool path
   state.counters["x_linear"] = other_s / linear_s;
 }
 
+// Key eyes: each direction of `keys` at distance 10, and every fourth also at distance 4 (a
+// close-up from the same direction).
+std::vector<Vector3d> dollyEyes(const std::string& keys) {
+  std::vector<Vector3d> eyes;
+  const std::vector<Vector3d> dirs = keySet(keys);
+  for (const Vector3d& d : dirs) eyes.push_back(10.0 * d.normalized());
+  for (std::size_t i = 0; i < dirs.size(); i += 4) eyes.push_back(4.0 * dirs[i].normalized());
+  return eyes;
+}
+
+std::vector<Vector3d> eyePath(const std::string& where) {
+  if (where == "random") {
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> u(-15.0, 15.0);
+    std::vector<Vector3d> v;
+    for (int i = 0; i < 4096; ++i) v.emplace_back(u(rng), u(rng), u(rng));
+    return v;
+  }
+  const double radius = where == "inside" ? 7.0 : 20.0;
+  std::vector<Vector3d> v;
+  for (const Vector3d& d : pathViews()) v.push_back(radius * d.normalized());
+  return v;
+}
+
+void positionsBenchmark(benchmark::State& state, const std::string& keys, const std::string& where) {
+  const std::vector<Vector3d> eyes = dollyEyes(keys);
+  const std::vector<std::string> labels(eyes.size(), "key");
+  const vdg::KeySpace space = vdg::KeySpace::build(eyes, Vector3d::Zero(), {}, 0.0, labels);
+  const vdg::ViewSphere linear = vdg::ViewSphere::build(keySet(keys), vdg::ViewSphereSettings{});
+  const std::vector<Vector3d> views = eyePath(where);
+  const bool hinted = where != "random";
+  std::vector<float> dense(space.keyCount() + 1);
+  const auto positions = [&](const Vector3d& eye, int* h) {
+    return space.weights(eye, 1.0, dense, h) ? dense.back() : -1.0f;
+  };
+  int hint = -1;
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const float base = positions(views[i], hinted ? &hint : nullptr);
+    if (base < 0.0f) {
+      state.SkipWithError("weights refused its input (internal error)");
+      break;
+    }
+    benchmark::DoNotOptimize(base);
+    if (++i == views.size()) i = 0;
+  }
+  constexpr long kQueries = 200'000;
+  const double linear_s = secondsPerQuery(views, kQueries, hinted, [&](const Vector3d& v, int* h) {
+    vdg::ViewWeights r;
+    return linear.weights(v, 1.0, r, h) ? r.base : -1.0f;
+  });
+  const double positions_s = secondsPerQuery(views, kQueries, hinted, positions);
+  state.counters["keys"] = static_cast<double>(eyes.size());
+  state.counters["hull_faces"] = static_cast<double>(space.hullFaceCount());
+  state.counters["linear_cpu_ns"] = linear_s * 1e9;
+  state.counters["positions_cpu_ns"] = positions_s * 1e9;
+  state.counters["x_linear"] = positions_s / linear_s;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -200,6 +264,12 @@ int main(int argc, char** argv) {
         benchmark::RegisterBenchmark(name.c_str(),
                                      [=](benchmark::State& state) { schemeBenchmark(state, keys, path, scheme); });
       }
+  for (const char* keys : {"octahedron", "sphere200"})
+    for (const char* where : {"inside", "outside", "random"}) {
+      const std::string name = std::string("Positions/") + where + "/" + keys;
+      benchmark::RegisterBenchmark(name.c_str(),
+                                   [=](benchmark::State& state) { positionsBenchmark(state, keys, where); });
+    }
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();

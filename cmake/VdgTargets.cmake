@@ -41,7 +41,7 @@ function(_vdg_package_of dep out_find out_pc)
   elseif(dep STREQUAL "PkgConfig::LUA")  # script: Lua 5.4, whose pkg-config module is lua5.4
     set(pc lua5.4)
     set(find "find_dependency(PkgConfig)" "_vdg_find_pkg(LUA lua5.4)")
-  elseif(dep MATCHES "^PkgConfig::(EPOXY|STB|GMP|MPFR)$")  # GMP, MPFR: CGAL's exact numbers (morph)
+  elseif(dep MATCHES "^PkgConfig::(EPOXY|STB|GMP|MPFR)$")  # GMP, MPFR: CGAL's exact numbers (morph, viewdep's key space)
     string(TOLOWER "${CMAKE_MATCH_1}" pc)
     set(find "find_dependency(PkgConfig)" "_vdg_find_pkg(${CMAKE_MATCH_1} ${pc})")
   else()

@@ -89,6 +89,7 @@ struct Model {
 
 // ---- model.cpp ----
 py::dict modelWeights(const Model& m, py::handle view, py::handle sharpness, py::handle frame);
+py::dict modelWeightsFromEye(const Model& m, py::handle eye, py::handle sharpness, py::handle frame);
 py::tuple modelEvaluate(const Model& m, py::handle view, py::handle frame, py::handle sharpness);
 py::array_t<double> modelTimeCoefficients(const Model& m, py::handle view_index, py::handle frame);
 Eigen::Vector3d modelViewFromEye(const Model& m, py::handle eye);

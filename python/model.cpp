@@ -97,6 +97,14 @@ int evaluateFrame(const Model& m, py::handle frame) {
 
 }  // namespace
 
+// Keys at distances (vdg/viewdep/key_space.h) weigh eye positions; the module's views are directions.
+void requirePython(const ViewDependentModel& model) {
+  if (model.weightSpace() == WeightSpace::Positions)
+    throw py::value_error(
+        "the 'positions' weight space is not supported by the Python module: it weighs view directions and the "
+        "model weighs eye positions (use Model.weights_from_eye, or vdg eval --eye)");
+}
+
 double sharpnessArg(py::handle sharpness) {
   if (sharpness.is_none()) return 0.0;
   const double a = finiteNumber(sharpness, "sharpness");
@@ -140,10 +148,32 @@ py::dict modelWeights(const Model& m, py::handle view, py::handle sharpness, py:
   }
   if (at && *at != 0.0)
     throw py::value_error("frame: the model is not animated; frame applies to animated models only");
+  requirePython(*m.model);
   if (m.model->hasParts()) return partWeights(*m.model, v, a);
   py::dict keys = zeroKeys(m);
   std::vector<float> dense(m.model->keyCount() + 1);  // every scheme's weights, the rbf's over every key
   if (!m.model->denseWeights(v, a, dense)) refused("weights");
+  for (std::size_t k = 0; k < m.model->keyCount(); ++k)
+    if (dense[k] != 0.0f) keys[py::str(m.model->keyName(k))] = static_cast<double>(dense[k]);
+  py::dict out;
+  out["keys"] = keys;
+  out["base"] = static_cast<double>(dense.back());
+  return out;
+}
+
+// weights(view_from_eye(eye)); a positions model (keys at distances, key_space.h) weighs the eye
+// itself, as `vdg weights --eye`.
+py::dict modelWeightsFromEye(const Model& m, py::handle eye, py::handle sharpness, py::handle frame) {
+  if (!m.model || m.model->weightSpace() != WeightSpace::Positions)
+    return modelWeights(m, vectorArray(modelViewFromEye(m, eye)), sharpness, frame);
+  const Eigen::Vector3d e = vector3(eye, "eye");
+  const double a = sharpnessArg(sharpness);
+  if (!frame.is_none() && finiteNumber(frame, "frame") != 0.0)
+    throw py::value_error("frame: the model is not animated; frame applies to animated models only");
+  std::vector<float> dense(m.model->keyCount() + 1);
+  if (!m.model->denseWeightsAtEye(e, a, dense))
+    throw py::value_error("eye: the model centre lies outside the key eyes' hull and gives no view direction");
+  py::dict keys = zeroKeys(m);
   for (std::size_t k = 0; k < m.model->keyCount(); ++k)
     if (dense[k] != 0.0f) keys[py::str(m.model->keyName(k))] = static_cast<double>(dense[k]);
   py::dict out;
@@ -160,6 +190,7 @@ py::tuple modelEvaluate(const Model& m, py::handle view, py::handle frame, py::h
   py::array_t<float> positions({n, py::ssize_t{3}}), normals({n, py::ssize_t{3}});
   const std::span<float> p(positions.mutable_data(), static_cast<std::size_t>(3 * n));
   const std::span<float> q(normals.mutable_data(), static_cast<std::size_t>(3 * n));
+  if (m.model) requirePython(*m.model);
   bool ok = false;
   {
     // The evaluation touches no Python object: other Python threads run meanwhile.

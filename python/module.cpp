@@ -173,13 +173,10 @@ Static: {"keys": {name: w for every key}, "base": w}. Animated, frame None: {"vi
 "keys", "frames", "weight"}, ...], "base": w} (the key views with weight > 0); animated with a frame
 (any finite float): {"keys": {name: view weight x time coefficient}, "base": w}. sharpness None
 means the model's own. ValueError for a zero or non-finite view or a sharpness <= 0.)")
-      .def(
-          "weights_from_eye",
-          [](const Model& m, py::handle eye, py::handle sharpness, py::handle frame) {
-            return modelWeights(m, vectorArray(modelViewFromEye(m, eye)), sharpness, frame);
-          },
-          py::arg("eye"), py::arg("sharpness") = py::none(), py::arg("frame") = py::none(),
-          "weights(view_from_eye(eye), sharpness, frame).")
+      .def("weights_from_eye", &modelWeightsFromEye, py::arg("eye"), py::arg("sharpness") = py::none(),
+           py::arg("frame") = py::none(),
+           "weights(view_from_eye(eye), sharpness, frame); a 'positions' model (keys at distances) weighs the eye "
+           "itself, as `vdg weights --eye`.")
       .def("evaluate", &modelEvaluate, py::arg("view"), py::arg("frame") = py::none(),
            py::arg("sharpness") = py::none(),
            "(positions, normals), each (V, 3) float32: the blended mesh at a view (as `vdg eval`) and its "

@@ -24,6 +24,19 @@ std::string viewText(const Eigen::Vector3d& view) {
 
 // Blends a static model at `view` into `out` (the base's size) and returns its weights as text
 // (" NAME=W ... base=W"): every key the view weighs, all of them for the rbf scheme.
+// Blends a positions model at `eye` (key_space.h) into `out` and returns its weights as text.
+std::string evalEyeWeights(const ViewDependentModel& model, const Eigen::Vector3d& eye, double sharpness,
+                           TriMesh& out) {
+  std::vector<float> dense(model.keyCount() + 1);
+  if (!model.denseWeightsAtEye(eye, sharpness, dense) || !model.blendDense(dense, out.positions))
+    throw Error("eval: the model refused eye " + viewText(eye) +
+                " (the model centre lies outside the key eyes' hull and has no direction)");
+  std::string text;
+  for (std::size_t k = 0; k < model.keyCount(); ++k)
+    if (dense[k] != 0.0f) text += " " + model.keyName(k) + "=" + std::to_string(dense[k]);
+  return text + " base=" + std::to_string(dense.back());
+}
+
 std::string evalStaticWeights(const ViewDependentModel& model, const Eigen::Vector3d& view, double sharpness,
                               TriMesh& out) {
   const auto refused = [&] {
@@ -120,8 +133,17 @@ void addEvalCommand(CLI::App& app) {
         throw UsageError("--frame: " + quotedText(opt->model) +
                          " is not animated (no 'base_animation'); --frame applies to animated models only");
       const ViewDependentModel& model = *input.model;
-      const Eigen::Vector3d view = opt->view.resolve(model);
       out = model.base();
+      if (model.weightSpace() == WeightSpace::Positions) {
+        const Eigen::Vector3d eye = opt->view.resolveEye();
+        header += "\neye " + viewText(eye) + "\nweights:" + evalEyeWeights(model, eye, opt->view.sharpness, out);
+        writeObj(opt->output, out, header);
+        if (!opt->quiet)
+          std::printf("wrote %s (%zu vertices, %zu triangles)\n", opt->output.c_str(), out.vertexCount(),
+                      out.triangleCount());
+        return;
+      }
+      const Eigen::Vector3d view = opt->view.resolve(model);
       if (model.hasParts() || !opt->view.part_views.empty())
         header += "\nview " + viewText(view) +
                   evalPartWeights(model, opt->view.resolveParts(model, view), opt->view.sharpness, out);

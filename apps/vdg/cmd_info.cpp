@@ -305,7 +305,30 @@ std::string infoRbfSettingsText(const ViewSphere& sphere) {
 }
 
 // The graph repeats the paper's linear weights only (kInteractivitySchemeRefusal).
-bool linearWeights(const ViewDependentModel& model) { return model.sphere().settings().scheme == WeightScheme::Linear; }
+// A positions model has no graph either: the graph weighs view directions (key_space.h).
+bool linearWeights(const ViewDependentModel& model) {
+  return model.sphere().settings().scheme == WeightScheme::Linear && model.weightSpace() == WeightSpace::Directions;
+}
+
+// vdg info --json: "space", and for a positions model its tetrahedra, hull faces and falloff.
+void addSpaceFields(const ViewDependentModel& model, nlohmann::ordered_json& out) {
+  out["space"] = weightSpaceName(model.weightSpace());
+  if (const KeySpace* space = model.keySpace()) {
+    out["tetrahedra"] = space->tetrahedronCount();
+    out["hull_faces"] = space->hullFaceCount();
+    out["falloff"] = space->falloff();
+  }
+}
+
+// "directions", or "positions: T tetrahedra, F hull faces, D directions, falloff X" (key_space.h).
+std::string weightSpaceText(const ViewDependentModel& model) {
+  const KeySpace* space = model.keySpace();
+  if (!space) return "directions";
+  char buffer[160];
+  std::snprintf(buffer, sizeof(buffer), "positions: %zu tetrahedra, %zu hull faces, %zu directions, falloff %g",
+                space->tetrahedronCount(), space->hullFaceCount(), space->directionCount(), space->falloff());
+  return buffer;
+}
 nlohmann::ordered_json interactivityJson(const ViewDependentModel& model) {
   const InteractivitySize size = interactivityGraphSize(model);
   return {{"nodes", size.nodes}, {"declarations", size.declarations}, {"types", size.types}, {"ops", size.ops}};
@@ -674,6 +697,35 @@ void addWhereToKeyOptions(CLI::App& sub, SphereMapRequest& map, IntersectionRequ
   check_option->excludes(map_option);
 }
 
+// `vdg info FILE.gltf|glb`: the file's description (text), then, for a glTF vdg exported
+// (mesh.extras.vdg), whether the model's description should follow (true).
+bool describeGltfFile(const std::string& path, bool json) {
+  bool gltf_model = false;
+  try {
+    gltf_model = inputType(path).kind != InputKind::kMesh;
+  } catch (const Error&) {
+    // describeGltf reads it below; a file it describes but that is no model stays a description.
+  }
+  if (json && !gltf_model) throw UsageError("--json: only for models, not for glTF files");
+  if (json) return true;
+  std::fputs(describeGltf(path).c_str(), stdout);
+  printInteractivityOfFile(path);
+  // The default mesh's surface (a file without a mesh has none to describe).
+  std::optional<TriMesh> mesh;
+  std::vector<std::string> warnings;
+  try {
+    mesh = readMeshWarning(path, warnings);
+  } catch (const Error&) {
+  }
+  if (mesh) {
+    std::printf("default mesh: %zu vertices, %zu triangles\n", mesh->vertexCount(), mesh->triangleCount());
+    printSurface(*mesh);
+  }
+  if (!gltf_model) return false;
+  std::printf("\nview-dependent model (mesh.extras.vdg):\n");
+  return true;
+}
+
 }  // namespace
 
 void addInfoCommand(CLI::App& app) {
@@ -708,32 +760,7 @@ void addInfoCommand(CLI::App& app) {
       return;
     }
     // A glTF file vdg exported (mesh.extras.vdg) is described as a model too.
-    if (isGltfPath(opt->model)) {
-      bool gltf_model = false;
-      try {
-        gltf_model = inputType(opt->model).kind != InputKind::kMesh;
-      } catch (const Error&) {
-        // describeGltf reads it below; a file it describes but that is no model stays a description.
-      }
-      if (opt->json && !gltf_model) throw UsageError("--json: only for models, not for glTF files");
-      if (!opt->json) {
-        std::fputs(describeGltf(opt->model).c_str(), stdout);
-        printInteractivityOfFile(opt->model);
-        // The default mesh's surface (a file without a mesh has none to describe).
-        std::optional<TriMesh> mesh;
-        std::vector<std::string> warnings;
-        try {
-          mesh = readMeshWarning(opt->model, warnings);
-        } catch (const Error&) {
-        }
-        if (mesh) {
-          std::printf("default mesh: %zu vertices, %zu triangles\n", mesh->vertexCount(), mesh->triangleCount());
-          printSurface(*mesh);
-        }
-        if (!gltf_model) return;
-        std::printf("\nview-dependent model (mesh.extras.vdg):\n");
-      }
-    }
+    if (isGltfPath(opt->model) && !describeGltfFile(opt->model, opt->json)) return;
     // A model without keys has nothing to build yet: say how to make its first key.
     const RawViewDependentModel described = openModel(opt->model, {}, InputBuild::kRawOnly).raw;
     if (described.keys.empty()) {
@@ -761,6 +788,7 @@ void addInfoCommand(CLI::App& app) {
       out["export_targets"] = exportTargetsJson(model.keyCount(), 0);
       out["interactivity"] = linearWeights(model) ? interactivityJson(model) : nlohmann::ordered_json(nullptr);
       addShapeFields(model, out);
+      addSpaceFields(model, out);
       out["keys"] = nlohmann::ordered_json::array();
       for (std::size_t k = 0; k < model.keyCount(); ++k) {
         const auto& v = model.keyView(k);
@@ -780,6 +808,7 @@ void addInfoCommand(CLI::App& app) {
     std::printf("sharpness  %g\n", model.sharpness());
     std::printf("uncovered  %s\n", uncoveredName(sphere.settings().uncovered));
     std::printf("weights    %s%s\n", weightSchemeName(sphere.settings().scheme), infoRbfSettingsText(sphere).c_str());
+    std::printf("space      %s\n", weightSpaceText(model).c_str());
     std::printf("keys       %zu\n", model.keyCount());
     for (std::size_t k = 0; k < model.keyCount(); ++k) {
       const auto& v = model.keyView(k);
@@ -792,7 +821,7 @@ void addInfoCommand(CLI::App& app) {
     printExportTargets(model.keyCount(), 0);
     std::printf("graph      KHR_interactivity (vdg export --interactivity): %s\n",
                 linearWeights(model) ? interactivitySizeText(interactivityGraphSize(model)).c_str()
-                                     : "none (the graph weighs the linear scheme only)");
+                                     : "none (the graph weighs the linear scheme of view directions only)");
     for (const auto& w : warnings) std::printf("warning: %s\n", w.c_str());
   });
 }

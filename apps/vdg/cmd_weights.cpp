@@ -52,6 +52,11 @@ double floatDigits(float w) {
               std::to_string(view.z()) + " (internal error)");
 }
 
+[[noreturn]] void refusedEye(const Eigen::Vector3d& eye) {
+  throw Error("weights: the model refused eye " + std::to_string(eye.x()) + "," + std::to_string(eye.y()) + "," +
+              std::to_string(eye.z()) + " (the model centre, outside the key eyes' hull, has no view direction)");
+}
+
 nlohmann::ordered_json animatedJson(const AnimatedViewDependentModel& model, const ViewWeights& w) {
   nlohmann::ordered_json out;
   out["views"] = nlohmann::ordered_json::array();
@@ -78,6 +83,16 @@ nlohmann::ordered_json staticJson(const ViewDependentModel& model, std::span<con
     if (dense[k] > 0.0f) out["keys"][model.keyName(k)] = floatDigits(dense[k]);
   out["base"] = floatDigits(dense.back());
   return out;
+}
+
+void printStaticWeights(const ViewDependentModel& model, std::span<const float> dense, bool json) {
+  if (json) {
+    std::cout << staticJson(model, dense).dump() << "\n";
+    return;
+  }
+  for (std::size_t k = 0; k < model.keyCount(); ++k)
+    if (dense[k] > 0.0f) std::printf("  %-20s %.6f\n", model.keyName(k).c_str(), dense[k]);
+  std::printf("  %-20s %.6f\n", "(base)", dense.back());
 }
 
 void animatedWeights(const AnimatedViewDependentModel& model, const ViewOptions& options, bool json) {
@@ -129,7 +144,22 @@ void partWeights(const ViewDependentModel& model, const std::vector<Eigen::Vecto
   if (json) std::cout << out.dump() << "\n";
 }
 
+// A positions model (key_space.h): the --views file holds eyes.
+void batchEyeWeights(const ViewDependentModel& model, const std::string& path, double sharpness) {
+  nlohmann::ordered_json out = nlohmann::ordered_json::array();
+  int hint = -1;
+  std::vector<float> dense(model.keyCount() + 1);
+  for (const Eigen::Vector3d& eye :
+       parseEyeList(readFileLimited(path, "views file", kMaxJsonFileBytes), path + ": --views")) {
+    if (!model.denseWeightsAtEye(eye, sharpness, dense, &hint)) refusedEye(eye);
+    out.push_back(staticJson(model, dense));
+  }
+  std::cout << out.dump() << "\n";
+}
+
 void batchWeights(const OpenedInput& input, const std::string& path, double sharpness) {
+  if (input.model && input.model->weightSpace() == WeightSpace::Positions)
+    return batchEyeWeights(*input.model, path, sharpness);
   if (input.model) input.model->requireNoParts("vdg weights --views (give one --view per call)");
   const Eigen::Vector3d center = input.animated ? input.animated->center() : input.model->center();
   nlohmann::ordered_json out = nlohmann::ordered_json::array();
@@ -261,21 +291,22 @@ void addWeightsCommand(CLI::App& app) {
       return;
     }
     const ViewDependentModel& model = *input.model;
+    std::vector<float> dense(model.keyCount() + 1);
+    if (model.weightSpace() == WeightSpace::Positions) {
+      const Eigen::Vector3d eye = opt->view.resolveEye();
+      if (!model.denseWeightsAtEye(eye, opt->view.sharpness, dense)) refusedEye(eye);
+      if (!opt->json) std::printf("eye (%.6f, %.6f, %.6f)\n", eye.x(), eye.y(), eye.z());
+      printStaticWeights(model, dense, opt->json);
+      return;
+    }
     const Eigen::Vector3d view = opt->view.resolve(model);
     if (model.hasParts() || !opt->view.part_views.empty()) {
       partWeights(model, opt->view.resolveParts(model, view), opt->view.sharpness, opt->json);
       return;
     }
-    std::vector<float> dense(model.keyCount() + 1);
     if (!model.denseWeights(view, opt->view.sharpness, dense)) refused(view);  // a unit view; sharpness > 0
-    if (opt->json) {
-      std::cout << staticJson(model, dense).dump() << "\n";
-      return;
-    }
-    std::printf("view (%.6f, %.6f, %.6f)\n", view.x(), view.y(), view.z());
-    for (std::size_t k = 0; k < model.keyCount(); ++k)
-      if (dense[k] > 0.0f) std::printf("  %-20s %.6f\n", model.keyName(k).c_str(), dense[k]);
-    std::printf("  %-20s %.6f\n", "(base)", dense.back());
+    if (!opt->json) std::printf("view (%.6f, %.6f, %.6f)\n", view.x(), view.y(), view.z());
+    printStaticWeights(model, dense, opt->json);
   });
 }
 

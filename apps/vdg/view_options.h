@@ -53,6 +53,17 @@ struct ViewOptions {
 
   // The view direction; throws UsageError unless exactly one of --view / --eye was given.
   Eigen::Vector3d resolve(const ViewDependentModel& model) const { return resolve(model.center()); }
+  // The eye of a model weighed by eye positions ("weights": {"space": "positions"}): --eye only
+  // (a direction has no distance); throws UsageError for --view or neither.
+  Eigen::Vector3d resolveEye() const {
+    if (eye_text.empty())
+      throw UsageError(
+          "--eye X,Y,Z: the model weighs eye positions ('positions' space), so a --view direction "
+          "does not say where the camera is");
+    const Eigen::Vector3d eye = parseVec3(eye_text, "--eye");
+    if (!eye.allFinite()) throw UsageError("--eye: expected finite numbers, got " + quotedText(eye_text));
+    return eye;
+  }
   // The same for a model whose views are measured from `center` (an animated model's).
   Eigen::Vector3d resolve(const Eigen::Vector3d& center) const {
     if (view_text.empty() == eye_text.empty()) throw UsageError("give exactly one of --view X,Y,Z or --eye X,Y,Z");

@@ -4,8 +4,9 @@
 // from behind, horns raised from above.
 //
 // Usage: vdg_make_spot_example SPOT.obj OUT_DIR
-// Writes OUT_DIR/keys/*.obj and OUT_DIR/spot.vdg.json. Deterministic: the same input gives
-// byte-identical output (tests/examples checks the committed files against it).
+// Writes OUT_DIR/keys/*.obj, OUT_DIR/spot.vdg.json and OUT_DIR/spot-dolly.vdg.json (keys at
+// distances, docs/weights.md: the same five keys as wide shots, plus a front close-up). Deterministic: the same input
+// gives byte-identical output (tests/examples checks the committed files against it).
 //
 // Each edit is the paper's drag tool (Rademacher 99, 3.1.2) in 3D: the vertices within distance r
 // of a picked point move by delta * (1 - d/r)^2; or the same falloff applied to a scaling.
@@ -114,7 +115,31 @@ int main(int argc, char** argv) {
     });
     model.validate();
     vdg::saveManifest(out_dir + "/spot.vdg.json", model);
-    std::printf("wrote %s/spot.vdg.json and %zu keys\n", out_dir.c_str(), model.keys.size());
+    // Keys at distances: the five keys drawn from wide shots kWideDistance from the centre, and a
+    // front close-up at kCloseDistance. A close camera enlarges the snout and shrinks the ears
+    // (the dolly's perspective exaggeration); the close-up drawing tones the snout down and keeps
+    // the front key's flared ears a little larger, so the dolly in reads as the same cow.
+    constexpr double kWideDistance = 4.0, kCloseDistance = 1.6;
+    vdg::RawViewDependentModel dolly = model;
+    dolly.comment =
+        "Spot with keys at distances (docs/weights.md, 'Keys at distances'): the keys of spot.vdg.json as wide shots, "
+        "and a front close-up with its own distortion; weighed by the eye position";
+    dolly.key_space.space = vdg::WeightSpace::Positions;
+    const Eigen::Vector3d centre = model.resolvedCenter();
+    dolly.center = centre;
+    for (vdg::RawKey& key : dolly.keys) key.eye = centre + kWideDistance * key.view.normalized();
+    add_key("front-close", {0.0, 0.15, -1.0}, [&](vdg::TriMesh& m) {  // snout pulled in, ears flared
+      drag(m, {0.0, 0.30, -0.669}, 0.40, {0.0, 0.0, 0.14});
+      drag(m, left_ear, 0.30, {-0.28, 0.16, 0.0});
+      drag(m, right_ear, 0.30, {0.28, 0.16, 0.0});
+    });
+    vdg::RawKey close = model.keys.back();
+    close.eye = centre + kCloseDistance * close.view.normalized();
+    dolly.keys.push_back(std::move(close));
+    dolly.resolveViews();
+    dolly.validate();
+    vdg::saveManifest(out_dir + "/spot-dolly.vdg.json", dolly);
+    std::printf("wrote %s/spot.vdg.json, spot-dolly.vdg.json and %zu keys\n", out_dir.c_str(), dolly.keys.size());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "make_spot_example: error: %s\n", e.what());
     return 1;

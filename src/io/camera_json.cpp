@@ -97,4 +97,23 @@ std::vector<Eigen::Vector3d> parseViewList(const std::string& text, const std::s
   return views;
 }
 
+std::vector<Eigen::Vector3d> parseEyeList(const std::string& text, const std::string& where) {
+  const io::Json doc = io::parseJson(text, where);
+  const io::Ctx top{where, ""};
+  if (!doc.is_array()) top.fail("expected an array of eyes {\"eye\": [x, y, z]}, got " + io::describe(doc));
+  std::vector<Eigen::Vector3d> eyes;
+  eyes.reserve(doc.size());
+  for (std::size_t i = 0; i < doc.size(); ++i) {
+    const io::Ctx ctx = top.index(i);
+    const io::Json& item = doc[i];
+    if (!item.is_object() || !item.contains("eye"))
+      ctx.fail("the model weighs eye positions ('positions' space): expected {\"eye\": [x, y, z]}, not a direction");
+    io::allowKeys(item, ctx, {"eye"});
+    const Eigen::Vector3d eye = io::vector3(item.at("eye"), ctx.key("eye"));
+    if (!eye.allFinite()) ctx.key("eye").fail("expected finite numbers");
+    eyes.push_back(eye);
+  }
+  return eyes;
+}
+
 }  // namespace vdg

@@ -920,6 +920,7 @@ void appendU32(std::string& out, std::uint32_t x) {
 
 GltfExportInput gltfExportInput(const ViewDependentModel& model) {
   model.requireNoParts("the glTF export (vdg export, bake, view, the Python module and the Blender add-on)");
+  model.requireViewDirections("the glTF export (its runtimes blend the keys of one direction's hull triangle)");
   GltfExportInput in;
   in.base = model.base();
   const std::size_t n = in.base.positions.size();

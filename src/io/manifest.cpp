@@ -316,7 +316,20 @@ RawViewDependentModel parseManifest(const std::string& text, const std::string& 
     const Json& weights = doc.at("weights");
     const Ctx ctx = top.key("weights");
     if (!weights.is_object()) ctx.fail("expected an object {\"scheme\": \"linear\" | \"smooth\" | \"rbf\", ...}");
-    io::allowKeys(weights, ctx, {"scheme", "kernel", "width"});
+    io::allowKeys(weights, ctx, {"scheme", "kernel", "width", "space", "falloff"});
+    for (const char* v4 : {"space", "falloff"})
+      if (weights.contains(v4) && version < 4)
+        ctx.key(v4).fail("needs manifest version 4 (this file says \"version\": " + std::to_string(version) + ")");
+    if (weights.contains("space"))
+      model.key_space.space = io::enumValue(weights.at("space"), ctx.key("space"), io::kWeightSpaceNames);
+    if (weights.contains("falloff")) {
+      if (model.key_space.space != WeightSpace::Positions)
+        ctx.key("falloff").fail("is a setting of the 'positions' space only");
+      model.key_space.falloff = io::number(weights.at("falloff"), ctx.key("falloff"));
+      if (!(model.key_space.falloff > 0.0))
+        ctx.key("falloff").fail("expected a distance > 0 (model units; leave it out for the automatic one), got " +
+                                std::to_string(model.key_space.falloff));
+    }
     if (weights.contains("scheme"))
       model.sphere.scheme = io::enumValue(weights.at("scheme"), ctx.key("scheme"), io::kWeightSchemeNames);
     for (const char* rbf_only : {"kernel", "width"})
@@ -340,7 +353,7 @@ RawViewDependentModel parseManifest(const std::string& text, const std::string& 
   for (std::size_t k = 0; k < keys.size(); ++k) {
     const Json& entry = keys[k];
     Ctx ctx = top.key("keys").index(k);
-    io::allowKeys(entry, ctx, {"name", "mesh", "view", "camera", "frame"});
+    io::allowKeys(entry, ctx, {"name", "mesh", "view", "camera", "eye", "frame"});
     RawKey key;
     key.mesh_path = io::string(io::required(entry, "mesh", ctx), ctx.key("mesh"));
     if (key.mesh_path.empty()) ctx.key("mesh").fail("expected a mesh file name, got an empty string");
@@ -352,8 +365,13 @@ RawViewDependentModel parseManifest(const std::string& text, const std::string& 
       key.frame = static_cast<int>(
           io::integer(entry.at("frame"), ctx.key("frame"), 0, static_cast<std::int64_t>(kMaxBaseFrames) - 1));
     }
-    const bool has_view = entry.contains("view"), has_camera = entry.contains("camera");
-    if (has_view == has_camera) ctx.fail("give exactly one of 'view' [x, y, z] or 'camera' {eye, target, ...}");
+    const bool has_view = entry.contains("view"), has_camera = entry.contains("camera"),
+               has_eye = entry.contains("eye");
+    if (int(has_view) + int(has_camera) + int(has_eye) != 1)
+      ctx.fail("give exactly one of 'view' [x, y, z], 'eye' [x, y, z] or 'camera' {eye, target, ...}");
+    if (has_eye && version < 4)
+      ctx.key("eye").fail("needs manifest version 4 (this file says \"version\": " + std::to_string(version) + ")");
+    if (has_eye) key.eye = io::vector3(entry.at("eye"), ctx.key("eye"));
     if (has_view) key.view = io::vector3(entry.at("view"), ctx.key("view"));
     if (has_camera) key.camera = io::cameraFrom(entry.at("camera"), ctx.key("camera"));
     model.keys.push_back(std::move(key));
@@ -415,7 +433,10 @@ nlohmann::ordered_json partsJson(const std::vector<RawPart>& parts) {
 std::string formatManifest(const RawViewDependentModel& model) {
   nlohmann::ordered_json doc;
   // The oldest version that holds the model, so that older vdgs still read linear models.
-  doc["version"] = !model.parts.empty() ? 4 : model.sphere.scheme == WeightScheme::Linear ? 2 : 3;
+  const bool needs_v4 =
+      !model.parts.empty() || model.key_space.space == WeightSpace::Positions ||
+      std::any_of(model.keys.begin(), model.keys.end(), [](const RawKey& k) { return k.eye.has_value(); });
+  doc["version"] = needs_v4 ? 4 : model.sphere.scheme == WeightScheme::Linear ? 2 : 3;
   if (!model.comment.empty()) doc["comment"] = model.comment;
   if (model.base_animation) {
     const BaseAnimationSpec& spec = *model.base_animation;
@@ -445,6 +466,10 @@ std::string formatManifest(const RawViewDependentModel& model) {
     doc["weights"]["kernel"] = rbfKernelName(model.sphere.rbf_kernel);
     doc["weights"]["width"] = model.sphere.rbf_width_deg;
   }
+  if (model.key_space.space == WeightSpace::Positions) {
+    doc["weights"]["space"] = weightSpaceName(model.key_space.space);
+    if (model.key_space.falloff > 0.0) doc["weights"]["falloff"] = model.key_space.falloff;
+  }
   nlohmann::ordered_json keys = nlohmann::ordered_json::array();
   for (const RawKey& key : model.keys) {
     nlohmann::ordered_json entry;
@@ -453,6 +478,8 @@ std::string formatManifest(const RawViewDependentModel& model) {
     if (model.base_animation) entry["frame"] = key.frame;
     if (key.camera)
       entry["camera"] = io::cameraJson(*key.camera);
+    else if (key.eye)
+      entry["eye"] = {key.eye->x(), key.eye->y(), key.eye->z()};
     else
       entry["view"] = {key.view.x(), key.view.y(), key.view.z()};
     keys.push_back(std::move(entry));

@@ -18,6 +18,9 @@ inline constexpr std::pair<const char*, Uncovered> kUncoveredNames[] = {
 inline constexpr std::pair<const char*, WeightScheme> kWeightSchemeNames[] = {
     {"linear", WeightScheme::Linear}, {"smooth", WeightScheme::Smooth}, {"rbf", WeightScheme::Rbf}};
 
+// "weights": {"space": ...}: where keys are located (vdg/viewdep/key_space.h).
+inline constexpr std::pair<const char*, WeightSpace> kWeightSpaceNames[] = {{"directions", WeightSpace::Directions},
+                                                                            {"positions", WeightSpace::Positions}};
 // "weights": {"kernel": ...}: the rbf scheme's radial kernel (view_sphere.h, "Weight schemes").
 inline constexpr std::pair<const char*, RbfKernel> kRbfKernelNames[] = {
     {"gaussian", RbfKernel::Gaussian},

@@ -203,6 +203,7 @@ struct ModelRenderer::Impl {
 
 ModelRenderer::ModelRenderer(const ViewDependentModel& model, const FrameOptions& options) {
   model.requireNoParts("the renderer (vdg render, studio)");
+  model.requireViewDirections("the renderer (vdg render, studio)");
   if (options.gpu_blend) model.requireThreeKeyWeights("the GPU blend (--gpu-blend; the CPU blend evaluates it)");
   checkSize(options.width, options.height, "image size");
   const int image_width = options.observer ? options.width * 2 : options.width;

@@ -269,7 +269,12 @@ struct SceneRenderer::Impl {
         continue;
       }
       if (const auto* m = scene.model(node)) {
-        if (has_view)
+        Eigen::Vector3d local_eye;  // keys at distances weigh the eye position (key_space.h)
+        if (has_view && m->weightSpace() == WeightSpace::Positions)
+          check(scene.instanceEye(node, st, camera.eye, local_eye) &&
+                    m->evaluateAtEye(local_eye, st.sharpness, obj.local),
+                "evaluate");
+        else if (has_view)
           check(m->evaluate(dir, st.sharpness, obj.local), "evaluate");
         else
           std::copy(m->base().positions.begin(), m->base().positions.end(), obj.local.begin());

@@ -776,4 +776,16 @@ bool Scene::instanceView(int node, const NodeState& state, const Eigen::Vector3d
   return true;
 }
 
+bool Scene::instanceEye(int node, const NodeState& state, const Eigen::Vector3d& eye, Eigen::Vector3d& out) const {
+  if (node < 0 || node >= nodeCount() || !eye.allFinite()) return false;
+  if (impl_->nodes[static_cast<std::size_t>(node)].kind != ObjectKind::kModel) return false;
+  Eigen::Matrix3d inverse;
+  Eigen::Vector3d translation;
+  if (!invertAffine(state.object, inverse, translation)) return false;
+  const Eigen::Vector3d local = inverse * (eye - translation);
+  if (!local.allFinite()) return false;
+  out = local;
+  return true;
+}
+
 }  // namespace vdg::scene

@@ -76,6 +76,7 @@ CameraPathBake bakeCameras(std::span<const Camera> cameras, double fps, double a
 CameraPathBake bakeCameraPath(const ViewDependentModel& model, std::span<const Camera> cameras, double fps,
                               double aspect, double sharpness, bool close_loop) {
   model.requireNoParts("the camera-path bake (vdg bake)");
+  model.requireViewDirections("the camera bake (vdg bake; its glTF weighs view directions)");
   const std::size_t keys = model.keyCount();
   const bool rbf = model.sphere().settings().scheme == WeightScheme::Rbf;
   std::vector<float> dense(rbf ? keys + 1 : 0);  // the rbf scheme weighs every key

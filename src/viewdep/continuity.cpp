@@ -106,6 +106,7 @@ void walkCircle(const ViewDependentModel& model, const Vector3d& normal, const C
 
 ContinuityReport measureContinuity(const ViewDependentModel& model, const ContinuitySettings& s) {
   model.requireNoParts("the continuity figures (vdg weights --continuity)");
+  model.requireViewDirections("the continuity measure (it walks great circles of view directions)");
   if (!(s.step_deg > 0.0 && s.step_deg <= 10.0))
     throw Error("continuity: the step must be in (0, 10] degrees, got " + std::to_string(s.step_deg));
   if (s.circles < 1 || s.circles > 10000)

@@ -26,6 +26,7 @@ void copyFloats(const float* from, float* to, std::size_t n) {
 ModelEvaluator::ModelEvaluator(const ViewDependentModel& model)
     : model_(&model), positions_(model.base().positions), normals_(model.base_normals_) {
   model.requireNoParts("the per-frame evaluator (ModelEvaluator)");
+  model.requireViewDirections("the per-frame evaluator (ModelEvaluator)");
   if (model.sphere().settings().scheme == WeightScheme::Rbf) dense_.resize(model.keyCount() + 1);
   weights_.base = 1.0f;
 }

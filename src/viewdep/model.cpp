@@ -187,8 +187,8 @@ Eigen::Vector3d RawViewDependentModel::resolvedCenter() const {
 void RawViewDependentModel::resolveViews() {
   const Eigen::Vector3d c = resolvedCenter();
   for (RawKey& key : keys) {
-    if (!key.camera) continue;
-    const Eigen::Vector3d d = key.camera->eye - c;
+    if (!key.camera && !key.eye) continue;
+    const Eigen::Vector3d d = *key.eyePosition() - c;
     // Zero or non-finite differences stay as they are, for validate() to report.
     key.view = normalizedOrNone(d).value_or(d);
   }
@@ -197,6 +197,25 @@ void RawViewDependentModel::resolveViews() {
 void RawViewDependentModel::validate() const { validateRaw(*this, true); }
 
 namespace {
+
+// "weights": {"space": "positions"} (vdg/viewdep/key_space.h): every key has an eye; KeySpace::build
+// finds coinciding eyes and coplanar eye sets, naming the keys.
+void validatePositions(const RawViewDependentModel& raw) {
+  if (raw.sphere.scheme != WeightScheme::Linear)
+    throw Error(raw.where() + ": the 'positions' weight space takes the 'linear' scheme only, got '" +
+                weightSchemeName(raw.sphere.scheme) + "'");
+  if (raw.keys.size() > kMaxPositionKeys)
+    throw Error(raw.where() + ": " + std::to_string(raw.keys.size()) +
+                " keys; the 'positions' weight space takes at most " + std::to_string(kMaxPositionKeys));
+  if (!(raw.key_space.falloff >= 0.0) || !std::isfinite(raw.key_space.falloff))
+    throw Error(raw.where() + ": 'weights': 'falloff' must be a finite distance >= 0 (0: automatic), got " +
+                std::to_string(raw.key_space.falloff));
+  for (std::size_t k = 0; k < raw.keys.size(); ++k)
+    if (!raw.keys[k].eyePosition())
+      throw Error(keyLabel(raw, k) +
+                  ": the 'positions' weight space needs the key's eye (a 'camera' or an 'eye'), "
+                  "not a 'view' direction");
+}
 
 void validateRaw(const RawViewDependentModel& raw, bool check_view_pairs) {
   const std::string& base_path = raw.base_path;
@@ -266,7 +285,18 @@ void validateRaw(const RawViewDependentModel& raw, bool check_view_pairs) {
   }
   detail::validateParts(raw, check_view_pairs);  // parts.cpp; refuses parts on an animated base
   if (raw.animated()) {
+    if (raw.key_space.space == WeightSpace::Positions)
+      throw Error(raw.where() +
+                  ": the 'positions' weight space is not supported for an animated base "
+                  "(use \"space\": \"directions\")");
     validateAnimatedKeys(raw);
+    return;
+  }
+  if (raw.key_space.space == WeightSpace::Positions) {
+    if (!raw.parts.empty())
+      throw Error(raw.where() + ": model parts ('parts') and the 'positions' weight space cannot be combined yet "
+                                "(each part weighs a view direction)");
+    validatePositions(raw);  // keys may share a direction at different distances
     return;
   }
   if (!check_view_pairs || !raw.parts.empty()) return;  // with parts, views may repeat across parts
@@ -300,7 +330,14 @@ ViewDependentModel ViewDependentModel::build(const RawViewDependentModel& raw) {
   }
   if (raw.parts.empty()) {  // with parts, each part has a sphere of its own (buildParts)
     try {
-      model.sphere_ = ViewSphere::build(views, raw.sphere, labels);
+      if (raw.key_space.space == WeightSpace::Positions) {
+        std::vector<Eigen::Vector3d> eyes;
+        for (const RawKey& key : raw.keys) eyes.push_back(*key.eyePosition());  // validateRaw checked them
+        model.key_space_ = KeySpace::build(eyes, model.center_, raw.sphere, raw.key_space.falloff, labels);
+        model.sphere_ = model.key_space_->sphere();
+      } else {
+        model.sphere_ = ViewSphere::build(views, raw.sphere, labels);
+      }
     } catch (const Error& e) {
       throw Error(raw.where() + ": " + e.what());
     }
@@ -443,7 +480,7 @@ std::size_t ViewDependentModel::keyMovedCount(std::size_t key) const {
 }
 
 bool ViewDependentModel::weights(const Eigen::Vector3d& view, double sharpness, ViewWeights& out, int* hint) const {
-  if (!std::isfinite(sharpness) || !parts_.empty()) return false;
+  if (!std::isfinite(sharpness) || !parts_.empty() || key_space_) return false;  // parts and eyes weigh otherwise
   return sphere_.weights(view, sharpness > 0.0 ? sharpness : sharpness_, out, hint);
 }
 
@@ -528,7 +565,7 @@ bool ViewDependentModel::blend(const ViewWeights& w, std::span<float> out) const
 
 bool ViewDependentModel::denseWeights(const Eigen::Vector3d& view, double sharpness, std::span<float> out,
                                       int* hint) const {
-  if (!std::isfinite(sharpness) || !parts_.empty()) return false;
+  if (!std::isfinite(sharpness) || !parts_.empty() || key_space_) return false;  // parts and eyes weigh otherwise
   return sphere_.denseWeights(view, sharpness > 0.0 ? sharpness : sharpness_, out, hint);
 }
 
@@ -554,8 +591,43 @@ bool ViewDependentModel::blendDense(std::span<const float> weights, std::span<fl
   return true;
 }
 
+bool ViewDependentModel::denseWeightsAtEye(const Eigen::Vector3d& eye, double sharpness, std::span<float> out,
+                                           int* hint) const {
+  if (!std::isfinite(sharpness)) return false;
+  if (key_space_) return key_space_->weights(eye, sharpness > 0.0 ? sharpness : sharpness_, out, hint);
+  const Eigen::Vector3d view = viewFromEye(eye);
+  return !view.isZero() && denseWeights(view, sharpness, out, hint);
+}
+
+bool ViewDependentModel::evaluateAtEye(const Eigen::Vector3d& eye, double sharpness, std::span<float> out_positions,
+                                       std::span<float> out_normals, int* hint) const {
+  if (!key_space_ && keys_.size() > ViewSphere::kRbfMaxKeys) {  // a three-key scheme (rbf has <= 256 keys)
+    const Eigen::Vector3d view = viewFromEye(eye);
+    return !view.isZero() && evaluate(view, sharpness, out_positions, out_normals, hint);
+  }
+  if (out_positions.size() != base_.positions.size()) return false;
+  if (!out_normals.empty() && out_normals.size() != base_.positions.size()) return false;
+  static_assert(kMaxPositionKeys <= ViewSphere::kRbfMaxKeys);
+  std::array<float, ViewSphere::kRbfMaxKeys + 1> buffer;
+  const std::span<float> dense(buffer.data(), keys_.size() + 1);
+  int local_hint = hint ? *hint : -1;
+  if (!denseWeightsAtEye(eye, sharpness, dense, &local_hint)) return false;
+  if (!blendDense(dense, out_positions)) return false;  // cannot fail: the weights come from this model
+  if (!out_normals.empty() && !computeVertexNormals(surface_, out_positions, out_normals)) return false;
+  if (hint) *hint = local_hint;
+  return true;
+}
+
+void ViewDependentModel::requireViewDirections(const std::string& where) const {
+  if (!key_space_) return;
+  throw Error("the 'positions' weight space is not supported by " + where +
+              ": it weighs view directions and a positions model weighs eye positions (vdg weights, eval and run "
+              "and Python's weights_from_eye evaluate it)");
+}
+
 void ViewDependentModel::requireThreeKeyWeights(const std::string& where) const {
   requireNoParts(where);
+  requireViewDirections(where);
   if (sphere_.settings().scheme != WeightScheme::Rbf) return;
   throw Error("the 'rbf' weight scheme is not supported by " + where +
               ": it blends at most three keys per view and rbf weighs every key (use 'linear' or 'smooth' there; "

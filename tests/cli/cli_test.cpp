@@ -1,12 +1,14 @@
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
+#include <Eigen/Core>
 #include <algorithm>
 #include <array>
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "support/test_meshes.h"
@@ -126,6 +128,70 @@ TEST(Cli, WeightSchemesAndContinuity) {
   EXPECT_NE(graph.err.find("--interactivity: the graph weighs the keys with the linear scheme only"), std::string::npos)
       << graph.err;
   EXPECT_FALSE(std::filesystem::exists(dir.file("s.glb")));
+}
+
+// Keys at distances (docs/weights.md, "Keys at distances"): spot-dolly's front close-up and front
+// wide shot share a direction; the eye decides. Exact at both eyes, linear in between (inside the
+// hull), the wide key far out along the direction; --view, render and export refuse in one line.
+TEST(Cli, KeysAtDistances) {
+  const std::string dolly = "examples/spot/spot-dolly.vdg.json";
+  const auto model = nlohmann::json::parse(vdg::testing::readText(std::string(VDG_SOURCE_DIR "/") + dolly));
+  const auto eye = [&](const std::string& key) {
+    for (const auto& k : model["keys"])
+      if (k["name"] == key) return Eigen::Vector3d(k["eye"][0], k["eye"][1], k["eye"][2]);
+    ADD_FAILURE() << key;
+    return Eigen::Vector3d::Zero().eval();
+  };
+  const auto arg = [](const Eigen::Vector3d& e) {
+    char buffer[96];
+    std::snprintf(buffer, sizeof(buffer), "%.17g,%.17g,%.17g", e.x(), e.y(), e.z());
+    return std::string(buffer);
+  };
+  const Eigen::Vector3d wide = eye("front"), close = eye("front-close");
+  for (const auto& [name, at] : {std::pair{"front", wide}, std::pair{"front-close", close}}) {
+    const Result r = run("weights " + dolly + " --eye " + arg(at) + " --json");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NEAR(nlohmann::json::parse(r.out)["keys"][name].get<double>(), 1.0, 1e-6) << r.out;
+  }
+  const Result mid = run("weights " + dolly + " --eye " + arg(0.5 * (wide + close)) + " --json");
+  ASSERT_EQ(mid.code, 0) << mid.err;
+  const auto m = nlohmann::json::parse(mid.out);
+  EXPECT_NEAR(m["keys"]["front"].get<double>(), 0.5, 1e-5) << mid.out;
+  EXPECT_NEAR(m["keys"]["front-close"].get<double>(), 0.5, 1e-5) << mid.out;
+  const Eigen::Vector3d c(model["center"][0], model["center"][1], model["center"][2]);
+  const auto far =
+      nlohmann::json::parse(run("weights " + dolly + " --eye " + arg(c + 50.0 * (wide - c)) + " --json").out);
+  EXPECT_NEAR(far["keys"]["front"].get<double>(), 1.0, 1e-5) << far.dump();
+  EXPECT_FALSE(far["keys"].contains("front-close")) << far.dump();
+  // --views with eyes gives the same weights as --eye, one item each.
+  vdg::testing::TempDir dir;
+  vdg::testing::writeText(dir.file("eyes.json"),
+                          "[{\"eye\": [" + arg(close) + "]}, {\"eye\": [" + arg(0.5 * (wide + close)) + "]}]");
+  const auto batch = nlohmann::json::parse(run("weights " + dolly + " --views " + dir.file("eyes.json")).out);
+  ASSERT_EQ(batch.size(), 2u);
+  EXPECT_EQ(batch[1], m);
+  vdg::testing::writeText(dir.file("views.json"), "[[0, 0, -1]]");
+  const Result direction_list = run("weights " + dolly + " --views " + dir.file("views.json"));
+  EXPECT_EQ(direction_list.code, 1);
+  EXPECT_NE(direction_list.err.find("expected {\"eye\": [x, y, z]}, not a direction"), std::string::npos)
+      << direction_list.err;
+  const Result eval = run("eval " + dolly + " --eye " + arg(close) + " -q -o " + dir.file("close.obj"));
+  ASSERT_EQ(eval.code, 0) << eval.err;
+  EXPECT_NE(vdg::testing::readText(dir.file("close.obj")).find("weights: front-close=1.000000 base=0.000000"),
+            std::string::npos);
+  const Result info = run("info " + dolly);
+  EXPECT_NE(info.out.find("space      positions: "), std::string::npos) << info.out;
+  EXPECT_NE(run("info " + kSpot).out.find("space      directions"), std::string::npos);
+  const Result view = run("weights " + dolly + " --view 0,0,-1");
+  EXPECT_EQ(view.code, 2);
+  EXPECT_NE(view.err.find("--eye X,Y,Z: the model weighs eye positions"), std::string::npos) << view.err;
+  for (const std::string& refused :
+       {"render " + dolly + " -o " + dir.file("d.png"), "export " + dolly + " -q -o " + dir.file("d.glb")}) {
+    const Result r = run(refused);
+    EXPECT_EQ(r.code, 1) << refused;
+    EXPECT_NE(r.err.find("the 'positions' weight space is not supported by "), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "one line: " << r.err;
+  }
 }
 
 // The rbf weight scheme (docs/weights.md): every key weighs, exact at the keys, the example's
@@ -364,8 +430,8 @@ TEST(Examples, SpotExampleIsReproducible) {
   vdg::testing::TempDir dir;
   const Result r = run("examples/spot/spot.obj '" + dir.path().string() + "'", VDG_MAKE_SPOT_EXAMPLE);
   ASSERT_EQ(r.code, 0) << r.err;
-  for (const char* file :
-       {"spot.vdg.json", "keys/front.obj", "keys/left.obj", "keys/right.obj", "keys/back.obj", "keys/top.obj"}) {
+  for (const char* file : {"spot.vdg.json", "keys/front.obj", "keys/left.obj", "keys/right.obj", "keys/back.obj",
+                           "keys/top.obj", "spot-dolly.vdg.json", "keys/front-close.obj"}) {
     EXPECT_EQ(vdg::testing::readText(dir.file(file)),
               vdg::testing::readText(std::string(VDG_SOURCE_DIR "/examples/spot/") + file))
         << file << " differs from what make_spot_example writes";

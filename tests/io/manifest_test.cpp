@@ -138,6 +138,18 @@ TEST_F(ManifestTest, EveryValidationErrorNamesTheFileAndTheKey) {
        "'frame' needs an animated base model"},
       {R"({"version": 4294967297, "base": "base.obj", "keys": []})",
        "m.vdg.json: 'version': this vdg reads model manifests versions 1 to 4, got 4294967297"},
+      {R"({"version": 3, "base": "base.obj", "weights": {"space": "positions"}, "keys": []})",
+       "'weights'.'space': needs manifest version 4"},
+      {R"({"version": 3, "base": "base.obj", "keys": [{"mesh": "a.obj", "eye": [0,0,3]}]})",
+       "key 'a' (keys[0]).'eye': needs manifest version 4"},
+      {R"({"version": 4, "base": "base.obj", "weights": {"space": "distances"}, "keys": []})",
+       "'space': unknown value 'distances'"},
+      {R"({"version": 4, "base": "base.obj", "weights": {"falloff": 2}, "keys": []})",
+       "'falloff': is a setting of the 'positions' space only"},
+      {R"({"version": 4, "base": "base.obj", "keys": [{"mesh": "a.obj", "eye": [0,0,3], "view": [0,0,1]}]})",
+       "give exactly one of 'view' [x, y, z], 'eye' [x, y, z] or 'camera'"},
+      {R"({"version": 4, "base": "base.obj", "weights": {"space": "positions"}, "keys": [{"mesh": "a.obj", "eye": [0,0,3]}, {"mesh": "b.obj", "view": [0,1,0]}]})",
+       "key 'b' (keys[1]): the 'positions' weight space needs the key's eye (a 'camera' or an 'eye')"},
       {"{\"version\": " + std::string(70'000, '[') + std::string(70'000, ']') + "}",
        "m.vdg.json: JSON nested deeper than 64 levels"},
       {R"({"version": 1, "base": "", "keys": []})", "m.vdg.json: 'base': expected a mesh file name"},
@@ -222,6 +234,58 @@ TEST_F(ManifestTest, PartsLoadSaveAndRefuseBadInput) {
   EXPECT_NE(loadError(manifest(R"([{"name": "p", "select": {"vertices": [0]}, "keys": ["a", "b"]}])"))
                 .find("part 'p' (parts[0]): key 'b' has the same view direction as key 'a'"),
             std::string::npos);
+}
+
+// Keys at distances (manifest version 4): a close-up and a wide shot from one direction, by "eye"
+// and by "camera"; the model builds, saves as version 4 and loads back the same.
+TEST_F(ManifestTest, PositionsSpaceLoadsSavesAndBuilds) {
+  TriMesh c = base_, d = base_;
+  c.positions[7] += 0.5f;
+  d.positions[10] -= 0.5f;
+  writeObj(dir_.file("c.obj"), c);
+  writeObj(dir_.file("d.obj"), d);
+  const std::string path = write(R"({
+    "version": 4, "base": "base.obj", "center": [0, 0, 0], "weights": {"space": "positions", "falloff": 2.5},
+    "keys": [
+      {"name": "wide", "mesh": "a.obj", "eye": [0, 0, 8]},
+      {"name": "close", "mesh": "b.obj", "camera": {"eye": [0, 0, 3], "target": [0, 0, 0], "fov_deg": 40}},
+      {"name": "left", "mesh": "c.obj", "eye": [-6, 0, 4]},
+      {"name": "top", "mesh": "d.obj", "eye": [0, 6, 4]}
+    ]})");
+  const RawViewDependentModel raw = loadManifest(path);
+  EXPECT_EQ(raw.key_space.space, WeightSpace::Positions);
+  EXPECT_DOUBLE_EQ(raw.key_space.falloff, 2.5);
+  ASSERT_TRUE(raw.keys[0].eye.has_value());
+  EXPECT_NEAR((raw.keys[0].view - Vector3d::UnitZ()).norm(), 0.0, 1e-12);
+  const ViewDependentModel model = ViewDependentModel::build(raw);
+  EXPECT_EQ(model.weightSpace(), WeightSpace::Positions);
+  EXPECT_EQ(model.keySpace()->directionCount(), 3u);  // wide and close share +z
+  saveManifest(dir_.file("copy.vdg.json"), raw);
+  EXPECT_NE(testing::readText(dir_.file("copy.vdg.json")).find("\"version\": 4"), std::string::npos);
+  const RawViewDependentModel back = loadManifest(dir_.file("copy.vdg.json"));
+  EXPECT_EQ(back.key_space.space, WeightSpace::Positions);
+  EXPECT_DOUBLE_EQ(back.key_space.falloff, 2.5);
+  ASSERT_TRUE(back.keys[0].eye.has_value());
+  EXPECT_EQ(*back.keys[0].eye, *raw.keys[0].eye);
+  ASSERT_TRUE(back.keys[1].camera.has_value());
+  // Three eyes in a plane are no tetrahedron: build() refuses, naming the space.
+  RawViewDependentModel flat = raw;
+  flat.keys.pop_back();
+  try {
+    (void)ViewDependentModel::build(flat);
+    ADD_FAILURE() << "expected a refusal";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("at least 4 keys"), std::string::npos) << e.what();
+  }
+}
+
+// A directions model saves as before (version 2 for the linear scheme, no "space").
+TEST_F(ManifestTest, DirectionsModelsSaveAsBefore) {
+  const RawViewDependentModel raw = loadManifest(write(kGood));
+  saveManifest(dir_.file("copy.vdg.json"), raw);
+  const std::string text = testing::readText(dir_.file("copy.vdg.json"));
+  EXPECT_NE(text.find("\"version\": 2"), std::string::npos) << text;
+  EXPECT_EQ(text.find("space"), std::string::npos) << text;
 }
 
 TEST_F(ManifestTest, AModelWithoutKeysLoadsButDoesNotBuild) {

@@ -231,3 +231,17 @@ def test_no_crash_on_odd_arguments(models: dict[str, vdg.Model]) -> None:
                     call(model, arg)
                 except (ValueError, TypeError, vdg.Error):
                     pass
+
+
+def test_positions_space_is_refused_in_one_line() -> None:
+    """Keys at distances (docs/weights.md) weigh eye positions; the module's views are directions."""
+    model = vdg.load(EXAMPLES / "spot" / "spot-dolly.vdg.json")
+    for call in (lambda: model.weights([0, 0.15, -1]), lambda: model.evaluate([0, 0.15, -1])):
+        with pytest.raises(ValueError, match="the 'positions' weight space is not supported by the Python module") as e:
+            call()
+        assert "\n" not in str(e.value)
+    # weights_from_eye weighs the eye itself: exact at the close-up's eye, as vdg weights --eye.
+    close = [0.0, 0.34577573612676116, -1.392252658827176]
+    w = model.weights_from_eye(close)
+    assert w["keys"]["front-close"] == pytest.approx(1.0, abs=1e-6)
+    assert sum(w["keys"].values()) + w["base"] == pytest.approx(1.0, abs=1e-5)

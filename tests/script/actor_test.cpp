@@ -10,6 +10,8 @@
 #include <cstring>
 
 #include "script/script_fixtures.h"
+#include "vdg/geom/camera.h"
+#include "vdg/viewdep/model.h"
 
 namespace vdg {
 namespace {
@@ -337,6 +339,51 @@ TEST(Actors, TheBounceExampleKeepsTheBallsVolumeAndSquashesAtImpacts) {
   }
   EXPECT_GE(squashed_frames, 3);  // several impacts squash the ball
   EXPECT_GE(floor_flashes, 2);    // and the floor was told of them
+}
+
+}  // namespace
+}  // namespace vdg
+
+namespace vdg {
+namespace {
+
+// Keys at distances in a scene (examples/spot/dolly.lua, docs/weights.md): the camera flies from
+// beyond the wide front key in to the close-up's eye; the instance's eye (Scene::instanceEye, in
+// the model's frame) weighs the model, so the weights move from the wide key to the close-up
+// without a jump and end on the close-up alone.
+TEST(Actors, TheDollyExampleTurnsTheWideKeyIntoTheCloseUp) {
+  constexpr double kWeightTol = 1e-5;
+  constexpr double kMaxFrameChange = 0.25;  // 25 frames from wide to close: no frame takes a pop
+  const std::string path = std::string(VDG_SOURCE_DIR) + "/examples/spot/dolly.lua";
+  script::ScriptOptions options;
+  options.print = [](std::string_view) {};
+  const script::Shot shot = script::runScript(path, options);
+  const auto s = build(shot);
+  const int cow = s.findNode("spot");
+  ASSERT_GE(cow, 0);
+  const ViewDependentModel* model = s.model(cow);
+  ASSERT_NE(model, nullptr);
+  ASSERT_EQ(model->weightSpace(), WeightSpace::Positions);
+  std::size_t front = 0, close = 0;
+  for (std::size_t k = 0; k < model->keyCount(); ++k) {
+    if (model->keyName(k) == "front") front = k;
+    if (model->keyName(k) == "front-close") close = k;
+  }
+  std::vector<float> w(model->keyCount() + 1), previous;
+  for (int f = shot.renders[0].first_frame; f <= shot.renders[0].last_frame; ++f) {
+    const auto st = statesAt(s, f);
+    Camera camera;
+    ASSERT_TRUE(s.camera(f, st, camera));
+    Eigen::Vector3d eye;
+    ASSERT_TRUE(s.instanceEye(cow, st[static_cast<std::size_t>(cow)], camera.eye, eye));
+    ASSERT_TRUE(model->denseWeightsAtEye(eye, 0.0, w)) << "frame " << f;
+    for (std::size_t k = 0; k < previous.size(); ++k) {
+      EXPECT_LT(std::abs(w[k] - previous[k]), kMaxFrameChange) << "frame " << f;
+    }
+    previous = w;
+  }
+  EXPECT_NEAR(w[close], 1.0, kWeightTol);  // the last frame is at the close-up's eye
+  EXPECT_EQ(w[front], 0.0f);
 }
 
 }  // namespace

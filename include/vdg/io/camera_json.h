@@ -34,5 +34,9 @@ void writeCameraFile(const std::string& path, const Camera& camera);
 // at the centre (and a too-long or too-deep document, as every vdg JSON reader).
 std::vector<Eigen::Vector3d> parseViewList(const std::string& text, const std::string& where,
                                            const Eigen::Vector3d& center);
+// The same list for a model weighed by eye positions ("weights": {"space": "positions"}): every
+// item must be {"eye": [x, y, z]} (finite); returns the eyes. A direction item is refused naming
+// it (a direction has no distance).
+std::vector<Eigen::Vector3d> parseEyeList(const std::string& text, const std::string& where);
 
 }  // namespace vdg

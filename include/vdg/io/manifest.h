@@ -14,9 +14,11 @@ namespace vdg {
 // {"scheme": "linear" | "smooth" | "rbf"}, the rbf scheme with "kernel" and "width" (degrees),
 // issue 29), version 4 per-part key sets ("parts": [{"name", "select": {"vertices" | "material" |
 // "weights"}, "border", "keys", "view"}], issue 29; a "weights" mask is a list or a text file of
-// one number per vertex, relative to the manifest); older files load unchanged, and saveManifest
-// writes the oldest version that holds the model (2 for the linear scheme, 3 for another scheme,
-// 4 with parts).
+// one number per vertex, relative to the manifest) and keys at distances ("weights": {"space":
+// "directions" | "positions", "falloff": model units} and a key's plain "eye" [x, y, z];
+// vdg/viewdep/key_space.h); older files load unchanged, and saveManifest writes the oldest version
+// that holds the model (2 for the linear scheme, 3 for another scheme, 4 with parts, the positions
+// space or a key given by "eye").
 inline constexpr int kManifestVersion = 4;
 
 // Parses a manifest's text into a raw model WITHOUT reading any mesh: base_path and every key's

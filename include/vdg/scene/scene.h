@@ -224,6 +224,12 @@ class Scene {
   // non-invertible object transform, an eye at the centre or not finite.
   [[nodiscard]] bool instanceView(int node, const NodeState& state, const Eigen::Vector3d& eye,
                                   Eigen::Vector3d& out) const;
+  // The eye position for model node `node` seen from world point `eye`: O^-1 eye in object
+  // coordinates, as ViewDependentModel::evaluateAtEye takes it (keys at distances,
+  // vdg/viewdep/key_space.h). Violations: not a model node, a non-invertible transform, a
+  // non-finite eye.
+  [[nodiscard]] bool instanceEye(int node, const NodeState& state, const Eigen::Vector3d& eye,
+                                 Eigen::Vector3d& out) const;
 
  private:
   Scene() = default;  // only build() makes a Scene, so every Scene has its data

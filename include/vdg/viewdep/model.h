@@ -23,6 +23,7 @@
 #include "vdg/geom/camera.h"
 #include "vdg/geom/surface.h"
 #include "vdg/geom/tri_mesh.h"
+#include "vdg/viewdep/key_space.h"
 #include "vdg/viewdep/view_sphere.h"
 
 namespace vdg {
@@ -32,6 +33,9 @@ namespace vdg {
 // triangle search (linear in the hull's ~2n triangles) stay fast, and that the keys' meshes are
 // what limits memory. validate() rejects more; the manifest reader refuses more before reading.
 inline constexpr std::size_t kMaxKeys = 100'000;
+// Most keys of a model weighed in the 'positions' space: every query writes one weight per key (on
+// the stack in evaluate()) and an eye outside the keys' hull tests every hull face.
+inline constexpr std::size_t kMaxPositionKeys = 256;
 
 // Animated bases (Rademacher 99, section 4): most frames a base animation may have, and most key
 // frames one key view may have (its time spline keeps an m x m table of exact cardinal
@@ -71,6 +75,11 @@ struct RawKey {
   // normalize(camera.eye - centre) and is filled in by resolveViews().
   Eigen::Vector3d view = Eigen::Vector3d::Zero();
   std::optional<Camera> camera;  // the aligned key camera, when the key was made from a drawing
+  // A plain eye position (model space) instead of a camera (the manifest's "eye"); view then is
+  // normalize(eye - centre), filled in by resolveViews(). At most one of camera and eye is set.
+  std::optional<Eigen::Vector3d> eye;
+  // The key's eye: camera->eye, else `eye`, else none (a key given by its direction alone).
+  std::optional<Eigen::Vector3d> eyePosition() const { return camera ? std::optional(camera->eye) : eye; }
   // Frame of the base animation this key deforms: 0 for a static base; in [0, frameCount()) for
   // an animated one. Keys with the same view and different frames share one viewing-sphere point.
   int frame = 0;
@@ -118,6 +127,10 @@ struct RawViewDependentModel {
   std::vector<RawKey> keys;
   double sharpness = 1.0;  // alpha of section 3.2.2, finite and > 0 (see view_sphere.h)
   ViewSphereSettings sphere;
+  // "weights": {"space": ...}: directions (the paper's viewing sphere) or positions (key eyes in
+  // 3D, vdg/viewdep/key_space.h). Positions need every key's eye, a static base, the linear scheme
+  // and at most kMaxPositionKeys keys; validate() refuses otherwise, naming the key.
+  KeySpaceSettings key_space;
   std::optional<Eigen::Vector3d> center;  // default: the base's bounding-box centre
 
   // Animated base (section 4.1). Without base_animation the model is static: base_frames and
@@ -225,7 +238,9 @@ class ViewDependentModel {
 
   // Weights of a view direction into `out`. sharpness <= 0 means "the model's own"; `hint` as in
   // ViewSphere::weights (-1 or a triangle index of sphere()). Violations: a zero or non-finite
-  // view, a non-finite sharpness, a hint out of range, an rbf model (use denseWeights()).
+  // view, a non-finite sharpness, a hint out of range, an rbf model (use denseWeights()), a
+  // positions model (its weights need the eye: denseWeightsAtEye()). denseWeights() and evaluate()
+  // refuse a positions model too.
   [[nodiscard]] bool weights(const Eigen::Vector3d& view, double sharpness, ViewWeights& out,
                              int* hint = nullptr) const;
   // Blended positions for `w` into `out_positions` (#V x 3). Violations: out_positions.size() !=
@@ -240,9 +255,10 @@ class ViewDependentModel {
   // (#V x 3): base + sum_k w_k (key_k - base), section 3.2.3 over every key. Violations: sizes
   // other than stated, a non-finite weight.
   [[nodiscard]] bool blendDense(std::span<const float> weights, std::span<float> out_positions) const;
-  // Throws vdg::Error "the 'rbf' weight scheme is not supported by WHERE ..." for an rbf model:
-  // the callers that blend at most three keys per view (ViewWeights) refuse it with this line.
-  // A model with parts is refused first, by requireNoParts(where).
+  // Throws vdg::Error "model parts ('parts') are not supported by WHERE ..." for a model with
+  // parts, "the 'positions' weight space is not supported by WHERE ..." for a positions model and
+  // "the 'rbf' weight scheme is not supported by WHERE ..." for an rbf model: the callers that
+  // blend at most three keys per view (ViewWeights) refuse them with this line.
   void requireThreeKeyWeights(const std::string& where) const;
   // Throws vdg::Error "model parts ('parts') are not supported by WHERE ..." for a model with
   // parts: the callers that weigh one key set for the whole mesh refuse it with this line.
@@ -286,6 +302,20 @@ class ViewDependentModel {
   // partViews(view); its hint is left as it is.
   [[nodiscard]] bool evaluateParts(std::span<const Eigen::Vector3d> views, double sharpness,
                                    std::span<float> out_positions, std::span<float> out_normals = {}) const;
+  // Throws vdg::Error "the 'positions' weight space is not supported by WHERE ..." for a positions
+  // model: for callers that weigh a view DIRECTION (any scheme) but have no eye position.
+  void requireViewDirections(const std::string& where) const;
+
+  // Keys at distances ("weights": {"space": "positions"}; vdg/viewdep/key_space.h).
+  WeightSpace weightSpace() const { return key_space_ ? WeightSpace::Positions : WeightSpace::Directions; }
+  // The key space of a positions model; nullptr for a directions model.
+  const KeySpace* keySpace() const { return key_space_ ? &*key_space_ : nullptr; }
+  // Weights of an eye POSITION (model space): keyCount() + 1 floats, the base last. A positions
+  // model weighs the eye in its key space (hint: a tetrahedron index); a directions model weighs
+  // viewFromEye(eye) on its sphere (hint: a triangle index). Same contract as denseWeights();
+  // a further violation: an eye at the centre (no direction) where the model needs a direction.
+  [[nodiscard]] bool denseWeightsAtEye(const Eigen::Vector3d& eye, double sharpness, std::span<float> out,
+                                       int* hint = nullptr) const;
   // Positions of key `key` (its full mesh) into `out_positions` (#V x 3). Violations: key >=
   // keyCount(), out_positions.size() != 3 * vertexCount().
   [[nodiscard]] bool keyPositions(std::size_t key, std::span<float> out_positions) const;
@@ -294,12 +324,17 @@ class ViewDependentModel {
   // out_normals neither empty nor 3 * vertexCount() floats.
   [[nodiscard]] bool evaluate(const Eigen::Vector3d& view, double sharpness, std::span<float> out_positions,
                               std::span<float> out_normals = {}, int* hint = nullptr) const;
+  // denseWeightsAtEye + blendDense + normals, as evaluate(); any weight space, any scheme (the
+  // weights on the stack: the rbf and positions models have at most 256 keys; a directions model
+  // with more keys and a three-key scheme blends its ViewWeights).
+  [[nodiscard]] bool evaluateAtEye(const Eigen::Vector3d& eye, double sharpness, std::span<float> out_positions,
+                                   std::span<float> out_normals = {}, int* hint = nullptr) const;
 
  private:
   struct Key {
     std::string name;
-    Eigen::Vector3d view = Eigen::Vector3d::Zero();  // unit
     std::optional<Camera> camera;
+    Eigen::Vector3d view = Eigen::Vector3d::Zero();  // unit: keyView()
     std::size_t moved_count = 0;
     std::vector<std::uint32_t> indices;  // sparse: moved vertex indices (empty when dense)
     std::vector<float> deltas;           // sparse: moved_count x 3; dense: #V x 3
@@ -334,7 +369,8 @@ class ViewDependentModel {
   TriMesh base_;
   SurfaceTopology surface_;
   std::vector<Key> keys_;
-  ViewSphere sphere_;
+  ViewSphere sphere_;  // positions models: the key space's sphere of direction groups
+  std::optional<KeySpace> key_space_;
   Eigen::Vector3d center_ = Eigen::Vector3d::Zero();
   double sharpness_ = 1.0;
   Bounds extent_;
