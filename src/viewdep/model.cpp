@@ -294,8 +294,9 @@ void validateRaw(const RawViewDependentModel& raw, bool check_view_pairs) {
   }
   if (raw.key_space.space == WeightSpace::Positions) {
     if (!raw.parts.empty())
-      throw Error(raw.where() + ": model parts ('parts') and the 'positions' weight space cannot be combined yet "
-                                "(each part weighs a view direction)");
+      throw Error(raw.where() +
+                  ": model parts ('parts') and the 'positions' weight space cannot be combined yet "
+                  "(each part weighs a view direction)");
     validatePositions(raw);  // keys may share a direction at different distances
     return;
   }
