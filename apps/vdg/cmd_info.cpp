@@ -348,6 +348,18 @@ void printInteractivityOfFile(const std::string& path) {
 // "  (FILE)" after a key read from a mesh file; nothing for a key stored in a glTF model.
 std::string meshNote(const std::string& mesh_path) { return mesh_path.empty() ? "" : "  (" + mesh_path + ")"; }
 
+// A static model's keys for --json: name, mesh file, unit view and moved vertices of each.
+nlohmann::ordered_json keysJson(const ViewDependentModel& model, const RawViewDependentModel& raw) {
+  nlohmann::ordered_json keys = nlohmann::ordered_json::array();
+  for (std::size_t k = 0; k < model.keyCount(); ++k) {
+    const auto& v = model.keyView(k);
+    keys.push_back({{"name", model.keyName(k)},
+                    {"mesh", raw.keys[k].mesh_path},
+                    {"view", {v.x(), v.y(), v.z()}},
+                    {"moved_vertices", model.keyMovedCount(k)}});
+  }
+  return keys;
+}
 // vdg info on a model with parts (per-part key sets, docs/weights.md): the keys, then each part's
 // vertices, keys and driving view. Nothing is exported (the glTF extras weigh one key set).
 void describeParts(const std::string& path, const RawViewDependentModel& raw, const ViewDependentModel& model,
@@ -363,14 +375,7 @@ void describeParts(const std::string& path, const RawViewDependentModel& raw, co
     out["weights"] = weightSchemeName(raw.sphere.scheme);
     out["export_targets"] = nullptr;
     addShapeFields(model, out);
-    out["keys"] = nlohmann::ordered_json::array();
-    for (std::size_t k = 0; k < model.keyCount(); ++k) {
-      const auto& v = model.keyView(k);
-      out["keys"].push_back({{"name", model.keyName(k)},
-                             {"mesh", raw.keys[k].mesh_path},
-                             {"view", {v.x(), v.y(), v.z()}},
-                             {"moved_vertices", model.keyMovedCount(k)}});
-    }
+    out["keys"] = keysJson(model, raw);
     out["parts"] = nlohmann::ordered_json::array();
     for (std::size_t p = 0; p < model.partCount(); ++p) {
       nlohmann::ordered_json keys = nlohmann::ordered_json::array();
@@ -789,14 +794,7 @@ void addInfoCommand(CLI::App& app) {
       out["interactivity"] = linearWeights(model) ? interactivityJson(model) : nlohmann::ordered_json(nullptr);
       addShapeFields(model, out);
       addSpaceFields(model, out);
-      out["keys"] = nlohmann::ordered_json::array();
-      for (std::size_t k = 0; k < model.keyCount(); ++k) {
-        const auto& v = model.keyView(k);
-        out["keys"].push_back({{"name", model.keyName(k)},
-                               {"mesh", raw.keys[k].mesh_path},
-                               {"view", {v.x(), v.y(), v.z()}},
-                               {"moved_vertices", model.keyMovedCount(k)}});
-      }
+      out["keys"] = keysJson(model, raw);
       printWithSphereFields(sphere, warnings, out);
       return;
     }
