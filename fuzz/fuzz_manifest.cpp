@@ -45,7 +45,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     int hint = -1;
     for (const Eigen::Vector3d& view :
          {Eigen::Vector3d(0, 0, 1), Eigen::Vector3d(0.3, -0.4, 0.5), Eigen::Vector3d(-1, 1e-9, 0)}) {
-      fuzz::require(model.evaluate(view.normalized(), 0.0, positions, normals, &hint), "evaluate refused a unit view");
+      // A positions model (keys at distances) weighs eye positions, never directions.
+      const bool ok =
+          model.weightSpace() == WeightSpace::Positions
+              ? model.evaluateAtEye(model.center() + 5.0 * view.normalized(), 0.0, positions, normals, &hint)
+              : model.evaluate(view.normalized(), 0.0, positions, normals, &hint);
+      fuzz::require(ok, "evaluate refused a unit view (or an eye off the centre)");
       for (float p : positions) fuzz::require(std::isfinite(p), "evaluate gave a non-finite position");
     }
   });
