@@ -137,6 +137,18 @@ py::dict partWeights(const ViewDependentModel& model, const Eigen::Vector3d& vie
   return out;
 }
 
+// {"keys": {name: weight, ...}, "base": weight} of a static model's dense weights (every key, the
+// base last): every key listed, as zeroKeys() does, with the non-zero weights filled in.
+py::dict denseWeightsDict(const Model& m, std::span<const float> dense) {
+  py::dict keys = zeroKeys(m);
+  for (std::size_t k = 0; k < m.model->keyCount(); ++k)
+    if (dense[k] != 0.0f) keys[py::str(m.model->keyName(k))] = static_cast<double>(dense[k]);
+  py::dict out;
+  out["keys"] = keys;
+  out["base"] = static_cast<double>(dense.back());
+  return out;
+}
+
 py::dict modelWeights(const Model& m, py::handle view, py::handle sharpness, py::handle frame) {
   const Eigen::Vector3d v = viewVector(view, "view");
   const double a = sharpnessArg(sharpness);
@@ -150,15 +162,9 @@ py::dict modelWeights(const Model& m, py::handle view, py::handle sharpness, py:
     throw py::value_error("frame: the model is not animated; frame applies to animated models only");
   requirePython(*m.model);
   if (m.model->hasParts()) return partWeights(*m.model, v, a);
-  py::dict keys = zeroKeys(m);
   std::vector<float> dense(m.model->keyCount() + 1);  // every scheme's weights, the rbf's over every key
   if (!m.model->denseWeights(v, a, dense)) refused("weights");
-  for (std::size_t k = 0; k < m.model->keyCount(); ++k)
-    if (dense[k] != 0.0f) keys[py::str(m.model->keyName(k))] = static_cast<double>(dense[k]);
-  py::dict out;
-  out["keys"] = keys;
-  out["base"] = static_cast<double>(dense.back());
-  return out;
+  return denseWeightsDict(m, dense);
 }
 
 // weights(view_from_eye(eye)); a positions model (keys at distances, key_space.h) weighs the eye
@@ -173,13 +179,7 @@ py::dict modelWeightsFromEye(const Model& m, py::handle eye, py::handle sharpnes
   std::vector<float> dense(m.model->keyCount() + 1);
   if (!m.model->denseWeightsAtEye(e, a, dense))
     throw py::value_error("eye: the model centre lies outside the key eyes' hull and gives no view direction");
-  py::dict keys = zeroKeys(m);
-  for (std::size_t k = 0; k < m.model->keyCount(); ++k)
-    if (dense[k] != 0.0f) keys[py::str(m.model->keyName(k))] = static_cast<double>(dense[k]);
-  py::dict out;
-  out["keys"] = keys;
-  out["base"] = static_cast<double>(dense.back());
-  return out;
+  return denseWeightsDict(m, dense);
 }
 
 py::tuple modelEvaluate(const Model& m, py::handle view, py::handle frame, py::handle sharpness) {
