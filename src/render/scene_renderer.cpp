@@ -3,6 +3,7 @@
 #include "vdg/render/scene_renderer.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -79,6 +80,7 @@ struct SceneRenderer::Impl {
   std::vector<int> object_of_node;  // index into objects, -1 for groups and cameras
   std::vector<Object> objects;
   std::vector<scene::NodeState> states;
+  std::array<Eigen::Vector3d, kMaxParts + 1> part_views;  // a model with parts (and its rest): each part's view
   Camera auto_camera;
   bool has_auto_camera = false;
   int drawn = 0;
@@ -273,6 +275,10 @@ struct SceneRenderer::Impl {
         if (has_view && m->weightSpace() == WeightSpace::Positions)
           check(scene.instanceEye(node, st, camera.eye, local_eye) &&
                     m->evaluateAtEye(local_eye, st.sharpness, obj.local),
+                "evaluate");
+        else if (has_view && m->hasParts())  // each part at its own view (driven by a node or the camera)
+          check(scene.instancePartViews(node, frame, states, camera.eye, {part_views.data(), m->partCount()}) &&
+                    m->evaluateParts({part_views.data(), m->partCount()}, st.sharpness, obj.local),
                 "evaluate");
         else if (has_view)
           check(m->evaluate(dir, st.sharpness, obj.local), "evaluate");

@@ -216,6 +216,8 @@ struct BuiltScene {
   std::vector<Action> actions;  // grouped by (node, field), order given within a group
   std::vector<std::optional<anim::CameraPath>> paths;
   std::vector<int> look_at;  // per node: -1 or the node looked at
+  // Per node: empty, or (a model with part drivers) per part of its model the driving node or -1.
+  std::vector<std::vector<int>> part_driver;
   std::map<std::string, int, std::less<>> by_name;
   int camera = -1;
 
@@ -422,6 +424,39 @@ void linkCameras(const RawScene& raw, const std::string& where, const NodeNames&
   }
 }
 
+// Part drivers (once every name is known): each names a part of the node's model and a node.
+void linkPartDrivers(const RawScene& raw, const std::string& where, const NodeNames& by_name,
+                     detail::BuiltScene* impl) {
+  const std::size_t n = raw.nodes.size();
+  if (impl) impl->part_driver.assign(n, {});
+  for (std::size_t i = 0; i < n; ++i) {
+    const RawNode& node = raw.nodes[i];
+    if (node.part_drivers.empty()) continue;
+    const std::string label = nodeLabel(where, node, i) + ": part driver";
+    const ViewDependentModel* model =
+        node.kind == ObjectKind::kModel ? raw.models[static_cast<std::size_t>(node.object)].get() : nullptr;
+    if (!model || !model->hasParts()) {
+      throw Error(label + ": the node holds no view-dependent model with parts ('parts' in its manifest)");
+    }
+    std::vector<int> drivers(model->partCount(), -1);
+    for (const RawPartDriver& d : node.part_drivers) {
+      std::size_t part = 0;
+      while (part < model->partCount() && model->partName(part) != d.part) ++part;
+      if (part == model->partCount()) {
+        std::string names;
+        for (std::size_t p = 0; p < model->partCount(); ++p) names += (p ? ", " : "") + model->partName(p);
+        throw Error(label + " '" + d.part + "': the model has no such part (its parts: " + names + ")");
+      }
+      if (drivers[part] >= 0) throw Error(label + " '" + d.part + "': the part has two drivers");
+      const auto it = by_name.find(d.node);
+      if (it == by_name.end()) throw Error(label + " '" + d.part + "': '" + d.node + "' names no node");
+      if (it->second == static_cast<int>(i)) throw Error(label + " '" + d.part + "': names the model node itself");
+      drivers[part] = it->second;
+    }
+    if (impl) impl->part_driver[i] = std::move(drivers);
+  }
+}
+
 // The node that a track or an action (`what`: "track 3", "action 0") names, after checking that the
 // node exists and the field is one vdg knows.
 const RawNode& namedNode(const RawScene& raw, int node, Field field, const std::string& what,
@@ -584,6 +619,7 @@ void validateAndBuild(const RawScene& raw, const std::string& where, detail::Bui
   NodeNames by_name;
   for (std::size_t i = 0; i < raw.nodes.size(); ++i) checkNode(raw, i, where, by_name);
   linkCameras(raw, where, by_name, impl);
+  linkPartDrivers(raw, where, by_name, impl);
   TrackSlots track_of(raw.nodes.size());
   for (auto& t : track_of) t.fill(-1);
   if (impl) impl->tracks.reserve(raw.tracks.size());
@@ -706,6 +742,19 @@ bool Scene::fieldValue(int node, Field field, double frame, std::span<double> ou
   return true;
 }
 
+namespace {
+// A camera path's camera at `frame`, carried from the node's coordinates into the world by `world`.
+bool pathCamera(const anim::CameraPath& path, double frame, const Eigen::Matrix4d& world, Camera& out) {
+  if (!path.evaluate(frame, out)) return false;
+  const Eigen::Matrix3d linear = world.topLeftCorner<3, 3>();
+  const Eigen::Vector3d origin = world.topRightCorner<3, 1>();
+  out.eye = linear * out.eye + origin;
+  out.target = linear * out.target + origin;
+  out.up = linear * out.up;
+  return true;
+}
+}  // namespace
+
 bool Scene::camera(double frame, std::span<const NodeState> states, Camera& out) const {
   const Impl& s = *impl_;
   if (s.camera < 0 || states.size() != s.nodes.size() || !std::isfinite(frame)) return false;
@@ -721,10 +770,10 @@ bool Scene::camera(double frame, std::span<const NodeState> states, Camera& out)
   Eigen::Vector3d eye, target, up;
   if (s.paths[cam]) {
     Camera local;
-    if (!s.paths[cam]->evaluate(frame, local)) return false;
-    eye = linear * local.eye + origin;
-    target = linear * local.target + origin;
-    up = linear * local.up;
+    if (!pathCamera(*s.paths[cam], frame, st.world, local)) return false;
+    eye = local.eye;
+    target = local.target;
+    up = local.up;
   } else {
     const auto forward = normalizedOrNone(Eigen::Vector3d(linear * Eigen::Vector3d(0, 0, -1)));
     if (!forward) return false;
@@ -785,6 +834,40 @@ bool Scene::instanceEye(int node, const NodeState& state, const Eigen::Vector3d&
   const Eigen::Vector3d local = inverse * (eye - translation);
   if (!local.allFinite()) return false;
   out = local;
+  return true;
+}
+
+bool Scene::driverEye(int node, double frame, std::span<const NodeState> states, Eigen::Vector3d& out) const {
+  const Impl& s = *impl_;
+  if (node < 0 || node >= nodeCount() || states.size() != s.nodes.size() || !std::isfinite(frame)) return false;
+  const auto n = static_cast<std::size_t>(node);
+  Eigen::Vector3d eye = states[n].world.topRightCorner<3, 1>();
+  if (s.paths[n]) {
+    Camera local;
+    if (!pathCamera(*s.paths[n], frame, states[n].world, local)) return false;
+    eye = local.eye;
+  }
+  if (!eye.allFinite()) return false;
+  out = eye;
+  return true;
+}
+
+bool Scene::instancePartViews(int node, double frame, std::span<const NodeState> states, const Eigen::Vector3d& eye,
+                              std::span<Eigen::Vector3d> out) const {
+  const Impl& s = *impl_;
+  if (node < 0 || node >= nodeCount() || states.size() != s.nodes.size()) return false;
+  const auto n = static_cast<std::size_t>(node);
+  const ViewDependentModel* m = model(node);
+  if (!m || !m->hasParts() || out.size() != m->partCount()) return false;
+  Eigen::Vector3d main;
+  if (!instanceView(node, states[n], eye, main) || !m->partViews(main, out)) return false;
+  const std::vector<int>& drivers = s.part_driver[n];
+  for (std::size_t p = 0; p < drivers.size(); ++p) {
+    if (drivers[p] < 0) continue;
+    Eigen::Vector3d driver_eye;
+    if (!driverEye(drivers[p], frame, states, driver_eye) || !instanceView(node, states[n], driver_eye, out[p]))
+      return false;
+  }
   return true;
 }
 

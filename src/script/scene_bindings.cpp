@@ -208,6 +208,11 @@ struct NodeSpec {
   double sharpness = 0, frame_offset = 0;
   double fov = 40, ortho = 0;
   int look_at = -1;
+  // Part drivers (vdg.node's part_drivers = {PART = node, ...}): part names (alive while the table
+  // is on the stack) and driving nodes.
+  int driver_count = 0;
+  Text driver_part[kMaxParts + 1];  // at most every part and the rest
+  int driver_node[kMaxParts + 1] = {};
   // Camera path, slots on the stack (0: none).
   int path_points = 0, path_times = 0, path_tilt = 0;
   anim::CurveKind path_kind = anim::CurveKind::kCatmullRom;
@@ -306,12 +311,40 @@ void readPath(lua_State* L, int path, NodeSpec& spec) {
   }
 }
 
-const char* const kNodeKeys[] = {"name",      "object", "parent",  "translation", "rotation",     "scale",
-                                 "placement", "color",  "visible", "sharpness",   "frame_offset", nullptr};
+const char* const kNodeKeys[] = {"name",  "object",  "parent",    "translation",  "rotation",     "scale", "placement",
+                                 "color", "visible", "sharpness", "frame_offset", "part_drivers", nullptr};
 const char* const kGroupKeys[] = {"name", "parent", "translation", "rotation", "scale", "visible", nullptr};
 const char* const kCameraKeys[] = {"name",  "parent", "translation", "rotation", "fov",
                                    "ortho", "path",   "look_at",     nullptr};
 const char* const kPlacementKeys[] = {"translation", "rotation", "scale", nullptr};
+
+// part_drivers = {PART = node, ...} of vdg.node on a model with parts (Scene's "Part drivers").
+void readPartDrivers(lua_State* L, int table, const char* f, NodeSpec& spec) {
+  Context& ctx = contextOf(L);
+  const ViewDependentModel* model =
+      spec.kind == ObjectKind::kModel ? ctx.scene.models[static_cast<std::size_t>(spec.object)].get() : nullptr;
+  if (!model || !model->hasParts())
+    luaL_error(L, "%s: part_drivers: only a view-dependent model with parts ('parts' in its manifest) has part drivers",
+               f);
+  if (lua_type(L, table) != LUA_TTABLE) luaL_error(L, "%s: part_drivers: expected a table {PART = node, ...}", f);
+  lua_pushnil(L);
+  while (lua_next(L, table)) {
+    if (lua_type(L, -2) != LUA_TSTRING) luaL_error(L, "%s: part_drivers: expected part names as keys", f);
+    std::size_t size = 0;
+    const char* name = lua_tolstring(L, -2, &size);
+    std::size_t part = 0;
+    while (part < model->partCount() && model->partName(part) != std::string_view(name, size)) ++part;
+    if (part == model->partCount()) {
+      std::string names;
+      for (std::size_t p = 0; p < model->partCount(); ++p) names += (p ? ", " : "") + model->partName(p);
+      luaL_error(L, "%s: part_drivers: the model has no part '%s' (its parts: %s)", f, name, names.c_str());
+    }
+    const int node = checkNode(L, -1, f, "part_drivers");
+    spec.driver_part[spec.driver_count] = Text{name, size};  // the key lives in the table
+    spec.driver_node[spec.driver_count++] = node;
+    lua_pop(L, 1);
+  }
+}
 
 // Phase 1 of vdg.node / group / camera.
 void readNode(lua_State* L, ObjectKind kind, const char* f, NodeSpec& spec) {
@@ -373,6 +406,8 @@ void readNode(lua_State* L, ObjectKind kind, const char* f, NodeSpec& spec) {
       luaL_error(L, "%s: frame_offset: only animated models have a frame offset", f);
     checked(L, readNumber(L, v, &spec.frame_offset), f, "frame_offset");
   }
+  v = field(L, 1, "part_drivers");
+  if (!lua_isnil(L, v)) readPartDrivers(L, v, f, spec);
   if (kind == ObjectKind::kCamera) {
     v = field(L, 1, "fov");
     if (!lua_isnil(L, v)) checked(L, readFieldValue(L, v, Field::kFov, &spec.fov), f, "fov");
@@ -384,7 +419,8 @@ void readNode(lua_State* L, ObjectKind kind, const char* f, NodeSpec& spec) {
     v = field(L, 1, "path");
     if (!lua_isnil(L, v)) readPath(L, v, spec);
   }
-  charge(L, sizeof(scene::RawNode) + 256 + (spec.path_points ? 4096 + 64 * lua_rawlen(L, spec.path_points) : 0));
+  charge(L, sizeof(scene::RawNode) + 256 + 64 * static_cast<std::size_t>(spec.driver_count) +
+                (spec.path_points ? 4096 + 64 * lua_rawlen(L, spec.path_points) : 0));
 }
 
 anim::Quaternion quat(const double* wxyz) { return anim::Quaternion(wxyz[0], wxyz[1], wxyz[2], wxyz[3]); }
@@ -478,6 +514,9 @@ int makeNode(lua_State* L, ObjectKind kind, const char* f) {
         node.fov_deg = spec.fov;
         node.ortho_height = spec.ortho;
         if (spec.look_at >= 0) node.look_at = ctx.scene.nodes[static_cast<std::size_t>(spec.look_at)].name;
+        for (int d = 0; d < spec.driver_count; ++d)
+          node.part_drivers.push_back({std::string(spec.driver_part[d].view()),
+                                       ctx.scene.nodes[static_cast<std::size_t>(spec.driver_node[d])].name});
         if (spec.path_points) {
           node.path = buildPath(L, spec);
           (void)anim::CameraPath::build(*node.path, "path");  // its errors now, with the script line

@@ -126,6 +126,44 @@ TEST(SceneRender, AnInstanceIsBlendedForItsOwnViewInItsOwnFrame) {
   EXPECT_GT(compareImages(in_scene, unturned, kChannelTolerance).differing_fraction, kMaxDifferingFraction);
 }
 
+// Part drivers (scene.h): bumpyModel with its keys copied into a part "all" that covers every
+// vertex and holds the top view. Driven by a node at the camera's eye, the part follows the camera
+// and the picture is the plain model's; undriven, it keeps the top key's bump.
+TEST(SceneRender, APartDrivenByANodeAtTheEyeDrawsWhatTheCameraSees) {
+  RawViewDependentModel raw = bumpyModel();
+  RawPart all;
+  all.name = "all";
+  for (std::size_t v = 0; v < raw.base.vertexCount(); ++v) all.vertices.push_back(static_cast<std::int32_t>(v));
+  all.view = Eigen::Vector3d::UnitY();
+  for (std::size_t k = 0; k < 3; ++k) {
+    RawKey copy = raw.keys[k];
+    copy.name = "all-" + copy.name;
+    all.keys.push_back(copy.name);
+    raw.keys.push_back(copy);
+  }
+  raw.parts.push_back(all);
+  const auto parts_model = std::make_shared<const ViewDependentModel>(ViewDependentModel::build(raw));
+  const Eigen::Vector3d eye(0.4, 0.2, 5);
+  auto render = [&](bool parts, bool driven) {
+    scene::RawScene sc = sceneWithCamera(eye);
+    if (parts) sc.models.push_back(parts_model);
+    addInstance(sc, "ball", Eigen::Vector3d::Zero(), Eigen::Quaterniond::Identity());
+    scene::RawNode muse;
+    muse.name = "muse";
+    muse.link.translation = eye;
+    sc.nodes.push_back(muse);
+    if (driven) sc.nodes[2].part_drivers = {{"all", "muse"}};
+    const scene::Scene s = scene::Scene::build(sc);
+    SceneRenderer sr(s, smallOptions());
+    Image image;
+    sr.render(0.0, image);
+    return image;
+  };
+  const Image plain = render(false, false);
+  expectSimilar(render(true, true), plain);
+  EXPECT_GT(compareImages(render(true, false), plain, kChannelTolerance).differing_fraction, kMaxDifferingFraction);
+}
+
 TEST(SceneRender, BaseOnlyDropsTheKeys) {
   scene::RawScene raw = sceneWithCamera(Eigen::Vector3d(0, 0, 5));
   addInstance(raw, "a", Eigen::Vector3d::Zero(), Eigen::Quaterniond::Identity());

@@ -3,14 +3,20 @@
 // the scene frame and the node's frame_offset.
 #include <gtest/gtest.h>
 
+#include <gmock/gmock.h>
+
+#include <array>
 #include <cmath>
 
 #include "scene_fixtures.h"
+#include "support/error_of.h"
 
 namespace vdg::scene {
 namespace {
 
 using namespace fixtures;
+using ::testing::HasSubstr;
+using vdg::testing::errorOf;
 
 constexpr double kTol = 1e-12;
 
@@ -131,6 +137,75 @@ TEST(SceneInstances, AnimatedModelFrameIsFloorOfFramePlusOffsetModN) {
   }
   Eigen::Vector3d view;
   ASSERT_TRUE(scene.instanceView(a, evaluated(scene, 0)[0], Eigen::Vector3d(0, 0, 9), view));
+}
+// Part drivers (scene.h): a driven part takes the view of its driver's eye, seen from the
+// instance; the others follow the active camera.
+TEST(SceneInstances, ADrivenPartFollowsItsDriverAndTheRestTheCamera) {
+  RawScene raw;
+  raw.models.push_back(twoPartModel());
+  const int g = addNode(raw, "stage");
+  const int m = addNode(raw, "cow", g, ObjectKind::kModel, 0);
+  const int muse = addNode(raw, "muse", g);
+  const int cam = addNode(raw, "painter", -1, ObjectKind::kCamera);
+  raw.nodes[static_cast<std::size_t>(g)].link.rotation = turn({0, 1, 0}, 25);
+  raw.nodes[static_cast<std::size_t>(m)].link.rotation = turn({0.2, 1, 0}, -40);
+  raw.nodes[static_cast<std::size_t>(muse)].link.translation = {6, 2, -1};
+  raw.tracks.push_back({muse, Field::kTranslation, {}});
+  raw.tracks.back().track.type = anim::TrackType::kVector;
+  raw.tracks.back().track.keys = {key(0, values({6, 2, -1})), key(10, values({-3, 5, 4}))};
+  anim::RawCameraPath path;
+  path.position.points = {values({0, 1, 9}), values({9, 1, 0}), values({0, 1, -9})};
+  path.start_time = 0;
+  path.end_time = 10;
+  raw.nodes[static_cast<std::size_t>(cam)].path = path;
+  raw.nodes[static_cast<std::size_t>(cam)].link.translation = {0.5, 0, 0};  // the node carries the path
+  raw.nodes[static_cast<std::size_t>(m)].part_drivers = {{"top", "muse"}};
+  const Scene scene = Scene::build(raw);
+  const ViewDependentModel& model = *scene.model(m);
+  ASSERT_EQ(model.partCount(), 2u);  // top, rest
+  for (double frame : {0.0, 3.5, 10.0}) {
+    const auto s = evaluated(scene, frame);
+    Camera camera;
+    ASSERT_TRUE(scene.camera(frame, s, camera));
+    Eigen::Vector3d path_eye;  // a camera drives by its eye on its path, as camera() computes it
+    ASSERT_TRUE(scene.driverEye(cam, frame, s, path_eye));
+    EXPECT_LT((path_eye - camera.eye).norm(), kTol);
+    std::array<Eigen::Vector3d, 2> views;
+    ASSERT_TRUE(scene.instancePartViews(m, frame, s, camera.eye, views));
+    ASSERT_EQ(model.partName(0), "top");
+    Eigen::Vector3d from_muse, from_camera;
+    ASSERT_TRUE(
+        scene.instanceView(m, s[static_cast<std::size_t>(m)], origin(s[static_cast<std::size_t>(muse)]), from_muse));
+    ASSERT_TRUE(scene.instanceView(m, s[static_cast<std::size_t>(m)], camera.eye, from_camera));
+    EXPECT_LT((views[0] - from_muse).norm(), kTol) << "frame " << frame;
+    EXPECT_LT((views[1] - from_camera).norm(), kTol) << "frame " << frame;
+    EXPECT_GT((from_muse - from_camera).norm(), 0.1);  // the two really differ
+  }
+  // A wrong size or a node without parts is a violation.
+  const auto s = evaluated(scene, 0);
+  std::array<Eigen::Vector3d, 3> three;
+  EXPECT_FALSE(scene.instancePartViews(m, 0, s, {0, 0, 9}, three));
+  std::array<Eigen::Vector3d, 2> two;
+  EXPECT_FALSE(scene.instancePartViews(muse, 0, s, {0, 0, 9}, two));
+}
+
+TEST(SceneInstances, BadPartDriversAreRefusedNamingTheNodeAndPart) {
+  auto errorWith = [](const std::vector<RawPartDriver>& drivers, bool parts = true) {
+    RawScene raw;
+    raw.models.push_back(parts ? twoPartModel() : sixKeyModel());
+    addNode(raw, "cow", -1, ObjectKind::kModel, 0);
+    addNode(raw, "muse");
+    raw.nodes[0].part_drivers = drivers;
+    return errorOf([&] { raw.validate(); });
+  };
+  EXPECT_EQ(errorWith({{"top", "muse"}}), "");
+  EXPECT_EQ(errorWith({{"rest", "muse"}}), "");
+  EXPECT_THAT(errorWith({{"head", "muse"}}),
+              HasSubstr("node 'cow': part driver 'head': the model has no such part (its parts: top, rest)"));
+  EXPECT_THAT(errorWith({{"top", "ghost"}}), HasSubstr("part driver 'top': 'ghost' names no node"));
+  EXPECT_THAT(errorWith({{"top", "cow"}}), HasSubstr("names the model node itself"));
+  EXPECT_THAT(errorWith({{"top", "muse"}, {"top", "muse"}}), HasSubstr("'top': the part has two drivers"));
+  EXPECT_THAT(errorWith({{"top", "muse"}}, false), HasSubstr("holds no view-dependent model with parts"));
 }
 
 }  // namespace

@@ -94,6 +94,31 @@ inline std::shared_ptr<const ViewDependentModel> sixKeyModel() {
   return std::make_shared<const ViewDependentModel>(ViewDependentModel::build(raw));
 }
 
+// sixKeyModel's sphere with two key sets: the part "top" (the vertices above y = 0.5) with keys
+// t0..t5 and the rest with k0..k5, the same six views for each (per-part key sets, model.h).
+inline std::shared_ptr<const ViewDependentModel> twoPartModel() {
+  RawViewDependentModel raw;
+  raw.base = testing::uvSphere(6, 8);
+  const Eigen::Vector3d views[] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  RawPart top;
+  top.name = "top";
+  for (std::size_t v = 0; v < raw.base.vertexCount(); ++v)
+    if (raw.base.positions[3 * v + 1] > 0.5f) top.vertices.push_back(static_cast<std::int32_t>(v));
+  for (const char* set : {"t", "k"}) {
+    for (int k = 0; k < 6; ++k) {
+      RawKey key;
+      key.name = set + std::to_string(k);
+      key.mesh = raw.base;
+      for (float& x : key.mesh.positions) x *= 1.0f + 0.05f * static_cast<float>(k + 1);
+      key.view = views[k];
+      raw.keys.push_back(key);
+      if (*set == 't') top.keys.push_back(key.name);
+    }
+  }
+  raw.parts.push_back(top);
+  return std::make_shared<const ViewDependentModel>(ViewDependentModel::build(raw));
+}
+
 // An animated sphere of `frames` frames (it bobs along +Y) with one key seen from +Z at frame 0.
 inline std::shared_ptr<const AnimatedViewDependentModel> bobbingModel(int frames) {
   RawViewDependentModel raw;

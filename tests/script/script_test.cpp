@@ -181,6 +181,34 @@ TEST(Script, LoadInstancesOneObjectPerPath) {
   EXPECT_EQ(shot2.scene.nodes[0].name, "node1");
 }
 
+// part_drivers (scene.h, "Part drivers"): a part of a model with parts follows another node.
+TEST(Script, PartDriversNameAPartAndANode) {
+  ScriptBench bench;
+  const std::string spot = std::string(VDG_SOURCE_DIR) + "/examples/spot";
+  auto run = [&](const std::string& text) { return script::runScriptText(text, "t.lua", spot, bench.options()); };
+  const auto shot =
+      run("local muse = vdg.group{name = 'muse', translation = {5, 1, 0}}\n"
+          "vdg.node{name = 'cow', object = vdg.load('spot-cubist.vdg.json'), part_drivers = {head = muse}}\n");
+  const scene::RawNode& cow = shot.scene.nodes[1];
+  ASSERT_EQ(cow.part_drivers.size(), 1u);
+  EXPECT_EQ(cow.part_drivers[0].part, "head");
+  EXPECT_EQ(cow.part_drivers[0].node, "muse");
+  const scene::Scene built = scene::Scene::build(shot.scene);
+  EXPECT_EQ(built.findNode("cow"), 1);
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"local m = vdg.group{}\nvdg.node{object = vdg.load('spot-cubist.vdg.json'), part_drivers = {ears = m}}",
+       "t.lua:2: vdg.node: part_drivers: the model has no part 'ears' (its parts: head, rest)"},
+      {"vdg.node{object = vdg.load('spot-cubist.vdg.json'), part_drivers = {head = 'muse'}}",
+       "t.lua:1: vdg.node: part_drivers: expected a node (vdg.node, vdg.group or vdg.camera), got string"},
+      {"local m = vdg.group{}\nvdg.node{object = vdg.load('spot.vdg.json'), part_drivers = {head = m}}",
+       "t.lua:2: vdg.node: part_drivers: only a view-dependent model with parts ('parts' in its manifest) has part "
+       "drivers"},
+      {"local m = vdg.group{}\nvdg.node{object = vdg.load('spot-cubist.vdg.json'), part_drivers = {m}}",
+       "t.lua:2: vdg.node: part_drivers: expected part names as keys"},
+  };
+  for (const auto& [text, message] : cases) EXPECT_EQ(testing::errorOf([&] { run(text); }), message) << text;
+}
+
 TEST(Script, RenderRequests) {
   ScriptBench bench;
   const auto shot = bench.run(
@@ -256,7 +284,7 @@ TEST(Script, BadArgumentsNameTheFunctionAndLine) {
        "test.lua:1: vdg.group: name 'a.b': must not contain '.' (it separates node and field in \"node.field\")"},
       {"vdg.node{colour = {1, 0, 0}}",
        "test.lua:1: vdg.node: unknown field 'colour' (expected name, object, parent, translation, rotation, scale, "
-       "placement, color, visible, sharpness, frame_offset)"},
+       "placement, color, visible, sharpness, frame_offset, part_drivers)"},
       {"vdg.node{color = {2, 0, 0}}", "test.lua:1: vdg.node: color: expected a colour {r, g, b} of numbers in [0, 1]"},
       {"vdg.node{object = {}}", "test.lua:1: vdg.node: object: expected an object from vdg.load, got table"},
       {"vdg.camera{path = {points = {{0, 0, 0}, {1, 0, 0}}}}",

@@ -59,6 +59,12 @@
 // centre to the eye, expressed in the instance's object coordinates, so that every member of a
 // crowd is seen from its own angle (Rademacher 99, section 1: "replicated many times from
 // different angles").
+//
+// Part drivers: a model with per-part key sets (ViewDependentModel::hasParts, docs/weights.md) may
+// have a part follow another node instead of the active camera: `part_drivers` pairs a part's name
+// with a node whose eye drives it (a camera's eye, on its path if it has one; any other node's
+// world origin), as Chaudhuri et al. drive parts of one figure from several cameras. An undriven
+// part keeps the model's fixed view, or else follows the active camera (instancePartViews).
 #pragma once
 
 #include <Eigen/Core>
@@ -110,6 +116,12 @@ struct Transform {
   Eigen::Matrix4d matrix() const;
 };
 
+// A part of a model node driven by another node (see "Part drivers" above).
+struct RawPartDriver {
+  std::string part;  // a part of the node's model (kRestPartName for the rest)
+  std::string node;  // the driving node's name (not the model node itself)
+};
+
 struct RawNode {
   std::string name;  // unique, non-empty, no '.' (it separates node and field in "node.field")
   int parent = -1;   // index of an EARLIER node, or -1 (a root)
@@ -128,6 +140,8 @@ struct RawNode {
   double ortho_height = 0.0;                // > 0: parallel projection of this height
   std::optional<anim::RawCameraPath> path;  // times in frames; in the node's coordinates
   std::string look_at;                      // name of a node: moving centre of interest
+  // View-dependent models with parts: parts that follow another node (at most one driver a part).
+  std::vector<RawPartDriver> part_drivers;
 };
 
 // A key-frame track driving one field of one node (Parent 4.9); key times in frames. Its type
@@ -174,7 +188,9 @@ struct RawScene {
   // also has the other kind or a second track; a SET of a zero scale component, of a colour
   // outside [0, 1] or of a fov outside (0, 180); a track anim::Track::build refuses; non-finite
   // action frames, a CHANGE with to_frame < from_frame; more than kMaxSceneActions actions; a
-  // `camera` naming no camera node. A scene without cameras is valid (a renderer then frames it itself).
+  // `camera` naming no camera node; part drivers on a node that holds no model with parts, naming
+  // a part the model lacks (or one part twice), or naming no node or the model node itself. A scene without cameras is
+  // valid (a renderer then frames it itself).
   void validate(const std::string& where = "scene") const;
 };
 
@@ -230,6 +246,17 @@ class Scene {
   // non-finite eye.
   [[nodiscard]] bool instanceEye(int node, const NodeState& state, const Eigen::Vector3d& eye,
                                  Eigen::Vector3d& out) const;
+  // The driving view of every part of model node `node` (a model with parts; out.size() ==
+  // partCount()), as ViewDependentModel::evaluateParts takes them: a driven part's view is
+  // instanceView of its driver's eye (driverEye), an undriven one the model's fixed view or else
+  // instanceView of `eye` (the active camera's). Violations: not a model node with parts, the
+  // wrong sizes, states not those of `frame`, an eye (or a driver's) at the instance's centre.
+  [[nodiscard]] bool instancePartViews(int node, double frame, std::span<const NodeState> states,
+                                       const Eigen::Vector3d& eye, std::span<Eigen::Vector3d> out) const;
+  // The world eye of node `node` at `frame`: a camera's eye (on its path when it has one, as
+  // camera() computes it), any other node's world origin. Violations: node out of range,
+  // states.size() != nodeCount(), frame not finite, a non-invertible camera transform.
+  [[nodiscard]] bool driverEye(int node, double frame, std::span<const NodeState> states, Eigen::Vector3d& out) const;
 
  private:
   Scene() = default;  // only build() makes a Scene, so every Scene has its data
