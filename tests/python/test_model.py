@@ -158,7 +158,7 @@ def test_smooth_scheme_round_trip(models: dict[str, vdg.Model], tmp_path: pathli
 def test_rbf_scheme(models: dict[str, vdg.Model], tmp_path: pathlib.Path) -> None:
     """build(scheme="rbf") (docs/weights.md): exact at every key, every key weighs a view between
     them, the weights sum to 1 and are never negative, evaluate() blends them, the scheme survives
-    save_manifest, and the glTF export refuses it in one line."""
+    save_manifest and the glTF export (extras v4) weighs as the model."""
     spot = models["spot"]
     rbf = vdg.build(spot.base, spot.triangles, spot_keys(spot), scheme="rbf")
     assert rbf.scheme == "rbf"
@@ -179,8 +179,11 @@ def test_rbf_scheme(models: dict[str, vdg.Model], tmp_path: pathlib.Path) -> Non
     assert abs(positions - front.positions).max() < 1e-4, "a key's own view shows that key"
     rbf.save_manifest(tmp_path / "rbf.vdg.json")
     assert vdg.load(tmp_path / "rbf.vdg.json").scheme == "rbf"
-    with pytest.raises(vdg.Error, match="'rbf' weight scheme is not supported by the glTF export"):
-        rbf.export_gltf(tmp_path / "rbf.glb")
+    rbf.export_gltf(tmp_path / "rbf.glb")
+    exported = vdg.load(tmp_path / "rbf.glb")
+    assert exported.scheme == "rbf"
+    for view in random_views(20, 9):
+        assert exported.weights(view) == rbf.weights(view)
 
 
 def test_build_animated_round_trip(models: dict[str, vdg.Model], tmp_path: pathlib.Path) -> None:
