@@ -165,6 +165,12 @@ def import_model(context: Any, path: str) -> Any:
         raise model.AddonError(
             f"{path}: model parts ('parts') are not supported by the Blender add-on: its shape keys weigh one key set "
             "for the whole mesh (vdg weights, eval and the Python module evaluate parts)")
+    if getattr(m, "scheme", "linear") != "linear":
+        # The add-on keeps no weight scheme: it rebuilds linear models (settings_kwargs), so another
+        # scheme's weights would be silently replaced by the paper's linear ones.
+        raise model.AddonError(
+            f"{path}: the '{m.scheme}' weight scheme is not supported by the Blender add-on: it builds linear models "
+            "(vdg weights, eval, export and the Python module weigh it; docs/weights.md)")
     name = os.path.basename(path)
     for suffix in (".vdg.json", ".json", ".gltf", ".glb"):
         if name.endswith(suffix):

@@ -281,6 +281,19 @@ def case_roundtrip(vdg_tool, src, out):
         if "Traceback" in str(e) or "model parts ('parts') are not supported by the Blender add-on" not in str(e):
             raise AssertionError(f"the parts refusal is not one clear line: {e}") from None
         print(f"check: a model with parts is one report line: {str(e).strip()}")
+    # A model of another weight scheme (the add-on builds linear ones) is refused on import, in one
+    # line: the manifest and its glTF export (extras v4) alike.
+    rbf = os.path.join(src, "examples", "spot", "spot-rbf.vdg.json")
+    rbf_glb = os.path.join(out, "spot-rbf.glb")
+    run([vdg_tool, "export", rbf, "-o", rbf_glb, "-q"])
+    for path in (rbf, rbf_glb):
+        try:
+            bpy.ops.vdg.import_model(filepath=path)
+            raise AssertionError(f"importing the rbf model {path} did not fail")
+        except RuntimeError as e:
+            if "Traceback" in str(e) or "the 'rbf' weight scheme is not supported by the Blender add-on" not in str(e):
+                raise AssertionError(f"the rbf refusal is not one clear line: {e}") from None
+            print(f"check: an rbf model is one report line: {str(e).strip()}")
     bpy.ops.preferences.addon_disable(module="vdg_addon")
     left = [n for n in ("vdg", "vdg_live_preview") if hasattr(bpy.types.Object, n) or hasattr(bpy.types.Scene, n)]
     handlers = [h.__name__ for h in bpy.app.handlers.depsgraph_update_post + bpy.app.handlers.frame_change_post
