@@ -105,7 +105,8 @@ function prepare(extras) {
   const smooth = scheme === 'smooth', rbf = scheme === 'rbf';
   const rbfKernel = rbf ? kRbfKernels.indexOf(extras.weights.kernel) : -1;
   if (rbf && (rbfKernel < 0 || !s.rbf || !Array.isArray(s.rbf.coefficients) || !(s.rbf.chord2 > 0) ||
-      s.rbf.coefficients.length !== s.points.length + 1)) {
+      s.rbf.coefficients.length !== s.points.length + 1 ||
+      !s.rbf.coefficients.every((/** @type {number[]} */ row) => Array.isArray(row) && row.length === s.views + 1))) {
     throw new Error("vdg-three: an rbf model needs mesh.extras.vdg 'weights'.'kernel' and 'sphere'.'rbf' " +
       '(extras version 4); re-export it with this vdg');
   }
@@ -181,6 +182,9 @@ function edgeParameter(points, a, b, vx, vy, vz) {
   return toA / (toA + toB);
 }
 
+/** smoothTriangle's edge blends (scratch). */
+const tmpBeta = new Float64Array(3);
+
 /**
  * The smooth scheme's weights of triangle t's corners (docs/weights.md; view_sphere.h, "Weight
  * schemes"), in place: w[0..2] holds the triangle's barycentric weights (>= 0) on entry.
@@ -192,7 +196,8 @@ function smoothTriangle(p, t, vx, vy, vz, w) {
   const total = w[0] + w[1] + w[2];
   const b0 = w[0] / total, b1 = w[1] / total, b2 = w[2] / total;
   const p0 = b1 * b2, p1 = b2 * b0, p2 = b0 * b1;
-  const beta = [p0 * p0, p1 * p1, p2 * p2];
+  const beta = tmpBeta;  // preallocated: no allocation per frame
+  beta[0] = p0 * p0; beta[1] = p1 * p1; beta[2] = p2 * p2;
   const sum = beta[0] + beta[1] + beta[2];
   if (!(sum > 1e-280)) {  // at a corner: its one-hot weights (kMinSmoothBlend)
     const largest = b0 >= b1 && b0 >= b2 ? 0 : (b1 >= b2 ? 1 : 2);

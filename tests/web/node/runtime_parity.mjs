@@ -271,6 +271,16 @@ for (const [name, relative] of [['spot', 'examples/spot/spot.vdg.json'], ['head'
     compareWeights(manifest, exported.extras, randomViews(1000, seed), `spot rbf sharpness ${sharpness}`, sharpness);
   }
   comparePositions(manifest, exported, [keyViews[0], [0.3, 0.4, 0.87], [-0.8, 0.1, -0.2]], [0], 'spot rbf positions');
+  // An rbf description without its interpolation (or with a short row) is refused with one message.
+  for (const [what, change] of [['no sphere.rbf', (e) => { delete e.sphere.rbf; }],
+    ['a short row', (e) => { e.sphere.rbf.coefficients[1].pop(); }], ['no kernel', (e) => { delete e.weights.kernel; }]]) {
+    const broken = structuredClone(vdgExtras);
+    change(broken);
+    let message = '';
+    try { vdgWeights(broken, [0, 0, 1]); } catch (e) { message = String(e.message); }
+    check(message.includes("an rbf model needs mesh.extras.vdg 'weights'.'kernel' and 'sphere'.'rbf'"),
+      `spot rbf with ${what}: refused in one message (got '${message}')`);
+  }
 }
 
 // Degenerate key sets, written here: a tetrahedron base and keys that push one vertex each.
