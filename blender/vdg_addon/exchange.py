@@ -165,12 +165,6 @@ def import_model(context: Any, path: str) -> Any:
         raise model.AddonError(
             f"{path}: model parts ('parts') are not supported by the Blender add-on: its shape keys weigh one key set "
             "for the whole mesh (vdg weights, eval and the Python module evaluate parts)")
-    if getattr(m, "scheme", "linear") != "linear":
-        # The add-on keeps no weight scheme: it rebuilds linear models (settings_kwargs), so another
-        # scheme's weights would be silently replaced by the paper's linear ones.
-        raise model.AddonError(
-            f"{path}: the '{m.scheme}' weight scheme is not supported by the Blender add-on: it builds linear models "
-            "(vdg weights, eval, export and the Python module weigh it; docs/weights.md)")
     name = os.path.basename(path)
     for suffix in (".vdg.json", ".json", ".gltf", ".glb"):
         if name.endswith(suffix):
@@ -184,6 +178,9 @@ def import_model(context: Any, path: str) -> Any:
         scene.frame_start, scene.frame_end = 0, int(m.frame_count) - 1
     s = obj.vdg
     s.sharpness, s.uncovered, s.base_falloff_deg = float(m.sharpness), m.uncovered, float(m.base_falloff_deg)
+    s.scheme = m.scheme  # and the rbf scheme's kernel and width (docs/weights.md)
+    if m.scheme == "rbf":
+        s.rbf_kernel, s.rbf_width = m.kernel, float(m.width)
     s.use_center, s.center = True, tuple(float(c) for c in m.center)
     s.loop, s.comment = bool(m.loop), m.comment
     s.frame_count = int(m.frame_count) if m.animated else 0
