@@ -1,4 +1,4 @@
-// libFuzzer target: a glTF mesh's extras (mesh.extras.vdg, versions 1 and 2, docs/gltf-export.md)
+// libFuzzer target: a glTF mesh's extras (mesh.extras.vdg, versions 1 to 4, docs/gltf-export.md)
 // -> rawModelFromGltfExtras over a fixed tetrahedron with three small morph targets, then
 // ViewDependentModel::build and one evaluation of an accepted model. Version 2's "sphere" and
 // "time" are checked for shape and size only (vdg re-derives the sphere); the checks must refuse

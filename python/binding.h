@@ -117,6 +117,7 @@ struct BuildArgs {
   double sharpness = 1.0, base_falloff_deg = 60.0, fps = 24.0;
   std::string uncovered = "base", comment;
   std::string scheme = "linear";
+  py::object kernel, width;  // None, or the rbf scheme's kernel name and width (degrees)
   bool loop = false;
 };
 Model buildModel(const BuildArgs& args);

@@ -65,6 +65,29 @@ WeightScheme schemeFrom(const std::string& name) {
   throw py::value_error("scheme: expected 'linear', 'smooth' or 'rbf', got '" + name + "'");
 }
 
+// The rbf scheme's kernel and width (None: the defaults); refused for another scheme.
+void setRbfSettings(ViewSphereSettings& sphere, const py::object& kernel, const py::object& width) {
+  if (sphere.scheme != WeightScheme::Rbf) {
+    if (!kernel.is_none() || !width.is_none())
+      throw py::value_error("kernel, width: settings of the 'rbf' scheme only");
+    return;
+  }
+  if (!kernel.is_none()) {
+    const std::string name = kernel.cast<std::string>();
+    bool known = false;
+    for (const RbfKernel k : {RbfKernel::Gaussian, RbfKernel::InverseMultiquadric, RbfKernel::Wendland})
+      if (name == rbfKernelName(k)) sphere.rbf_kernel = k, known = true;
+    if (!known)
+      throw py::value_error("kernel: expected 'gaussian', 'inverse-multiquadric' or 'wendland', got '" + name + "'");
+  }
+  if (!width.is_none()) {
+    const double degrees = width.cast<double>();
+    if (!(degrees > 0.0 && degrees <= 180.0))
+      throw py::value_error("width: expected degrees in (0, 180], got " + std::to_string(degrees));
+    sphere.rbf_width_deg = degrees;
+  }
+}
+
 // The animated base of build(frames=...): frames[0] is the base; saved as an OBJ sequence.
 void setFrames(RawViewDependentModel& raw, const BuildArgs& args, const std::vector<float>& base) {
   const py::array a = py::module_::import("numpy").attr("asarray")(args.frames);
@@ -235,6 +258,7 @@ Model buildModel(const BuildArgs& args) {
   raw.sharpness = args.sharpness;
   raw.sphere.uncovered = uncoveredFrom(args.uncovered);
   raw.sphere.scheme = schemeFrom(args.scheme);
+  setRbfSettings(raw.sphere, args.kernel, args.width);
   raw.sphere.base_falloff_deg = args.base_falloff_deg;
   if (!args.center.is_none()) raw.center = vector3(args.center, "center");
   raw.comment = args.comment;

@@ -115,6 +115,20 @@ void bindModelProperties(py::class_<Model>& c) {
           "The weight scheme: 'linear' (the paper's barycentric blend), 'smooth' (C1) or 'rbf' (radial basis "
           "functions over every key, with the manifest's kernel and width; docs/weights.md).")
       .def_property_readonly(
+          "kernel",
+          [](const Model& m) -> py::object {
+            if (m.raw.sphere.scheme != WeightScheme::Rbf) return py::none();
+            return py::str(rbfKernelName(m.raw.sphere.rbf_kernel));
+          },
+          "The rbf scheme's kernel ('gaussian', 'inverse-multiquadric' or 'wendland'); None for another scheme.")
+      .def_property_readonly(
+          "width",
+          [](const Model& m) -> py::object {
+            if (m.raw.sphere.scheme != WeightScheme::Rbf) return py::none();
+            return py::float_(m.raw.sphere.rbf_width_deg);
+          },
+          "The rbf scheme's kernel width (degrees); None for another scheme.")
+      .def_property_readonly(
           "parts",
           [](const Model& m) {
             std::vector<std::string> names;
@@ -203,7 +217,7 @@ void bindFunctions(py::module_& m) {
       [](py::object base, py::object triangles, py::object keys, double sharpness, std::string uncovered,
          double base_falloff_deg, py::object center, py::object frames, bool loop, double fps, py::object uvs,
          std::string comment, py::object corner_uvs, py::object materials, py::object face_materials,
-         std::string scheme) {
+         std::string scheme, py::object kernel, py::object width) {
         BuildArgs args;
         args.base = std::move(base);
         args.triangles = std::move(triangles);
@@ -221,19 +235,24 @@ void bindFunctions(py::module_& m) {
         args.materials = std::move(materials);
         args.face_materials = std::move(face_materials);
         args.scheme = std::move(scheme);
+        args.kernel = std::move(kernel);
+        args.width = std::move(width);
         return buildModel(args);
       },
       py::arg("base"), py::arg("triangles"), py::arg("keys"), py::kw_only(), py::arg("sharpness") = 1.0,
       py::arg("uncovered") = "base", py::arg("base_falloff_deg") = 60.0, py::arg("center") = py::none(),
       py::arg("frames") = py::none(), py::arg("loop") = false, py::arg("fps") = 24.0, py::arg("uvs") = py::none(),
       py::arg("comment") = "", py::arg("corner_uvs") = py::none(), py::arg("materials") = py::none(),
-      py::arg("face_materials") = py::none(), py::arg("scheme") = "linear",
+      py::arg("face_materials") = py::none(), py::arg("scheme") = "linear", py::arg("kernel") = py::none(),
+      py::arg("width") = py::none(),
       R"(A model from arrays: base (V, 3), triangles (T, 3), keys (vdg.Key or dicts {"name",
 "positions", "view" or "camera", "frame"}). frames (F, V, 3) makes an animated model (section 4; base
 must be frames[0] or None). Texture coordinates per vertex (uvs, (V, 2)) or per corner (corner_uvs,
 (T, 3, 2)); materials (dicts {"name", "base_color" display RGB in [0, 1], "texture" PNG or JPEG
 bytes, "texture_path"}) with face_materials ((T,) indices, -1 none), both or neither. scheme: the weight
-scheme, 'linear' (the paper's), 'smooth' (C1) or 'rbf' (every key, Gaussian of width 60 degrees; docs/weights.md). Raises vdg.Error with vdg's validation message for an invalid model
+scheme, 'linear' (the paper's), 'smooth' (C1) or 'rbf' (every key; docs/weights.md), whose kernel ('gaussian',
+the default, 'inverse-multiquadric' or 'wendland') and width (degrees, default 60) are kernel and width (None: the
+defaults; refused for another scheme). Raises vdg.Error with vdg's validation message for an invalid model
 (duplicate names or views, non-finite coordinates, key frames out of range ...).)");
 }
 

@@ -1,11 +1,14 @@
 // vdg-three.js: view-dependent models (Rademacher, "View-Dependent Geometry", SIGGRAPH 99) exported
 // by `vdg export` / `vdg bake`, alive in three.js. One ES module, no build step, importing only
 // 'three'. The weights repeat src/viewdep/view_sphere.cpp and animated_model.cpp exactly, from the
-// description the export carries in mesh.extras.vdg (versions 2 and 3, docs/gltf-export.md):
+// description the export carries in mesh.extras.vdg (versions 2 to 4, docs/gltf-export.md):
 //  - section 3.2.1: the view from the model centre picks the hull triangle whose cone contains it
 //    (cone coordinates lambda = M v with the written inverse M; inside when min >= -kInsideTol);
 //  - section 3.2.2: barycentric weights sharpened relative to the largest, (p/pmax)^a / sum;
 //    version 3's smooth scheme first turns them into the C1 side-vertex blend (docs/weights.md);
+//  - version 4's rbf scheme weighs every key view instead: the written spherical RBF interpolation
+//    r_o = b_o + sum_j c_oj g(|v - x_j|^2 / chord2), its C1 positive part, renormalised, sharpened
+//    (view_sphere.cpp's rbfWeightsAt; docs/weights.md, "The rbf scheme");
 //  - section 3.3: dummy points give their weight to the base; cosine modes fall off towards the
 //    nearest boundary arc or isolated key;
 //  - section 4.2: per key view, cardinal cubic-spline coefficients in time from the written
@@ -22,13 +25,17 @@ import { Matrix4, Vector3 } from 'three';
  * @property {number[][]} arcs boundary arcs (cosine modes)
  * @property {number[]} isolated keys on no triangle and no arc (cosine modes)
  * @property {number[][]} view_targets per key view, the morph target of each key frame
+ * @property {{chord2: number, coefficients: number[][]}} [rbf] (version 4, rbf scheme) the width as a
+ *   squared chord, and (points + 1) rows of (views + 1) coefficients: the constants b_o, then per point
+ *   its c_oj (outputs o: the key views, then the base)
  */
 /**
- * @typedef {object} VdgExtras the parsed mesh.extras.vdg object (version 2 or 3)
+ * @typedef {object} VdgExtras the parsed mesh.extras.vdg object (version 2, 3 or 4)
  * @property {number} version
  * @property {number} sharpness
  * @property {'base'|'cosine'|'cosine2'} uncovered
- * @property {{scheme: 'linear'|'smooth'}} [weights] (version 3) the weight scheme; absent: linear
+ * @property {{scheme: 'linear'|'smooth'|'rbf', kernel?: 'gaussian'|'inverse-multiquadric'|'wendland',
+ *   width?: number}} [weights] (version 3; 4 for rbf) the weight scheme; absent: linear
  * @property {number[]} center
  * @property {{name: string, view: number[], frame: number}[]} keys
  * @property {{frame_count: number, fps: number, loop: boolean, animation?: number, base: 'skin'|'frames'}} [animation]
@@ -46,6 +53,12 @@ import { Matrix4, Vector3 } from 'three';
 
 /** Cone coordinates down to -kInsideTol still count as inside (view_sphere.cpp). */
 const kInsideTol = 1e-9;
+/** The rbf kernels by their extras name, in Prepared.rbfKernel's numbering. */
+const kRbfKernels = ['gaussian', 'inverse-multiquadric', 'wendland'];
+/** ViewSphere::kRbfPositiveSoftness: the rbf positive part is C1 on (0, e). */
+const kRbfPositiveSoftness = 0.05;
+/** ViewSphere::kMultiplySharpnessMax: integer sharpness up to this is repeated multiplication. */
+const kMultiplySharpnessMax = 8;
 
 /**
  * @typedef {object} Prepared
@@ -58,6 +71,13 @@ const kInsideTol = 1e-9;
  * @property {Float64Array} arcFrames per arc: normal, b x normal, normal x a (9 numbers)
  * @property {Int32Array} isolated
  * @property {boolean} smooth the smooth weight scheme (extras version 3 'weights'), else linear
+ * @property {boolean} rbf the rbf weight scheme (extras version 4): the fields below are set
+ * @property {number} rbfKernel 0 gaussian, 1 inverse multiquadric, 2 wendland
+ * @property {number} rbfChord2 the width as a squared chord
+ * @property {Float64Array} rbfRows the constants, then per point its coefficients (views + 1 each)
+ * @property {Float64Array} rbfPhi per point, the kernel at the view (scratch)
+ * @property {Float64Array} rbfOut per key view then the base, the weights (scratch)
+ * @property {Float64Array} nearest the nearest covered point of the last uncovered locate() (scratch)
  * @property {number} targetCount morph targets of the mesh (keys, then base frames)
  */
 
@@ -79,10 +99,17 @@ function prepare(extras) {
       'that writes extras version 2');
   }
   const scheme = extras.weights ? extras.weights.scheme : 'linear';
-  if (scheme !== 'linear' && scheme !== 'smooth') {
-    throw new Error(`vdg-three: weight scheme '${scheme}' is not supported here (linear and smooth are)`);
+  if (scheme !== 'linear' && scheme !== 'smooth' && scheme !== 'rbf') {
+    throw new Error(`vdg-three: weight scheme '${scheme}' is not supported here (linear, smooth and rbf are)`);
   }
-  const smooth = scheme === 'smooth';
+  const smooth = scheme === 'smooth', rbf = scheme === 'rbf';
+  const rbfKernel = rbf ? kRbfKernels.indexOf(extras.weights.kernel) : -1;
+  if (rbf && (rbfKernel < 0 || !s.rbf || !Array.isArray(s.rbf.coefficients) || !(s.rbf.chord2 > 0) ||
+      s.rbf.coefficients.length !== s.points.length + 1 ||
+      !s.rbf.coefficients.every((/** @type {number[]} */ row) => Array.isArray(row) && row.length === s.views + 1))) {
+    throw new Error("vdg-three: an rbf model needs mesh.extras.vdg 'weights'.'kernel' and 'sphere'.'rbf' " +
+      '(extras version 4); re-export it with this vdg');
+  }
   const points = new Float64Array(s.points.flat());
   const triangles = new Int32Array(s.triangles.flat());
   const inverses = new Float64Array(s.inverses.flat());
@@ -108,7 +135,12 @@ function prepare(extras) {
   const frameTargets = extras.animation && extras.animation.base === 'frames' ? extras.animation.frame_count - 1 : 0;
   /** @type {Prepared} */
   const p = {
-    extras, points, views: s.views, triangles, inverses, arcs, arcFrames, smooth,
+    extras, points, views: s.views, triangles, inverses, arcs, arcFrames, smooth, rbf, rbfKernel,
+    rbfChord2: rbf ? s.rbf.chord2 : 1,
+    rbfRows: new Float64Array(rbf ? s.rbf.coefficients.flat() : []),
+    rbfPhi: new Float64Array(rbf ? s.points.length : 0),
+    rbfOut: new Float64Array(rbf ? s.views + 1 : 0),
+    nearest: new Float64Array(3),
     isolated: new Int32Array(s.isolated),
     targetCount: extras.keys.length + frameTargets,
   };
@@ -150,6 +182,9 @@ function edgeParameter(points, a, b, vx, vy, vz) {
   return toA / (toA + toB);
 }
 
+/** smoothTriangle's edge blends (scratch). */
+const tmpBeta = new Float64Array(3);
+
 /**
  * The smooth scheme's weights of triangle t's corners (docs/weights.md; view_sphere.h, "Weight
  * schemes"), in place: w[0..2] holds the triangle's barycentric weights (>= 0) on entry.
@@ -161,7 +196,8 @@ function smoothTriangle(p, t, vx, vy, vz, w) {
   const total = w[0] + w[1] + w[2];
   const b0 = w[0] / total, b1 = w[1] / total, b2 = w[2] / total;
   const p0 = b1 * b2, p1 = b2 * b0, p2 = b0 * b1;
-  const beta = [p0 * p0, p1 * p1, p2 * p2];
+  const beta = tmpBeta;  // preallocated: no allocation per frame
+  beta[0] = p0 * p0; beta[1] = p1 * p1; beta[2] = p2 * p2;
   const sum = beta[0] + beta[1] + beta[2];
   if (!(sum > 1e-280)) {  // at a corner: its one-hot weights (kMinSmoothBlend)
     const largest = b0 >= b1 && b0 >= b2 ? 0 : (b1 >= b2 ? 1 : 2);
@@ -234,7 +270,10 @@ function locate(p, vx, vy, vz, alpha, slots, w, hint = -1) {
   slots[0] = slots[1] = slots[2] = -1; w[0] = w[1] = w[2] = 0;
   const considerPoint = (/** @type {number} */ k) => {
     const c = vx * points[3 * k] + vy * points[3 * k + 1] + vz * points[3 * k + 2];
-    if (c > bestCos) { bestCos = c; slots[0] = k; slots[1] = -1; w[0] = 1; w[1] = 0; }
+    if (c > bestCos) {
+      bestCos = c; slots[0] = k; slots[1] = -1; w[0] = 1; w[1] = 0;
+      p.nearest[0] = points[3 * k]; p.nearest[1] = points[3 * k + 1]; p.nearest[2] = points[3 * k + 2];
+    }
   };
   for (let i = 0; i < p.isolated.length; ++i) considerPoint(p.isolated[i]);
   for (let i = 0; i < p.arcs.length / 2; ++i) {
@@ -247,6 +286,13 @@ function locate(p, vx, vy, vz, alpha, slots, w, hint = -1) {
       const c = Math.sqrt(c2);
       if (c > bestCos) {
         bestCos = c; slots[0] = p.arcs[2 * i]; slots[1] = p.arcs[2 * i + 1];
+        {  // the arc's point nearest to the view, normalize(la a + lb b) (view_sphere.cpp's falloff)
+          const a = 3 * p.arcs[2 * i], b = 3 * p.arcs[2 * i + 1], q = p.nearest;
+          q[0] = la * points[a] + lb * points[b]; q[1] = la * points[a + 1] + lb * points[b + 1];
+          q[2] = la * points[a + 2] + lb * points[b + 2];
+          const len = Math.sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
+          q[0] /= len; q[1] /= len; q[2] /= len;
+        }
         if (p.smooth) {  // the smooth edge weights at the arc's point nearest to the view
           const a = 3 * p.arcs[2 * i], b = 3 * p.arcs[2 * i + 1];
           let qx = la * points[a] + lb * points[b], qy = la * points[a + 1] + lb * points[b + 1];
@@ -271,6 +317,129 @@ function locate(p, vx, vy, vz, alpha, slots, w, hint = -1) {
   for (let k = 0; k < 3; ++k) { w[k] *= fall; if (w[k] === 0) slots[k] = -1; }
   w[3] = 1 - fall;
   return -1;
+}
+
+/**
+ * The rbf kernel g of the scaled squared chord q (view_sphere.cpp's rbfKernelOfChord2).
+ * @param {number} kernel Prepared.rbfKernel @param {number} q
+ */
+function rbfKernelOfChord2(kernel, q) {
+  if (kernel === 1) return 1 / Math.sqrt(1 + q);
+  if (kernel === 2) {
+    const r = Math.sqrt(q);
+    if (r >= 1) return 0;
+    const u = 1 - r;
+    return u * u * u * u * (4 * r + 1);
+  }
+  return Math.exp(-q);
+}
+
+/**
+ * The rbf scheme's C1 positive part P (view_sphere.cpp's rbfPositivePart).
+ * @param {number} r
+ */
+function rbfPositivePart(r) {
+  const e = kRbfPositiveSoftness;
+  if (r >= e) return r;
+  if (r <= 0) return 0;
+  return r * r * (2 * e - r) / (e * e);
+}
+
+/**
+ * Section 3.2.2's sharpening of x[0..n-1] in place, relative to the largest, exactly as
+ * view_sphere.cpp's sharpenRelative (squares, integer powers by multiplication, else Math.pow).
+ * @param {Float64Array} x @param {number} n @param {number} alpha
+ */
+function sharpenRelative(x, n, alpha) {
+  let largest = x[0];
+  for (let i = 1; i < n; ++i) if (x[i] > largest) largest = x[i];
+  const inverse = 1 / largest;
+  if (alpha === 2) {
+    for (let i = 0; i < n; ++i) x[i] = (x[i] * inverse) * (x[i] * inverse);
+  } else if (alpha <= kMultiplySharpnessMax && alpha === Math.floor(alpha)) {
+    for (let i = 0; i < n; ++i) {
+      const r = x[i] * inverse;
+      let v = r;
+      for (let k = 1; k < alpha; ++k) v *= r;
+      x[i] = v;
+    }
+  } else {
+    for (let i = 0; i < n; ++i) x[i] = x[i] === largest ? 1 : Math.pow(x[i] * inverse, alpha);
+  }
+}
+
+/**
+ * The rbf weights at the unit direction (x, y, z) into p.rbfOut (key views, then the base): the
+ * interpolation r_o = b_o + sum_j c_oj g(q_j), centre by centre; the positive part; normalised and
+ * sharpened; the key views get `scale` times their weight, the base the rest (view_sphere.cpp's
+ * rbfWeightsAt, in its order of operations).
+ * @param {Prepared} p @param {number} x @param {number} y @param {number} z
+ * @param {number} alpha @param {number} scale
+ */
+function rbfWeightsAt(p, x, y, z, alpha, scale) {
+  const { points, rbfRows: rows, rbfPhi: phi, rbfOut: w } = p;
+  const m = points.length / 3, outputs = p.views + 1;
+  for (let j = 0; j < m; ++j) {
+    const dx = x - points[3 * j], dy = y - points[3 * j + 1], dz = z - points[3 * j + 2];
+    phi[j] = rbfKernelOfChord2(p.rbfKernel, (dx * dx + dy * dy + dz * dz) / p.rbfChord2);
+  }
+  for (let o = 0; o < outputs; ++o) w[o] = rows[o];
+  for (let j = 0; j < m; ++j) {
+    if (phi[j] === 0) continue;
+    const row = (j + 1) * outputs;
+    for (let o = 0; o < outputs; ++o) w[o] += rows[row + o] * phi[j];
+  }
+  let sum = 0;
+  for (let o = 0; o < outputs; ++o) { w[o] = rbfPositivePart(w[o]); sum += w[o]; }
+  if (alpha !== 1) {
+    for (let o = 0; o < outputs; ++o) w[o] /= sum;
+    sharpenRelative(w, outputs, alpha);
+    sum = 0;
+    for (let o = 0; o < outputs; ++o) sum += w[o];
+  }
+  const factor = scale / sum;
+  for (let o = 0; o + 1 < outputs; ++o) w[o] *= factor;
+  w[outputs - 1] = w[outputs - 1] * factor + (1 - scale);
+}
+
+/**
+ * The rbf weights of the unit view into p.rbfOut (view_sphere.cpp's denseWeights): at the view in
+ * base mode and for a covered view; for an uncovered one (cosine modes) at the nearest covered
+ * point p, times the falloff f = max(0, v.p) (squared for cosine2), the base getting 1 - f. Then
+ * `slots` / `w` get the three heaviest key views (ties to the lower index) and, as the base, the
+ * rest (vdg's heaviestKeys). Returns the hull triangle (the hint), -1 when uncovered.
+ * @param {Prepared} p
+ * @param {number} vx @param {number} vy @param {number} vz
+ * @param {number} alpha
+ * @param {Int32Array} slots
+ * @param {Float64Array} w
+ * @param {number} [hint]
+ * @returns {number}
+ */
+function rbfLocate(p, vx, vy, vz, alpha, slots, w, hint = -1) {
+  const triangle = locate(p, vx, vy, vz, 1, slots, w, hint);
+  if (p.extras.uncovered === 'base' || triangle >= 0) {
+    rbfWeightsAt(p, vx, vy, vz, alpha, 1);
+  } else {
+    const q = p.nearest;
+    const reached = slots[0] >= 0 || slots[1] >= 0 || slots[2] >= 0;
+    let f = reached ? Math.max(0, vx * q[0] + vy * q[1] + vz * q[2]) : 0;
+    if (p.extras.uncovered === 'cosine2') f *= f;
+    rbfWeightsAt(p, q[0], q[1], q[2], alpha, f);
+  }
+  const out = p.rbfOut, views = p.views;
+  slots[0] = slots[1] = slots[2] = -1;
+  w[0] = w[1] = w[2] = 0;
+  for (let i = 0; i < views; ++i) {  // insertion into the three heaviest, stable for ties
+    let k = 3;
+    while (k > 0 && (slots[k - 1] < 0 || out[i] > w[k - 1])) --k;
+    for (let m = 2; m > k; --m) { slots[m] = slots[m - 1]; w[m] = w[m - 1]; }
+    if (k < 3) { slots[k] = i; w[k] = out[i]; }
+  }
+  let rest = out[views];
+  for (let i = 0; i < views; ++i) if (i !== slots[0] && i !== slots[1] && i !== slots[2]) rest += out[i];
+  w[3] = rest;
+  return triangle;
 }
 
 /**
@@ -313,8 +482,8 @@ const tmpView = new Float64Array(3);
 export function vdgSphereWeights(extras, view, { sharpness = null } = {}) {
   const p = prepare(extras);
   unitView(view, tmpView);
-  const triangle = locate(p, tmpView[0], tmpView[1], tmpView[2], resolveSharpness(extras, sharpness), tmpSlots,
-    tmpWeights);
+  const triangle = (p.rbf ? rbfLocate : locate)(p, tmpView[0], tmpView[1], tmpView[2],
+    resolveSharpness(extras, sharpness), tmpSlots, tmpWeights);
   return {
     triangle,
     points: Array.from(tmpSlots),
@@ -379,19 +548,22 @@ const tmpCoef = new Float64Array(256);
 function weightsInto(p, vx, vy, vz, alpha, frame, out, slots, w, hint = -1) {
   const extras = p.extras;
   for (let i = 0; i < p.targetCount; ++i) out[i] = 0;
-  const triangle = locate(p, vx, vy, vz, alpha, slots, w, hint);
+  const triangle = (p.rbf ? rbfLocate : locate)(p, vx, vy, vz, alpha, slots, w, hint);
   const viewTargets = extras.sphere.view_targets;
-  for (let k = 0; k < 3; ++k) {
-    const i = slots[k];
-    if (i < 0 || w[k] === 0) continue;
+  // Three slots, or with the rbf scheme every key view (its weights in p.rbfOut).
+  const count = p.rbf ? p.views : 3;
+  for (let k = 0; k < count; ++k) {
+    const i = p.rbf ? k : slots[k];
+    const weight = p.rbf ? p.rbfOut[k] : w[k];
+    if (i < 0 || weight === 0) continue;
     const targets = viewTargets[i];
     if (!extras.time) {
-      for (let j = 0; j < targets.length; ++j) out[targets[j]] += w[k];
+      for (let j = 0; j < targets.length; ++j) out[targets[j]] += weight;
       continue;
     }
     const coef = targets.length <= tmpCoef.length ? tmpCoef : new Float64Array(targets.length);
     vdgTimeCoefficients(extras, i, frame, coef);
-    for (let j = 0; j < targets.length; ++j) out[targets[j]] += w[k] * coef[j];
+    for (let j = 0; j < targets.length; ++j) out[targets[j]] += weight * coef[j];
   }
   const anim = extras.animation;
   if (anim && anim.base === 'frames' && anim.frame_count > 1) {

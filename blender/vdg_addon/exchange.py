@@ -178,6 +178,9 @@ def import_model(context: Any, path: str) -> Any:
         scene.frame_start, scene.frame_end = 0, int(m.frame_count) - 1
     s = obj.vdg
     s.sharpness, s.uncovered, s.base_falloff_deg = float(m.sharpness), m.uncovered, float(m.base_falloff_deg)
+    s.scheme = m.scheme  # and the rbf scheme's kernel and width (docs/weights.md)
+    if m.scheme == "rbf":
+        s.rbf_kernel, s.rbf_width = m.kernel, float(m.width)
     s.use_center, s.center = True, tuple(float(c) for c in m.center)
     s.loop, s.comment = bool(m.loop), m.comment
     s.frame_count = int(m.frame_count) if m.animated else 0

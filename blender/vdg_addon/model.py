@@ -96,8 +96,11 @@ def frame_range(scene: Any, obj: Any) -> Tuple[int, int]:
 def settings_kwargs(obj: Any) -> Dict[str, Any]:
     """vdg.build's keyword arguments from obj.vdg."""
     s = obj.vdg
-    return {"sharpness": float(s.sharpness), "uncovered": s.uncovered,
-            "base_falloff_deg": float(s.base_falloff_deg), "center": center_of(obj), "comment": s.comment}
+    kwargs = {"sharpness": float(s.sharpness), "uncovered": s.uncovered, "scheme": s.scheme,
+              "base_falloff_deg": float(s.base_falloff_deg), "center": center_of(obj), "comment": s.comment}
+    if s.scheme == "rbf":
+        kwargs.update(kernel=s.rbf_kernel, width=float(s.rbf_width))
+    return kwargs
 
 
 def key_block(obj: Any, name: str) -> Any:
@@ -175,7 +178,8 @@ def signature(obj: Any, scene: Any) -> str:
         h.update(repr((k.name, tuple(k.view), k.frame, k.has_camera)).encode())
         if block is not None:
             h.update(shape_key_positions(block).tobytes())
-    h.update(repr((s.sharpness, s.uncovered, s.base_falloff_deg, s.use_center, tuple(s.center), s.loop,
+    h.update(repr((s.sharpness, s.uncovered, s.scheme, s.rbf_kernel, s.rbf_width, s.base_falloff_deg,
+                   s.use_center, tuple(s.center), s.loop,
                    s.frame_count, armature_animated(obj), frame_range(scene, obj))).encode())
     return h.hexdigest()
 

@@ -14,6 +14,17 @@ UNCOVERED_ITEMS = [
     ("cosine2", "Cosine squared", "Outside the hull the nearest keys fade with the squared cosine"),
 ]
 
+SCHEME_ITEMS = [
+    ("linear", "Linear", "The paper's barycentric blend of the view's hull triangle (section 3.2.2)"),
+    ("smooth", "Smooth", "A C1 blend of the view's hull triangle (docs/weights.md)"),
+    ("rbf", "RBF", "Radial basis functions over every key (docs/weights.md, 'The rbf scheme')"),
+]
+KERNEL_ITEMS = [
+    ("gaussian", "Gaussian", "exp(-s^2) of the chord over the width's chord"),
+    ("inverse-multiquadric", "Inverse multiquadric", "1 / sqrt(1 + s^2)"),
+    ("wendland", "Wendland", "Compactly supported: keys beyond the width do not move a view"),
+]
+
 
 def _refresh(self, context) -> None:
     """Property update: the preview rebuilds its model and sets the values again."""
@@ -61,6 +72,12 @@ class VdgObjectSettings(PropertyGroup):
                              description="Alpha of the paper's section 3.2.2: higher keeps each key longer")
     uncovered: EnumProperty(name="Uncovered", items=UNCOVERED_ITEMS, default="base", update=_refresh,
                             description="What views outside the keys' convex hull see")
+    scheme: EnumProperty(name="Weights", items=SCHEME_ITEMS, default="linear", update=_refresh,
+                         description="How a view's key weights are computed (docs/weights.md)")
+    rbf_kernel: EnumProperty(name="Kernel", items=KERNEL_ITEMS, default="gaussian", update=_refresh,
+                             description="The rbf scheme's radial kernel")
+    rbf_width: FloatProperty(name="Width", default=60.0, min=0.001, max=180.0, update=_refresh,
+                             description="The rbf scheme's kernel width (degrees on the viewing sphere)")
     base_falloff_deg: FloatProperty(name="Base falloff", default=60.0, min=0.001, max=180.0, update=_refresh,
                                     description="Angle (degrees) over which the base takes over outside the hull")
     use_center: BoolProperty(name="Centre", default=False, update=_refresh,

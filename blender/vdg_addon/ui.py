@@ -68,6 +68,10 @@ class VDG_PT_panel(bpy.types.Panel):
         col = layout.column(align=True)
         col.prop(s, "sharpness")
         col.prop(s, "uncovered")
+        col.prop(s, "scheme")
+        if s.scheme == "rbf":
+            col.prop(s, "rbf_kernel")
+            col.prop(s, "rbf_width")
         if s.uncovered == "base":
             col.prop(s, "base_falloff_deg")
         col.prop(s, "preview")

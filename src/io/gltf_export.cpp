@@ -162,6 +162,9 @@ int addDeltaAccessor(BufferBuilder& b, std::span<const float> deltas, bool bound
 bool allFinite(std::span<const float> values) {
   return std::all_of(values.begin(), values.end(), [](float x) { return std::isfinite(x); });
 }
+bool allFinite(std::span<const double> values) {
+  return std::all_of(values.begin(), values.end(), [](double x) { return std::isfinite(x); });
+}
 
 std::string baseFrameTargetName(int frame) { return "base frame " + std::to_string(frame); }
 
@@ -217,6 +220,13 @@ void validateViewSphere(const GltfExportInput& in, const Fail& fail) {
       fail("view sphere: view " + std::to_string(i) + "'s time table does not match its targets (internal error)");
   }
   if (in.base_animation && vs.time.size() != vs.views) fail("view sphere: an animated input needs its time tables");
+  // The rbf weights are over every key view (extras v4): the solved interpolation, one row per
+  // centre plus the constants, one value per view plus the base.
+  const bool rbf = in.sphere.scheme == WeightScheme::Rbf;
+  const std::size_t rbf_size = rbf ? (vs.points.size() + 1) * (vs.views + 1) : 0;
+  if (vs.rbf_coefficients.size() != rbf_size || (rbf && !(vs.rbf_chord2 > 0.0 && std::isfinite(vs.rbf_chord2))) ||
+      !allFinite(vs.rbf_coefficients))
+    fail("view sphere: the rbf coefficients do not match the scheme and the points (internal error)");
 }
 
 void validateInput(const GltfExportInput& in, const std::string& where) {
@@ -317,10 +327,6 @@ void validateInput(const GltfExportInput& in, const std::string& where) {
         fail("bake: expected 0 < yfov < pi, aspect > 0 and 0 < znear < zfar");
     }
   }
-  if (in.sphere.scheme == WeightScheme::Rbf)
-    fail(
-        "the 'rbf' weight scheme is not supported by the glTF export: its runtimes blend the keys of one hull "
-        "triangle (export a 'linear' or 'smooth' model; docs/weights.md)");
   validateViewSphere(in, fail);
 }
 
@@ -365,6 +371,14 @@ void addSphereJson(const GltfViewSphere& vs, OJson& vdg) {
   sphere["arcs"] = std::move(arcs);
   sphere["isolated"] = vs.isolated;
   sphere["view_targets"] = vs.view_targets;
+  if (!vs.rbf_coefficients.empty()) {  // extras v4: rows of views + 1 values (constants, then per point)
+    const std::size_t outputs = vs.views + 1;
+    OJson rows = OJson::array();
+    for (std::size_t r = 0; r * outputs < vs.rbf_coefficients.size(); ++r)
+      rows.push_back(std::vector<double>(vs.rbf_coefficients.begin() + static_cast<std::ptrdiff_t>(r * outputs),
+                                         vs.rbf_coefficients.begin() + static_cast<std::ptrdiff_t>((r + 1) * outputs)));
+    sphere["rbf"] = {{"chord2", vs.rbf_chord2}, {"coefficients", std::move(rows)}};
+  }
   vdg["sphere"] = std::move(sphere);
   if (vs.time.empty()) return;
   OJson time = OJson::array();
@@ -374,15 +388,21 @@ void addSphereJson(const GltfViewSphere& vs, OJson& vdg) {
 
 // The view-dependent description (mesh.extras.vdg; docs/schema/vdg-gltf-extras.schema.json).
 OJson vdgExtras(const GltfExportInput& in) {
-  // The oldest version that holds the model: 2 unless the weights are not the paper's linear ones.
+  // The oldest version that holds the model: 2 for the paper's linear weights, 3 for smooth ones,
+  // 4 for rbf ones (their kernel, width and solved interpolation).
   const bool linear = in.sphere.scheme == WeightScheme::Linear;
-  OJson vdg = {{"version", linear ? 2 : kGltfExtrasVersion},
+  const bool rbf = in.sphere.scheme == WeightScheme::Rbf;
+  OJson vdg = {{"version", linear ? 2 : (rbf ? 4 : 3)},
                {"sharpness", in.sharpness},
                {"uncovered", uncoveredName(in.sphere.uncovered)},
                {"base_falloff_deg", in.sphere.base_falloff_deg},
                {"center", vec3Json(in.center)},
                {"offsets", offsetSpaceName(in.offsets)}};
   if (!linear) vdg["weights"] = {{"scheme", weightSchemeName(in.sphere.scheme)}};
+  if (rbf) {
+    vdg["weights"]["kernel"] = rbfKernelName(in.sphere.rbf_kernel);
+    vdg["weights"]["width"] = in.sphere.rbf_width_deg;
+  }
   if (in.base_animation) {
     OJson anim = {{"frame_count", in.base_animation->frame_count},
                   {"fps", in.base_animation->fps},
@@ -961,6 +981,10 @@ GltfViewSphere gltfViewSphere(const ViewSphere& sphere) {
   vs.arcs.assign(sphere.boundaryArcs().begin(), sphere.boundaryArcs().end());
   vs.isolated.assign(sphere.isolatedKeys().begin(), sphere.isolatedKeys().end());
   for (std::size_t k = 0; k < vs.views; ++k) vs.view_targets.push_back({static_cast<int>(k)});
+  if (sphere.settings().scheme == WeightScheme::Rbf) {
+    vs.rbf_chord2 = sphere.rbfChord2();
+    vs.rbf_coefficients.assign(sphere.rbfCoefficients().begin(), sphere.rbfCoefficients().end());
+  }
   return vs;
 }
 
@@ -1263,11 +1287,52 @@ std::size_t indexArray(const io::Json& j, const io::Ctx& ctx, std::size_t width,
 
 // Extras v2 "sphere" and "time": vdg re-derives the sphere from the keys on reading, but a runtime
 // reads these, so they must be well formed and match the keys in size (one line naming the field).
-void checkSphereDescription(const io::Json& vdg, const io::Ctx& ctx, std::size_t key_count, bool animated) {
+// Extras v4 "weights" of an rbf model: its kernel and width (degrees, in (0, 180]), both required;
+// refused with another scheme, and the rbf scheme refused before version 4.
+void readRbfSettings(const io::Json& weights, const io::Ctx& wc, int version, ViewSphereSettings& settings) {
+  if (settings.scheme != WeightScheme::Rbf) {
+    for (const char* rbf_only : {"kernel", "width"})
+      if (weights.contains(rbf_only)) wc.key(rbf_only).fail("belongs to the 'rbf' scheme only");
+    return;
+  }
+  if (version < 4) wc.key("scheme").fail("'rbf' needs extras version 4");
+  settings.rbf_kernel = io::enumValue(io::required(weights, "kernel", wc), wc.key("kernel"), io::kRbfKernelNames);
+  settings.rbf_width_deg = io::number(io::required(weights, "width", wc), wc.key("width"));
+  if (!(settings.rbf_width_deg > 0.0 && settings.rbf_width_deg <= 180.0))
+    wc.key("width").fail("expected an angle in (0, 180] degrees, got " + io::describe(weights.at("width")));
+}
+
+// Extras v4 "sphere"."rbf": the squared chord of the width (> 0, finite) and (points + 1) rows of
+// (views + 1) finite coefficients; only an rbf model has it, and an rbf model must.
+void checkRbfDescription(const io::Json& sphere, const io::Ctx& sc, std::size_t points, std::size_t views,
+                         WeightScheme scheme) {
+  if (scheme != WeightScheme::Rbf) {
+    if (sphere.contains("rbf")) sc.key("rbf").fail("belongs to the 'rbf' weight scheme only");
+    return;
+  }
+  const io::Json& rbf = io::required(sphere, "rbf", sc);
+  const io::Ctx rc = sc.key("rbf");
+  if (!rbf.is_object())
+    rc.fail("expected an object {\"chord2\": ..., \"coefficients\": ...}, got " + io::describe(rbf));
+  io::allowKeys(rbf, rc, {"chord2", "coefficients"});
+  const double chord2 = io::number(io::required(rbf, "chord2", rc), rc.key("chord2"));
+  if (!(chord2 > 0.0 && chord2 <= 4.0))
+    rc.key("chord2").fail("expected a squared chord in (0, 4], got " + io::describe(rbf.at("chord2")));
+  const io::Json& rows = io::required(rbf, "coefficients", rc);
+  if (!rows.is_array() || rows.size() != points + 1)
+    rc.key("coefficients")
+        .fail("expected " + std::to_string(points + 1) + " rows (the constants, then one per point), got " +
+              io::describe(rows));
+  for (std::size_t r = 0; r < rows.size(); ++r)
+    io::vector(rows[r], rc.key("coefficients").index(r), static_cast<long>(views + 1));
+}
+
+void checkSphereDescription(const io::Json& vdg, const io::Ctx& ctx, std::size_t key_count, bool animated,
+                            WeightScheme scheme) {
   if (key_count == 0 && !vdg.contains("sphere")) return;
   const io::Json& sphere = io::required(vdg, "sphere", ctx);
   const io::Ctx sc = ctx.key("sphere");
-  io::allowKeys(sphere, sc, {"points", "views", "triangles", "inverses", "arcs", "isolated", "view_targets"});
+  io::allowKeys(sphere, sc, {"points", "views", "triangles", "inverses", "arcs", "isolated", "view_targets", "rbf"});
   const io::Json& points = io::required(sphere, "points", sc);
   if (!points.is_array() || points.empty())
     sc.key("points").fail("expected an array of directions, got " + io::describe(points));
@@ -1300,6 +1365,7 @@ void checkSphereDescription(const io::Json& vdg, const io::Ctx& ctx, std::size_t
       if (seen[t.get<std::size_t>()]++) vc.index(i).fail("target " + t.dump() + " belongs to two views");
   }
   if (std::find(seen.begin(), seen.end(), 0) != seen.end()) vc.fail("a key's target belongs to no view");
+  checkRbfDescription(sphere, sc, points.size(), views, scheme);
   if (!animated) {
     if (vdg.contains("time")) ctx.key("time").fail("only an animated model has time tables");
     return;
@@ -1344,9 +1410,9 @@ Described describedModel(const io::Json& extras, std::size_t target_count, const
     const io::Json& weights = vdg.at("weights");
     const io::Ctx wc = ctx.key("weights");
     if (!weights.is_object()) wc.fail("expected an object {\"scheme\": ...}, got " + io::describe(weights));
-    io::allowKeys(weights, wc, {"scheme"});
+    io::allowKeys(weights, wc, {"scheme", "kernel", "width"});
     raw.sphere.scheme = io::enumValue(io::required(weights, "scheme", wc), wc.key("scheme"), io::kWeightSchemeNames);
-    if (raw.sphere.scheme == WeightScheme::Rbf) wc.key("scheme").fail("'rbf' is not a scheme of the glTF extras");
+    readRbfSettings(weights, wc, version, raw.sphere);
   }
   raw.offsets = io::enumValue(io::required(vdg, "offsets", ctx), ctx.key("offsets"), io::kOffsetSpaceNames);
   if (vdg.contains("animation")) {
@@ -1404,7 +1470,7 @@ Described describedModel(const io::Json& extras, std::size_t target_count, const
     if (key.contains("camera")) rk.camera = io::cameraFrom(key.at("camera"), kc.key("camera"));
     raw.keys.push_back(std::move(rk));
   }
-  if (version >= 2) checkSphereDescription(vdg, ctx, raw.keys.size(), d.animation.has_value());
+  if (version >= 2) checkSphereDescription(vdg, ctx, raw.keys.size(), d.animation.has_value(), raw.sphere.scheme);
   if (vdg.contains("dequantize")) {  // quantised exports: the mesh node's transform, for runtimes
     const io::Ctx qc = ctx.key("dequantize");
     io::allowKeys(vdg.at("dequantize"), qc, {"scale", "offset"});

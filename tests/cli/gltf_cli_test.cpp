@@ -378,7 +378,9 @@ TEST(GltfCli, EveryKindOfExportPassesTheKhronosValidator) {
       {"bake " + kWalk + " --orbit 8", "walk-skin-bake.glb"},            // weights + skeleton + camera
       {"bake " + kWalkWorld + " --orbit 6 --frames 2-5 --step", "walk-frames-bake.glb"},
       {"bake " + kSpot + " --camera examples/spot/swoop.camera.json --count 8", "swoop-bake.glb"},  // a path
-      {"export " + teapot, "teapot.glb"},   // five materials, no texture
+      {"export examples/spot/spot-rbf.vdg.json", "spot-rbf.glb"},               // extras v4: the rbf interpolation
+      {"bake examples/spot/spot-rbf.vdg.json --orbit 6", "spot-rbf-bake.glb"},  // every key weighed
+      {"export " + teapot, "teapot.glb"},                                       // five materials, no texture
       {"export " + teapot, "teapot.gltf"},  // the textured spot.gltf writes its image beside it
       // A KHR_interactivity graph (docs/interactivity.md): base mode with dummies, cosine arcs, one key.
       {"export " + kSpot + " --interactivity", "spot-graph.glb"},
@@ -479,7 +481,8 @@ TEST(GltfCli, CompressedExportsPassTheKhronosValidator) {
 
 namespace {
 
-// The extras of an export, and of a model with a camera key, against docs/schema (version 2; an
+// The extras of an export, and of a model with a camera key, against docs/schema (version 2, and 4 of
+// the rbf example, which needs its kernel, width and interpolation; an
 // animated export without its "time" or sphere fails it; the version 1 schema still describes a
 // version 1 description; needs python3's jsonschema; skipped without it).
 TEST(GltfCli, ExtrasFollowTheirJsonSchema) {
@@ -494,6 +497,7 @@ TEST(GltfCli, ExtrasFollowTheirJsonSchema) {
   ASSERT_EQ(run("bake " + kSpot + " -q --orbit 3 -o " + dir.file("b.gltf")).code, 0);
   ASSERT_EQ(run("export " + kWalk + " -q -o " + dir.file("w.gltf")).code, 0);
   ASSERT_EQ(run("bake " + kWalkWorld + " -q --orbit 3 -o " + dir.file("ww.gltf")).code, 0);
+  ASSERT_EQ(run("export " VDG_SOURCE_DIR "/examples/spot/spot-rbf.vdg.json -q -o " + dir.file("r.gltf")).code, 0);
   const std::string check =
       "python3 -c 'import json, sys, jsonschema\n"
       "schema = json.load(open(sys.argv[1]))\n"
@@ -513,6 +517,17 @@ TEST(GltfCli, ExtrasFollowTheirJsonSchema) {
       "refused(lambda v: v.pop(\"time\"))\n"
       "refused(lambda v: v[\"sphere\"][\"inverses\"].append([1, 2]))\n"
       "refused(lambda v: v.update(version=1))\n"
+      "def refused_rbf(change):\n"
+      "    bad = json.load(open(sys.argv[6]))[\"meshes\"][0][\"extras\"]\n"
+      "    change(bad[\"vdg\"])\n"
+      "    try:\n"
+      "        jsonschema.validate(bad, schema)\n"
+      "        sys.exit(4)\n"
+      "    except jsonschema.ValidationError:\n"
+      "        pass\n"
+      "refused_rbf(lambda v: v[\"sphere\"].pop(\"rbf\"))\n"
+      "refused_rbf(lambda v: v[\"weights\"].pop(\"kernel\"))\n"
+      "refused_rbf(lambda v: v.update(version=3))\n"
       "v1 = json.load(open(sys.argv[1].replace(\"extras.schema\", \"extras-v1.schema\")))\n"
       "jsonschema.Draft202012Validator.check_schema(v1)\n"
       "old = json.load(open(sys.argv[2]))[\"meshes\"][0][\"extras\"]\n"
@@ -520,7 +535,8 @@ TEST(GltfCli, ExtrasFollowTheirJsonSchema) {
       "old[\"vdg\"].pop(\"sphere\")\n"
       "jsonschema.validate(old, v1)\n"
       "' docs/schema/vdg-gltf-extras.schema.json '" +
-      dir.file("m.gltf") + "' '" + dir.file("b.gltf") + "' '" + dir.file("w.gltf") + "' '" + dir.file("ww.gltf") + "'";
+      dir.file("m.gltf") + "' '" + dir.file("b.gltf") + "' '" + dir.file("w.gltf") + "' '" + dir.file("ww.gltf") +
+      "' '" + dir.file("r.gltf") + "'";
   const Result r = runShell(check);
   EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_NE(readText(dir.file("m.gltf")).find("\"camera\""), std::string::npos);

@@ -53,9 +53,12 @@ TEST(FormatVersions, ManifestVersion2AnimatedBase) {
   EXPECT_NEAR(positions[3 * 2 + 1], 1.5, 1e-6);
 }
 
-// glTF exports' mesh.extras.vdg: version 1 (no "sphere" / "time") and version 2, static and animated.
-TEST(FormatVersions, GltfExtrasVersions1And2) {
-  for (const char* file : {"tetra_extras_v1.gltf", "tetra_extras_v2.gltf"}) {
+// glTF exports' mesh.extras.vdg: version 1 (no "sphere" / "time") and version 2, static and animated;
+// versions 3 (smooth weights) and 4 (rbf weights, with their interpolation), static. At the key's own
+// view every scheme shows the key.
+TEST(FormatVersions, GltfExtrasVersions1To4) {
+  for (const char* file :
+       {"tetra_extras_v1.gltf", "tetra_extras_v2.gltf", "tetra_extras_v3.gltf", "tetra_extras_v4.gltf"}) {
     const ViewDependentModel model = ViewDependentModel::build(loadGltfModel(formats(file)));
     ASSERT_EQ(model.keyCount(), 1u) << file;
     EXPECT_EQ(model.keyName(0), "up");
@@ -63,6 +66,11 @@ TEST(FormatVersions, GltfExtrasVersions1And2) {
     ASSERT_TRUE(model.evaluate(Eigen::Vector3d(0, 1, 0), 0.0, positions));
     EXPECT_NEAR(positions[3 * 2 + 1], 1.5, 1e-6) << file;  // the key mesh, as the manifest's
   }
+  EXPECT_EQ(loadGltfModel(formats("tetra_extras_v3.gltf")).sphere.scheme, WeightScheme::Smooth);
+  const RawViewDependentModel rbf = loadGltfModel(formats("tetra_extras_v4.gltf"));
+  EXPECT_EQ(rbf.sphere.scheme, WeightScheme::Rbf);
+  EXPECT_EQ(rbf.sphere.rbf_kernel, RbfKernel::Gaussian);
+  EXPECT_EQ(rbf.sphere.rbf_width_deg, 60.0);
   for (const char* file : {"tetra_walk_extras_v1.gltf", "tetra_walk_extras_v2.gltf"}) {
     const AnimatedViewDependentModel model = AnimatedViewDependentModel::build(loadGltfModel(formats(file)));
     ASSERT_EQ(model.frameCount(), 3) << file;

@@ -597,8 +597,8 @@ TEST(GltfExport, BadExtrasAreRefusedByTheReader) {
   EXPECT_EQ(refused([](auto& e) { e.erase("vdg"); }),
             "m.glb: mesh extras: no 'vdg' description: this glTF file was not exported by vdg");
   EXPECT_EQ(refused([](auto& e) { e.erase("targetNames"); }), "m.glb: mesh extras: missing key 'targetNames'");
-  EXPECT_EQ(refused([](auto& e) { e["vdg"]["version"] = 4; }).rfind("m.glb: mesh extras: 'vdg'.'version': ", 0), 0u);
-  EXPECT_NE(refused([](auto& e) { e["vdg"]["version"] = 4; }).find("got 4"), std::string::npos);
+  EXPECT_EQ(refused([](auto& e) { e["vdg"]["version"] = 5; }).rfind("m.glb: mesh extras: 'vdg'.'version': ", 0), 0u);
+  EXPECT_NE(refused([](auto& e) { e["vdg"]["version"] = 5; }).find("got 5"), std::string::npos);
   EXPECT_EQ(refused([](auto& e) {
               e["vdg"]["weights"] = {{"scheme", "smooth"}};
             }),
@@ -642,6 +642,135 @@ TEST(GltfExport, BadExtrasAreRefusedByTheReader) {
   short_deltas[1].pop_back();
   EXPECT_EQ(errorOf([&] { (void)rawModelFromGltfExtras(d.extras, d.base, short_deltas, "m.glb"); }),
             "m.glb: mesh extras: 'vdg'.'keys'[1]: morph target 1 has 257 delta values, expected 258");
+}
+
+// An rbf model (docs/weights.md, "The rbf scheme") of the test sphere's keys.
+RawViewDependentModel rbfSphereModel(Uncovered uncovered, RbfKernel kernel) {
+  RawViewDependentModel raw = sphereModel(uncovered, 2.5);
+  raw.sphere.scheme = WeightScheme::Rbf;
+  raw.sphere.rbf_kernel = kernel;
+  raw.sphere.rbf_width_deg = 75.0;
+  return raw;
+}
+
+// Extras v4 (docs/gltf-export.md): an rbf model writes its kernel and width and exactly the solved
+// interpolation; the written coefficients interpolate the keys (one-hot at each key view, to the
+// solve's rounding), and the file reads back into the same weights at every view.
+TEST(GltfExport, ExtrasV4CarryTheRbfInterpolation) {
+  constexpr double kInterpolationTol = 1e-9;  // the saddle system's solution, well conditioned
+  for (const Uncovered mode : {Uncovered::Base, Uncovered::Cosine, Uncovered::Cosine2}) {
+    for (const RbfKernel kernel : {RbfKernel::Gaussian, RbfKernel::InverseMultiquadric, RbfKernel::Wendland}) {
+      SCOPED_TRACE(std::string(uncoveredName(mode)) + " " + rbfKernelName(kernel));
+      const auto model = ViewDependentModel::build(rbfSphereModel(mode, kernel));
+      const ViewSphere& sphere = model.sphere();
+      const DecodedModel d = decodeModel(testing::decodeGlb(gltfToGlb(gltfExportInput(model), "t.glb")));
+      const nlohmann::json vdg = nlohmann::json::parse(d.extras).at("vdg");
+      EXPECT_EQ(vdg.at("version"), 4);
+      EXPECT_EQ(vdg.at("weights"),
+                nlohmann::json({{"scheme", "rbf"}, {"kernel", rbfKernelName(kernel)}, {"width", 75.0}}));
+      const nlohmann::json& rbf = vdg.at("sphere").at("rbf");
+      EXPECT_EQ(rbf.at("chord2").get<double>(), sphere.rbfChord2());
+      const std::size_t outputs = sphere.keyCount() + 1, points = sphere.points().size();
+      ASSERT_EQ(rbf.at("coefficients").size(), points + 1);
+      for (std::size_t r = 0; r <= points; ++r) {
+        ASSERT_EQ(rbf.at("coefficients")[r].size(), outputs);
+        for (std::size_t o = 0; o < outputs; ++o)
+          EXPECT_EQ(rbf.at("coefficients")[r][o].get<double>(), sphere.rbfCoefficients()[r * outputs + o]);
+      }
+      // r_o(x_i) = b_o + sum_j c_oj g(|x_i - x_j|^2 / chord2) is 1 for i's own output, 0 for the others.
+      for (std::size_t i = 0; i < points; ++i) {
+        for (std::size_t o = 0; o < outputs; ++o) {
+          double r = rbf.at("coefficients")[0][o].get<double>();
+          for (std::size_t j = 0; j < points; ++j) {
+            const double q = (sphere.points()[i] - sphere.points()[j]).squaredNorm() / sphere.rbfChord2();
+            const double s = std::sqrt(q);
+            const double g = kernel == RbfKernel::Gaussian              ? std::exp(-q)
+                             : kernel == RbfKernel::InverseMultiquadric ? 1.0 / std::sqrt(1.0 + q)
+                             : s >= 1.0                                 ? 0.0
+                                                                        : std::pow(1.0 - s, 4) * (4.0 * s + 1.0);
+            r += rbf.at("coefficients")[j + 1][o].get<double>() * g;
+          }
+          const std::size_t own = sphere.isDummy(static_cast<int>(i)) ? outputs - 1 : i;
+          EXPECT_NEAR(r, o == own ? 1.0 : 0.0, kInterpolationTol) << "point " << i << " output " << o;
+        }
+      }
+      const auto again = ViewDependentModel::build(rawModelFromGltfExtras(d.extras, d.base, d.deltas, "t.glb"));
+      EXPECT_EQ(again.sphere().settings().scheme, WeightScheme::Rbf);
+      std::vector<float> expected(outputs), read(outputs);
+      for (const Eigen::Vector3d& view : testViews()) {
+        ASSERT_TRUE(model.sphere().denseWeights(view, 1.7, expected));
+        ASSERT_TRUE(again.sphere().denseWeights(view, 1.7, read));
+        EXPECT_EQ(expected, read);
+      }
+    }
+  }
+  // The older versions stay as they were: a linear model writes version 2, a smooth one 3, neither "rbf".
+  RawViewDependentModel smooth = sphereModel();
+  smooth.sphere.scheme = WeightScheme::Smooth;
+  for (const auto& [raw, version] : {std::pair{sphereModel(), 2}, std::pair{smooth, 3}}) {
+    const auto model = ViewDependentModel::build(raw);
+    const nlohmann::json vdg =
+        nlohmann::json::parse(decodeModel(testing::decodeGlb(gltfToGlb(gltfExportInput(model), "t.glb"))).extras)
+            .at("vdg");
+    EXPECT_EQ(vdg.at("version"), version);
+    EXPECT_FALSE(vdg.at("sphere").contains("rbf"));
+    EXPECT_FALSE(vdg.contains("weights") && vdg.at("weights").contains("kernel"));
+  }
+}
+
+TEST(GltfExport, BadRbfExtrasAreRefusedByTheReader) {
+  const auto model = ViewDependentModel::build(rbfSphereModel(Uncovered::Base, RbfKernel::Gaussian));
+  const DecodedModel d = decodeModel(testing::decodeGlb(gltfToGlb(gltfExportInput(model), "t.glb")));
+  const nlohmann::json good = nlohmann::json::parse(d.extras);
+  const auto refused = [&](const std::function<void(nlohmann::json&)>& change) {
+    nlohmann::json e = good;
+    change(e);
+    return errorOf([&] { (void)rawModelFromGltfExtras(e.dump(), d.base, d.deltas, "m.glb"); });
+  };
+  const std::size_t rows = model.sphere().points().size() + 1;
+  EXPECT_EQ(refused([](auto&) {}), "");
+  EXPECT_EQ(refused([](auto& e) { e["vdg"]["version"] = 3; }),
+            "m.glb: mesh extras: 'vdg'.'weights'.'scheme': 'rbf' needs extras version 4");
+  EXPECT_EQ(refused([](auto& e) { e["vdg"]["weights"].erase("kernel"); }),
+            "m.glb: mesh extras: 'vdg'.'weights': missing key 'kernel'");
+  EXPECT_NE(refused([](auto& e) {
+              e["vdg"]["weights"]["kernel"] = "cubic";
+            }).find("m.glb: mesh extras: 'vdg'.'weights'.'kernel': unknown value 'cubic'"),
+            std::string::npos);
+  EXPECT_EQ(refused([](auto& e) { e["vdg"]["weights"].erase("width"); }),
+            "m.glb: mesh extras: 'vdg'.'weights': missing key 'width'");
+  EXPECT_EQ(refused([](auto& e) { e["vdg"]["weights"]["width"] = 0; }),
+            "m.glb: mesh extras: 'vdg'.'weights'.'width': expected an angle in (0, 180] degrees, got the number 0");
+  EXPECT_EQ(refused([](auto& e) { e["vdg"]["weights"]["width"] = 200; }),
+            "m.glb: mesh extras: 'vdg'.'weights'.'width': expected an angle in (0, 180] degrees, got the number 200");
+  EXPECT_EQ(refused([](auto& e) { e["vdg"]["weights"]["scheme"] = "smooth"; }),
+            "m.glb: mesh extras: 'vdg'.'weights'.'kernel': belongs to the 'rbf' scheme only");
+  EXPECT_EQ(refused([](auto& e) {
+              e["vdg"]["weights"] = {{"scheme", "smooth"}};
+            }),
+            "m.glb: mesh extras: 'vdg'.'sphere'.'rbf': belongs to the 'rbf' weight scheme only");
+  EXPECT_EQ(refused([](auto& e) { e["vdg"]["sphere"].erase("rbf"); }),
+            "m.glb: mesh extras: 'vdg'.'sphere': missing key 'rbf'");
+  EXPECT_EQ(refused([](auto& e) { e["vdg"]["sphere"]["rbf"] = 1; }),
+            "m.glb: mesh extras: 'vdg'.'sphere'.'rbf': expected an object {\"chord2\": ..., \"coefficients\": ...}, "
+            "got the number 1");
+  EXPECT_NE(refused([](auto& e) {
+              e["vdg"]["sphere"]["rbf"]["scale"] = 1;
+            }).find("m.glb: mesh extras: 'vdg'.'sphere'.'rbf': unknown key 'scale'"),
+            std::string::npos);
+  EXPECT_EQ(refused([](auto& e) { e["vdg"]["sphere"]["rbf"]["chord2"] = -1; }),
+            "m.glb: mesh extras: 'vdg'.'sphere'.'rbf'.'chord2': expected a squared chord in (0, 4], got the number -1");
+  EXPECT_EQ(refused([](auto& e) { e["vdg"]["sphere"]["rbf"]["coefficients"].erase(0); }),
+            "m.glb: mesh extras: 'vdg'.'sphere'.'rbf'.'coefficients': expected " + std::to_string(rows) +
+                " rows (the constants, then one per point), got an array of " + std::to_string(rows - 1) + " items");
+  EXPECT_NE(refused([](auto& e) {
+              e["vdg"]["sphere"]["rbf"]["coefficients"][2].erase(0);
+            }).find("m.glb: mesh extras: 'vdg'.'sphere'.'rbf'.'coefficients'[2]: "),
+            std::string::npos);
+  EXPECT_NE(refused([](auto& e) {
+              e["vdg"]["sphere"]["rbf"]["coefficients"][1][0] = "x";
+            }).find("m.glb: mesh extras: 'vdg'.'sphere'.'rbf'.'coefficients'[1]"),
+            std::string::npos);
 }
 
 // Extras v2 (docs/gltf-export.md): "sphere" is exactly the built ViewSphere, so a runtime that

@@ -158,7 +158,7 @@ def test_smooth_scheme_round_trip(models: dict[str, vdg.Model], tmp_path: pathli
 def test_rbf_scheme(models: dict[str, vdg.Model], tmp_path: pathlib.Path) -> None:
     """build(scheme="rbf") (docs/weights.md): exact at every key, every key weighs a view between
     them, the weights sum to 1 and are never negative, evaluate() blends them, the scheme survives
-    save_manifest, and the glTF export refuses it in one line."""
+    save_manifest and the glTF export (extras v4) weighs as the model, and so do its kernel and width."""
     spot = models["spot"]
     rbf = vdg.build(spot.base, spot.triangles, spot_keys(spot), scheme="rbf")
     assert rbf.scheme == "rbf"
@@ -179,8 +179,30 @@ def test_rbf_scheme(models: dict[str, vdg.Model], tmp_path: pathlib.Path) -> Non
     assert abs(positions - front.positions).max() < 1e-4, "a key's own view shows that key"
     rbf.save_manifest(tmp_path / "rbf.vdg.json")
     assert vdg.load(tmp_path / "rbf.vdg.json").scheme == "rbf"
-    with pytest.raises(vdg.Error, match="'rbf' weight scheme is not supported by the glTF export"):
-        rbf.export_gltf(tmp_path / "rbf.glb")
+    rbf.export_gltf(tmp_path / "rbf.glb")
+    exported = vdg.load(tmp_path / "rbf.glb")
+    assert exported.scheme == "rbf"
+    for view in random_views(20, 9):
+        assert exported.weights(view) == rbf.weights(view)
+    # The kernel and width: the defaults, or build's; kept by save_manifest and export_gltf.
+    assert (rbf.kernel, rbf.width) == ("gaussian", 60.0)
+    assert (spot.kernel, spot.width) == (None, None)
+    wendland = vdg.build(spot.base, spot.triangles, spot_keys(spot), scheme="rbf", kernel="wendland", width=50.0)
+    assert (wendland.kernel, wendland.width) == ("wendland", 50.0)
+    assert any(wendland.weights(v) != rbf.weights(v) for v in random_views(5, 3))
+    wendland.save_manifest(tmp_path / "wendland.vdg.json")
+    wendland.export_gltf(tmp_path / "wendland.glb")
+    for path in ("wendland.vdg.json", "wendland.glb"):
+        again = vdg.load(tmp_path / path)
+        assert (again.scheme, again.kernel, again.width) == ("rbf", "wendland", 50.0)
+        for view in random_views(10, 4):
+            assert again.weights(view) == wendland.weights(view)
+    with pytest.raises(ValueError, match="kernel, width: settings of the 'rbf' scheme only"):
+        vdg.build(spot.base, spot.triangles, spot_keys(spot), scheme="smooth", width=50.0)
+    with pytest.raises(ValueError, match="kernel: expected 'gaussian', 'inverse-multiquadric' or 'wendland'"):
+        vdg.build(spot.base, spot.triangles, spot_keys(spot), scheme="rbf", kernel="cubic")
+    with pytest.raises(ValueError, match=r"width: expected degrees in \(0, 180\]"):
+        vdg.build(spot.base, spot.triangles, spot_keys(spot), scheme="rbf", width=0.0)
 
 
 def test_build_animated_round_trip(models: dict[str, vdg.Model], tmp_path: pathlib.Path) -> None:

@@ -45,9 +45,10 @@ namespace vdg {
 // Version of the mesh.extras.vdg object ("version" field). Version 2 adds "sphere" (the viewing
 // sphere as vdg built it) and, for an animated model, "time" (the key views' spline tables), so
 // that a runtime reproduces `vdg weights` exactly (docs/gltf-export.md); version 3 adds "weights"
-// ({"scheme": "smooth"}, issue 29) and is written only for a model whose scheme is not linear;
-// versions 1 and 2 still read.
-inline constexpr int kGltfExtrasVersion = 3;
+// ({"scheme": "smooth"}, issue 29) and is written only for a smooth model;
+// version 4 adds the rbf scheme ("weights": {"scheme": "rbf", "kernel", "width"} and the solved
+// interpolation in "sphere"."rbf") and is written only for an rbf model; versions 1 to 3 still read.
+inline constexpr int kGltfExtrasVersion = 4;
 
 // One key view's time interpolation (mesh.extras.vdg."time"[i]; AnimatedViewDependentModel):
 // its key frames f_1 < ... < f_m and the spline's second-derivative table (m x m, row-major).
@@ -69,6 +70,10 @@ struct GltfViewSphere {
   std::vector<int> isolated;
   std::vector<std::vector<int>> view_targets;
   std::vector<GltfViewTime> time;
+  // Rbf scheme only (version 4, "sphere"."rbf"): ViewSphere::rbfChord2() and rbfCoefficients()
+  // ((points + 1) rows of views + 1 values); empty for the other schemes.
+  double rbf_chord2 = 0.0;
+  std::vector<double> rbf_coefficients;
 };
 
 // The sphere of a static model (or of hand-made targets): point i is key i = morph target i.

@@ -236,6 +236,14 @@ class ViewSphere {
   // Inverse of the matrix whose columns are triangle t's corners: the cone coordinates of a view v
   // are inverse * v (section 3.2.1). For exports that let a runtime repeat the query exactly.
   const Eigen::Matrix3d& triangleInverse(std::size_t t) const { return cones_.at(t).inverse; }
+  // Rbf scheme: the solved interpolation (see "Weight schemes" above), for exports that let a runtime
+  // repeat denseWeights() exactly. (points().size() + 1) rows of keyCount() + 1 values (the outputs:
+  // every key, then the base): row 0 holds the constants b_o, row j + 1 centre j's coefficients c_oj.
+  // Empty for the other schemes.
+  std::span<const double> rbfCoefficients() const { return rbf_rows_; }
+  // Rbf scheme: the width as a squared chord, (2 sin(width / 2))^2; the kernel's argument is
+  // q = |x - x_j|^2 / rbfChord2().
+  double rbfChord2() const { return rbf_chord2_; }
   // Fraction of the sphere's area covered by triangles whose three corners are all real keys.
   double coveredFraction() const { return covered_fraction_; }
   const ViewSphereSettings& settings() const { return settings_; }

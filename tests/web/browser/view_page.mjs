@@ -8,7 +8,8 @@
 //     POSITION_TOLERANCE (static Spot, and the animated walker at given frames);
 //   - a screenshot of the clean page matches `vdg render` of the same camera: the intersection over
 //     union of the non-background masks is at least SILHOUETTE_MIN_IOU;
-//   - the walker with "world" offsets (its walk as frame targets) equals vdg eval too;
+//   - the walker with "world" offsets (its walk as frame targets) equals vdg eval too, and so does
+//     Spot in the rbf weight scheme (extras version 4, every key weighed);
 //   - a plain export with a texture (when the export writes one) has a map on its three.js material;
 //   - a vdg .glb dropped on the page opens; the sharpness set on the page is vdg eval's --sharpness.
 // Usage: node view_page.mjs VDG SOURCE_DIR WEB_DIR WORK_DIR. Exit 77 (skip) when Chromium or
@@ -183,6 +184,7 @@ fs.mkdirSync(workDir, { recursive: true });
 const spot = path.join(sourceDir, 'examples/spot/spot.vdg.json');
 const walker = path.join(sourceDir, 'examples/walk/walker.vdg.json');
 const walkerWorld = path.join(sourceDir, 'examples/walk/walker-world.vdg.json');
+const spotRbf = path.join(sourceDir, 'examples/spot/spot-rbf.vdg.json');
 runVdg('view', spot, '-o', path.join(workDir, 'spot'), '-q');
 runVdg('export', walker, '-o', path.join(workDir, 'walker-export.glb'), '-q');
 check(fs.existsSync(path.join(workDir, 'spot/.vdg-view')), 'vdg view -o writes the folder with its marker');
@@ -227,6 +229,17 @@ try {
   const ww = await openPage(browser, worldServer.url);
   await checkParity(ww.page, walkerWorld, 'walker-world', [{ eye: [3.5, 1.5, 1.5], frame: 17 }], walkerCenter);
   check(ww.errors.length === 0, `walker-world: no console error (${ww.errors.join(' | ')})`);
+
+  // Spot in the rbf weight scheme (extras version 4): every key weighed from the written
+  // interpolation, in the browser as vdg eval does.
+  const rbfServer = await serve(spotRbf, path.join(workDir, 'spot-rbf'));
+  servers.push(rbfServer.child);
+  const r = await openPage(browser, rbfServer.url);
+  const rbfCenter = await r.page.evaluate(() => window.vdgView.center());
+  await checkParity(r.page, spotRbf, 'spot-rbf', [{ eye: [1.2, 1.1, -2.2] }, { eye: [-1.9, -0.6, 1.2], sharpness: 2.5 }],
+    rbfCenter);
+  await checkSilhouette(r.page, spotRbf, 'spot-rbf', [1.2, 1.1, -2.2], rbfCenter);
+  check(r.errors.length === 0, `spot-rbf: no console error (${r.errors.join(' | ')})`);
 } finally {
   await browser.close();
   for (const child of servers) child.kill('SIGINT');

@@ -1,7 +1,8 @@
-// web/vdg-three.js against vdg itself (docs/gltf-export.md, extras v2 and v3): vdgWeights / vdgSphereWeights
+// web/vdg-three.js against vdg itself (docs/gltf-export.md, extras v2 to v4): vdgWeights / vdgSphereWeights
 // equal `vdg weights --views` within kWeightTol at 10,000 random views and at every key view of every
-// shipped example (and of two in the smooth weight scheme), and at 2,000 views of small degenerate
-// key sets in every uncovered mode and both weight schemes, and of
+// shipped example (and of two in the smooth weight scheme, and of spot-rbf in the rbf scheme at four
+// sharpnesses), and at 2,000 views of small degenerate key sets in every uncovered mode and every
+// weight scheme (rbf with each of its three kernels), and of
 // animated OBJ-sequence bases (natural and periodic splines); the
 // morphed positions (POSITION + sum w * targets, read from the .glb) equal `vdg eval` within kPosTol.
 // Usage: node runtime_parity.mjs VDG_BINARY SOURCE_DIR WEB_DIR WORK_DIR
@@ -95,8 +96,8 @@ function compareWeights(model, extras, views, label, sharpness = null) {
   for (let n = 0; n < views.length; ++n) {
     const e = expected[n];
     const sw = vdgSphereWeights(vdgExtras, views[n], { sharpness });
-    worst = Math.max(worst, Math.abs(sw.base - e.base));
     if (animated) {
+      worst = Math.max(worst, Math.abs(sw.base - e.base));
       const mine = new Map();
       sw.points.forEach((p, k) => { if (p >= 0) mine.set(p, (mine.get(p) || 0) + sw.weights[k]); });
       for (const v of e.views) {
@@ -119,6 +120,13 @@ function compareWeights(model, extras, views, label, sharpness = null) {
         const w = e.keys[names[t]] || 0;
         worst = Math.max(worst, Math.abs(mw[t] - w));
       }
+      // The rbf scheme weighs every key: the sphere weights hold the three heaviest and, as the
+      // base, the rest; the base itself is that rest less the other keys' weights.
+      let base = sw.base;
+      if (vdgExtras.weights && vdgExtras.weights.scheme === 'rbf') {
+        for (let t = 0; t < names.length; ++t) if (!sw.points.includes(t)) base -= mw[t];
+      }
+      worst = Math.max(worst, Math.abs(base - e.base));
     }
     if (worst > kWeightTol) {
       check(false, `${label}: view ${n} [${views[n]}]: weights differ by ${worst} (vdg ${JSON.stringify(e)}, ` +
@@ -248,6 +256,33 @@ for (const [name, relative] of [['spot', 'examples/spot/spot.vdg.json'], ['head'
   comparePositions(manifest, exported, [keyViews[0], [0.3, 0.4, 0.87]], [0], `${name} smooth positions`);
 }
 
+// The rbf weight scheme (extras version 4, docs/weights.md) on the shipped spot-rbf example: every
+// key is weighed, from the written interpolation. Sharpness 2 (squares), 3 (multiplications), 3.5
+// and 0.7 (powers) take the three paths of the sharpening.
+{
+  const manifest = join(sourceDir, 'examples/spot/spot-rbf.vdg.json');
+  const exported = exportModel(manifest, 'spot-rbf');
+  const vdgExtras = exported.extras.vdg;
+  check(vdgExtras.version === 4 && vdgExtras.weights && vdgExtras.weights.scheme === 'rbf' &&
+    !!vdgExtras.sphere.rbf, 'spot-rbf: extras version 4 with the rbf scheme and its interpolation');
+  const keyViews = vdgExtras.keys.map((k) => k.view);
+  compareWeights(manifest, exported.extras, randomViews(kRandomViews, 29).concat(keyViews), 'spot rbf');
+  for (const [sharpness, seed] of [[2, 7], [3, 8], [3.5, 9], [0.7, 10]]) {
+    compareWeights(manifest, exported.extras, randomViews(1000, seed), `spot rbf sharpness ${sharpness}`, sharpness);
+  }
+  comparePositions(manifest, exported, [keyViews[0], [0.3, 0.4, 0.87], [-0.8, 0.1, -0.2]], [0], 'spot rbf positions');
+  // An rbf description without its interpolation (or with a short row) is refused with one message.
+  for (const [what, change] of [['no sphere.rbf', (e) => { delete e.sphere.rbf; }],
+    ['a short row', (e) => { e.sphere.rbf.coefficients[1].pop(); }], ['no kernel', (e) => { delete e.weights.kernel; }]]) {
+    const broken = structuredClone(vdgExtras);
+    change(broken);
+    let message = '';
+    try { vdgWeights(broken, [0, 0, 1]); } catch (e) { message = String(e.message); }
+    check(message.includes("an rbf model needs mesh.extras.vdg 'weights'.'kernel' and 'sphere'.'rbf'"),
+      `spot rbf with ${what}: refused in one message (got '${message}')`);
+  }
+}
+
 // Degenerate key sets, written here: a tetrahedron base and keys that push one vertex each.
 const tetra = 'v 0 0 1\nv 0.94 0 -0.33\nv -0.47 0.82 -0.33\nv -0.47 -0.82 -0.33\nf 1 2 3\nf 1 3 4\nf 1 4 2\nf 2 4 3\n';
 writeFileSync(join(workDir, 'base.obj'), tetra);
@@ -259,8 +294,10 @@ function degenerate(keyViews, uncovered, name, scheme = 'linear') {
     return { name: `key${i}`, mesh, view };
   });
   const manifest = join(workDir, `${name}.vdg.json`);
+  // scheme: 'linear', 'smooth' or 'rbf-KERNEL'.
+  const weights = scheme.startsWith('rbf-') ? { scheme: 'rbf', kernel: scheme.slice(4), width: 70 } : { scheme };
   const doc = scheme === 'linear' ? { version: 1, base: 'base.obj', uncovered, sharpness: 1.7, keys }
-    : { version: 3, base: 'base.obj', uncovered, sharpness: 1.7, keys, weights: { scheme } };
+    : { version: 3, base: 'base.obj', uncovered, sharpness: 1.7, keys, weights };
   writeFileSync(manifest, JSON.stringify(doc));
   const exported = exportModel(manifest, name);
   compareWeights(manifest, exported.extras, randomViews(kDegenerateViews, 99).concat(keyViews), name);
@@ -277,6 +314,9 @@ for (const [set, keyViews] of Object.entries(sets)) {
   for (const mode of ['base', 'cosine', 'cosine2']) {
     degenerate(keyViews, mode, `${set.replace(' ', '-')}-${mode}`);
     degenerate(keyViews, mode, `${set.replace(' ', '-')}-${mode}-smooth`, 'smooth');
+    for (const kernel of ['gaussian', 'inverse-multiquadric', 'wendland']) {
+      degenerate(keyViews, mode, `${set.replace(' ', '-')}-${mode}-rbf-${kernel}`, `rbf-${kernel}`);
+    }
   }
 }
 
