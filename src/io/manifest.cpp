@@ -213,6 +213,17 @@ void parseParts(const Json& parts, const Ctx& ctx, RawViewDependentModel& model)
   }
 }
 
+// A key's "drawing" (version 5): a file name, on a key given by its camera (the drawing is what
+// that camera saw).
+void parseKeyDrawing(const Json& j, const Ctx& ctx, int version, bool has_camera, bool has_view, RawKey& key) {
+  if (version < 5) ctx.fail("needs manifest version 5 (this file says \"version\": " + std::to_string(version) + ")");
+  if (!has_camera)
+    ctx.fail("needs the key's 'camera' (the viewpoint the drawing was made from); this key is given by " +
+             std::string(has_view ? "'view'" : "'eye'"));
+  key.drawing_path = io::string(j, ctx);
+  if (key.drawing_path.empty()) ctx.fail("expected a PNG or JPEG file name, got an empty string");
+}
+
 // A key's reference drawing (version 5), decoded with the image reader's limits; the message names
 // the manifest, the key and the file ("M: key 'front' (keys[0]): drawing 'f.png': ...").
 std::shared_ptr<const TextureImage> readDrawing(const fs::path& folder, const RawKey& key, std::size_t k,
@@ -389,16 +400,8 @@ RawViewDependentModel parseManifest(const std::string& text, const std::string& 
     if (has_eye) key.eye = io::vector3(entry.at("eye"), ctx.key("eye"));
     if (has_view) key.view = io::vector3(entry.at("view"), ctx.key("view"));
     if (has_camera) key.camera = io::cameraFrom(entry.at("camera"), ctx.key("camera"));
-    if (entry.contains("drawing")) {
-      const Ctx dctx = ctx.key("drawing");
-      if (version < 5)
-        dctx.fail("needs manifest version 5 (this file says \"version\": " + std::to_string(version) + ")");
-      if (!has_camera)
-        dctx.fail("needs the key's 'camera' (the viewpoint the drawing was made from); this key is given by " +
-                  std::string(has_view ? "'view'" : "'eye'"));
-      key.drawing_path = io::string(entry.at("drawing"), dctx);
-      if (key.drawing_path.empty()) dctx.fail("expected a PNG or JPEG file name, got an empty string");
-    }
+    if (entry.contains("drawing"))
+      parseKeyDrawing(entry.at("drawing"), ctx.key("drawing"), version, has_camera, has_view, key);
     model.keys.push_back(std::move(key));
   }
   if (doc.contains("parts")) parseParts(doc.at("parts"), top.key("parts"), model);
