@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <numbers>
 #include <span>
@@ -164,11 +165,14 @@ void rasterise(DepthBuffer& buffer, std::int32_t index, const KeyPoint& a, const
                bool ortho) {
   if (!a.front || !b.front || !c.front) return;  // a triangle across the eye's plane is left out
   const double area = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
-  if (!(std::abs(area) > 0.0)) return;
-  const int x0 = std::max(0, static_cast<int>(std::floor(std::min({a.x, b.x, c.x}))));
-  const int x1 = std::min(buffer.width - 1, static_cast<int>(std::ceil(std::max({a.x, b.x, c.x}))));
-  const int y0 = std::max(0, static_cast<int>(std::floor(std::min({a.y, b.y, c.y}))));
-  const int y1 = std::min(buffer.height - 1, static_cast<int>(std::ceil(std::max({a.y, b.y, c.y}))));
+  if (!(std::abs(area) > 0.0) || !std::isfinite(area)) return;  // degenerate, or a vertex projected to infinity
+  // The bounding box, clamped to the buffer in doubles first (a vertex near the eye's plane
+  // projects arbitrarily far away, beyond what an int holds).
+  const auto clampTo = [](double v, int hi) { return static_cast<int>(std::clamp(v, -1.0, static_cast<double>(hi))); };
+  const int x0 = std::max(0, clampTo(std::floor(std::min({a.x, b.x, c.x})), buffer.width));
+  const int x1 = std::min(buffer.width - 1, clampTo(std::ceil(std::max({a.x, b.x, c.x})), buffer.width));
+  const int y0 = std::max(0, clampTo(std::floor(std::min({a.y, b.y, c.y})), buffer.height));
+  const int y1 = std::min(buffer.height - 1, clampTo(std::ceil(std::max({a.y, b.y, c.y})), buffer.height));
   // What is linear on the screen: 1 / depth (perspective) or depth (parallel).
   const double za = ortho ? a.depth : 1.0 / a.depth, zb = ortho ? b.depth : 1.0 / b.depth,
                zc = ortho ? c.depth : 1.0 / c.depth;
