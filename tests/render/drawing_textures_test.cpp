@@ -9,6 +9,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <random>
 #include <vector>
@@ -19,6 +20,7 @@
 #include "vdg/geom/error.h"
 #include "vdg/render/drawing_textures.h"
 #include "vdg/render/model_renderer.h"
+#include "vdg/render/renderer.h"
 
 namespace vdg::render {
 namespace {
@@ -297,6 +299,52 @@ TEST(DrawingTextures, BadInputIsOneClearError) {
   fo.drawings = std::make_shared<const DrawingTextures>(DrawingTextures::build(model, allDrawings(3, *image)));
   EXPECT_EQ(testing::errorOf([&] { ModelRenderer r(model.base(), fo); }),
             "render: drawing textures take a static view-dependent model blended on the CPU, not a plain mesh");
+}
+
+// Renderer::addDrawings refuses what it cannot use at set-up; drawMeshDrawings keeps the per-frame
+// contract: every invalid input returns false and leaves the canvas as it was.
+TEST(DrawingTextures, TheRendererChecksItsInput) {
+  const RawViewDependentModel raw = cameraModel();
+  const ViewDependentModel model = ViewDependentModel::build(raw);
+  const DrawingTextures d = DrawingTextures::build(model, allDrawings(model.keyCount(), gradient(16, 16)));
+  Renderer renderer(RendererSettings{32, 32, 1});
+  const int plain = renderer.addMesh(model.base().triangles, model.vertexCount());
+  EXPECT_EQ(testing::errorOf([&] { (void)renderer.addDrawings(plain, d); }),
+            "render: addDrawings: mesh 0 is not a surface of this renderer (addSurface)");
+  const TriMesh small = uvSphere(4, 6);
+  const int other = renderer.addSurface(small, SurfaceTopology::build(small));
+  EXPECT_EQ(testing::errorOf([&] { (void)renderer.addDrawings(other, d); }),
+            "render: addDrawings: the drawings were built for " + std::to_string(model.vertexCount()) +
+                " vertices; the mesh has " + std::to_string(small.vertexCount()));
+  const int mesh = renderer.addSurface(model.base(), model.surface());
+  const int drawings = renderer.addDrawings(mesh, d);
+  ASSERT_TRUE(renderer.updateMesh(mesh, model.base().positions, {}));
+  View view;
+  view.viewport = {0, 0, 32, 32};
+  view.camera = *model.keyCamera(0);
+  view.z_near = 1.0;
+  view.z_far = 10.0;
+  ViewWeights w;
+  w.key = {0, 1, -1};
+  w.weight = {0.5f, 0.5f, 0.0f};
+  renderer.clear({0.1f, 0.2f, 0.3f});
+  Image before, after;
+  renderer.readPixels(before);
+  ViewWeights bad_key = w, bad_weight = w;
+  bad_key.key[2] = 3;
+  bad_weight.weight[1] = std::numeric_limits<float>::quiet_NaN();
+  View bad_view = view;
+  bad_view.z_near = 0.0;
+  EXPECT_FALSE(renderer.drawMeshDrawings(mesh, drawings + 1, view, MeshStyle{}, w));
+  EXPECT_FALSE(renderer.drawMeshDrawings(other, drawings, view, MeshStyle{}, w));
+  EXPECT_FALSE(renderer.drawMeshDrawings(mesh, drawings, view, MeshStyle{}, bad_key));
+  EXPECT_FALSE(renderer.drawMeshDrawings(mesh, drawings, view, MeshStyle{}, bad_weight));
+  EXPECT_FALSE(renderer.drawMeshDrawings(mesh, drawings, bad_view, MeshStyle{}, w));
+  renderer.readPixels(after);
+  EXPECT_EQ(before.rgba, after.rgba);
+  EXPECT_TRUE(renderer.drawMeshDrawings(mesh, drawings, view, MeshStyle{}, w));
+  renderer.readPixels(after);
+  EXPECT_NE(before.rgba, after.rgba);
 }
 
 }  // namespace
