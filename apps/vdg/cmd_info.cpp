@@ -347,6 +347,12 @@ void printInteractivityOfFile(const std::string& path) {
 
 // "  (FILE)" after a key read from a mesh file; nothing for a key stored in a glTF model.
 std::string meshNote(const std::string& mesh_path) { return mesh_path.empty() ? "" : "  (" + mesh_path + ")"; }
+// "  drawing FILE (WxH)" after a key with a reference drawing (docs/drawing-textures.md).
+std::string drawingNote(const RawKey& key) {
+  if (!key.drawing) return "";
+  return "  drawing " + key.drawing_path + " (" + std::to_string(key.drawing->width) + "x" +
+         std::to_string(key.drawing->height) + ")";
+}
 
 // A static model's keys for --json: name, mesh file, unit view and moved vertices of each.
 nlohmann::ordered_json keysJson(const ViewDependentModel& model, const RawViewDependentModel& raw) {
@@ -357,6 +363,7 @@ nlohmann::ordered_json keysJson(const ViewDependentModel& model, const RawViewDe
                     {"mesh", raw.keys[k].mesh_path},
                     {"view", {v.x(), v.y(), v.z()}},
                     {"moved_vertices", model.keyMovedCount(k)}});
+    if (!raw.keys[k].drawing_path.empty()) keys.back()["drawing"] = raw.keys[k].drawing_path;
   }
   return keys;
 }
@@ -810,8 +817,9 @@ void addInfoCommand(CLI::App& app) {
     std::printf("keys       %zu\n", model.keyCount());
     for (std::size_t k = 0; k < model.keyCount(); ++k) {
       const auto& v = model.keyView(k);
-      std::printf("  %-16s view (%7.4f, %7.4f, %7.4f)  moves %zu vertices%s\n", model.keyName(k).c_str(), v.x(), v.y(),
-                  v.z(), model.keyMovedCount(k), meshNote(raw.keys[k].mesh_path).c_str());
+      std::printf("  %-16s view (%7.4f, %7.4f, %7.4f)  moves %zu vertices%s%s\n", model.keyName(k).c_str(), v.x(),
+                  v.y(), v.z(), model.keyMovedCount(k), meshNote(raw.keys[k].mesh_path).c_str(),
+                  drawingNote(raw.keys[k]).c_str());
     }
     std::printf("hull       %zu triangles, %zu dummy base keys\n", sphere.triangles().size(), dummies);
     std::printf("coverage   %.1f%% of the viewing sphere lies in triangles of real keys\n",

@@ -21,11 +21,17 @@
 // --creases DEG inks sharp edges, and the mesh's materials and textures colour it unless
 // --no-materials (docs/render.md: the paper's equation per material and per texel).
 //
+// --drawing-textures blends the keys' reference drawings (the manifest's "drawing", version 5) over the
+// model as view-dependent textures with the shape's weights (vdg/render/drawing_textures.h,
+// docs/drawing-textures.md); --drawing-mode fill-ink or flat prepares each drawing first
+// (--contour-threshold, --contour-dilation).
+//
 // --gpu-blend blends the model, computes its normals and finds its silhouettes on the GPU
 // (Renderer::addBlendModel; OpenGL 4.3), for static view-dependent models; the frames equal the
 // CPU path's within rounding.
 #include <sys/stat.h>
 #include <unistd.h>
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -69,6 +75,10 @@ struct RenderOptions : CameraOptions {
   bool observer = false, sphere = false, flat = false, quiet = false, base_only = false;
   bool no_borders = false, no_materials = false, strict = false, gpu_blend = false;
   int hold_frame = -1;  // -1: advance one animation frame per output frame
+  bool drawing_textures = false;
+  std::string drawing_mode = "as-drawn";  // as-drawn | fill-ink | flat (render::DrawingMode)
+  double contour_threshold = render::DrawingStyle{}.contour_threshold;
+  int contour_dilation = render::DrawingStyle{}.dilation;
 };
 
 // Option ranges (checked at parse time by the validators in cli.h; see docs/render.md; the
@@ -159,6 +169,38 @@ OpenedInput openRendered(const RenderOptions& opt) {
   return input;
 }
 
+// --drawing-textures: the keys' drawings (raw keys matched to the built model's by name), prepared
+// and projected. The options that shape them need --drawing-textures.
+std::shared_ptr<const render::DrawingTextures> drawingTextures(const RenderOptions& opt, const OpenedInput& input) {
+  const bool shaped = opt.drawing_mode != "as-drawn" ||
+                      opt.contour_threshold != render::DrawingStyle{}.contour_threshold ||
+                      opt.contour_dilation != render::DrawingStyle{}.dilation;
+  if (!opt.drawing_textures) {
+    if (shaped) throw UsageError("--drawing-mode, --contour-threshold and --contour-dilation need --drawing-textures");
+    return nullptr;
+  }
+  if (!input.model)
+    throw UsageError("--drawing-textures: " + opt.model + " is " +
+                     (input.animated ? "an animated model; drawing textures take a static model"
+                                     : "a plain mesh, with no key drawings"));
+  if (opt.gpu_blend)
+    throw UsageError("--drawing-textures: not with --gpu-blend (the drawings are blended on the CPU path)");
+  const ViewDependentModel& model = *input.model;
+  std::vector<std::shared_ptr<const TextureImage>> drawings(model.keyCount());
+  for (std::size_t k = 0; k < model.keyCount(); ++k)
+    for (const RawKey& key : input.raw.keys)
+      if (key.name == model.keyName(k)) drawings[k] = key.drawing;
+  if (std::none_of(drawings.begin(), drawings.end(), [](const auto& d) { return d != nullptr; }))
+    throw UsageError("--drawing-textures: " + opt.model + " has no key with a 'drawing' (manifest version 5)");
+  render::DrawingStyle style;
+  style.mode = opt.drawing_mode == "flat"       ? render::DrawingMode::kFlat
+               : opt.drawing_mode == "fill-ink" ? render::DrawingMode::kFillInk
+                                                : render::DrawingMode::kAsDrawn;
+  style.contour_threshold = static_cast<float>(opt.contour_threshold);
+  style.dilation = opt.contour_dilation;
+  return std::make_shared<const render::DrawingTextures>(render::DrawingTextures::build(model, drawings, style));
+}
+
 // Where the orbit turns and how far it must stay: the centre, and the radius of the sphere about it
 // holding what will be drawn (the base and every key; of an animated model, at every frame), so
 // that a key that raises the top stays in the frame.
@@ -190,6 +232,7 @@ void run(const RenderOptions& opt) {
   }
 
   const OpenedInput input = openRendered(opt);
+  fo.drawings = drawingTextures(opt, input);
   const AnimatedViewDependentModel* animated = input.animated.get();
   if (!input.isModel()) fo.sphere = false;
   const Framing frame = framing(input);
@@ -295,6 +338,21 @@ void addRenderCommand(CLI::App& app) {
   sub->add_flag("--gpu-blend", opt->gpu_blend,
                 "Blend, shade and ink on the GPU (compute shaders; needs OpenGL 4.3): the same picture within "
                 "rounding; static view-dependent models only");
+  sub->add_flag("--drawing-textures", opt->drawing_textures,
+                "Blend the keys' reference drawings (a key's \"drawing\" in the manifest) over the model as "
+                "view-dependent textures, with the shape's weights; where no key sees the surface, the usual shading");
+  sub->add_option("--drawing-mode", opt->drawing_mode,
+                  "With --drawing-textures: as-drawn (the drawings as they are), fill-ink (ink lines filled from the "
+                  "nearest colours, so they do not blend into ghost lines) or flat (each region between ink lines "
+                  "in its median colour, ink filled) (default as-drawn)")
+      ->check(CLI::IsMember({"as-drawn", "fill-ink", "flat"}));
+  sub->add_option("--contour-threshold", opt->contour_threshold,
+                  "fill-ink and flat: pixels darker than this luminance in (0, 1] are ink (default 0.3)")
+      ->check(positiveNumber(1.0));
+  sub->add_option("--contour-dilation", opt->contour_dilation,
+                  "fill-ink and flat: grow the ink by N pixels, 0 to " + std::to_string(render::kMaxContourDilation) +
+                      ", to take the lines' soft edges too (default 1)")
+      ->check(wholeNumber(0, render::kMaxContourDilation));
   sub->add_option("--samples", opt->samples, "Multisample anti-aliasing samples (default 8, capped by the driver)")
       ->check(wholeNumber(1, kMaxSamples));
   sub->add_flag("-q,--quiet", opt->quiet, "No progress bar and no summary line");

@@ -15,6 +15,7 @@
 #include "vdg/geom/error.h"
 #include "vdg/io/atomic_file.h"
 #include "vdg/io/gltf.h"
+#include "vdg/io/image_file.h"
 #include "vdg/io/json_text.h"
 #include "vdg/io/mesh.h"
 #include "vdg/io/read_file.h"
@@ -212,6 +213,31 @@ void parseParts(const Json& parts, const Ctx& ctx, RawViewDependentModel& model)
   }
 }
 
+// A key's "drawing" (version 5): a file name, on a key given by its camera (the drawing is what
+// that camera saw).
+void parseKeyDrawing(const Json& j, const Ctx& ctx, int version, bool has_camera, bool has_view, RawKey& key) {
+  if (version < 5) ctx.fail("needs manifest version 5 (this file says \"version\": " + std::to_string(version) + ")");
+  if (!has_camera)
+    ctx.fail("needs the key's 'camera' (the viewpoint the drawing was made from); this key is given by " +
+             std::string(has_view ? "'view'" : "'eye'"));
+  key.drawing_path = io::string(j, ctx);
+  if (key.drawing_path.empty()) ctx.fail("expected a PNG or JPEG file name, got an empty string");
+}
+
+// A key's reference drawing (version 5), decoded with the image reader's limits; the message names
+// the manifest, the key and the file ("M: key 'front' (keys[0]): drawing 'f.png': ...").
+std::shared_ptr<const TextureImage> readDrawing(const fs::path& folder, const RawKey& key, std::size_t k,
+                                                const std::string& manifest) {
+  const fs::path file =
+      fs::path(key.drawing_path).is_absolute() ? fs::path(key.drawing_path) : folder / key.drawing_path;
+  try {
+    return std::make_shared<const TextureImage>(readImageFile(file.string(), "drawing"));
+  } catch (const Error& e) {
+    throw Error(manifest + ": key '" + key.name + "' (keys[" + std::to_string(k) + "]): drawing '" + key.drawing_path +
+                "': " + e.what());
+  }
+}
+
 // A part's mask file: one number per vertex, separated by white space.
 std::vector<float> readMaskFile(const fs::path& folder, const std::string& relative, const std::string& where) {
   const fs::path path = fs::path(relative).is_absolute() ? fs::path(relative) : folder / relative;
@@ -353,7 +379,7 @@ RawViewDependentModel parseManifest(const std::string& text, const std::string& 
   for (std::size_t k = 0; k < keys.size(); ++k) {
     const Json& entry = keys[k];
     Ctx ctx = top.key("keys").index(k);
-    io::allowKeys(entry, ctx, {"name", "mesh", "view", "camera", "eye", "frame"});
+    io::allowKeys(entry, ctx, {"name", "mesh", "view", "camera", "eye", "frame", "drawing"});
     RawKey key;
     key.mesh_path = io::string(io::required(entry, "mesh", ctx), ctx.key("mesh"));
     if (key.mesh_path.empty()) ctx.key("mesh").fail("expected a mesh file name, got an empty string");
@@ -374,6 +400,8 @@ RawViewDependentModel parseManifest(const std::string& text, const std::string& 
     if (has_eye) key.eye = io::vector3(entry.at("eye"), ctx.key("eye"));
     if (has_view) key.view = io::vector3(entry.at("view"), ctx.key("view"));
     if (has_camera) key.camera = io::cameraFrom(entry.at("camera"), ctx.key("camera"));
+    if (entry.contains("drawing"))
+      parseKeyDrawing(entry.at("drawing"), ctx.key("drawing"), version, has_camera, has_view, key);
     model.keys.push_back(std::move(key));
   }
   if (doc.contains("parts")) parseParts(doc.at("parts"), top.key("parts"), model);
@@ -393,6 +421,7 @@ RawViewDependentModel loadManifest(const std::string& path, const MeshReadOption
     RawKey& key = model.keys[k];
     key.mesh =
         readReferencedMesh(folder, key.mesh_path, path + ": key '" + key.name + "' (keys[" + std::to_string(k) + "])");
+    if (!key.drawing_path.empty()) key.drawing = readDrawing(folder, key, k, path);
   }
   for (std::size_t p = 0; p < model.parts.size(); ++p) {
     RawPart& part = model.parts[p];
@@ -436,7 +465,9 @@ std::string formatManifest(const RawViewDependentModel& model) {
   const bool needs_v4 =
       !model.parts.empty() || model.key_space.space == WeightSpace::Positions ||
       std::any_of(model.keys.begin(), model.keys.end(), [](const RawKey& k) { return k.eye.has_value(); });
-  doc["version"] = needs_v4 ? 4 : model.sphere.scheme == WeightScheme::Linear ? 2 : 3;
+  const bool needs_v5 =
+      std::any_of(model.keys.begin(), model.keys.end(), [](const RawKey& k) { return !k.drawing_path.empty(); });
+  doc["version"] = needs_v5 ? 5 : needs_v4 ? 4 : model.sphere.scheme == WeightScheme::Linear ? 2 : 3;
   if (!model.comment.empty()) doc["comment"] = model.comment;
   if (model.base_animation) {
     const BaseAnimationSpec& spec = *model.base_animation;
@@ -482,6 +513,7 @@ std::string formatManifest(const RawViewDependentModel& model) {
       entry["eye"] = {key.eye->x(), key.eye->y(), key.eye->z()};
     else
       entry["view"] = {key.view.x(), key.view.y(), key.view.z()};
+    if (!key.drawing_path.empty()) entry["drawing"] = key.drawing_path;
     keys.push_back(std::move(entry));
   }
   doc["keys"] = std::move(keys);

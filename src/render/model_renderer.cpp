@@ -103,6 +103,7 @@ struct ModelRenderer::Impl {
   Renderer renderer;
   int mesh_id = -1;
   int blend_id = -1;                 // options.gpu_blend: the model's GPU blend handle
+  int drawings_id = -1;              // options.drawings: their handle in the renderer
   std::vector<float> positions;      // this frame's; the renderer computes the normals per smoothing group
   std::vector<float> dense;          // an rbf model: every key's weight and the base's (keyCount() + 1)
   std::vector<float> screen_points;  // the vertices projected, for the inset's corner (x, y pairs)
@@ -158,12 +159,27 @@ struct ModelRenderer::Impl {
                               : "a plain mesh has no keys to blend"));
       blend_id = renderer.addBlendModel(*model);
     }
+    if (options.drawings) addDrawings();
     if (!viewDependent()) {
       check(renderer.updateMesh(mesh_id, positions, {}), "updateMesh");
       return;
     }
     inset.emplace(sphere());
     inset->shading = options.shading;
+  }
+
+  void addDrawings() {
+    const DrawingTextures& d = *options.drawings;
+    if (!model || options.gpu_blend)
+      throw Error(std::string("render: drawing textures take a static view-dependent model blended on the CPU, not ") +
+                  (options.gpu_blend ? "the GPU blend (--gpu-blend)"
+                   : animated        ? "an animated model"
+                                     : "a plain mesh"));
+    if (d.keyCount() != model->keyCount() || d.vertexCount() != model->vertexCount())
+      throw Error("render: drawing textures built for " + std::to_string(d.keyCount()) + " keys and " +
+                  std::to_string(d.vertexCount()) + " vertices; the model has " + std::to_string(model->keyCount()) +
+                  " keys and " + std::to_string(model->vertexCount()) + " vertices");
+    drawings_id = renderer.addDrawings(mesh_id, d);
   }
 
   // The model's vertices projected into the main view (x, y pixel pairs in screen_points, points
@@ -314,7 +330,11 @@ ViewWeights ModelRenderer::render(const Camera& camera, Image& out) {
   // The mesh as the CPU blended it, or blended on the GPU (one instance, in model space).
   InstanceBlend instance;
   instance.weights = w;
-  const auto draw = [&](const View& v, const MeshStyle& s) {
+  const auto draw = [&](const View& v, const MeshStyle& s, bool with_drawings = false) {
+    if (with_drawings && m.drawings_id >= 0) {
+      checkDraw(m.renderer.drawMeshDrawings(m.mesh_id, m.drawings_id, v, s, w), "drawMeshDrawings", v, m.drawn());
+      return;
+    }
     if (m.blend_id < 0) {
       checkDraw(m.renderer.drawMesh(m.mesh_id, v, s), "drawMesh", v, m.drawn());
       return;
@@ -326,7 +346,7 @@ ViewWeights ModelRenderer::render(const Camera& camera, Image& out) {
   main.viewport = {0, 0, o.width, o.height};
   main.camera = camera;
   clip(main);
-  draw(main, style);
+  draw(main, style, true);
 
   if (o.observer) {
     View obs;

@@ -468,7 +468,113 @@ void Renderer::clear(const Rgb& color, const Viewport* viewport) {
 bool Renderer::drawMesh(int mesh_id, const View& view, const MeshStyle& style) {
   Impl& m = *impl_;
   if (mesh_id < 0 || static_cast<std::size_t>(mesh_id) >= m.meshes.size() || !validView(view)) return false;
-  GpuMesh& mesh = *m.meshes[static_cast<std::size_t>(mesh_id)];
+  return m.drawSurface(*m.meshes[static_cast<std::size_t>(mesh_id)], view, style, nullptr, nullptr);
+}
+
+bool Renderer::drawMeshDrawings(int mesh_id, int drawings_id, const View& view, const MeshStyle& style,
+                                const ViewWeights& weights) {
+  Impl& m = *impl_;
+  if (mesh_id < 0 || static_cast<std::size_t>(mesh_id) >= m.meshes.size() || !validView(view)) return false;
+  if (drawings_id < 0 || static_cast<std::size_t>(drawings_id) >= m.drawings.size()) return false;
+  const GpuDrawings& d = *m.drawings[static_cast<std::size_t>(drawings_id)];
+  if (d.mesh != mesh_id || !std::isfinite(weights.base)) return false;
+  for (int i = 0; i < 3; ++i) {
+    const int key = weights.key[static_cast<std::size_t>(i)];
+    if (key < -1 || key >= static_cast<int>(d.present.size()) ||
+        !std::isfinite(weights.weight[static_cast<std::size_t>(i)]))
+      return false;
+  }
+  return m.drawSurface(*m.meshes[static_cast<std::size_t>(mesh_id)], view, style, &d, &weights);
+}
+
+int Renderer::addDrawings(int mesh_id, const DrawingTextures& drawings) {
+  Impl& m = *impl_;
+  const std::string what = "render: addDrawings: ";
+  if (mesh_id < 0 || static_cast<std::size_t>(mesh_id) >= m.meshes.size() ||
+      !m.meshes[static_cast<std::size_t>(mesh_id)]->surface)
+    throw Error(what + "mesh " + std::to_string(mesh_id) + " is not a surface of this renderer (addSurface)");
+  const GpuMesh& mesh = *m.meshes[static_cast<std::size_t>(mesh_id)];
+  const SurfaceTopology& t = mesh.topology;
+  if (drawings.vertexCount() != t.vertexCount())
+    throw Error(what + "the drawings were built for " + std::to_string(drawings.vertexCount()) +
+                " vertices; the mesh has " + std::to_string(t.vertexCount()));
+  m.context.makeCurrent();
+  if (!m.drawing_program)
+    m.drawing_program =
+        std::make_unique<DrawingProgram>(link("drawing", shaders::kDrawingVertex, nullptr, shaders::kDrawingFragment));
+  GLint max_texture = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_texture);
+  auto gpu = std::make_unique<GpuDrawings>();
+  gpu->mesh = mesh_id;
+  gpu->textures.resize(drawings.keyCount());
+  gpu->attributes.resize(drawings.keyCount());
+  gpu->present.assign(drawings.keyCount(), 0);
+  const auto source = t.renderSource();
+  std::vector<float> gathered(source.size() * 4);
+  for (std::size_t k = 0; k < drawings.keyCount(); ++k) {
+    if (!drawings.hasDrawing(k)) continue;
+    const TextureImage& image = drawings.image(k);
+    if (image.width > max_texture || image.height > max_texture)
+      throw Error(what + "key " + std::to_string(k) + "'s drawing (" + std::to_string(image.width) + "x" +
+                  std::to_string(image.height) + ") exceeds the OpenGL driver's limit of " +
+                  std::to_string(max_texture) + " pixels a side");
+    const auto stq = drawings.projective(k);
+    const auto visible = drawings.visibility(k);
+    for (std::size_t r = 0; r < source.size(); ++r) {
+      const auto v = static_cast<std::size_t>(source[r]);
+      std::copy_n(&stq[v * 3], 3, &gathered[r * 4]);
+      gathered[r * 4 + 3] = visible[v];
+    }
+    gpu->textures[k] = uploadTexture(image, GL_CLAMP_TO_EDGE);
+    gpu->attributes[k] = staticBuffer(gathered);
+    gpu->present[k] = 1;
+  }
+  m.drawings.push_back(std::move(gpu));
+  return static_cast<int>(m.drawings.size()) - 1;
+}
+
+namespace detail {
+
+// Binds each slot's drawing (texture unit 1 + slot, vertex attribute 3 + slot) and sets the slot
+// weights; a slot with no key or a key without a drawing gets weight 0 and a constant attribute.
+void bindDrawings(const DrawingProgram& p, const GpuDrawings& d, const ViewWeights& w) {
+  float weights[4] = {0.0f, 0.0f, 0.0f, w.base};
+  for (int i = 0; i < 3; ++i) {
+    const auto slot = static_cast<std::size_t>(i);
+    const int key = w.key[slot];
+    const bool on = key >= 0 && d.present[static_cast<std::size_t>(key)];
+    const auto location = static_cast<GLuint>(3 + i);
+    glActiveTexture(static_cast<GLenum>(GL_TEXTURE1 + i));
+    glBindTexture(GL_TEXTURE_2D, on ? d.textures[static_cast<std::size_t>(key)].get() : 0);
+    glUniform1i(p.images[slot], 1 + i);
+    if (on) {
+      glBindBuffer(GL_ARRAY_BUFFER, d.attributes[static_cast<std::size_t>(key)].get());
+      glEnableVertexAttribArray(location);
+      glVertexAttribPointer(location, 4, GL_FLOAT, GL_FALSE, 0, nullptr);
+      weights[slot] = w.weight[slot];
+    } else {
+      glDisableVertexAttribArray(location);
+      glVertexAttrib4f(location, 0.0f, 0.0f, 0.0f, 0.0f);
+    }
+  }
+  glUniform4fv(p.weights, 1, weights);
+  glActiveTexture(GL_TEXTURE0);
+}
+
+void unbindDrawings() {
+  for (int i = 0; i < 3; ++i) {
+    glDisableVertexAttribArray(static_cast<GLuint>(3 + i));
+    glActiveTexture(static_cast<GLenum>(GL_TEXTURE1 + i));
+    glBindTexture(GL_TEXTURE_2D, 0);
+  }
+  glActiveTexture(GL_TEXTURE0);
+}
+
+}  // namespace detail
+
+bool Renderer::Impl::drawSurface(GpuMesh& mesh, const View& view, const MeshStyle& style, const GpuDrawings* layers,
+                                 const ViewWeights* weights) {
+  Impl& m = *this;
   m.context.makeCurrent();
   glBindFramebuffer(GL_FRAMEBUFFER, m.ms_fbo.get());
   m.setView(view);
@@ -480,30 +586,33 @@ bool Renderer::drawMesh(int mesh_id, const View& view, const MeshStyle& style) {
   // Pass 1: shaded front faces (back faces culled), one draw per material range, pushed back under
   // the strokes of pass 2 (frontFacesState).
   frontFacesState(widest_stroke);
-  glUseProgram(m.mesh_program->program.get());
-  m.setMatrices(m.mesh_program->view, m.mesh_program->proj, view);
+  const MeshProgram& program = layers ? m.drawing_program->mesh : *m.mesh_program;
+  glUseProgram(program.program.get());
+  m.setMatrices(program.view, program.proj, view);
   MeshStyle shaded = style;
   shaded.flat = style.flat || !mesh.has_normals;
   glBindVertexArray(mesh.vao.get());
+  if (layers) bindDrawings(*m.drawing_program, *layers, *weights);
   glActiveTexture(GL_TEXTURE0);
   const auto draw = [](std::size_t first, std::size_t count) {
     glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(count), GL_UNSIGNED_INT,
                    reinterpret_cast<const void*>(first * sizeof(std::uint32_t)));
   };
   if (!style.materials) {
-    m.setShading(shaded, style.color);
+    m.setShading(shaded, style.color, false, &program);
     draw(0, mesh.index_count);
   } else {
     for (const DrawRange& range : mesh.ranges) {
       const GpuMaterial* material =
           range.material >= 0 ? &mesh.materials[static_cast<std::size_t>(range.material)] : nullptr;
       const bool textured = material && material->texture >= 0;
-      m.setShading(shaded, material ? material->base : style.color, textured);
+      m.setShading(shaded, material ? material->base : style.color, textured, &program);
       glBindTexture(GL_TEXTURE_2D, textured ? mesh.textures[static_cast<std::size_t>(material->texture)].get() : 0);
       draw(range.first, range.count);
     }
     glBindTexture(GL_TEXTURE_2D, 0);
   }
+  if (layers) unbindDrawings();
   glDisable(GL_CULL_FACE);
   glDisable(GL_POLYGON_OFFSET_FILL);
   if (style.silhouette_width <= 0.0f && !want_creases) {
@@ -536,15 +645,15 @@ bool Renderer::drawMesh(int mesh_id, const View& view, const MeshStyle& style) {
   glDepthMask(GL_FALSE);
   // Each list as thick lines, then round dots at the edge ends to fill the cracks between thick
   // edges (the paper's points). Creases first: silhouettes lie on top where they meet.
-  const auto strokes = [&](std::size_t first, std::size_t count, float width) {
+  const auto strokes = [&](std::size_t first, std::size_t count, float line_width) {
     if (count == 0) return;
     const void* offset = reinterpret_cast<const void*>(first * sizeof(std::uint32_t));
     glUseProgram(m.line_program->program.get());
-    m.setStroke(*m.line_program, view, width, style.silhouette_color, 0.0f);
+    m.setStroke(*m.line_program, view, line_width, style.silhouette_color, 0.0f);
     glDrawElements(GL_LINES, static_cast<GLsizei>(count), GL_UNSIGNED_INT, offset);
     glEnable(GL_SAMPLE_ALPHA_TO_COVERAGE);
     glUseProgram(m.dot_program->program.get());
-    m.setStroke(*m.dot_program, view, width, style.silhouette_color, 0.0f);
+    m.setStroke(*m.dot_program, view, line_width, style.silhouette_color, 0.0f);
     glDrawElements(GL_POINTS, static_cast<GLsizei>(count), GL_UNSIGNED_INT, offset);
     glDisable(GL_SAMPLE_ALPHA_TO_COVERAGE);
   };

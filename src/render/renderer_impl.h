@@ -127,6 +127,28 @@ struct GpuMesh {
   GlBuffer position_buffer, normal_buffer, uv_buffer, triangle_buffer, vertex_buffer, stroke_buffer;
 };
 
+// Reference drawings of one surface (Renderer::addDrawings): per key, its texture and its render
+// vertices' (s, t, q, visible) (no texture and no buffer for a key without a drawing).
+struct GpuDrawings {
+  int mesh = -1;
+  std::vector<GlTexture> textures;
+  std::vector<GlBuffer> attributes;
+  std::vector<std::uint8_t> present;
+};
+
+// The drawing program: the mesh program's uniforms plus the drawings' samplers and weights.
+struct DrawingProgram {
+  MeshProgram mesh;
+  GLint images[3], weights;
+  explicit DrawingProgram(GlProgram p) : mesh(std::move(p)) {
+    const GLuint id = mesh.program.get();
+    images[0] = glGetUniformLocation(id, "u_drawing0");
+    images[1] = glGetUniformLocation(id, "u_drawing1");
+    images[2] = glGetUniformLocation(id, "u_drawing2");
+    weights = glGetUniformLocation(id, "u_drawing_weights");
+  }
+};
+
 // A view-dependent model for the GPU blend (Renderer::addBlendModel). Set-up buffers are
 // uploaded once; the batch buffers grow to the largest batch drawn.
 struct GpuBlendModel {
@@ -231,6 +253,9 @@ struct Renderer::Impl {
   GLint backdrop_image = -1, backdrop_paper = -1, backdrop_opacity = -1;
   detail::GlVertexArray backdrop_vao;
   std::vector<detail::GlTexture> backdrops;
+  // Reference drawings: the program is created with the first addDrawings.
+  std::unique_ptr<detail::DrawingProgram> drawing_program;
+  std::vector<std::unique_ptr<detail::GpuDrawings>> drawings;
   detail::GlVertexArray overlay_vao;
   detail::GlBuffer overlay_buffer;
   std::size_t overlay_capacity = 0;
@@ -335,6 +360,11 @@ struct Renderer::Impl {
     glDepthMask(GL_TRUE);
     glBindVertexArray(0);
   }
+
+  // drawMesh's passes on `mesh` (a checked handle and View), with the drawings `layers` blended
+  // over the shading by `weights` when not null (drawMeshDrawings, checked too).
+  bool drawSurface(detail::GpuMesh& mesh, const View& view, const MeshStyle& style, const detail::GpuDrawings* layers,
+                   const ViewWeights* weights);
 
   // The GPU blend's passes (gpu_blend.cpp). Uploads the instances (checked by validInstances),
   // grows `b`'s batch buffers and binds every storage buffer of the passes; returns the instances

@@ -1,5 +1,7 @@
 #include "shaders.h"
 
+#include <string>
+
 namespace vdg::render::detail::shaders {
 
 // One triangle, (-1, -1) (3, -1) (-1, 3) in clip space, covers the whole viewport; no vertex
@@ -54,7 +56,9 @@ void main() {
 // material) Cbase is the instance's colour v_color. With u_hue_rule the constants are u_k
 // adjusted by the hue of that Cbase, per fragment: hsv() and hueAdjusted() are toHsv() and
 // hueAdjustedConstants() of shading.cpp, line for line (the render tests compare them).
-const char* const kMeshFragment = R"(#version 330 core
+// The fragment stage's declarations and shade() (the lighting equation's colour of the fragment),
+// shared by kMeshFragment and kDrawingFragment.
+const char* const kMeshShade = R"(#version 330 core
 in vec3 v_pos;
 in vec3 v_normal;
 in vec2 v_uv;
@@ -113,7 +117,7 @@ vec4 hueAdjusted(vec4 k, vec3 base) {
   return o;
 }
 
-void main() {
+vec3 shade() {
   vec3 n;
   if (u_flat != 0) {
     n = normalize(cross(dFdx(v_pos), dFdy(v_pos)));
@@ -129,9 +133,76 @@ void main() {
   float d1 = max(dot(u_light_warm, n), 0.0);
   float d2 = max(dot(u_light_cool, n), 0.0);
   vec3 c = u_ka * base + d1 * (u_warm - base * k.x) * k.y + d2 * (u_cool - base * k.z) * k.w;
-  o_color = vec4(clamp(c, 0.0, 1.0), 1.0);
+  return clamp(c, 0.0, 1.0);
 }
 )";
+
+// Built at start-up from the shared part (a shader's text is read only when a renderer links it).
+const std::string kMeshFragmentText = std::string(kMeshShade) + R"(
+void main() { o_color = vec4(shade(), 1.0); }
+)";
+const char* const kMeshFragment = kMeshFragmentText.c_str();
+
+// The mesh's vertex stage plus each slot's projective texture coordinates and visibility (s, t, q,
+// visible), passed on as they are (interpolated perspective-correct, so (s/q, t/q) per fragment is
+// the drawing's projection; vdg/render/drawing_textures.h).
+const char* const kDrawingVertex = R"(#version 330 core
+layout(location = 0) in vec3 a_position;
+layout(location = 1) in vec3 a_normal;
+layout(location = 2) in vec2 a_uv;
+layout(location = 3) in vec4 a_drawing0;
+layout(location = 4) in vec4 a_drawing1;
+layout(location = 5) in vec4 a_drawing2;
+uniform mat4 u_view;
+uniform mat4 u_proj;
+out vec3 v_pos;
+out vec3 v_normal;
+out vec2 v_uv;
+flat out vec3 v_color;
+out vec4 v_drawing0;
+out vec4 v_drawing1;
+out vec4 v_drawing2;
+void main() {
+  vec4 p = u_view * vec4(a_position, 1.0);
+  v_pos = p.xyz;
+  v_normal = mat3(u_view) * a_normal;
+  v_uv = a_uv;
+  v_color = vec3(1.0);
+  v_drawing0 = a_drawing0;
+  v_drawing1 = a_drawing1;
+  v_drawing2 = a_drawing2;
+  gl_Position = u_proj * p;
+}
+)";
+
+// blendDrawingColors of drawing_textures.cpp: a_i = w_i v_i alpha_i, colour = (sum a_i rgb_i + w_b
+// shade()) / (sum a_i + w_b), or shade() where that sum is <= 1e-6. The texture is sampled outside
+// any branch (its mipmap level needs the derivatives of uv).
+const std::string kDrawingFragmentText = std::string(kMeshShade) + R"(
+in vec4 v_drawing0;
+in vec4 v_drawing1;
+in vec4 v_drawing2;
+uniform sampler2D u_drawing0;
+uniform sampler2D u_drawing1;
+uniform sampler2D u_drawing2;
+uniform vec4 u_drawing_weights;
+vec4 drawingLayer(sampler2D image, vec4 d, float w) {
+  vec2 uv = d.xy / max(d.z, 1e-20);
+  vec4 texel = texture(image, uv);
+  float a = d.z > 0.0 ? w * clamp(d.w, 0.0, 1.0) * texel.a : 0.0;
+  return vec4(texel.rgb * a, a);
+}
+void main() {
+  vec3 shaded = shade();
+  vec4 sum = drawingLayer(u_drawing0, v_drawing0, u_drawing_weights.x) +
+             drawingLayer(u_drawing1, v_drawing1, u_drawing_weights.y) +
+             drawingLayer(u_drawing2, v_drawing2, u_drawing_weights.z);
+  float total = sum.a + u_drawing_weights.w;
+  vec3 c = total > 1e-6 ? (sum.rgb + u_drawing_weights.w * shaded) / total : shaded;
+  o_color = vec4(c, 1.0);
+}
+)";
+const char* const kDrawingFragment = kDrawingFragmentText.c_str();
 
 // u_pixel_scale: size of one pixel in world units at view depth d is x * d + y.
 const char* const kStrokeVertex = R"(#version 330 core

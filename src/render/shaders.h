@@ -8,6 +8,9 @@ namespace vdg::render::detail::shaders {
 // Shaded surface: the lighting equation of Rademacher 99, section 3.2.4.
 extern const char* const kMeshVertex;
 extern const char* const kMeshFragment;
+// The shaded surface with the reference drawings blended over it (vdg/render/drawing_textures.h).
+extern const char* const kDrawingVertex;
+extern const char* const kDrawingFragment;
 // Thick lines (geometry-shader quads) and round dots (point sprites), pulled towards the eye.
 extern const char* const kStrokeVertex;
 extern const char* const kLineGeometry;

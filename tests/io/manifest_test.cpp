@@ -4,6 +4,7 @@
 
 #include "support/test_meshes.h"
 #include "vdg/geom/error.h"
+#include "vdg/io/image_file.h"
 #include "vdg/io/manifest.h"
 #include "vdg/io/obj.h"
 #include "vdg/viewdep/model.h"
@@ -107,8 +108,8 @@ TEST_F(ManifestTest, EveryValidationErrorNamesTheFileAndTheKey) {
       {"{", "m.vdg.json: not valid JSON"},
       {"[]", "m.vdg.json: expected a JSON object"},
       {R"({"base": "base.obj", "keys": []})", "m.vdg.json: missing 'version'"},
-      {R"({"version": 5, "base": "base.obj", "keys": []})",
-       "m.vdg.json: 'version': this vdg reads model manifests versions 1 to 4, got 5"},
+      {R"({"version": 6, "base": "base.obj", "keys": []})",
+       "m.vdg.json: 'version': this vdg reads model manifests versions 1 to 5, got 6"},
       {R"({"version": 1, "base": "base.obj", "keys": [], "colour": 1})", "m.vdg.json: unknown key 'colour'"},
       {R"({"version": 1, "base": "nope.obj", "keys": []})", "m.vdg.json: base: "},
       {R"({"version": 1, "base": "base.obj", "keys": [{"mesh": "missing.obj", "view": [0,0,1]}]})",
@@ -137,7 +138,7 @@ TEST_F(ManifestTest, EveryValidationErrorNamesTheFileAndTheKey) {
       {R"({"version": 1, "base": "base.obj", "keys": [{"mesh": "a.obj", "view": [0,0,1], "frame": 3}]})",
        "'frame' needs an animated base model"},
       {R"({"version": 4294967297, "base": "base.obj", "keys": []})",
-       "m.vdg.json: 'version': this vdg reads model manifests versions 1 to 4, got 4294967297"},
+       "m.vdg.json: 'version': this vdg reads model manifests versions 1 to 5, got 4294967297"},
       {R"({"version": 3, "base": "base.obj", "weights": {"space": "positions"}, "keys": []})",
        "'weights'.'space': needs manifest version 4"},
       {R"({"version": 3, "base": "base.obj", "keys": [{"mesh": "a.obj", "eye": [0,0,3]}]})",
@@ -286,6 +287,69 @@ TEST_F(ManifestTest, DirectionsModelsSaveAsBefore) {
   const std::string text = testing::readText(dir_.file("copy.vdg.json"));
   EXPECT_NE(text.find("\"version\": 2"), std::string::npos) << text;
   EXPECT_EQ(text.find("space"), std::string::npos) << text;
+}
+
+// Version 5: a key's reference drawing is decoded beside its mesh, written back only when a key has
+// one (the writer keeps the oldest version that holds the model), and every bad drawing is one line
+// naming the manifest, the key and the file.
+TEST_F(ManifestTest, DrawingsLoadSaveAndRefuseBadInput) {
+  TextureImage image;
+  image.width = 3;
+  image.height = 2;
+  image.rgba.assign(3 * 2 * 4, 200);
+  image.rgba[0] = 10;  // the top-left pixel's red
+  testing::writeText(dir_.file("side.png"), encodePng(image, "side.png"));
+  testing::writeText(dir_.file("not-an-image.png"), "hello");
+  const std::string camera = R"("camera": {"eye": [3, 0, 0], "target": [0, 0, 0], "fov_deg": 30})";
+  const auto manifest = [&](int version, const std::string& key_extra) {
+    return R"({"version": )" + std::to_string(version) +
+           R"(, "base": "base.obj", "keys": [{"mesh": "a.obj", "view": [0, 0, 2]}, {"name": "side", "mesh": "b.obj", )" +
+           key_extra + "}]}";
+  };
+  const RawViewDependentModel raw = loadManifest(write(manifest(5, camera + R"(, "drawing": "side.png")")));
+  ASSERT_EQ(raw.keys.size(), 2u);
+  EXPECT_EQ(raw.keys[0].drawing, nullptr);
+  EXPECT_TRUE(raw.keys[0].drawing_path.empty());
+  EXPECT_EQ(raw.keys[1].drawing_path, "side.png");
+  ASSERT_NE(raw.keys[1].drawing, nullptr);
+  EXPECT_EQ(raw.keys[1].drawing->width, 3);
+  EXPECT_EQ(raw.keys[1].drawing->height, 2);
+  EXPECT_EQ(raw.keys[1].drawing->rgba[0], 10);
+  // Saved as version 5 with the path as written; read back, the same drawing.
+  saveManifest(dir_.file("copy.vdg.json"), raw);
+  const std::string text = testing::readText(dir_.file("copy.vdg.json"));
+  EXPECT_NE(text.find("\"version\": 5"), std::string::npos) << text;
+  EXPECT_NE(text.find("\"drawing\": \"side.png\""), std::string::npos) << text;
+  const RawViewDependentModel again = loadManifest(dir_.file("copy.vdg.json"));
+  ASSERT_NE(again.keys[1].drawing, nullptr);
+  EXPECT_EQ(again.keys[1].drawing->rgba, raw.keys[1].drawing->rgba);
+  // Without a drawing the same model is written as before (version 2).
+  RawViewDependentModel plain = raw;
+  plain.keys[1].drawing_path.clear();
+  plain.keys[1].drawing.reset();
+  EXPECT_NE(formatManifest(plain).find("\"version\": 2"), std::string::npos);
+
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {manifest(4, camera + R"(, "drawing": "side.png")"),
+       "m.vdg.json: key 'side' (keys[1]).'drawing': needs manifest version 5 (this file says \"version\": 4)"},
+      {manifest(5, R"("view": [1, 0, 0], "drawing": "side.png")"),
+       "m.vdg.json: key 'side' (keys[1]).'drawing': needs the key's 'camera' (the viewpoint the drawing was made "
+       "from); this key is given by 'view'"},
+      {manifest(5, R"("eye": [3, 0, 0], "drawing": "side.png")"), "this key is given by 'eye'"},
+      {manifest(5, camera + R"(, "drawing": 7)"), "m.vdg.json: key 'side' (keys[1]).'drawing': expected a string"},
+      {manifest(5, camera + R"(, "drawing": "")"),
+       "m.vdg.json: key 'side' (keys[1]).'drawing': expected a PNG or JPEG file name, got an empty string"},
+      {manifest(5, camera + R"(, "drawing": "missing.png")"),
+       "m.vdg.json: key 'side' (keys[1]): drawing 'missing.png': "},
+      {manifest(5, camera + R"(, "drawing": "not-an-image.png")"),
+       "m.vdg.json: key 'side' (keys[1]): drawing 'not-an-image.png': "},
+  };
+  for (const auto& [json, expected] : cases) {
+    const std::string message = loadError(json);
+    EXPECT_NE(message.find(expected), std::string::npos) << "expected: " << expected << "\ngot: " << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+  }
+  EXPECT_NE(loadError(manifest(5, camera + R"(, "drawing": "not-an-image.png")")).find("PNG"), std::string::npos);
 }
 
 TEST_F(ManifestTest, AModelWithoutKeysLoadsButDoesNotBuild) {

@@ -230,6 +230,54 @@ TEST(CliRender, HoldFrameNeedsAnAnimatedModelAndAFrameInRange) {
                      "expected a frame in [0, 39]");
 }
 
+// --drawing-textures (docs/drawing-textures.md) on the spot example's synthesised drawings: between the
+// front and left keys the drawings' ink blends into ghost lines, which fill-ink removes (the
+// silhouettes are the same in both pictures); every misuse is one line.
+TEST(CliRender, DrawingTexturesFillInkRemovesGhostLinesAndMisuseIsOneLine) {
+  const std::string drawings = kSource + "/examples/spot/spot-drawings.vdg.json";
+  const std::string between = " --orbit 1 --azimuth 225 --elevation 8 --size 160x160 --quiet --drawing-textures";
+  const fs::path as_drawn = freshDir("vdg_render_as_drawn"), fill = freshDir("vdg_render_fill_ink");
+  Result r = vdg("render " + drawings + " -o " + as_drawn.string() + between);
+  ASSERT_EQ(r.status, 0) << r.output;
+  r = vdg("render " + drawings + " -o " + fill.string() + between + " --drawing-mode fill-ink");
+  ASSERT_EQ(r.status, 0) << r.output;
+  // Ghost lines are ink blended into paint: pixels of luminance in [0.1, 0.5), darker than the paint
+  // (at least 0.3 a channel, most of it far lighter) and lighter than the silhouettes' ink.
+  const auto ghostly = [](const fs::path& file) {
+    const vdg::render::Image image = vdg::render::readPng(file.string());
+    long count = 0;
+    for (std::size_t p = 0; p + 3 < image.rgba.size(); p += 4) {
+      const int luminance = 299 * image.rgba[p] + 587 * image.rgba[p + 1] + 114 * image.rgba[p + 2];
+      count += luminance >= 100 * 255 && luminance < 500 * 255;
+    }
+    return count;
+  };
+  const long ghosts = ghostly(as_drawn / "frame_0000.png"), filled = ghostly(fill / "frame_0000.png");
+  EXPECT_GT(ghosts, filled + filled / 2) << "as drawn " << ghosts << " ghostly pixels, fill-ink " << filled;
+
+  const std::string out = " -o " + freshDir("x").string();
+  expectOneLineError(vdg("render " + drawings + out + " --drawing-mode flat"), 2,
+                     "--drawing-mode, --contour-threshold and --contour-dilation need --drawing-textures");
+  expectOneLineError(vdg("render " + kSpot + out + " --drawing-textures"), 2,
+                     "--drawing-textures: " + kSpot + " has no key with a 'drawing' (manifest version 5)");
+  expectOneLineError(vdg("render " + drawings + out + " --drawing-textures --gpu-blend"), 2,
+                     "--drawing-textures: not with --gpu-blend");
+  expectOneLineError(vdg("render " + drawings + out + " --drawing-textures --contour-threshold 0"), 2,
+                     "--contour-threshold");
+  expectOneLineError(vdg("render " + drawings + out + " --drawing-textures --contour-dilation 65"), 2,
+                     "--contour-dilation");
+  // A drawing that is not an image: bad input (1), naming the manifest, the key and the file.
+  const fs::path dir = freshDir("vdg_render_bad_drawing");
+  fs::create_directories(dir);
+  fs::copy_file(kSource + "/examples/spot/spot.obj", dir / "spot.obj");
+  std::ofstream(dir / "broken.png") << "not a picture";
+  std::ofstream(dir / "m.vdg.json")
+      << R"({"version": 5, "base": "spot.obj", "keys": [{"name": "front", "mesh": "spot.obj", )"
+      << R"("camera": {"eye": [0, 0, -3], "target": [0, 0, 0], "fov_deg": 40}, "drawing": "broken.png"}]})";
+  expectOneLineError(vdg("render " + (dir / "m.vdg.json").string() + out + " --drawing-textures"), 1,
+                     "m.vdg.json: key 'front' (keys[0]): drawing 'broken.png': ");
+}
+
 TEST(CliRender, UnknownModelFile) {
   expectOneLineError(vdg("render /nonexistent/model.vdg.json -o " + freshDir("x").string()), 1,
                      "/nonexistent/model.vdg.json");

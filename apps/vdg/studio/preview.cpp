@@ -25,6 +25,10 @@ struct Preview::Impl {
   int uncovered = -1;      // -1: the model's own, else Uncovered
   int anim_frame = 0;
   bool settings_changed = false;
+  // The keys' reference drawings over the model (vdg/render/drawing_textures.h), ink filled: a
+  // static model with a key's "drawing" only.
+  bool drawing_textures = false;
+  int drawing_mode = 1;  // render::DrawingMode: as drawn, fill ink, flat
   std::optional<ViewDependentModel> model;
   std::optional<AnimatedViewDependentModel> animated;
   std::unique_ptr<vdg::render::ModelRenderer> renderer;
@@ -33,6 +37,8 @@ struct Preview::Impl {
   std::string problem;
   ViewWeights weights;
   std::vector<std::string> key_names;
+
+  std::shared_ptr<const vdg::render::DrawingTextures> drawings(const RawViewDependentModel& raw) const;
 
   void rebuild(const RawViewDependentModel& raw) {
     renderer.reset();
@@ -61,6 +67,7 @@ struct Preview::Impl {
         renderer->setFrame(anim_frame);
       } else {
         model = ViewDependentModel::build(copy);
+        if (drawing_textures) options.drawings = drawings(copy);
         renderer = std::make_unique<vdg::render::ModelRenderer>(*model, options);
       }
     } catch (const std::exception& e) {
@@ -69,6 +76,24 @@ struct Preview::Impl {
     }
   }
 };
+
+// The drawings of the keys of the built model (matched by name), prepared in drawing_mode; null
+// when no key has one.
+std::shared_ptr<const vdg::render::DrawingTextures> Preview::Impl::drawings(const RawViewDependentModel& raw) const {
+  std::vector<std::shared_ptr<const TextureImage>> images(model->keyCount());
+  bool any = false;
+  for (std::size_t k = 0; k < model->keyCount(); ++k)
+    for (const RawKey& key : raw.keys)
+      if (key.name == model->keyName(k) && key.drawing) {
+        images[k] = key.drawing;
+        any = true;
+      }
+  if (!any) return nullptr;
+  vdg::render::DrawingStyle style;
+  style.mode = static_cast<vdg::render::DrawingMode>(drawing_mode);
+  return std::make_shared<const vdg::render::DrawingTextures>(
+      vdg::render::DrawingTextures::build(*model, images, style));
+}
 
 Preview::Preview() : impl_(std::make_unique<Impl>()) {}
 Preview::~Preview() = default;
@@ -90,6 +115,14 @@ void Preview::draw(Window& window, const RawViewDependentModel& raw, std::uint64
   if (ImGui::Combo("uncovered", &mode, modes, 4)) {
     m.uncovered = mode - 1;
     m.settings_changed = true;
+  }
+  const bool has_drawings = std::any_of(raw.keys.begin(), raw.keys.end(), [](const RawKey& k) { return k.drawing; });
+  if (has_drawings && !raw.animated()) {
+    if (ImGui::Checkbox("drawing textures", &m.drawing_textures)) m.settings_changed = true;
+    ImGui::SameLine();
+    const char* drawing_modes[] = {"as drawn", "fill ink", "flat"};
+    ImGui::SetNextItemWidth(120);
+    if (ImGui::Combo("drawings", &m.drawing_mode, drawing_modes, 3)) m.settings_changed = true;
   }
   if (!m.renderer) {
     ImGui::TextWrapped("%s", m.problem.c_str());

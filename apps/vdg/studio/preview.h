@@ -2,7 +2,8 @@
 // from the session's keys, seen by a camera turning about it (left) and, from the same blend, by a
 // fixed observer (right, vdg::render::FrameOptions::observer), with the weights of the active
 // keys, the sharpness (3.2.2) and the uncovered-region mode; for an animated model (section 4) a
-// timeline scrubs its frames and shows each key at its (frame, view).
+// timeline scrubs its frames and shows each key at its (frame, view). A static model whose keys
+// carry reference drawings can show them as view-dependent textures (docs/drawing-textures.md).
 #pragma once
 
 #include <cstdint>

@@ -18,8 +18,10 @@ namespace vdg {
 // "directions" | "positions", "falloff": model units} and a key's plain "eye" [x, y, z];
 // vdg/viewdep/key_space.h); older files load unchanged, and saveManifest writes the oldest version
 // that holds the model (2 for the linear scheme, 3 for another scheme, 4 with parts, the positions
-// space or a key given by "eye").
-inline constexpr int kManifestVersion = 4;
+// space or a key given by "eye"), version 5 a key's reference drawing ("drawing": a PNG or JPEG
+// file relative to the manifest, on a key given by "camera"; docs/drawing-textures.md), written
+// only when a key has one.
+inline constexpr int kManifestVersion = 5;
 
 // Parses a manifest's text into a raw model WITHOUT reading any mesh: base_path and every key's
 // mesh_path are filled, the meshes are left empty. Throws vdg::Error naming `source` and the key
@@ -36,8 +38,9 @@ RawViewDependentModel parseManifest(const std::string& text, const std::string& 
 // for missing files, unknown fields, a wrong or missing version, bad values, and everything validate() checks.
 // The base mesh (or an animated base's first frame or glTF file) is read with `options` (materials,
 // textures and their warnings, vdg/io/mesh_read_options.h); key meshes and later frames are read
-// for their geometry only (materials belong to the base). A part's mask file is read too (one
-// number per vertex, whitespace-separated; errors name the manifest, the part and the file).
+// for their geometry only (materials belong to the base). A key's drawing is decoded into
+// key.drawing (vdg/io/image_file.h's limits; errors name the manifest, the key and the file). A part's mask file is
+// read too (one number per vertex, whitespace-separated; errors name the manifest, the part and the file).
 RawViewDependentModel loadManifest(const std::string& path, const MeshReadOptions& options = {});
 // The manifest text saveManifest writes (for callers that write it themselves).
 std::string formatManifest(const RawViewDependentModel& model);

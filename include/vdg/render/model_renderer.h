@@ -22,6 +22,7 @@
 
 #include "vdg/geom/camera.h"
 #include "vdg/geom/tri_mesh.h"
+#include "vdg/render/drawing_textures.h"
 #include "vdg/render/image.h"
 #include "vdg/render/renderer.h"
 #include "vdg/viewdep/animated_model.h"
@@ -45,6 +46,12 @@ struct FrameOptions : FrameSettings {
   // front (+Z), at the distance that fits the sphere about the model's centre holding the base and
   // every key (extentRadius(); a plain mesh: its bounding box's sphere).
   std::optional<Camera> observer_camera;
+  // The reference drawings as view-dependent textures (drawing_textures.h), built on this model:
+  // the main view blends the drawings of the view's keys over the shading with the shape's weights
+  // (Renderer::drawMeshDrawings; the observer panel stays plain). A static model blended on the CPU
+  // only: the renderer throws vdg::Error "render: drawing textures ..." for an animated model, a
+  // plain mesh, the GPU blend, or drawings built for another key or vertex count.
+  std::shared_ptr<const DrawingTextures> drawings;
 };
 
 // A camera on an orbit around `center`: azimuth about +Y measured from +Z towards +X (0 = front),

@@ -72,6 +72,7 @@
 #include "vdg/geom/material.h"
 #include "vdg/geom/surface.h"
 #include "vdg/geom/tri_mesh.h"
+#include "vdg/render/drawing_textures.h"
 #include "vdg/render/image.h"
 #include "vdg/render/shading.h"
 #include "vdg/viewdep/model.h"
@@ -300,6 +301,21 @@ class Renderer {
   // untouched). Per-frame contract as above; violations: a bad handle, a viewport with width or
   // height < 1, an opacity outside [0, 1] (NaN included), a paper channel that is not finite.
   [[nodiscard]] bool drawBackdrop(int handle, const Viewport& viewport, float opacity, const Rgb& paper);
+
+  // Reference drawings as view-dependent textures (vdg/render/drawing_textures.h). Uploads every
+  // key's prepared drawing (RGBA8, mipmapped, linear, clamped at its edges) and its per-vertex (s, t,
+  // q, visible), gathered per render vertex of surface `mesh` (from addSurface), and returns a
+  // handle (0, 1, 2, ... in order, numbered apart from the others). Set-up, not per-frame: throws
+  // vdg::Error "render: addDrawings: ..." for a handle that is not a surface's, drawings built for
+  // another vertex count, and a drawing larger than the driver's textures allow.
+  int addDrawings(int mesh, const DrawingTextures& drawings);
+  // drawMesh with the drawings of `weights`' keys blended over the shading (blendDrawingColors: each
+  // slot's key weight, times the fragment's interpolated visibility and the texel's alpha,
+  // renormalised with the base's weight, which goes to the shading). Silhouettes and creases as
+  // drawMesh. Per-frame contract as drawMesh; violations also: `drawings` not a handle of
+  // addDrawings for this mesh, a key index outside [-1, keyCount()) or a weight that is not finite.
+  [[nodiscard]] bool drawMeshDrawings(int mesh, int drawings, const View& view, const MeshStyle& style,
+                                      const ViewWeights& weights);
 
   // Resolves the multisampled canvas into `out` (resized on first use; alpha = 255).
   void readPixels(Image& out);

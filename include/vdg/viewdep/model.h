@@ -13,6 +13,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -21,6 +22,7 @@
 #include <Eigen/Core>
 
 #include "vdg/geom/camera.h"
+#include "vdg/geom/material.h"
 #include "vdg/geom/surface.h"
 #include "vdg/geom/tri_mesh.h"
 #include "vdg/viewdep/key_space.h"
@@ -80,6 +82,12 @@ struct RawKey {
   std::optional<Eigen::Vector3d> eye;
   // The key's eye: camera->eye, else `eye`, else none (a key given by its direction alone).
   std::optional<Eigen::Vector3d> eyePosition() const { return camera ? std::optional(camera->eye) : eye; }
+  // The reference drawing this key was made from (the manifest's "drawing", version 5), for
+  // view-dependent textures (vdg/render/drawing_textures.h): drawing_path as the manifest writes it
+  // (relative to the manifest's folder; empty: none) and the decoded pixels (RGBA8, top row first;
+  // null when there is none). A drawing needs `camera`: the drawing is what that camera saw.
+  std::string drawing_path;
+  std::shared_ptr<const TextureImage> drawing;
   // Frame of the base animation this key deforms: 0 for a static base; in [0, frameCount()) for
   // an animated one. Keys with the same view and different frames share one viewing-sphere point.
   int frame = 0;
