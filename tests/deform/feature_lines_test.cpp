@@ -162,7 +162,7 @@ TEST(FeatureLines, TheKeyReplaysFromItsEditLogAndTheOpRoundTrips) {
   RawViewDependentModel m;
   m.base = test::grid(9, 0.25);
   m.base_path = "base.obj";
-  m.keys.push_back({"front", "front.obj", m.base, Eigen::Vector3d(0, 0, 1), std::nullopt, std::nullopt});
+  m.keys.push_back({"front", "front.obj", m.base, Eigen::Vector3d(0, 0, 1), std::nullopt, std::nullopt, {}, {}});
   m.resolveViews();
   m.validate();
   EditLog log = startEditLog(m, m.keys[0], "front.origin.obj");

@@ -135,9 +135,9 @@ RawViewDependentModel twoKeyModel() {
   RawViewDependentModel m;
   m.base = test::grid(5, 0.25);
   m.base_path = "base.obj";
-  m.keys.push_back({"front", "front.obj", m.base, Eigen::Vector3d(0, 0, 1), std::nullopt, std::nullopt});
-  m.keys.push_back({"side", "side.obj", m.base, Eigen::Vector3d(1, 0, 0), std::nullopt, std::nullopt});
-  m.keys.push_back({"top", "top.obj", m.base, Eigen::Vector3d(0, 1, 0), std::nullopt, std::nullopt});
+  m.keys.push_back({"front", "front.obj", m.base, Eigen::Vector3d(0, 0, 1), std::nullopt, std::nullopt, {}, {}});
+  m.keys.push_back({"side", "side.obj", m.base, Eigen::Vector3d(1, 0, 0), std::nullopt, std::nullopt, {}, {}});
+  m.keys.push_back({"top", "top.obj", m.base, Eigen::Vector3d(0, 1, 0), std::nullopt, std::nullopt, {}, {}});
   m.resolveViews();
   m.validate();
   return m;
@@ -154,7 +154,7 @@ TEST(KeyEdit, AKeyOfAnAnimatedModelStartsFromTheBasePosedAtItsFrame) {
   std::vector<float> moved = m.base.positions;
   for (std::size_t i = 0; i < moved.size(); i += 3) moved[i] += 2.0f;  // frame 1: 2 along +X
   m.base_frames = {m.base.positions, moved};
-  m.keys.push_back({"front0", "front0.obj", m.base, Eigen::Vector3d(0, 0, 1), std::nullopt, std::nullopt, 0});
+  m.keys.push_back({"front0", "front0.obj", m.base, Eigen::Vector3d(0, 0, 1), std::nullopt, std::nullopt, {}, {}, 0});
   m.validate();
 
   EXPECT_EQ(posedBase(m, 1).positions, moved);
