@@ -263,6 +263,11 @@ void SurfaceTopology::buildGatherLists() {
   fill(
       group_count_, [&](std::size_t c) { return static_cast<std::size_t>(corner_groups_[c]); }, group_offsets_,
       group_triangles_);
+  groups_are_homes_ = group_offsets_ == home_offsets_ && group_triangles_ == home_triangles_;
+  if (groups_are_homes_) {  // the same lists: keep one copy (groupTriangles() returns the homes')
+    std::vector<std::int32_t>().swap(group_offsets_);
+    std::vector<std::int32_t>().swap(group_triangles_);
+  }
 }
 
 SurfaceTopology SurfaceTopology::unwelded(std::span<const std::int32_t> triangles, std::size_t vertex_count) {
@@ -317,23 +322,25 @@ inline void finishNormal(float sx, float sy, float sz, float* out) {
   out[2] = sz;
 }
 
+// A position as a 4-float packet (x, y, z, 0), read as three floats (no read past the array).
+inline Eigen::Vector4f point4(const float* p, std::int32_t v) {
+  const float* q = p + 3 * static_cast<std::size_t>(v);
+  return {q[0], q[1], q[2], 0.0f};
+}
+
 // The normalised sum of the area-weighted normals of triangles ids[0 .. count) (each computed from
 // its first corner, as (b - a) x (c - a)), into out[0..2]; (0, 0, 0) when the sum is zero.
 inline void gatherNormal(const std::int32_t* tris, const float* positions, const std::int32_t* ids, std::size_t count,
                          float* out) {
-  float sx = 0.0f, sy = 0.0f, sz = 0.0f;
+  // The components in the lanes of one packet (Eigen's cross3, see faceNormals below): the same
+  // float operations as three scalar sums, component by component.
+  Eigen::Vector4f sum = Eigen::Vector4f::Zero();
   for (std::size_t i = 0; i < count; ++i) {
     const std::int32_t* t = tris + 3 * static_cast<std::size_t>(ids[i]);
-    const float* a = positions + 3 * static_cast<std::size_t>(t[0]);
-    const float* b = positions + 3 * static_cast<std::size_t>(t[1]);
-    const float* c = positions + 3 * static_cast<std::size_t>(t[2]);
-    const float e1x = b[0] - a[0], e1y = b[1] - a[1], e1z = b[2] - a[2];
-    const float e2x = c[0] - a[0], e2y = c[1] - a[1], e2z = c[2] - a[2];
-    sx += e1y * e2z - e1z * e2y;
-    sy += e1z * e2x - e1x * e2z;
-    sz += e1x * e2y - e1y * e2x;
+    const Eigen::Vector4f a = point4(positions, t[0]);
+    sum += (point4(positions, t[1]) - a).cross3(point4(positions, t[2]) - a);
   }
-  finishNormal(sx, sy, sz, out);
+  finishNormal(sum[0], sum[1], sum[2], out);
 }
 
 // Triangles whose normals one block of slots caches on the stack, and slots one block sums at
@@ -341,12 +348,6 @@ inline void gatherNormal(const std::int32_t* tris, const float* positions, const
 constexpr std::size_t kFaceWindow = 8192;
 constexpr std::size_t kSlotWindow = 2048;
 static_assert(kSlotWindow % 8 == 0, "finishNormals pads to groups of 8");
-
-// A position as a 4-float packet (x, y, z, 0), read as three floats (no read past the array).
-inline Eigen::Vector4f point4(const float* p, std::int32_t v) {
-  const float* q = p + 3 * static_cast<std::size_t>(v);
-  return {q[0], q[1], q[2], 0.0f};
-}
 
 // The face normals (b - a) x (c - a) of triangles [first, last] into the ring face[f & kFaceMask],
 // one 4-float packet each (x, y, z, 0): Eigen's cross3 computes the three components in the lanes

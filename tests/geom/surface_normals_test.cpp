@@ -158,7 +158,7 @@ TriMesh orderedGrid(std::mt19937& rng, int rows, int cols, int gap, bool shuffle
   std::uniform_real_distribution<float> bump(-0.3f, 0.3f);
   for (int r = 0; r < rows; ++r)
     for (int c = 0; c < cols; ++c) {
-      if (m.vertexCount() % static_cast<std::size_t>(gap) == 0)
+      if ((m.vertexCount() + 1) % static_cast<std::size_t>(gap) == 0)
         m.positions.insert(m.positions.end(), {5.0f, 5.0f, 5.0f});
       index[static_cast<std::size_t>(r * cols + c)] = static_cast<std::int32_t>(m.vertexCount());
       m.positions.insert(m.positions.end(), {static_cast<float>(c), static_cast<float>(r), bump(rng)});
@@ -200,6 +200,22 @@ TEST(SurfaceNormals, FastPathIsBitIdenticalToTheScalarOracle) {
   }
   const TriMesh big = testing::seamSphere(300, 240);
   expectBitIdentical(big, jitter(rng, big.positions, 0.01f), "threaded seam sphere");
+}
+
+TEST(SurfaceNormals, CoincidingGroupAndHomeListsAreStoredOnce) {
+  std::mt19937 rng(31);
+  // No seams, no file normals: one group per vertex in vertex order, so the lists coincide.
+  const TriMesh grid = orderedGrid(rng, 20, 30, 1000, false);
+  const SurfaceTopology plain = SurfaceTopology::build(grid);
+  EXPECT_TRUE(plain.groupListsAreHomeLists());
+  EXPECT_EQ(plain.groupTriangles().data(), plain.homeTriangles().data());
+  EXPECT_EQ(plain.groupTriangleOffsets().size(), plain.groupCount() + 1);
+  // Welded seams: groups are per surface point, not per vertex, so the lists differ.
+  const SurfaceTopology seam = SurfaceTopology::build(testing::seamSphere(10, 16));
+  EXPECT_FALSE(seam.groupListsAreHomeLists());
+  EXPECT_NE(seam.groupTriangles().data(), seam.homeTriangles().data());
+  // Either way the group normals are the oracle's (shared or not).
+  expectBitIdentical(grid, jitter(rng, grid.positions, 0.1f), "plain grid");
 }
 
 TEST(SurfaceNormals, GatherListsHoldEveryCornerOnce) {
