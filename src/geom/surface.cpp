@@ -328,6 +328,24 @@ inline Eigen::Vector4f point4(const float* p, std::int32_t v) {
   return {q[0], q[1], q[2], 0.0f};
 }
 
+// The area-weighted normal (b - a) x (c - a) of triangle f into n[0..2], as gatherNormal adds it.
+inline void faceNormal(const std::int32_t* tris, const float* positions, std::int32_t f, float* n) {
+  const std::int32_t* t = tris + 3 * static_cast<std::size_t>(f);
+  const float* a = positions + 3 * static_cast<std::size_t>(t[0]);
+  const float* b = positions + 3 * static_cast<std::size_t>(t[1]);
+  const float* c = positions + 3 * static_cast<std::size_t>(t[2]);
+  const float e1x = b[0] - a[0], e1y = b[1] - a[1], e1z = b[2] - a[2];
+  const float e2x = c[0] - a[0], e2y = c[1] - a[1], e2z = c[2] - a[2];
+  n[0] = e1y * e2z - e1z * e2y;
+  n[1] = e1z * e2x - e1x * e2z;
+  n[2] = e1x * e2y - e1y * e2x;
+}
+
+// Face normals computeVertexNormalsOf caches (16 x 4096 bytes, 64 KB of stack).
+constexpr std::size_t kFaceCache = 4096;
+constexpr std::size_t kCacheMask = kFaceCache - 1;
+static_assert((kFaceCache & kCacheMask) == 0, "the face cache's size is a power of two");
+
 // The normalised sum of the area-weighted normals of triangles ids[0 .. count) (each computed from
 // its first corner, as (b - a) x (c - a)), into out[0..2]; (0, 0, 0) when the sum is zero.
 inline void gatherNormal(const std::int32_t* tris, const float* positions, const std::int32_t* ids, std::size_t count,
@@ -504,10 +522,28 @@ bool computeVertexNormalsOf(const SurfaceTopology& topology, std::span<const flo
   const std::int32_t* list = vertices.data();
   float* out = normals.data();
   detail::parallelChunks(vertices.size(), kParallelNormalSlots, [&](std::size_t begin, std::size_t end) {
+    // Neighbouring listed vertices share faces; a direct-mapped cache of face normals (face f at
+    // f & kCacheMask, tagged with f) computes each about once where the list is in memory order
+    // (ModelEvaluator's lists are ascending). The sums add the same floats in the same order as
+    // gatherNormal, so the result is bit-identical.
+    std::int32_t tag[kFaceCache];
+    float cached[3 * kFaceCache];
+    std::fill(tag, tag + kFaceCache, -1);
     for (std::size_t i = begin; i < end; ++i) {
       const auto h = static_cast<std::size_t>(home[static_cast<std::size_t>(list[i])]);
-      gatherNormal(t, p, id + off[h], static_cast<std::size_t>(off[h + 1] - off[h]),
-                   out + 3 * static_cast<std::size_t>(list[i]));
+      float sx = 0.0f, sy = 0.0f, sz = 0.0f;
+      for (std::int32_t k = off[h]; k < off[h + 1]; ++k) {
+        const std::int32_t f = id[k];
+        float* n = cached + 3 * (static_cast<std::size_t>(f) & kCacheMask);
+        if (tag[static_cast<std::size_t>(f) & kCacheMask] != f) {
+          tag[static_cast<std::size_t>(f) & kCacheMask] = f;
+          faceNormal(t, p, f, n);
+        }
+        sx += n[0];
+        sy += n[1];
+        sz += n[2];
+      }
+      finishNormal(sx, sy, sz, out + 3 * static_cast<std::size_t>(list[i]));
     }
   });
   return true;

@@ -254,9 +254,12 @@ TEST(SurfaceNormals, NormalsOfListedVerticesEqualTheFullComputation) {
   const std::vector<float> pose = jitter(rng, seam.positions, 0.05f);
   std::vector<float> full(pose.size());
   ASSERT_TRUE(computeVertexNormals(t, pose, full));
-  for (const std::size_t count : {std::size_t{0}, std::size_t{1}, std::size_t{100}, 3 * kParallelNormalSlots}) {
+  // Random lists (the face cache's tags collide) and ascending ones (ModelEvaluator's: faces hit).
+  for (const std::size_t count :
+       {std::size_t{0}, std::size_t{1}, std::size_t{100}, 3 * kParallelNormalSlots, 3 * kParallelNormalSlots + 1}) {
     std::vector<std::int32_t> list(count);
     for (std::int32_t& v : list) v = static_cast<std::int32_t>(rng() % seam.vertexCount());  // repeats allowed
+    if (count % 2 == 1) std::sort(list.begin(), list.end());
     constexpr float kUntouched = 42.0f;
     std::vector<float> some(pose.size(), kUntouched);
     ASSERT_TRUE(computeVertexNormalsOf(t, pose, list, some));

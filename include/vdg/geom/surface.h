@@ -130,7 +130,7 @@ class SurfaceTopology {
 // gather over the lists above, no atomics), in parallel with oneTBB (chunks of at least
 // kParallelNormalSlots slots) from 2 x kParallelNormalSlots slots on, and inline on the calling
 // thread below that; the result does not depend on the number of threads. The first threaded call
-// starts TBB's worker threads. Uses 168 KB of the calling (or worker) thread's stack.
+// starts TBB's worker threads. Uses at most 168 KB of the calling (or worker) thread's stack.
 //
 // Per-frame contract: sizes are checked on entry (positions.size() == 3 #V and the output's size
 // below); on a violation the function returns false and has written nothing; no throw, no
