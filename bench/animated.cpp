@@ -9,6 +9,9 @@
 //   offsets_blend_x_static   evaluatePosed without normals (offsets in time + weights + blend)
 //   normals_x_static         evaluatePosed with normals minus without (area-weighted normals)
 //   x_static                 the whole frame: skinning + evaluatePosed with normals
+//   x_copy                   the whole frame / a copy of the base (positions and its normals, two
+//                            memcpys), the cheapest frame a renderer could be handed
+//   static_x_copy            the static evaluation / the same copy
 // The camera orbits the walker (two key views active most of the time) while the walk advances
 // one frame per iteration. Run from the repository root, or set VDG_SOURCE_DIR.
 #include <benchmark/benchmark.h>
@@ -16,6 +19,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -88,8 +92,14 @@ void walkerFrame(benchmark::State& state, vdg::OffsetSpace space) {
   const std::size_t n = 3 * w.animated.vertexCount();
   const bool skinned = space == vdg::OffsetSpace::kSkinned;
   std::vector<float> base(n), skin(skinned ? 3 * n : 0), out(n), normals(n), still_out(n), still_normals(n);
+  std::vector<float> base_normals(n), copy_positions(n), copy_normals(n);
+  const std::vector<float>& base_frame = w.raw.base_frames.front();
+  if (base_frame.size() != n || !vdg::computeVertexNormals(w.still.surface(), base_frame, base_normals)) {
+    state.SkipWithError("the walker's base frame does not fit its model (internal error)");
+    return;
+  }
   using Clock = std::chrono::steady_clock;
-  double static_s = 0, skin_s = 0, blend_s = 0, full_posed_s = 0;
+  double static_s = 0, skin_s = 0, blend_s = 0, full_posed_s = 0, copy_s = 0;
   int frame = 0, hint = -1, still_hint = -1;
   const int frames = w.animated.frameCount();
   for (auto _ : state) {
@@ -116,6 +126,12 @@ void walkerFrame(benchmark::State& state, vdg::OffsetSpace space) {
     benchmark::DoNotOptimize(normals.data());
     benchmark::ClobberMemory();
     const auto t4 = Clock::now();
+    std::memcpy(copy_positions.data(), base_frame.data(), n * sizeof(float));
+    std::memcpy(copy_normals.data(), base_normals.data(), n * sizeof(float));
+    benchmark::DoNotOptimize(copy_positions.data());
+    benchmark::DoNotOptimize(copy_normals.data());
+    benchmark::ClobberMemory();
+    const auto t5 = Clock::now();
     if (!(still_ok && skin_ok && blend_ok && posed_ok)) {
       state.SkipWithError("an evaluation refused its input (internal error)");
       break;
@@ -125,6 +141,7 @@ void walkerFrame(benchmark::State& state, vdg::OffsetSpace space) {
     skin_s += seconds(t2 - t1);
     blend_s += seconds(t3 - t2);
     full_posed_s += seconds(t4 - t3);
+    copy_s += seconds(t5 - t4);
     state.SetIterationTime(seconds(t2 - t1) + seconds(t4 - t3));  // one animated frame
   }
   if (state.iterations() == 0 || static_s <= 0) return;
@@ -136,6 +153,8 @@ void walkerFrame(benchmark::State& state, vdg::OffsetSpace space) {
   state.counters["skin_x_static"] = skin_s / static_s;
   state.counters["offsets_blend_x_static"] = blend_s / static_s;
   state.counters["normals_x_static"] = (full_posed_s - blend_s) / static_s;
+  state.counters["x_copy"] = (skin_s + full_posed_s) / copy_s;
+  state.counters["static_x_copy"] = static_s / copy_s;
 }
 
 void BM_WalkerFrameSkinnedOffsets(benchmark::State& state) { walkerFrame(state, vdg::OffsetSpace::kSkinned); }

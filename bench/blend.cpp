@@ -3,7 +3,9 @@
 //   x_memcpy: positions only (locate + weigh + blend) / a memcpy of the positions (single thread);
 //   x_floor:  positions + normals / the floor: one streaming pass over both cores (TBB) that reads
 //             the base, three dense key deltas and the triangle index buffer and writes positions
-//             and normals, the bytes a full evaluation cannot avoid;
+//             and normals, the bytes a full evaluation cannot avoid; BM_FullDenseKeysOneThread
+//             measures both on one thread (oneTBB limited to one), the figure a loaded machine
+//             distorts least;
 //   x_dense:  sparse keys through ModelEvaluator frame to frame along the same coherent camera path
 //             / the full evaluation (positions + normals) of the dense-key model.
 // Dense keys move every vertex. "Patch" keys each move a contiguous 1% of the vertices, those
@@ -12,6 +14,7 @@
 // normals reach 7% of the vertices).
 #include <benchmark/benchmark.h>
 #include <tbb/blocked_range.h>
+#include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 #include <tbb/partitioner.h>
 
@@ -22,6 +25,7 @@
 #include <ctime>
 #include <numbers>
 #include <numeric>
+#include <optional>
 
 #include "vdg/viewdep/evaluator.h"
 #include "vdg/viewdep/model.h"
@@ -191,7 +195,10 @@ void positionsBenchmark(benchmark::State& state, Keys keys) {
 }
 
 // Positions + normals of the dense model, as a ratio to the floor.
-void fullDenseBenchmark(benchmark::State& state, bool evaluator) {
+void fullDenseBenchmark(benchmark::State& state, bool evaluator, bool one_thread = false) {
+  // One thread: the evaluation's chunks and the floor's both run on this thread.
+  std::optional<tbb::global_control> limit;
+  if (one_thread) limit.emplace(tbb::global_control::max_allowed_parallelism, 1);
   const vdg::ViewDependentModel& m = model(Keys::kDense);
   const std::size_t n = m.base().positions.size();
   std::vector<float> positions(n), normals(n), floor_p(n), floor_n(n);
@@ -270,6 +277,7 @@ void BM_PositionsDenseKeys(benchmark::State& state) { positionsBenchmark(state, 
 void BM_PositionsPatchKeys(benchmark::State& state) { positionsBenchmark(state, Keys::kPatch); }
 void BM_FullDenseKeys(benchmark::State& state) { fullDenseBenchmark(state, false); }
 void BM_FullDenseKeysEvaluator(benchmark::State& state) { fullDenseBenchmark(state, true); }
+void BM_FullDenseKeysOneThread(benchmark::State& state) { fullDenseBenchmark(state, false, true); }
 void BM_FullPatchKeysEvaluator(benchmark::State& state) { sparseBenchmark(state, Keys::kPatch, true); }
 void BM_FullScatteredKeysEvaluator(benchmark::State& state) { sparseBenchmark(state, Keys::kScattered, true); }
 void BM_FullPatchKeysNoEvaluator(benchmark::State& state) { sparseBenchmark(state, Keys::kPatch, false); }
@@ -294,6 +302,7 @@ BENCHMARK(BM_PositionsDenseKeys)->UseManualTime()->Unit(benchmark::kMillisecond)
 BENCHMARK(BM_PositionsPatchKeys)->UseManualTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FullDenseKeys)->UseManualTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FullDenseKeysEvaluator)->UseManualTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_FullDenseKeysOneThread)->UseManualTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FullPatchKeysEvaluator)->UseManualTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FullScatteredKeysEvaluator)->UseManualTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FullPatchKeysNoEvaluator)->UseManualTime()->Unit(benchmark::kMillisecond);

@@ -11,6 +11,9 @@
 #include <unordered_map>
 #include <utility>
 
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
 #include "vdg/geom/error.h"
 #include "vdg/geom/parallel.h"
 
@@ -260,6 +263,11 @@ void SurfaceTopology::buildGatherLists() {
   fill(
       group_count_, [&](std::size_t c) { return static_cast<std::size_t>(corner_groups_[c]); }, group_offsets_,
       group_triangles_);
+  groups_are_homes_ = group_offsets_ == home_offsets_ && group_triangles_ == home_triangles_;
+  if (groups_are_homes_) {  // the same lists: keep one copy (groupTriangles() returns the homes')
+    std::vector<std::int32_t>().swap(group_offsets_);
+    std::vector<std::int32_t>().swap(group_triangles_);
+  }
 }
 
 SurfaceTopology SurfaceTopology::unwelded(std::span<const std::int32_t> triangles, std::size_t vertex_count) {
@@ -314,10 +322,36 @@ inline void finishNormal(float sx, float sy, float sz, float* out) {
   out[2] = sz;
 }
 
+// A position as a 4-float packet (x, y, z, 0), read as three floats (no read past the array).
+inline Eigen::Vector4f point4(const float* p, std::int32_t v) {
+  const float* q = p + 3 * static_cast<std::size_t>(v);
+  return {q[0], q[1], q[2], 0.0f};
+}
+
+// The area-weighted normal (b - a) x (c - a) of triangle f into n[0..2], as gatherNormal adds it.
+inline void faceNormal(const std::int32_t* tris, const float* positions, std::int32_t f, float* n) {
+  const std::int32_t* t = tris + 3 * static_cast<std::size_t>(f);
+  const float* a = positions + 3 * static_cast<std::size_t>(t[0]);
+  const float* b = positions + 3 * static_cast<std::size_t>(t[1]);
+  const float* c = positions + 3 * static_cast<std::size_t>(t[2]);
+  const float e1x = b[0] - a[0], e1y = b[1] - a[1], e1z = b[2] - a[2];
+  const float e2x = c[0] - a[0], e2y = c[1] - a[1], e2z = c[2] - a[2];
+  n[0] = e1y * e2z - e1z * e2y;
+  n[1] = e1z * e2x - e1x * e2z;
+  n[2] = e1x * e2y - e1y * e2x;
+}
+
+// Face normals computeVertexNormalsOf caches (16 x 4096 bytes, 64 KB of stack).
+constexpr std::size_t kFaceCache = 4096;
+constexpr std::size_t kCacheMask = kFaceCache - 1;
+static_assert((kFaceCache & kCacheMask) == 0, "the face cache's size is a power of two");
+
 // The normalised sum of the area-weighted normals of triangles ids[0 .. count) (each computed from
 // its first corner, as (b - a) x (c - a)), into out[0..2]; (0, 0, 0) when the sum is zero.
 inline void gatherNormal(const std::int32_t* tris, const float* positions, const std::int32_t* ids, std::size_t count,
                          float* out) {
+  // Scalar: measured faster here than 4-float packets (a short list per vertex, whose packet
+  // would then be taken apart for the normalisation).
   float sx = 0.0f, sy = 0.0f, sz = 0.0f;
   for (std::size_t i = 0; i < count; ++i) {
     const std::int32_t* t = tris + 3 * static_cast<std::size_t>(ids[i]);
@@ -333,18 +367,63 @@ inline void gatherNormal(const std::int32_t* tris, const float* positions, const
   finishNormal(sx, sy, sz, out);
 }
 
-// Triangles whose normals one block of slots caches on the stack (96 KB of floats).
+// Triangles whose normals one block of slots caches on the stack, and slots one block sums at
+// most: 16 x 8192 + 20 x 2048 bytes, 168 KB.
 constexpr std::size_t kFaceWindow = 8192;
+constexpr std::size_t kSlotWindow = 2048;
+static_assert(kSlotWindow % 8 == 0, "finishNormals pads to groups of 8");
+
+// The face normals (b - a) x (c - a) of triangles [first, last] into the ring face[f & kFaceMask],
+// one 4-float packet each (x, y, z, 0): Eigen's cross3 computes the three components in the lanes
+// of one vector register with the same products and differences as gatherNormal's scalar code
+// (Eigen/src/Geometry/arch/Geometry_SIMD.h), so the values are bit-identical.
+constexpr std::size_t kFaceMask = kFaceWindow - 1;
+static_assert((kFaceWindow & kFaceMask) == 0, "the face ring's size is a power of two");
+void faceNormals(const std::int32_t* tris, const float* p, std::int32_t first, std::int32_t last,
+                 Eigen::Vector4f* __restrict face) {
+  for (auto f = static_cast<std::size_t>(first); f <= static_cast<std::size_t>(last); ++f) {
+    const std::int32_t* tri = tris + 3 * f;
+    const Eigen::Vector4f a = point4(p, tri[0]);
+    face[f & kFaceMask] = (point4(p, tri[1]) - a).cross3(point4(p, tri[2]) - a);
+  }
+}
+
+// Normalises count sums (4-float packets x, y, z, 0) into out (count x 3) as finishNormal does:
+// first the reciprocal lengths of groups of slots in vector registers (the square root and the
+// division are the same correctly rounded IEEE operations there as in a scalar register, and a
+// slot whose length is not > 0 is multiplied by 1, that is left as finishNormal leaves it), then
+// each sum times its reciprocal. Bit-identical to finishNormal. `inv` holds kSlotWindow floats.
+void finishNormals(Eigen::Vector4f* __restrict sum, std::size_t count, float* __restrict inv, float* __restrict out) {
+  // Whole groups of 8 (the buffers hold kSlotWindow, a multiple of 8; the padding is zeroed and
+  // never written out), so that -O2's cheap vectoriser replaces the loop entirely.
+  const std::size_t padded = (count + 7) & ~std::size_t{7};
+  for (std::size_t i = count; i < padded; ++i) sum[i].setZero();
+  const float* s = sum[0].data();
+  for (std::size_t i = 0; i < padded; ++i) {  // vectorised: check with -fopt-info-vec (docs/performance.md)
+    const float x = s[4 * i], y = s[4 * i + 1], z = s[4 * i + 2];
+    const float len = std::sqrt(x * x + y * y + z * z);
+    inv[i] = 1.0f / (len > 0.0f ? len : 1.0f);  // select, then divide: no branch
+  }
+  // Four lanes stored at out + 3i: the fourth lands on the next slot's x, written next; the last
+  // slot is stored as three floats, so nothing past out[3 count) is touched.
+  for (std::size_t i = 0; i + 1 < count; ++i) Eigen::Map<Eigen::Vector4f>(out + 3 * i) = sum[i] * inv[i];
+  if (count > 0) {
+    const std::size_t last = count - 1;
+    for (int k = 0; k < 3; ++k) out[3 * last + static_cast<std::size_t>(k)] = sum[last][k] * inv[last];
+  }
+}
 
 // Normals of slots [0, slots) from a CSR (offsets, ids) into out (slots x 3).
 //
 // Neighbouring slots share triangles (each triangle is in three slots' lists), so rather than
-// computing a triangle's normal once per corner, a block of consecutive slots whose triangles lie
-// in a window of at most kFaceWindow consecutive indices first computes the window's face normals
-// (a streaming, vectorisable loop), then sums them per slot. That needs a mesh whose neighbouring
-// vertices have neighbouring triangles (as exported meshes do); where the window would compute more
-// normals than the block has corners, the block sums per corner instead. Either way each slot adds
-// the same float normals in the same order, so the result does not depend on the path.
+// computing a triangle's normal once per corner, a block of at most kSlotWindow consecutive slots
+// whose triangles lie in a window of at most kFaceWindow consecutive indices first computes the
+// window's face normals not yet in the ring of the previous windows (a streaming loop), then sums
+// them per slot and normalises the block's
+// sums together (a vectorised loop). That needs a mesh whose neighbouring vertices have
+// neighbouring triangles (as exported meshes do); where the window would compute more normals than
+// the block has corners, the block sums per corner instead. Either way each slot adds the same
+// float normals in the same order, so the result does not depend on the path.
 void gatherSlots(std::span<const std::int32_t> tris, std::span<const float> positions,
                  std::span<const std::int32_t> offsets, std::span<const std::int32_t> ids, std::size_t slots,
                  float* out) {
@@ -353,13 +432,18 @@ void gatherSlots(std::span<const std::int32_t> tris, std::span<const float> posi
   const std::int32_t* off = offsets.data();
   const std::int32_t* id = ids.data();
   detail::parallelChunks(slots, kParallelNormalSlots, [&](std::size_t begin, std::size_t end) {
-    float face[kFaceWindow * 3];
+    // A ring of face normals: faces [ring_lo, ring_hi] are at face[f & kFaceMask]; windows move
+    // forward over an ordered mesh, so each face is computed about once per chunk.
+    Eigen::Vector4f face[kFaceWindow], sum[kSlotWindow];
+    std::int32_t ring_lo = 0, ring_hi = -1;
+    float inv[kSlotWindow];
     std::size_t s = begin;
     while (s < end) {
       // The longest run of slots from s whose triangles fit in one window (lists are ascending).
       std::int32_t lo = std::numeric_limits<std::int32_t>::max(), hi = -1;
       std::size_t e = s;
-      for (; e < end; ++e) {
+      const std::size_t stop_at = std::min(end, s + kSlotWindow);
+      for (; e < stop_at; ++e) {
         if (off[e] == off[e + 1]) continue;
         const std::int32_t first = id[off[e]], last = id[off[e + 1] - 1];
         const std::int32_t new_lo = std::min(lo, first), new_hi = std::max(hi, last);
@@ -375,28 +459,25 @@ void gatherSlots(std::span<const std::int32_t> tris, std::span<const float> posi
           gatherNormal(t, p, id + off[s], static_cast<std::size_t>(off[s + 1] - off[s]), out + 3 * s);
         continue;
       }
-      for (std::int32_t f = lo; f <= hi; ++f) {
-        const std::int32_t* tri = t + 3 * static_cast<std::size_t>(f);
-        const float* a = p + 3 * static_cast<std::size_t>(tri[0]);
-        const float* b = p + 3 * static_cast<std::size_t>(tri[1]);
-        const float* c = p + 3 * static_cast<std::size_t>(tri[2]);
-        const float e1x = b[0] - a[0], e1y = b[1] - a[1], e1z = b[2] - a[2];
-        const float e2x = c[0] - a[0], e2y = c[1] - a[1], e2z = c[2] - a[2];
-        float* n = face + 3 * static_cast<std::size_t>(f - lo);
-        n[0] = e1y * e2z - e1z * e2y;
-        n[1] = e1z * e2x - e1x * e2z;
-        n[2] = e1x * e2y - e1y * e2x;
-      }
-      for (; s < e; ++s) {
-        float sx = 0.0f, sy = 0.0f, sz = 0.0f;
-        for (std::int32_t i = off[s]; i < off[s + 1]; ++i) {
-          const float* n = face + 3 * static_cast<std::size_t>(id[i] - lo);
-          sx += n[0];
-          sy += n[1];
-          sz += n[2];
+      if (lo >= ring_lo && lo <= ring_hi + 1) {  // the window continues the ring's: its new faces only
+        if (hi > ring_hi) {
+          faceNormals(t, p, ring_hi + 1, hi, face);
+          ring_hi = hi;
+          ring_lo = std::max(ring_lo, hi - static_cast<std::int32_t>(kFaceMask));
         }
-        finishNormal(sx, sy, sz, out + 3 * s);
+      } else {
+        faceNormals(t, p, lo, hi, face);
+        ring_lo = lo;
+        ring_hi = hi;
       }
+      for (std::size_t k = 0; k < e - s; ++k) {
+        Eigen::Vector4f n = Eigen::Vector4f::Zero();
+        for (std::int32_t i = off[s + k]; i < off[s + k + 1]; ++i)
+          n += face[static_cast<std::size_t>(id[i]) & kFaceMask];
+        sum[k] = n;
+      }
+      finishNormals(sum, e - s, inv, out + 3 * s);
+      s = e;
     }
   });
 }
@@ -441,10 +522,28 @@ bool computeVertexNormalsOf(const SurfaceTopology& topology, std::span<const flo
   const std::int32_t* list = vertices.data();
   float* out = normals.data();
   detail::parallelChunks(vertices.size(), kParallelNormalSlots, [&](std::size_t begin, std::size_t end) {
+    // Neighbouring listed vertices share faces; a direct-mapped cache of face normals (face f at
+    // f & kCacheMask, tagged with f) computes each about once where the list is in memory order
+    // (ModelEvaluator's lists are ascending). The sums add the same floats in the same order as
+    // gatherNormal, so the result is bit-identical.
+    std::int32_t tag[kFaceCache];
+    float cached[3 * kFaceCache];
+    std::fill(tag, tag + kFaceCache, -1);
     for (std::size_t i = begin; i < end; ++i) {
       const auto h = static_cast<std::size_t>(home[static_cast<std::size_t>(list[i])]);
-      gatherNormal(t, p, id + off[h], static_cast<std::size_t>(off[h + 1] - off[h]),
-                   out + 3 * static_cast<std::size_t>(list[i]));
+      float sx = 0.0f, sy = 0.0f, sz = 0.0f;
+      for (std::int32_t k = off[h]; k < off[h + 1]; ++k) {
+        const std::int32_t f = id[k];
+        float* n = cached + 3 * (static_cast<std::size_t>(f) & kCacheMask);
+        if (tag[static_cast<std::size_t>(f) & kCacheMask] != f) {
+          tag[static_cast<std::size_t>(f) & kCacheMask] = f;
+          faceNormal(t, p, f, n);
+        }
+        sx += n[0];
+        sy += n[1];
+        sz += n[2];
+      }
+      finishNormal(sx, sy, sz, out + 3 * static_cast<std::size_t>(list[i]));
     }
   });
   return true;

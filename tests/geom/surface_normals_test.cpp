@@ -6,9 +6,14 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <random>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "support/allocation_counter.h"
@@ -125,6 +130,94 @@ TEST(SurfaceNormals, ThreadedGatherEqualsScatter) {
   expectMatchesOracle(soup, jitter(rng, soup.positions, 0.2f), "threaded random soup");
 }
 
+// The fast path (4-float cross products, a ring of face normals, a vectorised normalisation;
+// surface.cpp, gatherSlots) does the scalar oracle's float operations in the same order, so it
+// must agree bit for bit, not just within kGatherVsScatterTol.
+void expectBitIdentical(const TriMesh& mesh, std::span<const float> pose, const std::string& what) {
+  const SurfaceTopology t = SurfaceTopology::build(mesh);
+  std::vector<float> normals(pose.size()), group(t.groupCount() * 3);
+  ASSERT_TRUE(computeVertexNormals(t, pose, normals)) << what;
+  ASSERT_TRUE(computeGroupNormals(t, pose, group)) << what;
+  const auto same = [&](const std::vector<float>& expected, std::span<const float> actual, const char* kind) {
+    ASSERT_EQ(expected.size(), actual.size()) << what;
+    for (std::size_t i = 0; i < expected.size(); ++i)
+      ASSERT_EQ(std::bit_cast<std::uint32_t>(expected[i]), std::bit_cast<std::uint32_t>(actual[i]))
+          << what << ", " << kind << ": element " << i << " (" << expected[i] << " vs " << actual[i] << ")";
+  };
+  same(scatterNormals(t, pose, false), normals, "vertex normals");
+  same(scatterNormals(t, pose, true), group, "group normals");
+}
+
+// A grid of rows x cols vertices, two triangles per cell in row order (neighbouring vertices have
+// neighbouring triangles, the fast path's case), with an unused (isolated) vertex after every
+// `gap` vertices, a few collapsed triangles and, optionally, the triangles shuffled (no locality:
+// the per-corner path).
+TriMesh orderedGrid(std::mt19937& rng, int rows, int cols, int gap, bool shuffle) {
+  TriMesh m;
+  std::vector<std::int32_t> index(static_cast<std::size_t>(rows * cols));
+  std::uniform_real_distribution<float> bump(-0.3f, 0.3f);
+  for (int r = 0; r < rows; ++r)
+    for (int c = 0; c < cols; ++c) {
+      if ((m.vertexCount() + 1) % static_cast<std::size_t>(gap) == 0)
+        m.positions.insert(m.positions.end(), {5.0f, 5.0f, 5.0f});
+      index[static_cast<std::size_t>(r * cols + c)] = static_cast<std::int32_t>(m.vertexCount());
+      m.positions.insert(m.positions.end(), {static_cast<float>(c), static_cast<float>(r), bump(rng)});
+    }
+  for (int r = 0; r + 1 < rows; ++r)
+    for (int c = 0; c + 1 < cols; ++c) {
+      const auto at = [&](int rr, int cc) { return index[static_cast<std::size_t>(rr * cols + cc)]; };
+      m.triangles.insert(m.triangles.end(), {at(r, c), at(r + 1, c), at(r, c + 1)});
+      if (rng() % 50 == 0) m.triangles.insert(m.triangles.end(), {at(r, c), at(r, c), at(r + 1, c + 1)});  // degenerate
+      m.triangles.insert(m.triangles.end(), {at(r, c + 1), at(r + 1, c), at(r + 1, c + 1)});
+    }
+  if (shuffle) {
+    std::vector<std::array<std::int32_t, 3>> tris(m.triangles.size() / 3);
+    std::memcpy(tris.data(), m.triangles.data(), m.triangles.size() * sizeof(std::int32_t));
+    std::shuffle(tris.begin(), tris.end(), rng);
+    std::memcpy(m.triangles.data(), tris.data(), m.triangles.size() * sizeof(std::int32_t));
+  }
+  return m;
+}
+
+TEST(SurfaceNormals, FastPathIsBitIdenticalToTheScalarOracle) {
+  std::mt19937 rng(23);
+  // Seams (welded duplicates), hard edges, degenerate triangles, isolated vertices, small meshes.
+  const TriMesh seam = testing::seamSphere(10, 16);
+  expectBitIdentical(seam, jitter(rng, seam.positions, 0.1f), "seam sphere");
+  expectBitIdentical(testing::splitCube(), testing::splitCube().positions, "split cube");
+  for (int i = 0; i < 100; ++i) {
+    const TriMesh m = randomMesh(rng, 3 + rng() % 60, 1 + rng() % 120);
+    expectBitIdentical(m, jitter(rng, m.positions, 0.5f), "random mesh " + std::to_string(i));
+  }
+  // Ordered meshes (the ring of face normals over many blocks), narrow and wide rows (windows of a
+  // few slots up to whole chunks), with and without locality; large ones run threaded.
+  for (const auto& [rows, cols, gap, shuffle] :
+       {std::tuple{30, 20, 7, false}, std::tuple{30, 20, 7, true}, std::tuple{200, 3000, 101, false},
+        std::tuple{400, 600, 13, false}, std::tuple{100, 500, 1000, true}, std::tuple{1200, 5, 3, false}}) {
+    const TriMesh grid = orderedGrid(rng, rows, cols, gap, shuffle);
+    expectBitIdentical(grid, jitter(rng, grid.positions, 0.05f),
+                       "grid " + std::to_string(rows) + " x " + std::to_string(cols) + (shuffle ? ", shuffled" : ""));
+  }
+  const TriMesh big = testing::seamSphere(300, 240);
+  expectBitIdentical(big, jitter(rng, big.positions, 0.01f), "threaded seam sphere");
+}
+
+TEST(SurfaceNormals, CoincidingGroupAndHomeListsAreStoredOnce) {
+  std::mt19937 rng(31);
+  // No seams, no file normals: one group per vertex in vertex order, so the lists coincide.
+  const TriMesh grid = orderedGrid(rng, 20, 30, 1000, false);
+  const SurfaceTopology plain = SurfaceTopology::build(grid);
+  EXPECT_TRUE(plain.groupListsAreHomeLists());
+  EXPECT_EQ(plain.groupTriangles().data(), plain.homeTriangles().data());
+  EXPECT_EQ(plain.groupTriangleOffsets().size(), plain.groupCount() + 1);
+  // Welded seams: groups are per surface point, not per vertex, so the lists differ.
+  const SurfaceTopology seam = SurfaceTopology::build(testing::seamSphere(10, 16));
+  EXPECT_FALSE(seam.groupListsAreHomeLists());
+  EXPECT_NE(seam.groupTriangles().data(), seam.homeTriangles().data());
+  // Either way the group normals are the oracle's (shared or not).
+  expectBitIdentical(grid, jitter(rng, grid.positions, 0.1f), "plain grid");
+}
+
 TEST(SurfaceNormals, GatherListsHoldEveryCornerOnce) {
   std::mt19937 rng(3);
   for (int i = 0; i < 50; ++i) {
@@ -161,9 +254,12 @@ TEST(SurfaceNormals, NormalsOfListedVerticesEqualTheFullComputation) {
   const std::vector<float> pose = jitter(rng, seam.positions, 0.05f);
   std::vector<float> full(pose.size());
   ASSERT_TRUE(computeVertexNormals(t, pose, full));
-  for (const std::size_t count : {std::size_t{0}, std::size_t{1}, std::size_t{100}, 3 * kParallelNormalSlots}) {
+  // Random lists (the face cache's tags collide) and ascending ones (ModelEvaluator's: faces hit).
+  for (const std::size_t count :
+       {std::size_t{0}, std::size_t{1}, std::size_t{100}, 3 * kParallelNormalSlots, 3 * kParallelNormalSlots + 1}) {
     std::vector<std::int32_t> list(count);
     for (std::int32_t& v : list) v = static_cast<std::int32_t>(rng() % seam.vertexCount());  // repeats allowed
+    if (count % 2 == 1) std::sort(list.begin(), list.end());
     constexpr float kUntouched = 42.0f;
     std::vector<float> some(pose.size(), kUntouched);
     ASSERT_TRUE(computeVertexNormalsOf(t, pose, list, some));
