@@ -413,6 +413,42 @@ void finishNormals(Eigen::Vector4f* __restrict sum, std::size_t count, float* __
   }
 }
 
+// sum[k] = the sum of face[f & kFaceMask] over the triangles f of slot k's list (off[k] to
+// off[k + 1] of id), k < count, added in list order. Each sum is one chain of dependent additions,
+// so four slots are summed side by side (four independent chains the core overlaps); each slot
+// still adds its own normals in its own order, so the sums are bit-identical to one slot at a time.
+void sumSlots(const std::int32_t* off, const std::int32_t* id, std::size_t count, const Eigen::Vector4f* face,
+              Eigen::Vector4f* __restrict sum) {
+  const auto at = [&](std::int32_t i) -> const Eigen::Vector4f& {
+    return face[static_cast<std::size_t>(id[i]) & kFaceMask];
+  };
+  std::size_t k = 0;
+  for (; k + 4 <= count; k += 4) {
+    const std::int32_t b0 = off[k], b1 = off[k + 1], b2 = off[k + 2], b3 = off[k + 3], b4 = off[k + 4];
+    const std::int32_t common = std::min(std::min(b1 - b0, b2 - b1), std::min(b3 - b2, b4 - b3));
+    Eigen::Vector4f n0 = Eigen::Vector4f::Zero(), n1 = n0, n2 = n0, n3 = n0;
+    for (std::int32_t i = 0; i < common; ++i) {
+      n0 += at(b0 + i);
+      n1 += at(b1 + i);
+      n2 += at(b2 + i);
+      n3 += at(b3 + i);
+    }
+    for (std::int32_t i = b0 + common; i < b1; ++i) n0 += at(i);
+    for (std::int32_t i = b1 + common; i < b2; ++i) n1 += at(i);
+    for (std::int32_t i = b2 + common; i < b3; ++i) n2 += at(i);
+    for (std::int32_t i = b3 + common; i < b4; ++i) n3 += at(i);
+    sum[k] = n0;
+    sum[k + 1] = n1;
+    sum[k + 2] = n2;
+    sum[k + 3] = n3;
+  }
+  for (; k < count; ++k) {
+    Eigen::Vector4f n = Eigen::Vector4f::Zero();
+    for (std::int32_t i = off[k]; i < off[k + 1]; ++i) n += at(i);
+    sum[k] = n;
+  }
+}
+
 // Normals of slots [0, slots) from a CSR (offsets, ids) into out (slots x 3).
 //
 // Neighbouring slots share triangles (each triangle is in three slots' lists), so rather than
@@ -470,12 +506,7 @@ void gatherSlots(std::span<const std::int32_t> tris, std::span<const float> posi
         ring_lo = lo;
         ring_hi = hi;
       }
-      for (std::size_t k = 0; k < e - s; ++k) {
-        Eigen::Vector4f n = Eigen::Vector4f::Zero();
-        for (std::int32_t i = off[s + k]; i < off[s + k + 1]; ++i)
-          n += face[static_cast<std::size_t>(id[i]) & kFaceMask];
-        sum[k] = n;
-      }
+      sumSlots(off + s, id, e - s, face, sum);
       finishNormals(sum, e - s, inv, out + 3 * s);
       s = e;
     }
