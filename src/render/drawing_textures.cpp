@@ -34,6 +34,17 @@ void checkImage(const TextureImage& image, const std::string& what) {
                 " bytes of RGBA, not " + std::to_string(bytes));
 }
 
+// Calls visit(q) for each 4-neighbour q of pixel p that lies inside a w x h image.
+template <class Visit>
+void forEachNeighbour(std::size_t p, int w, int h, Visit&& visit) {
+  const int x = static_cast<int>(p % static_cast<std::size_t>(w)),
+            y = static_cast<int>(p / static_cast<std::size_t>(w));
+  const int nx[4] = {x - 1, x + 1, x, x}, ny[4] = {y, y, y - 1, y + 1};
+  for (int i = 0; i < 4; ++i)
+    if (nx[i] >= 0 && ny[i] >= 0 && nx[i] < w && ny[i] < h)
+      visit(static_cast<std::size_t>(ny[i]) * static_cast<std::size_t>(w) + static_cast<std::size_t>(nx[i]));
+}
+
 // Fills every `hole` pixel from the nearest non-hole opaque pixel by 4-connected steps through
 // holes (breadth-first from all sources at once, sources in row-major order); unreached holes
 // become transparent.
@@ -50,18 +61,12 @@ void fillHoles(TextureImage& image, const std::vector<std::uint8_t>& hole) {
     }
   for (std::size_t head = 0; head < queue.size(); ++head) {
     const std::size_t p = queue[head];
-    const int x = static_cast<int>(p % static_cast<std::size_t>(w)),
-              y = static_cast<int>(p / static_cast<std::size_t>(w));
-    const int nx[4] = {x - 1, x + 1, x, x}, ny[4] = {y, y, y - 1, y + 1};
-    for (int i = 0; i < 4; ++i) {
-      if (nx[i] < 0 || ny[i] < 0 || nx[i] >= w || ny[i] >= h) continue;
-      const std::size_t q =
-          static_cast<std::size_t>(ny[i]) * static_cast<std::size_t>(w) + static_cast<std::size_t>(nx[i]);
-      if (done[q] || !hole[q]) continue;
+    forEachNeighbour(p, w, h, [&](std::size_t q) {
+      if (done[q] || !hole[q]) return;
       done[q] = 1;
       std::copy_n(&image.rgba[p * 4], 4, &image.rgba[q * 4]);
       queue.push_back(q);
-    }
+    });
   }
   for (std::size_t p = 0; p < n; ++p)
     if (hole[p] && !done[p]) image.rgba[p * 4 + 3] = 0;
@@ -88,18 +93,12 @@ void flattenRegions(TextureImage& image, const std::vector<std::uint8_t>& ink) {
     seen[start] = 1;
     for (std::size_t head = 0; head < region.size(); ++head) {
       const std::size_t p = region[head];
-      const int x = static_cast<int>(p % static_cast<std::size_t>(w)),
-                y = static_cast<int>(p / static_cast<std::size_t>(w));
-      const int nx[4] = {x - 1, x + 1, x, x}, ny[4] = {y, y, y - 1, y + 1};
-      for (int i = 0; i < 4; ++i) {
-        if (nx[i] < 0 || ny[i] < 0 || nx[i] >= w || ny[i] >= h) continue;
-        const std::size_t q =
-            static_cast<std::size_t>(ny[i]) * static_cast<std::size_t>(w) + static_cast<std::size_t>(nx[i]);
+      forEachNeighbour(p, w, h, [&](std::size_t q) {
         if (seen[q] || ink[q] || image.rgba[q * 4 + 3] < kOpaque || !nearColour(&image.rgba[p * 4], &image.rgba[q * 4]))
-          continue;
+          return;
         seen[q] = 1;
         region.push_back(q);
-      }
+      });
     }
     for (int c = 0; c < 3; ++c) {
       std::array<std::size_t, 256> histogram{};
