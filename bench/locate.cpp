@@ -1,10 +1,10 @@
 // Locate + weigh one view: ViewSphere::weights (hint walk + cube-map grid) in ns per query, and
 // its ratio to the plain scan ViewSphere::weightsByScan measured in the same run (x_scan < 1 is
-// faster). Goals (issue 12): <= 50 ns on a coherent camera path (with the hint), <= 150 ns for
+// faster). Goals: <= 50 ns on a coherent camera path (with the hint), <= 150 ns for
 // random views (no hint), with 6 and with 200 keys, Base and Cosine modes, sharpness 1 and 2.
-// Scheme/...: the smooth and rbf weight schemes' cost per query as a multiple of the linear one's (issue 29).
+// Scheme/...: the smooth and rbf weight schemes' cost per query as a multiple of the linear one's.
 // Positions/...: keys at distances (KeySpace::weights, an eye position) as a multiple of the linear
-// direction sphere's query of the same key directions (issue 29, "Keys at distances"): eyes inside
+// direction sphere's query of the same key directions ("Keys at distances", docs/weights.md): eyes inside
 // the keys' hull (an orbit at radius 7, hinted), outside it (an orbit at radius 20: the nearest hull
 // face search) and random eyes in a box of side 30 (no hint).
 //
@@ -134,7 +134,7 @@ void locateBenchmark(benchmark::State& state, const std::string& keys, vdg::Unco
   state.counters["x_scan"] = fast_s / scan_s;  // the figure to watch with ns per query
 }
 
-// The smooth and rbf weight schemes (issue 29, docs/weights.md) against the linear one on the same
+// The smooth and rbf weight schemes (docs/weights.md) against the linear one on the same
 // views, timed back to back in this run: x_linear is the scheme's query cost as a multiple of the
 // linear one's. The rbf scheme's query is denseWeights() (every key); sphere200 gets a Wendland
 // kernel of width 30 degrees (a 60-degree Gaussian cannot tell 200 random keys apart: refused).

@@ -14,7 +14,7 @@ namespace vdg::io {
 inline constexpr std::pair<const char*, Uncovered> kUncoveredNames[] = {
     {"base", Uncovered::Base}, {"cosine", Uncovered::Cosine}, {"cosine2", Uncovered::Cosine2}};
 
-// "weights": {"scheme": ...}: how a view's weights follow from its hull triangle (issue 29).
+// "weights": {"scheme": ...}: how a view's weights follow from its hull triangle.
 inline constexpr std::pair<const char*, WeightScheme> kWeightSchemeNames[] = {
     {"linear", WeightScheme::Linear}, {"smooth", WeightScheme::Smooth}, {"rbf", WeightScheme::Rbf}};
 

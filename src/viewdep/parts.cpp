@@ -1,4 +1,4 @@
-// Per-part key sets (issue 29; docs/weights.md, "Per-part key sets"): a model's vertices split into
+// Per-part key sets (docs/weights.md, "Per-part key sets"): a model's vertices split into
 // parts, each with its own keys and driving view, blended smoothly across the parts' borders.
 //
 // Each part is Rademacher's view-dependent model (Rademacher 99, sections 3.1-3.2) restricted to

@@ -195,7 +195,7 @@ double rbfPositivePart(double r) {
   return r * r * (2.0 * e - r) / (e * e);
 }
 
-// The smooth scheme (issue 29; view_sphere.h, "Weight schemes"). F(t) = 3t^2 - 2t^3 on [0, 1],
+// The smooth scheme (view_sphere.h, "Weight schemes"). F(t) = 3t^2 - 2t^3 on [0, 1],
 // clamped outside: C1 with F' = 0 at both ends.
 double smoothEdgeStep(double t) {
   t = std::clamp(t, 0.0, 1.0);

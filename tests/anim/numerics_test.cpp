@@ -1,4 +1,4 @@
-// Hostile numbers (issue 8): huge dimensions, impossible tolerances, times whose spans overflow,
+// Hostile numbers: huge dimensions, impossible tolerances, times whose spans overflow,
 // huge quaternions. Every answer must be the right one or a clear vdg::Error naming the field.
 #include <gtest/gtest.h>
 

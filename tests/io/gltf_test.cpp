@@ -523,7 +523,7 @@ TEST(GltfHostile, DeepJsonAndFilesOnDisk) {
   EXPECT_NE(errorOf([&] { (void)readGltfRig(dir.file("t.gltf")); }).find("gone.bin: no such file"), std::string::npos);
 }
 
-// ---- strictness (issue 24): extents after the node transforms, glTF's own rules, vdg's lines ----
+// ---- strictness: extents after the node transforms, glTF's own rules, vdg's lines ----
 
 // The triangle's positions replaced by `p` (9 floats).
 Json triangleAt(const std::array<float, 9>& p) {

@@ -128,7 +128,7 @@ TEST_F(ManifestV2, StaticModelsAreWrittenAsVersion2AndVersion1StillLoads) {
   EXPECT_NO_THROW((void)ViewDependentModel::build(loadManifest(write(text))));
 }
 
-// Version 3: "weights": {"scheme": ...} (issue 29, docs/weights.md); written only when not linear.
+// Version 3: "weights": {"scheme": ...} (docs/weights.md); written only when not linear.
 TEST_F(ManifestV2, Version3CarriesTheWeightScheme) {
   const std::string v3 = R"({"version": 3, "base": "k.obj", "weights": {"scheme": "smooth"},
                              "keys": [{"mesh": "k.obj", "view": [0, 0, 1]}]})";

@@ -19,7 +19,7 @@ namespace {
 
 // Float positions: a coordinate made from exact inputs is within a few float ulps of its value.
 constexpr double kPositionTolerance = 1e-5;
-// The two paths agree on convex meshes within this relative difference (issue 14 brief).
+// The two paths agree on convex meshes within this relative difference.
 constexpr double kPathAgreement = 1e-9;
 // Volumes from float positions, relative.
 constexpr double kVolumeTolerance = 1e-5;

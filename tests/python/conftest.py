@@ -15,7 +15,7 @@ import vdg
 SOURCE_DIR = pathlib.Path(__file__).resolve().parents[2]
 EXAMPLES = SOURCE_DIR / "examples"
 
-# The shipped models every parity test runs on (issue 26): static, animated skinned, animated with
+# The shipped models every parity test runs on: static, animated skinned, animated with
 # world offsets, and the paper's figure 13 head.
 MODELS = {
     "spot": EXAMPLES / "spot" / "spot.vdg.json",

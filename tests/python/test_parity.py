@@ -1,5 +1,5 @@
 """`import vdg` against the vdg tool at random views: `vdg weights --views` (batch JSON) and
-`vdg eval`, on every shipped model and on its glTF export (issue 26, part 1)."""
+`vdg eval`, on every shipped model and on its glTF export."""
 from __future__ import annotations
 
 import json

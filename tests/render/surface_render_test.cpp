@@ -1,4 +1,4 @@
-// Real-world meshes in the renderer (issue 15): surfaces drawn on their welded topology (seams of
+// Real-world meshes in the renderer: surfaces drawn on their welded topology (seams of
 // the file are not inked, true holes are), hard edges of the file kept through blending, smooth
 // shading across texture seams, creases, and per-material and per-texel colours checked against
 // the lighting equation (shade() with the hue rule) at chosen pixels.

@@ -1,4 +1,4 @@
-// Hostile numbers (issue 8): extreme sharpness, huge and tiny view vectors, many keys. Every
+// Hostile numbers: extreme sharpness, huge and tiny view vectors, many keys. Every
 // answer must be the right one or a clear vdg::Error, never a silently wrong one.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// The weight schemes of issue 29 (view_sphere.h, "Weight schemes"; docs/weights.md): the smooth
+// The weight schemes (view_sphere.h, "Weight schemes"; docs/weights.md): the smooth
 // scheme is exact at every key, a partition of unity, non-negative, local and C1 along paths that
 // cross hull edges and pass through keys; the linear scheme is the paper's barycentric blend, bit
 // for bit, and shows its kinks. C1 is measured by halving the step of a dense path: a C1 blend's

@@ -45,7 +45,7 @@ namespace vdg {
 // Version of the mesh.extras.vdg object ("version" field). Version 2 adds "sphere" (the viewing
 // sphere as vdg built it) and, for an animated model, "time" (the key views' spline tables), so
 // that a runtime reproduces `vdg weights` exactly (docs/gltf-export.md); version 3 adds "weights"
-// ({"scheme": "smooth"}, issue 29) and is written only for a smooth model;
+// ({"scheme": "smooth"}) and is written only for a smooth model;
 // version 4 adds the rbf scheme ("weights": {"scheme": "rbf", "kernel", "width"} and the solved
 // interpolation in "sphere"."rbf") and is written only for an rbf model; versions 1 to 3 still read.
 inline constexpr int kGltfExtrasVersion = 4;

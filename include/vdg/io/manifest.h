@@ -11,9 +11,9 @@ namespace vdg {
 
 // Current manifest format version (the "version" field of *.vdg.json). Version 2 added animated
 // bases ("base_animation", "offsets", each key's "frame"), version 3 the weight scheme ("weights":
-// {"scheme": "linear" | "smooth" | "rbf"}, the rbf scheme with "kernel" and "width" (degrees),
-// issue 29), version 4 per-part key sets ("parts": [{"name", "select": {"vertices" | "material" |
-// "weights"}, "border", "keys", "view"}], issue 29; a "weights" mask is a list or a text file of
+// {"scheme": "linear" | "smooth" | "rbf"}, the rbf scheme with "kernel" and "width" (degrees)),
+// version 4 per-part key sets ("parts": [{"name", "select": {"vertices" | "material" |
+// "weights"}, "border", "keys", "view"}]; a "weights" mask is a list or a text file of
 // one number per vertex, relative to the manifest) and keys at distances ("weights": {"space":
 // "directions" | "positions", "falloff": model units} and a key's plain "eye" [x, y, z];
 // vdg/viewdep/key_space.h); older files load unchanged, and saveManifest writes the oldest version

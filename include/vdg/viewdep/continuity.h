@@ -1,4 +1,4 @@
-// How smoothly a view-dependent model changes as the camera moves (issue 29; docs/weights.md):
+// How smoothly a view-dependent model changes as the camera moves (docs/weights.md):
 // along dense great-circle paths of views about the model, the largest move of any vertex per
 // degree of camera motion ("popping") and the largest change of that speed from one step to the
 // next ("velocity jump", per degree). The paper's linear weights are only C0: wherever a path

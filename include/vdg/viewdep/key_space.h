@@ -1,5 +1,5 @@
 // KeySpace — key viewpoints at distances: weights from the camera's eye POSITION, not only its
-// direction (issue 29, "Keys at distances"; docs/weights.md).
+// direction ("Keys at distances"; docs/weights.md).
 //
 // Rademacher 99 weighs a view by its direction alone (section 3.2: key viewpoints on the viewing
 // sphere), and names key viewpoints at different distances, with a tetrahedralisation of space in

@@ -93,7 +93,7 @@ struct RawKey {
   int frame = 0;
 };
 
-// Per-part key sets (issue 29; docs/weights.md, "Per-part key sets"). A part is a set of vertices
+// Per-part key sets (docs/weights.md, "Per-part key sets"). A part is a set of vertices
 // with its own keys and, optionally, its own driving view, so that one region of the model follows
 // one view while the rest follows another (the "cubist" views of Chaudhuri et al.). What a part
 // selects (exactly one kind):

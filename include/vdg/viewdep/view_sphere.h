@@ -29,7 +29,7 @@
 // alpha == 1 costs nothing, integer alpha up to kMultiplySharpnessMax is a few multiplications,
 // any other alpha one std::pow per key (the results agree to float rounding).
 //
-// Weight schemes (issue 29; docs/weights.md). WeightScheme::Linear is the paper's barycentric
+// Weight schemes (docs/weights.md). WeightScheme::Linear is the paper's barycentric
 // blend (C0: its weights kink across every hull edge). WeightScheme::Smooth is C1 on the whole
 // sphere, exact at every key, a partition of unity, non-negative and local (a view's weights come
 // from the three corners of its hull triangle only), built as a side-vertex blend on each hull
