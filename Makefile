@@ -10,7 +10,7 @@ JOBS ?= 2
 BUILD := build/release
 ASAN_BUILD := build/asan
 FUZZ_BUILD := build/fuzz
-FUZZ_SECONDS ?= 25
+FUZZ_SECONDS ?= 20
 FUZZ_JOBS ?= $(JOBS)
 # make test's tests must not skip: it installs the glTF validator, Slurm + munge, Xvfb, ffmpeg,
 # Node with web/node_modules + Chromium, and Blender.
