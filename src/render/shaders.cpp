@@ -30,7 +30,10 @@ void main() {
 }
 )";
 
-const char* const kMeshVertex = R"(#version 330 core
+// The mesh's vertex stage without its main(): the attributes, the outputs, and meshVertex() (the
+// eye-space position, normal, uv and colour; returns the clip position), shared by kMeshVertex and
+// kDrawingVertex.
+const char* const kMeshVertexStage = R"(#version 330 core
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
 layout(location = 2) in vec2 a_uv;
@@ -40,15 +43,18 @@ out vec3 v_pos;
 out vec3 v_normal;
 out vec2 v_uv;
 flat out vec3 v_color;
-void main() {
+vec4 meshVertex() {
   vec4 p = u_view * vec4(a_position, 1.0);
   v_pos = p.xyz;
   v_normal = mat3(u_view) * a_normal;
   v_uv = a_uv;
   v_color = vec3(1.0);
-  gl_Position = u_proj * p;
+  return u_proj * p;
 }
 )";
+// Built at start-up from the shared part (a shader's text is read only when a renderer links it).
+const std::string kMeshVertexText = std::string(kMeshVertexStage) + "void main() { gl_Position = meshVertex(); }\n";
+const char* const kMeshVertex = kMeshVertexText.c_str();
 
 // C = ka*Cbase + max(0, l1.n)(Cwarm - Cbase*k1)*k2 + max(0, l2.n)(Ccool - Cbase*k3)*k4
 // (Rademacher 99, section 3.2.4; the same expression as shade() in shading.cpp). A textured
@@ -146,34 +152,21 @@ const char* const kMeshFragment = kMeshFragmentText.c_str();
 // The mesh's vertex stage plus each slot's projective texture coordinates and visibility (s, t, q,
 // visible), passed on as they are (interpolated perspective-correct, so (s/q, t/q) per fragment is
 // the drawing's projection; vdg/render/drawing_textures.h).
-const char* const kDrawingVertex = R"(#version 330 core
-layout(location = 0) in vec3 a_position;
-layout(location = 1) in vec3 a_normal;
-layout(location = 2) in vec2 a_uv;
+const std::string kDrawingVertexText = std::string(kMeshVertexStage) + R"(
 layout(location = 3) in vec4 a_drawing0;
 layout(location = 4) in vec4 a_drawing1;
 layout(location = 5) in vec4 a_drawing2;
-uniform mat4 u_view;
-uniform mat4 u_proj;
-out vec3 v_pos;
-out vec3 v_normal;
-out vec2 v_uv;
-flat out vec3 v_color;
 out vec4 v_drawing0;
 out vec4 v_drawing1;
 out vec4 v_drawing2;
 void main() {
-  vec4 p = u_view * vec4(a_position, 1.0);
-  v_pos = p.xyz;
-  v_normal = mat3(u_view) * a_normal;
-  v_uv = a_uv;
-  v_color = vec3(1.0);
   v_drawing0 = a_drawing0;
   v_drawing1 = a_drawing1;
   v_drawing2 = a_drawing2;
-  gl_Position = u_proj * p;
+  gl_Position = meshVertex();
 }
 )";
+const char* const kDrawingVertex = kDrawingVertexText.c_str();
 
 // blendDrawingColors of drawing_textures.cpp: a_i = w_i v_i alpha_i, colour = (sum a_i rgb_i + w_b
 // shade()) / (sum a_i + w_b), or shade() where that sum is <= 1e-6. The texture is sampled outside
