@@ -34,8 +34,10 @@ constexpr std::size_t kShownToken = 32;  // bytes of a token or name a message s
 // corners would take hours). At 16 corners the ear clipping is at most 16^2 times the corners read.
 constexpr std::size_t kMaxEarClippedCorners = 16;
 
-std::vector<std::string_view> tokens(std::string_view line) {
-  std::vector<std::string_view> out;
+// The blank-separated tokens of `line` into `out` (cleared first; its capacity is reused, so a file's
+// lines are split without allocating once the longest has been seen).
+void splitTokens(std::string_view line, std::vector<std::string_view>& out) {
+  out.clear();
   std::size_t i = 0;
   while (i < line.size()) {
     while (i < line.size() && (line[i] == ' ' || line[i] == '\t' || line[i] == '\r')) ++i;
@@ -43,6 +45,11 @@ std::vector<std::string_view> tokens(std::string_view line) {
     while (i < line.size() && line[i] != ' ' && line[i] != '\t' && line[i] != '\r') ++i;
     if (i > a) out.push_back(line.substr(a, i - a));
   }
+}
+
+std::vector<std::string_view> tokens(std::string_view line) {
+  std::vector<std::string_view> out;
+  splitTokens(line, out);
   return out;
 }
 
@@ -138,12 +145,20 @@ class ObjChecker {
     throw Error(source_ + ":" + std::to_string(line) + ": " + what);
   }
 
-  // A coordinate: a finite number that fits a float, passed on rewritten (shortestNumber).
-  void number(std::string_view token, std::size_t line, const std::string& what, std::string& out) const {
+  // "vertex 12", "texture coordinate 3", "normal 7": the element of `kind` (0 v, 1 vt, 2 vn) being
+  // read, for messages only (built when a line fails, not for every line).
+  std::string elementName(int kind) const {
+    static constexpr const char* kNames[3] = {"vertex ", "texture coordinate ", "normal "};
+    return kNames[kind] + std::to_string(counts_[kind] + 1);
+  }
+
+  // A coordinate of the element of `kind` being read: a finite number that fits a float, passed on
+  // rewritten (shortestNumber).
+  void number(std::string_view token, std::size_t line, int kind, std::string& out) const {
     const std::string problem = shortestNumber(token, out);
     if (problem.empty()) return;
     const bool bad_number = problem.find("is not a number") != std::string::npos;
-    fail(line, what + ": " + (bad_number ? "" : "coordinate ") + problem);
+    fail(line, elementName(kind) + ": " + (bad_number ? "" : "coordinate ") + problem);
   }
 
   // An f line as tinyobjloader should see it: as it is up to kMaxEarClippedCorners corners, else
@@ -200,7 +215,8 @@ class ObjChecker {
   void checkLine(std::string_view line, std::size_t line_no, std::string& out) {
     const auto hash = line.find('#');
     if (hash != std::string_view::npos) line = line.substr(0, hash);
-    const auto t = tokens(line);
+    splitTokens(line, tokens_);
+    const std::vector<std::string_view>& t = tokens_;
     if (t.empty()) return;
     const std::string_view tag = t[0];
     if (tag == "usemtl") {
@@ -223,21 +239,20 @@ class ObjChecker {
       return;
     }
     if (tag == "v") {
-      const std::string what = "vertex " + std::to_string(counts_[0] + 1);
-      if (t.size() < 4) fail(line_no, what + ": expected 3 coordinates x y z, got " + std::to_string(t.size() - 1));
+      if (t.size() < 4)
+        fail(line_no, elementName(0) + ": expected 3 coordinates x y z, got " + std::to_string(t.size() - 1));
       if (t.size() > 8)
-        fail(line_no, what + ": expected x y z [w] or x y z r g b, got " + std::to_string(t.size() - 1) + " numbers");
-      for (std::size_t i = 1; i < t.size(); ++i) number(t[i], line_no, what, out);
+        fail(line_no,
+             elementName(0) + ": expected x y z [w] or x y z r g b, got " + std::to_string(t.size() - 1) + " numbers");
+      for (std::size_t i = 1; i < t.size(); ++i) number(t[i], line_no, 0, out);
       if (++counts_[0] > kMaxIndex) fail(line_no, "more than " + std::to_string(kMaxIndex) + " vertices");
     } else if (tag == "vt") {
-      const std::string what = "texture coordinate " + std::to_string(counts_[1] + 1);
-      if (t.size() < 2 || t.size() > 4) fail(line_no, what + ": expected 1 to 3 numbers");
-      for (std::size_t i = 1; i < t.size(); ++i) number(t[i], line_no, what, out);
+      if (t.size() < 2 || t.size() > 4) fail(line_no, elementName(1) + ": expected 1 to 3 numbers");
+      for (std::size_t i = 1; i < t.size(); ++i) number(t[i], line_no, 1, out);
       if (++counts_[1] > kMaxIndex) fail(line_no, "more than " + std::to_string(kMaxIndex) + " texture coordinates");
     } else if (tag == "vn") {
-      const std::string what = "normal " + std::to_string(counts_[2] + 1);
-      if (t.size() != 4) fail(line_no, what + ": expected 3 numbers");
-      for (std::size_t i = 1; i < t.size(); ++i) number(t[i], line_no, what, out);
+      if (t.size() != 4) fail(line_no, elementName(2) + ": expected 3 numbers");
+      for (std::size_t i = 1; i < t.size(); ++i) number(t[i], line_no, 2, out);
       if (++counts_[2] > kMaxIndex) fail(line_no, "more than " + std::to_string(kMaxIndex) + " normals");
     } else if (tag == "f") {
       if (t.size() < 4) fail(line_no, "face: expected at least 3 corners, got " + std::to_string(t.size() - 1));
@@ -284,7 +299,8 @@ class ObjChecker {
   std::vector<std::string> material_names_;
   std::vector<std::size_t> material_lines_;
   std::vector<LibraryRef> libraries_;
-  std::int64_t counts_[3] = {0, 0, 0};  // v, vt, vn read so far
+  std::vector<std::string_view> tokens_;  // the current line's (splitTokens), reused line to line
+  std::int64_t counts_[3] = {0, 0, 0};    // v, vt, vn read so far
   std::int64_t max_v_ = 0, max_vt_ = 0, max_vn_ = 0;
   std::size_t max_v_line_ = 0, max_vt_line_ = 0, max_vn_line_ = 0;
 };
