@@ -33,6 +33,7 @@
 #include "vdg/io/obj.h"
 #include "vdg/morph/budget.h"
 #include "vdg/morph/implicit.h"
+#include "vdg/morph/polygonise.h"
 
 namespace vdg::cli {
 namespace {

@@ -18,6 +18,7 @@
 #include "vdg/io/obj.h"
 #include "vdg/morph/implicit.h"
 #include "vdg/morph/mesh_checks.h"
+#include "vdg/morph/polygonise.h"
 
 namespace vdg {
 namespace {

@@ -2,6 +2,7 @@
 // surface against the analytic radius, closedness, components that separate and fuse, and the
 // animation tracks.
 #include "vdg/morph/implicit.h"
+#include "vdg/morph/polygonise.h"
 
 #include <gtest/gtest.h>
 

@@ -29,7 +29,8 @@
 //   RawBlobModel --BlobModel::build--> BlobModel --field/gradient/sample--> values
 //   RawBlobAnimation (tracks per primitive) --BlobAnimation::build--> BlobAnimation
 //       --evaluate(frame, model)--> BlobModel at that frame
-//   polygonise(BlobModel) --> closed triangle mesh (OpenVDB volume to mesh).
+//   polygonise(BlobModel) --> closed triangle mesh (OpenVDB volume to mesh; vdg/morph/polygonise.h,
+//   in vdg::morph3d: this header and its library need no OpenVDB).
 #pragma once
 
 #include <Eigen/Core>
@@ -165,14 +166,7 @@ class BlobAnimation {
   int first_frame_ = 0, last_frame_ = 0;
 };
 
-// ---- Polygonisation -------------------------------------------------------------------------
-struct PolygoniseOptions {
-  // Voxel edge length, world units; 0: defaultVoxelSize(model.bounds()).
-  double voxel_size = 0;
-  // Refused before anything is allocated when the grid would hold more voxels than this:
-  // "WHAT: the grid needs N voxels (about M MiB) at voxel size H; use a --voxel of at least S".
-  std::size_t max_voxels = std::size_t{1} << 27;
-};
+// ---- The grid of the polygoniser (vdg/morph/polygonise.h) ---------------------------------------
 
 // Bytes the polygoniser needs per voxel (the sampled grid and OpenVDB's copy), for the estimate.
 inline constexpr std::size_t kBytesPerVoxel = 8;
@@ -183,29 +177,15 @@ inline constexpr int kGridPadding = 2;
 // The largest side of `box` / 96 (the same default for every frame of a sequence when the box
 // is the union of the frames' bounds); 0 for an empty box.
 double defaultVoxelSize(const Eigen::AlignedBox3d& box);
+// Grid points along each axis over `box` at spacing `voxel_size`: the box's extent in voxels, plus
+// one sample at the far end, plus kGridPadding layers on both sides (in double: no overflow).
+Eigen::Vector3d gridDimensions(const Eigen::AlignedBox3d& box, double voxel_size);
 // Voxels of the padded grid over `box` at `voxel_size` (computed in double: no overflow).
 double gridVoxelCount(const Eigen::AlignedBox3d& box, double voxel_size);
 // Throws the "too many voxels" vdg::Error above (prefixed with `what`) when gridVoxelCount(box,
 // voxel_size) > max_voxels; voxel_size must be > 0.
 void checkVoxelBudget(const Eigen::AlignedBox3d& box, double voxel_size, std::size_t max_voxels,
                       const std::string& what);
-
-// The work (operations, vdg/morph/budget.h) of polygonise(model, {voxel_size}): every grid point
-// sampled and meshed (2 per voxel), every primitive's support box tested on every grid row, and
-// every primitive evaluated at every voxel of its support box, so thousands of primitives over one
-// spot cost thousands of times the grid. In double: +infinity for a voxel size that is not > 0
-// and finite (0: the default, as polygonise).
-double polygoniseCost(const BlobModel& model, double voxel_size);
-
-// Samples F over a grid of the model's bounds (padded by kGridPadding voxels) and extracts the
-// iso-surface F = T with OpenVDB's volumeToMesh (quads split along their shorter diagonal).
-// The result is closed and consistently oriented with outward normals (counter-clockwise seen from
-// outside, where F < T); vertices lie on the sampled surface (trilinear within a voxel, so within
-// one voxel of the true surface). Each Blinn primitive is sampled within its cut-off only.
-// An empty mesh when F reaches T nowhere on the grid (every primitive off or too weak). Throws
-// vdg::Error prefixed with `what`: too many voxels (checked before anything is allocated), a
-// voxel size not finite or < 0.
-TriMesh polygonise(const BlobModel& model, const PolygoniseOptions& options = {}, const std::string& what = "blobs");
 
 // Number of connected components of a mesh (triangles sharing a vertex are connected).
 std::size_t connectedComponents(const TriMesh& mesh);
