@@ -522,11 +522,22 @@ bool Rig::nodePose(int animation, double time, std::span<double> out) const {
   for (std::size_t v = 0; v < nv; ++v) {
     Eigen::Matrix4d m;
     if (skinned_) {
-      m.setZero();
+      // m = 0 + w0 J0 + w1 J1 + ... over the non-zero weights, the first term computed as
+      // w J + 0.0 in registers: the same IEEE sum as adding it to a zeroed matrix (signed zeros
+      // included), without the zeroing, which GCC compiled to a rep stos per vertex.
+      bool empty = true;
       for (std::size_t k = 0; k < 4; ++k) {
         const double w = vertex_weights_[4 * v + k];
-        if (w != 0) m += w * joint_matrices_[vertex_joints_[4 * v + k]];
+        if (w == 0) continue;
+        const Eigen::Matrix4d& joint = joint_matrices_[vertex_joints_[4 * v + k]];
+        if (empty) {
+          m.array() = (w * joint).array() + 0.0;
+          empty = false;
+        } else {
+          m += w * joint;
+        }
       }
+      if (empty) m.setZero();
     } else {
       m = placement;
     }
