@@ -499,17 +499,24 @@ bool Rig::nodePose(int animation, double time, std::span<double> out) const {
         node.parent < 0 ? local : Eigen::Matrix4d(world_[static_cast<std::size_t>(node.parent)] * local);
   }
 
-  // Morph targets (glTF 3.7.2), written straight into the outputs.
+  // Morph targets (glTF 3.7.2), written straight into the outputs. Without targets the sums in
+  // doubles are the inputs themselves (a finite float, which build() checked, survives the round
+  // trip through double exactly), so they are copied.
   const bool file_normals = !normals_.empty() && !out_normals.empty();
-  for (std::size_t i = 0; i < 3 * nv; ++i) {
-    double p = mesh_.positions[i];
-    for (std::size_t t = 0; t < target_positions_.size(); ++t) p += morph_weights_[t] * target_positions_[t][i];
-    out_positions[i] = static_cast<float>(p);
-    if (file_normals) {
-      double q = normals_[i];
-      for (std::size_t t = 0; t < target_normals_.size(); ++t)
-        if (!target_normals_[t].empty()) q += morph_weights_[t] * target_normals_[t][i];
-      out_normals[i] = static_cast<float>(q);
+  if (target_positions_.empty() && target_normals_.empty()) {
+    std::copy(mesh_.positions.begin(), mesh_.positions.end(), out_positions.begin());
+    if (file_normals) std::copy(normals_.begin(), normals_.end(), out_normals.begin());
+  } else {
+    for (std::size_t i = 0; i < 3 * nv; ++i) {
+      double p = mesh_.positions[i];
+      for (std::size_t t = 0; t < target_positions_.size(); ++t) p += morph_weights_[t] * target_positions_[t][i];
+      out_positions[i] = static_cast<float>(p);
+      if (file_normals) {
+        double q = normals_[i];
+        for (std::size_t t = 0; t < target_normals_.size(); ++t)
+          if (!target_normals_[t].empty()) q += morph_weights_[t] * target_normals_[t][i];
+        out_normals[i] = static_cast<float>(q);
+      }
     }
   }
 
