@@ -550,17 +550,34 @@ bool Rig::nodePose(int animation, double time, std::span<double> out) const {
     }
     const Eigen::Vector3d p(out_positions[3 * v], out_positions[3 * v + 1], out_positions[3 * v + 2]);
     const Eigen::Vector3d q = m.topLeftCorner<3, 3>() * p + m.topRightCorner<3, 1>();
-    for (int c = 0; c < 3; ++c) out_positions[3 * v + static_cast<std::size_t>(c)] = static_cast<float>(q[c]);
+    // Written out coordinate by coordinate (not a loop, which GCC kept, reading q back from the
+    // stack right after storing it), here and for the normals and skin below.
+    float* const out_p = out_positions.data() + 3 * v;
+    out_p[0] = static_cast<float>(q.x());
+    out_p[1] = static_cast<float>(q.y());
+    out_p[2] = static_cast<float>(q.z());
     if (file_normals) {
       const Eigen::Matrix3d nm = skinned_ ? normalMatrix(m.topLeftCorner<3, 3>()) : placement_normals;
       Eigen::Vector3d n = nm * Eigen::Vector3d(out_normals[3 * v], out_normals[3 * v + 1], out_normals[3 * v + 2]);
       const double len = n.norm();
       if (len > 0 && std::isfinite(len)) n /= len;
-      for (int c = 0; c < 3; ++c) out_normals[3 * v + static_cast<std::size_t>(c)] = static_cast<float>(n[c]);
+      float* const out_n = out_normals.data() + 3 * v;
+      out_n[0] = static_cast<float>(n.x());
+      out_n[1] = static_cast<float>(n.y());
+      out_n[2] = static_cast<float>(n.z());
     }
-    if (!out_skin.empty())
-      for (int c = 0; c < 3; ++c)
-        for (int r = 0; r < 3; ++r) out_skin[9 * v + static_cast<std::size_t>(3 * c + r)] = static_cast<float>(m(r, c));
+    if (!out_skin.empty()) {
+      float* const out_s = out_skin.data() + 9 * v;  // column-major 3x3
+      out_s[0] = static_cast<float>(m(0, 0));
+      out_s[1] = static_cast<float>(m(1, 0));
+      out_s[2] = static_cast<float>(m(2, 0));
+      out_s[3] = static_cast<float>(m(0, 1));
+      out_s[4] = static_cast<float>(m(1, 1));
+      out_s[5] = static_cast<float>(m(2, 1));
+      out_s[6] = static_cast<float>(m(0, 2));
+      out_s[7] = static_cast<float>(m(1, 2));
+      out_s[8] = static_cast<float>(m(2, 2));
+    }
   }
   if (!out_normals.empty() && normals_.empty())
     return computeVertexNormals(out_positions, mesh_.triangles, out_normals);
