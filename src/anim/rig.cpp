@@ -478,8 +478,12 @@ bool Rig::nodePose(int animation, double time, std::span<double> out) const {
   return true;
 }
 
-bool Rig::evaluate(int animation, double time, std::span<float> out_positions, std::span<float> out_normals,
-                   std::span<float> out_skin) const {
+// flatten: GCC's -O2 inliner left Eigen's 3x3 product of the per-vertex loop (and a few helpers)
+// as calls; inlining them changes no value (the outputs were compared bit for bit with the code
+// before; no floating-point contraction on the baseline x86-64 target) and makes the walker's
+// skinning about a tenth faster (docs/performance.md).
+[[gnu::flatten]] bool Rig::evaluate(int animation, double time, std::span<float> out_positions,
+                                    std::span<float> out_normals, std::span<float> out_skin) const {
   const std::size_t nv = mesh_.vertexCount();
   if (animation < -1 || animation >= static_cast<long>(animations_.size()) || !std::isfinite(time)) return false;
   if (out_positions.size() != 3 * nv) return false;
@@ -495,17 +499,24 @@ bool Rig::evaluate(int animation, double time, std::span<float> out_positions, s
         node.parent < 0 ? local : Eigen::Matrix4d(world_[static_cast<std::size_t>(node.parent)] * local);
   }
 
-  // Morph targets (glTF 3.7.2), written straight into the outputs.
+  // Morph targets (glTF 3.7.2), written straight into the outputs. Without targets the sums in
+  // doubles are the inputs themselves (a finite float, which build() checked, survives the round
+  // trip through double exactly), so they are copied.
   const bool file_normals = !normals_.empty() && !out_normals.empty();
-  for (std::size_t i = 0; i < 3 * nv; ++i) {
-    double p = mesh_.positions[i];
-    for (std::size_t t = 0; t < target_positions_.size(); ++t) p += morph_weights_[t] * target_positions_[t][i];
-    out_positions[i] = static_cast<float>(p);
-    if (file_normals) {
-      double q = normals_[i];
-      for (std::size_t t = 0; t < target_normals_.size(); ++t)
-        if (!target_normals_[t].empty()) q += morph_weights_[t] * target_normals_[t][i];
-      out_normals[i] = static_cast<float>(q);
+  if (target_positions_.empty() && target_normals_.empty()) {
+    std::copy(mesh_.positions.begin(), mesh_.positions.end(), out_positions.begin());
+    if (file_normals) std::copy(normals_.begin(), normals_.end(), out_normals.begin());
+  } else {
+    for (std::size_t i = 0; i < 3 * nv; ++i) {
+      double p = mesh_.positions[i];
+      for (std::size_t t = 0; t < target_positions_.size(); ++t) p += morph_weights_[t] * target_positions_[t][i];
+      out_positions[i] = static_cast<float>(p);
+      if (file_normals) {
+        double q = normals_[i];
+        for (std::size_t t = 0; t < target_normals_.size(); ++t)
+          if (!target_normals_[t].empty()) q += morph_weights_[t] * target_normals_[t][i];
+        out_normals[i] = static_cast<float>(q);
+      }
     }
   }
 
@@ -518,27 +529,55 @@ bool Rig::evaluate(int animation, double time, std::span<float> out_positions, s
   for (std::size_t v = 0; v < nv; ++v) {
     Eigen::Matrix4d m;
     if (skinned_) {
-      m.setZero();
+      // m = 0 + w0 J0 + w1 J1 + ... over the non-zero weights, the first term computed as
+      // w J + 0.0 in registers: the same IEEE sum as adding it to a zeroed matrix (signed zeros
+      // included), without the zeroing, which GCC compiled to a rep stos per vertex.
+      bool empty = true;
       for (std::size_t k = 0; k < 4; ++k) {
         const double w = vertex_weights_[4 * v + k];
-        if (w != 0) m += w * joint_matrices_[vertex_joints_[4 * v + k]];
+        if (w == 0) continue;
+        const Eigen::Matrix4d& joint = joint_matrices_[vertex_joints_[4 * v + k]];
+        if (empty) {
+          m.array() = (w * joint).array() + 0.0;
+          empty = false;
+        } else {
+          m += w * joint;
+        }
       }
+      if (empty) m.setZero();
     } else {
       m = placement;
     }
     const Eigen::Vector3d p(out_positions[3 * v], out_positions[3 * v + 1], out_positions[3 * v + 2]);
     const Eigen::Vector3d q = m.topLeftCorner<3, 3>() * p + m.topRightCorner<3, 1>();
-    for (int c = 0; c < 3; ++c) out_positions[3 * v + static_cast<std::size_t>(c)] = static_cast<float>(q[c]);
+    // Written out coordinate by coordinate (not a loop, which GCC kept, reading q back from the
+    // stack right after storing it), here and for the normals and skin below.
+    float* const out_p = out_positions.data() + 3 * v;
+    out_p[0] = static_cast<float>(q.x());
+    out_p[1] = static_cast<float>(q.y());
+    out_p[2] = static_cast<float>(q.z());
     if (file_normals) {
       const Eigen::Matrix3d nm = skinned_ ? normalMatrix(m.topLeftCorner<3, 3>()) : placement_normals;
       Eigen::Vector3d n = nm * Eigen::Vector3d(out_normals[3 * v], out_normals[3 * v + 1], out_normals[3 * v + 2]);
       const double len = n.norm();
       if (len > 0 && std::isfinite(len)) n /= len;
-      for (int c = 0; c < 3; ++c) out_normals[3 * v + static_cast<std::size_t>(c)] = static_cast<float>(n[c]);
+      float* const out_n = out_normals.data() + 3 * v;
+      out_n[0] = static_cast<float>(n.x());
+      out_n[1] = static_cast<float>(n.y());
+      out_n[2] = static_cast<float>(n.z());
     }
-    if (!out_skin.empty())
-      for (int c = 0; c < 3; ++c)
-        for (int r = 0; r < 3; ++r) out_skin[9 * v + static_cast<std::size_t>(3 * c + r)] = static_cast<float>(m(r, c));
+    if (!out_skin.empty()) {
+      float* const out_s = out_skin.data() + 9 * v;  // column-major 3x3
+      out_s[0] = static_cast<float>(m(0, 0));
+      out_s[1] = static_cast<float>(m(1, 0));
+      out_s[2] = static_cast<float>(m(2, 0));
+      out_s[3] = static_cast<float>(m(0, 1));
+      out_s[4] = static_cast<float>(m(1, 1));
+      out_s[5] = static_cast<float>(m(2, 1));
+      out_s[6] = static_cast<float>(m(0, 2));
+      out_s[7] = static_cast<float>(m(1, 2));
+      out_s[8] = static_cast<float>(m(2, 2));
+    }
   }
   if (!out_normals.empty() && normals_.empty())
     return computeVertexNormals(out_positions, mesh_.triangles, out_normals);
