@@ -6,9 +6,9 @@ include(GNUInstallDirs)
 # TEST_CODE (the test programs and their precompiled header): under VDG_SANITIZE their own code is
 # instrumented by AddressSanitizer only. vdg's code (the libraries, the tool, the examples) keeps
 # both sanitizers, and a test program links both runtimes through the libraries. UBSan's checks of
-# the test bodies and of GoogleTest's templates were 30% of each test file's compile (a third of
-# the asan build's test objects) and check only the tests' own arithmetic; memory errors in the
-# tests' code are still found.
+# the test bodies and of GoogleTest's templates were 30% of a heavy test file's compile
+# (tests/io/gltf_test.cpp) and check only the tests' own arithmetic; memory errors in the tests'
+# code are still found.
 function(vdg_target_defaults target)
   cmake_parse_arguments(ARG "TEST_CODE" "" "" ${ARGN})
   target_compile_features(${target} PUBLIC cxx_std_20)
