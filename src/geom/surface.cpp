@@ -328,6 +328,16 @@ inline Eigen::Vector4f point4(const float* p, std::int32_t v) {
   return {q[0], q[1], q[2], 0.0f};
 }
 
+// The area-weighted normal (b - a) x (c - a) of triangle f as a 4-float packet (x, y, z, 0): Eigen's
+// cross3 computes the three components in the lanes of one vector register with the same products
+// and differences as gatherNormal's scalar code (Eigen/src/Geometry/arch/Geometry_SIMD.h), so the
+// values are bit-identical.
+inline Eigen::Vector4f faceNormal4(const std::int32_t* tris, const float* p, std::size_t f) {
+  const std::int32_t* tri = tris + 3 * f;
+  const Eigen::Vector4f a = point4(p, tri[0]);
+  return (point4(p, tri[1]) - a).cross3(point4(p, tri[2]) - a);
+}
+
 // The area-weighted normal (b - a) x (c - a) of triangle f into n[0..2], as gatherNormal adds it.
 inline void faceNormal(const std::int32_t* tris, const float* positions, std::int32_t f, float* n) {
   const std::int32_t* t = tris + 3 * static_cast<std::size_t>(f);
@@ -341,7 +351,7 @@ inline void faceNormal(const std::int32_t* tris, const float* positions, std::in
   n[2] = e1x * e2y - e1y * e2x;
 }
 
-// Face normals computeVertexNormalsOf caches (16 x 4096 bytes, 64 KB of stack).
+// Face normals computeVertexNormalsOf caches, with their tags (16 x 4096 bytes, 64 KB of stack).
 constexpr std::size_t kFaceCache = 4096;
 constexpr std::size_t kCacheMask = kFaceCache - 1;
 static_assert((kFaceCache & kCacheMask) == 0, "the face cache's size is a power of two");
@@ -373,19 +383,13 @@ constexpr std::size_t kFaceWindow = 8192;
 constexpr std::size_t kSlotWindow = 2048;
 static_assert(kSlotWindow % 8 == 0, "finishNormals pads to groups of 8");
 
-// The face normals (b - a) x (c - a) of triangles [first, last] into the ring face[f & kFaceMask],
-// one 4-float packet each (x, y, z, 0): Eigen's cross3 computes the three components in the lanes
-// of one vector register with the same products and differences as gatherNormal's scalar code
-// (Eigen/src/Geometry/arch/Geometry_SIMD.h), so the values are bit-identical.
+// The face normals of triangles [first, last] (faceNormal4) into the ring face[f & kFaceMask].
 constexpr std::size_t kFaceMask = kFaceWindow - 1;
 static_assert((kFaceWindow & kFaceMask) == 0, "the face ring's size is a power of two");
 void faceNormals(const std::int32_t* tris, const float* p, std::int32_t first, std::int32_t last,
                  Eigen::Vector4f* __restrict face) {
-  for (auto f = static_cast<std::size_t>(first); f <= static_cast<std::size_t>(last); ++f) {
-    const std::int32_t* tri = tris + 3 * f;
-    const Eigen::Vector4f a = point4(p, tri[0]);
-    face[f & kFaceMask] = (point4(p, tri[1]) - a).cross3(point4(p, tri[2]) - a);
-  }
+  for (auto f = static_cast<std::size_t>(first); f <= static_cast<std::size_t>(last); ++f)
+    face[f & kFaceMask] = faceNormal4(tris, p, f);
 }
 
 // Normalises count sums (4-float packets x, y, z, 0) into out (count x 3) as finishNormal does:
@@ -552,29 +556,44 @@ bool computeVertexNormalsOf(const SurfaceTopology& topology, std::span<const flo
   const std::int32_t* id = topology.homeTriangles().data();
   const std::int32_t* list = vertices.data();
   float* out = normals.data();
-  detail::parallelChunks(vertices.size(), kParallelNormalSlots, [&](std::size_t begin, std::size_t end) {
+  detail::parallelChunks(vertices.size(), kParallelListedNormals, [&](std::size_t begin, std::size_t end) {
     // Neighbouring listed vertices share faces; a direct-mapped cache of face normals (face f at
     // f & kCacheMask, tagged with f) computes each about once where the list is in memory order
-    // (ModelEvaluator's lists are ascending). The sums add the same floats in the same order as
-    // gatherNormal, so the result is bit-identical.
+    // (ModelEvaluator's lists are ascending). Scalar, as gatherNormal: 4-float packets measured
+    // slower here (GCC assembles a cross3 result through the stack, and reloading it stalls). Each
+    // vertex adds the same floats in the same order as gatherNormal, and its sum is normalised by
+    // finishNormals with a block of others (no square root's latency per vertex), so the result
+    // is bit-identical.
     std::int32_t tag[kFaceCache];
-    float cached[3 * kFaceCache];
+    float cached[3 * kFaceCache], inv[kSlotWindow], block[3 * kSlotWindow];
+    Eigen::Vector4f sum[kSlotWindow];
     std::fill(tag, tag + kFaceCache, -1);
-    for (std::size_t i = begin; i < end; ++i) {
-      const auto h = static_cast<std::size_t>(home[static_cast<std::size_t>(list[i])]);
-      float sx = 0.0f, sy = 0.0f, sz = 0.0f;
-      for (std::int32_t k = off[h]; k < off[h + 1]; ++k) {
-        const std::int32_t f = id[k];
-        float* n = cached + 3 * (static_cast<std::size_t>(f) & kCacheMask);
-        if (tag[static_cast<std::size_t>(f) & kCacheMask] != f) {
-          tag[static_cast<std::size_t>(f) & kCacheMask] = f;
-          faceNormal(t, p, f, n);
+    for (std::size_t b = begin; b < end; b += kSlotWindow) {
+      const std::size_t count = std::min(kSlotWindow, end - b);
+      for (std::size_t i = 0; i < count; ++i) {
+        const auto h = static_cast<std::size_t>(home[static_cast<std::size_t>(list[b + i])]);
+        float sx = 0.0f, sy = 0.0f, sz = 0.0f;
+        for (std::int32_t k = off[h]; k < off[h + 1]; ++k) {
+          const std::int32_t f = id[k];
+          const std::size_t slot = static_cast<std::size_t>(f) & kCacheMask;
+          float* n = cached + 3 * slot;
+          if (tag[slot] != f) {
+            tag[slot] = f;
+            faceNormal(t, p, f, n);
+          }
+          sx += n[0];
+          sy += n[1];
+          sz += n[2];
         }
-        sx += n[0];
-        sy += n[1];
-        sz += n[2];
+        sum[i] = {sx, sy, sz, 0.0f};
       }
-      finishNormal(sx, sy, sz, out + 3 * static_cast<std::size_t>(list[i]));
+      finishNormals(sum, count, inv, block);
+      for (std::size_t i = 0; i < count; ++i) {
+        float* o = out + 3 * static_cast<std::size_t>(list[b + i]);
+        o[0] = block[3 * i];
+        o[1] = block[3 * i + 1];
+        o[2] = block[3 * i + 2];
+      }
     }
   });
   return true;

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <numeric>
 #include <random>
 #include <string>
 #include <tuple>
@@ -248,7 +249,7 @@ TEST(SurfaceNormals, GatherListsHoldEveryCornerOnce) {
 }
 
 TEST(SurfaceNormals, NormalsOfListedVerticesEqualTheFullComputation) {
-  const TriMesh seam = testing::seamSphere(40, 50);
+  const TriMesh seam = testing::seamSphere(120, 100);  // more vertices than the threaded lists below
   const SurfaceTopology t = SurfaceTopology::build(seam);
   std::mt19937 rng(5);
   const std::vector<float> pose = jitter(rng, seam.positions, 0.05f);
@@ -256,9 +257,12 @@ TEST(SurfaceNormals, NormalsOfListedVerticesEqualTheFullComputation) {
   ASSERT_TRUE(computeVertexNormals(t, pose, full));
   // Random lists (the face cache's tags collide) and ascending ones (ModelEvaluator's: faces hit).
   for (const std::size_t count :
-       {std::size_t{0}, std::size_t{1}, std::size_t{100}, 3 * kParallelNormalSlots, 3 * kParallelNormalSlots + 1}) {
-    std::vector<std::int32_t> list(count);
-    for (std::int32_t& v : list) v = static_cast<std::int32_t>(rng() % seam.vertexCount());  // repeats allowed
+       {std::size_t{0}, std::size_t{1}, std::size_t{100}, 3 * kParallelListedNormals, 3 * kParallelListedNormals + 1}) {
+    // Distinct vertices, in random order or ascending.
+    std::vector<std::int32_t> list(seam.vertexCount());
+    std::iota(list.begin(), list.end(), 0);
+    std::shuffle(list.begin(), list.end(), rng);
+    list.resize(count);
     if (count % 2 == 1) std::sort(list.begin(), list.end());
     constexpr float kUntouched = 42.0f;
     std::vector<float> some(pose.size(), kUntouched);

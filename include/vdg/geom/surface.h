@@ -139,10 +139,13 @@ class SurfaceTopology {
 //   computeVertexNormals: normals #V x 3, each vertex the normal of vertexHome(): seams welded,
 //                         hard edges between split vertices kept.
 //   computeVertexNormalsOf: what computeVertexNormals writes, for the listed vertices only (any
-//                         order, repeats allowed); other entries of `normals` are left as they
-//                         are. For incremental updates (vdg::ModelEvaluator). Also refuses a
-//                         listed vertex outside [0, #V).
+//                         order; distinct, since the chunks of a list run side by side); other
+//                         entries of `normals` are left as they are. For incremental updates
+//                         (vdg::ModelEvaluator, whose lists are a key's few percent of the vertices),
+//                         so threaded in chunks of at least kParallelListedNormals from twice that
+//                         on. Also refuses a listed vertex outside [0, #V).
 inline constexpr std::size_t kParallelNormalSlots = 16384;
+inline constexpr std::size_t kParallelListedNormals = 2048;
 [[nodiscard]] bool computeGroupNormals(const SurfaceTopology& topology, std::span<const float> positions,
                                        std::span<float> group_normals);
 [[nodiscard]] bool computeVertexNormals(const SurfaceTopology& topology, std::span<const float> positions,
