@@ -6,6 +6,8 @@
 //             and normals, the bytes a full evaluation cannot avoid; BM_FullDenseKeysOneThread
 //             measures both on one thread (oneTBB limited to one), the figure a loaded machine
 //             distorts least;
+//   x_floor_per_vertex: the normals alone on a mesh that stays in the caches, per vertex, / the
+//             floor per vertex, both on one thread (BM_NormalsInCacheOneThread);
 //   x_dense:  sparse keys through ModelEvaluator frame to frame along the same coherent camera path
 //             / the full evaluation (positions + normals) of the dense-key model.
 // Dense keys move every vertex. "Patch" keys each move a contiguous 1% of the vertices, those
@@ -27,6 +29,7 @@
 #include <numeric>
 #include <optional>
 
+#include "vdg/geom/surface.h"
 #include "vdg/viewdep/evaluator.h"
 #include "vdg/viewdep/model.h"
 
@@ -34,22 +37,22 @@ namespace {
 
 constexpr int kRings = 1000, kSegments = 1000;  // ~1M vertices, ~2M triangles
 
-vdg::TriMesh bigSphere() {
+vdg::TriMesh uvSphere(int rings, int segments) {
   vdg::TriMesh m;
-  m.positions.reserve(3 * static_cast<std::size_t>(kRings) * kSegments);
-  for (int r = 0; r < kRings; ++r) {
-    const double theta = std::numbers::pi * (r + 0.5) / kRings;
-    for (int s = 0; s < kSegments; ++s) {
-      const double phi = 2 * std::numbers::pi * s / kSegments;
+  m.positions.reserve(3 * static_cast<std::size_t>(rings) * segments);
+  for (int r = 0; r < rings; ++r) {
+    const double theta = std::numbers::pi * (r + 0.5) / rings;
+    for (int s = 0; s < segments; ++s) {
+      const double phi = 2 * std::numbers::pi * s / segments;
       m.positions.insert(m.positions.end(),
                          {static_cast<float>(std::sin(theta) * std::cos(phi)), static_cast<float>(std::cos(theta)),
                           static_cast<float>(std::sin(theta) * std::sin(phi))});
     }
   }
-  for (int r = 0; r + 1 < kRings; ++r)
-    for (int s = 0; s < kSegments; ++s) {
-      const int a = r * kSegments + s, b = r * kSegments + (s + 1) % kSegments;
-      m.triangles.insert(m.triangles.end(), {a, a + kSegments, b, b, a + kSegments, b + kSegments});
+  for (int r = 0; r + 1 < rings; ++r)
+    for (int s = 0; s < segments; ++s) {
+      const int a = r * segments + s, b = r * segments + (s + 1) % segments;
+      m.triangles.insert(m.triangles.end(), {a, a + segments, b, b, a + segments, b + segments});
     }
   return m;
 }
@@ -59,7 +62,7 @@ enum class Keys { kDense, kPatch, kScattered };
 const vdg::ViewDependentModel& model(Keys kind) {
   static const auto build = [](Keys keys) {
     vdg::RawViewDependentModel raw;
-    raw.base = bigSphere();
+    raw.base = uvSphere(kRings, kSegments);
     const std::size_t nv = raw.base.vertexCount();
     const Eigen::Vector3d views[] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
     for (int k = 0; k < 6; ++k) {
@@ -282,6 +285,48 @@ void BM_FullPatchKeysEvaluator(benchmark::State& state) { sparseBenchmark(state,
 void BM_FullScatteredKeysEvaluator(benchmark::State& state) { sparseBenchmark(state, Keys::kScattered, true); }
 void BM_FullPatchKeysNoEvaluator(benchmark::State& state) { sparseBenchmark(state, Keys::kPatch, false); }
 
+// The normals' arithmetic alone: computeVertexNormals on one thread over a 100 x 100 sphere, whose
+// positions, triangles and lists (about 600 KB) stay in the core's caches, then the 1M-vertex floor
+// on one thread. x_floor_per_vertex = (normals' time per vertex, in cache) / (floor's time per
+// vertex): what the normals cost before a byte comes from memory, as a share of the whole floor. A
+// full evaluation cannot be cheaper than its blend plus this, whatever the data layout.
+void BM_NormalsInCacheOneThread(benchmark::State& state) {
+  const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+  const vdg::TriMesh small = uvSphere(100, 100);
+  const vdg::SurfaceTopology topology = vdg::SurfaceTopology::build(small);
+  std::vector<float> normals(small.positions.size());
+  const vdg::ViewDependentModel& m = model(Keys::kDense);
+  const std::size_t n = m.base().positions.size();
+  std::vector<float> floor_p(n), floor_n(n);
+  Floor floor = floorOf(m, floor_p, floor_n);
+  // As many small meshes as the floor has vertices, so both times cover 1M vertices.
+  const std::size_t repeats = m.vertexCount() / small.vertexCount();
+  double normals_s = 0.0, floor_s = 0.0;
+  for (auto _ : state) {
+    const auto t0 = Clock::now();
+    for (std::size_t r = 0; r < repeats; ++r) {
+      if (!vdg::computeVertexNormals(topology, small.positions, normals)) {
+        state.SkipWithError("computeVertexNormals refused its input (internal error)");
+        return;
+      }
+      benchmark::ClobberMemory();
+    }
+    const auto t1 = Clock::now();
+    floor.run();
+    benchmark::ClobberMemory();
+    const auto t2 = Clock::now();
+    normals_s += seconds(t0, t1);
+    floor_s += seconds(t1, t2);
+    state.SetIterationTime(seconds(t0, t1));
+  }
+  benchmark::DoNotOptimize(floor.sink);
+  const double per_vertex = static_cast<double>(repeats * small.vertexCount());
+  state.counters["normals_ns_per_vertex"] = 1e9 * normals_s / per_vertex / static_cast<double>(state.iterations());
+  state.counters["floor_ns_per_vertex"] =
+      1e9 * floor_s / static_cast<double>(m.vertexCount()) / static_cast<double>(state.iterations());
+  state.counters["x_floor_per_vertex"] = normals_s / per_vertex / (floor_s / static_cast<double>(m.vertexCount()));
+}
+
 // Locating the view alone (the per-frame work that does not depend on the mesh size).
 void BM_LocateAndWeigh(benchmark::State& state) {
   const vdg::ViewDependentModel& m = model(Keys::kDense);
@@ -306,5 +351,6 @@ BENCHMARK(BM_FullDenseKeysOneThread)->UseManualTime()->Unit(benchmark::kMillisec
 BENCHMARK(BM_FullPatchKeysEvaluator)->UseManualTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FullScatteredKeysEvaluator)->UseManualTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FullPatchKeysNoEvaluator)->UseManualTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_NormalsInCacheOneThread)->UseManualTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_LocateAndWeigh);
 BENCHMARK_MAIN();
