@@ -104,6 +104,10 @@ struct Session::Impl {
   std::optional<StudioRecovery> recovery;
   std::size_t recovery_unsaved = 0;  // its strokes not in the key's log on disk
 
+  // The viewport's drawing, which a new key takes with its camera (setDrawing).
+  std::string drawing_path;  // as the manifest writes it: relative to `folder` where it can be
+  std::shared_ptr<const TextureImage> drawing;
+
   std::vector<float>& shown() { return current >= 0 ? raw.keys[current].mesh.positions : baseShown(); }
   const std::vector<float>& shown() const { return current >= 0 ? raw.keys[current].mesh.positions : baseShown(); }
   std::vector<float>& baseShown() { return raw.animated() ? posed : raw.base.positions; }
@@ -408,8 +412,24 @@ void Session::setKeyCamera(const Camera& key_camera) {
   if (m.current < 0 || !m.is_new) throw Error("set key camera: only a new key's camera can change");
   RawKey& key = m.raw.keys[m.current];
   key.camera = key_camera;
+  key.drawing_path = m.drawing_path;
+  key.drawing = m.drawing;
   m.raw.resolveViews();
   ++m.revision;
+}
+
+void Session::setDrawing(const std::string& path, std::shared_ptr<const TextureImage> image) {
+  Impl& m = *impl_;
+  m.drawing = path.empty() ? nullptr : std::move(image);
+  m.drawing_path.clear();
+  if (path.empty()) return;
+  // The manifest resolves a relative drawing against its own folder; a file on another root (no
+  // relative path) is written absolute.
+  std::error_code ec;
+  const fs::path file = fs::absolute(path, ec).lexically_normal();
+  const fs::path folder = fs::absolute(m.folder.empty() ? fs::path(".") : m.folder, ec).lexically_normal();
+  const fs::path relative = file.lexically_relative(folder);
+  m.drawing_path = (ec || relative.empty() ? file : relative).generic_string();
 }
 
 // ---- strokes ----

@@ -4,12 +4,15 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
+#include <memory>
 
 #include "support/error_of.h"
 #include "support/test_meshes.h"
 #include "vdg/deform/edits.h"
 #include "vdg/deform/key_edit.h"
 #include "vdg/io/edit_script.h"
+#include "vdg/io/image_file.h"
 #include "vdg/io/manifest.h"
 #include "vdg/io/obj.h"
 #include "vdg/studio/navigation.h"
@@ -213,6 +216,45 @@ TEST_F(Fixture, SavingWritesAModelTheCommandLineToolsRead) {
   s.endStroke();
   s.saveKey();
   EXPECT_EQ(readEditLog(editLogPath(dir.file("k.obj"))).entries.size(), 2u);
+}
+
+TEST_F(Fixture, ANewKeyMadeOnADrawingSavesItAsItsReferenceDrawing) {
+  // vdg studio ball.obj --drawing art/front.png: the drawing in a folder beside the manifest.
+  fs::create_directories(dir.file("art"));
+  TextureImage drawing;
+  drawing.width = 32;
+  drawing.height = 24;
+  drawing.rgba.assign(32 * 24 * 4, 180);
+  const std::string png = dir.file("art/front.png");
+  std::ofstream(png, std::ios::binary) << encodePng(drawing, png);
+  {
+    Session s = Session::open(obj);
+    s.setDrawing(png, std::make_shared<const TextureImage>(drawing));
+    s.camera = orbit(s.camera, 30, 10);
+    s.newKey("k");
+    stroke(s, {330, 250});  // the key takes the camera and the drawing here
+    ASSERT_TRUE(s.model().keys[0].drawing);
+    s.saveKey();
+  }
+  const RawViewDependentModel saved = loadManifest(dir.file("ball.vdg.json"));
+  ASSERT_EQ(saved.keys.size(), 1u);
+  EXPECT_EQ(saved.keys[0].drawing_path, "art/front.png");  // relative to the manifest's folder
+  ASSERT_TRUE(saved.keys[0].drawing);
+  EXPECT_EQ(saved.keys[0].drawing->width, 32);
+  EXPECT_EQ(saved.keys[0].drawing->rgba, drawing.rgba);
+  ASSERT_TRUE(saved.keys[0].camera);
+
+  // A key made without a drawing has none; the saved key keeps its own.
+  Session s = Session::open(dir.file("ball.vdg.json"));
+  s.camera = orbit(s.camera, -40, 0);
+  s.newKey("side");
+  stroke(s, {330, 250});
+  s.saveKey();
+  const RawViewDependentModel both = loadManifest(dir.file("ball.vdg.json"));
+  ASSERT_EQ(both.keys.size(), 2u);
+  EXPECT_EQ(both.keys[0].drawing_path, "art/front.png");
+  EXPECT_TRUE(both.keys[1].drawing_path.empty());
+  EXPECT_FALSE(both.keys[1].drawing);
 }
 
 TEST_F(Fixture, EditingAKeyUsesItsCameraAndAppendsToItsLog) {

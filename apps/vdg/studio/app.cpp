@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <memory>
 
 #include "preview.h"
 #include "timeline.h"
@@ -216,8 +217,9 @@ struct Studio::Impl {
     }
     attempt("save", [&] {
       session->saveKey();
-      status = "saved key '" + session->model().keys[static_cast<std::size_t>(session->currentKey())].name + "' to " +
-               session->manifestPath();
+      const RawKey& key = session->model().keys[static_cast<std::size_t>(session->currentKey())];
+      status = "saved key '" + key.name + "' to " + session->manifestPath() +
+               (key.drawing_path.empty() ? "" : ", with its drawing " + key.drawing_path);
     });
   }
 
@@ -906,6 +908,8 @@ Studio::Studio(const StudioOptions& options) : impl_(std::make_unique<Impl>()) {
   if (m.drawing) {
     m.session->image_width = m.drawing->width;
     m.session->image_height = m.drawing->height;
+    // New keys are made in this drawing: each saves it as its reference drawing.
+    m.session->setDrawing(options.drawing, std::make_shared<const TextureImage>(*m.drawing));
   }
   // Start from the front, framed; the keys' own cameras are a click away.
   Camera c;

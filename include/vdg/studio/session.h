@@ -28,6 +28,7 @@
 #include "vdg/deform/edits.h"
 #include "vdg/deform/feature_lines.h"
 #include "vdg/geom/camera.h"
+#include "vdg/geom/material.h"
 #include "vdg/geom/tri_mesh.h"
 #include "vdg/viewdep/model.h"
 
@@ -125,8 +126,15 @@ class Session {
   // Writes the current key (mesh, edit log; the manifest when the key is new) as one transaction.
   // Throws vdg::Error naming the file, having changed nothing (on disk and in the session).
   void saveKey();
-  // Sets the current key's camera to `camera` (a new key only; a saved key keeps its camera).
+  // Sets the current key's camera to `camera` (a new key only; a saved key keeps its camera), and
+  // gives it the session's drawing (setDrawing), if any.
   void setKeyCamera(const Camera& camera);
+  // The drawing the viewport shows (`vdg studio --drawing`; `path` as given, relative to the working
+  // directory or absolute): a new key takes it as its reference drawing together with its camera,
+  // at its first stroke (the manifest's "drawing", version 5, written relative to the manifest's
+  // folder, so `vdg render --drawing-textures` projects it from that camera). Keys made before,
+  // and saved keys, keep theirs. An empty path: no drawing.
+  void setDrawing(const std::string& path, std::shared_ptr<const TextureImage> image);
 
   // Strokes with the current tool, in image pixels. begin picks nothing: give the picked vertex.
   void beginStroke(std::int32_t vertex, const Eigen::Vector2d& pixel);
