@@ -579,15 +579,26 @@ TEST(GltfExport, BadInputsAreRefused) {
             dir.file("out.obj") + ": expected a .glb or .gltf file name");
 }
 
-TEST(GltfExport, BadExtrasAreRefusedByTheReader) {
-  const auto model = ViewDependentModel::build(sphereModel());
-  const DecodedModel d = decodeModel(testing::decodeGlb(gltfToGlb(gltfExportInput(model), "t.glb")));
-  const nlohmann::json good = nlohmann::json::parse(d.extras);
-  const auto refused = [&](const std::function<void(nlohmann::json&)>& change) {
+// A model's exported mesh extras, and what the reader says of them after an edit.
+struct ExtrasEdit {
+  DecodedModel d;
+  nlohmann::json good;
+  explicit ExtrasEdit(const ViewDependentModel& model)
+      : d(decodeModel(testing::decodeGlb(gltfToGlb(gltfExportInput(model), "t.glb")))),
+        good(nlohmann::json::parse(d.extras)) {}
+  // The reader's message for the extras after `change` ("" when it reads them).
+  std::string refused(const std::function<void(nlohmann::json&)>& change) const {
     nlohmann::json e = good;
     change(e);
     return errorOf([&] { (void)rawModelFromGltfExtras(e.dump(), d.base, d.deltas, "m.glb"); });
-  };
+  }
+};
+
+TEST(GltfExport, BadExtrasAreRefusedByTheReader) {
+  const auto model = ViewDependentModel::build(sphereModel());
+  const ExtrasEdit extras(model);
+  const DecodedModel& d = extras.d;
+  const auto refused = [&](const std::function<void(nlohmann::json&)>& change) { return extras.refused(change); };
   EXPECT_EQ(refused([](auto&) {}), "");
   EXPECT_EQ(errorOf([&] {
               (void)rawModelFromGltfExtras("{", d.base, d.deltas, "m.glb");
@@ -720,13 +731,8 @@ TEST(GltfExport, ExtrasV4CarryTheRbfInterpolation) {
 
 TEST(GltfExport, BadRbfExtrasAreRefusedByTheReader) {
   const auto model = ViewDependentModel::build(rbfSphereModel(Uncovered::Base, RbfKernel::Gaussian));
-  const DecodedModel d = decodeModel(testing::decodeGlb(gltfToGlb(gltfExportInput(model), "t.glb")));
-  const nlohmann::json good = nlohmann::json::parse(d.extras);
-  const auto refused = [&](const std::function<void(nlohmann::json&)>& change) {
-    nlohmann::json e = good;
-    change(e);
-    return errorOf([&] { (void)rawModelFromGltfExtras(e.dump(), d.base, d.deltas, "m.glb"); });
-  };
+  const ExtrasEdit extras(model);
+  const auto refused = [&](const std::function<void(nlohmann::json&)>& change) { return extras.refused(change); };
   const std::size_t rows = model.sphere().points().size() + 1;
   EXPECT_EQ(refused([](auto&) {}), "");
   EXPECT_EQ(refused([](auto& e) { e["vdg"]["version"] = 3; }),
@@ -859,13 +865,8 @@ TEST(GltfExport, ExtrasV1AreStillRead) {
 
 TEST(GltfExport, MalformedExtrasV2AreRefusedNamingTheField) {
   const auto model = ViewDependentModel::build(sphereModel());
-  const DecodedModel d = decodeModel(testing::decodeGlb(gltfToGlb(gltfExportInput(model), "t.glb")));
-  const nlohmann::json good = nlohmann::json::parse(d.extras);
-  const auto refused = [&](const std::function<void(nlohmann::json&)>& change) {
-    nlohmann::json e = good;
-    change(e);
-    return errorOf([&] { (void)rawModelFromGltfExtras(e.dump(), d.base, d.deltas, "m.glb"); });
-  };
+  const ExtrasEdit extras(model);
+  const auto refused = [&](const std::function<void(nlohmann::json&)>& change) { return extras.refused(change); };
   const std::string at = "m.glb: mesh extras: 'vdg'.'sphere'";
   EXPECT_EQ(refused([](auto&) {}), "");
   EXPECT_EQ(refused([](auto& e) { e["vdg"]["sphere"] = 1; }), at + ": expected an object, got the number 1");
