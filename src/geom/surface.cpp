@@ -328,16 +328,6 @@ inline Eigen::Vector4f point4(const float* p, std::int32_t v) {
   return {q[0], q[1], q[2], 0.0f};
 }
 
-// The area-weighted normal (b - a) x (c - a) of triangle f as a 4-float packet (x, y, z, 0): Eigen's
-// cross3 computes the three components in the lanes of one vector register with the same products
-// and differences as gatherNormal's scalar code (Eigen/src/Geometry/arch/Geometry_SIMD.h), so the
-// values are bit-identical.
-inline Eigen::Vector4f faceNormal4(const std::int32_t* tris, const float* p, std::size_t f) {
-  const std::int32_t* tri = tris + 3 * f;
-  const Eigen::Vector4f a = point4(p, tri[0]);
-  return (point4(p, tri[1]) - a).cross3(point4(p, tri[2]) - a);
-}
-
 // The area-weighted normal (b - a) x (c - a) of triangle f into n[0..2], as gatherNormal adds it.
 inline void faceNormal(const std::int32_t* tris, const float* positions, std::int32_t f, float* n) {
   const std::int32_t* t = tris + 3 * static_cast<std::size_t>(f);
@@ -383,13 +373,19 @@ constexpr std::size_t kFaceWindow = 8192;
 constexpr std::size_t kSlotWindow = 2048;
 static_assert(kSlotWindow % 8 == 0, "finishNormals pads to groups of 8");
 
-// The face normals of triangles [first, last] (faceNormal4) into the ring face[f & kFaceMask].
+// The face normals (b - a) x (c - a) of triangles [first, last] into the ring face[f & kFaceMask],
+// one 4-float packet each (x, y, z, 0): Eigen's cross3 computes the three components in the lanes
+// of one vector register with the same products and differences as gatherNormal's scalar code
+// (Eigen/src/Geometry/arch/Geometry_SIMD.h), so the values are bit-identical.
 constexpr std::size_t kFaceMask = kFaceWindow - 1;
 static_assert((kFaceWindow & kFaceMask) == 0, "the face ring's size is a power of two");
 void faceNormals(const std::int32_t* tris, const float* p, std::int32_t first, std::int32_t last,
                  Eigen::Vector4f* __restrict face) {
-  for (auto f = static_cast<std::size_t>(first); f <= static_cast<std::size_t>(last); ++f)
-    face[f & kFaceMask] = faceNormal4(tris, p, f);
+  for (auto f = static_cast<std::size_t>(first); f <= static_cast<std::size_t>(last); ++f) {
+    const std::int32_t* tri = tris + 3 * f;
+    const Eigen::Vector4f a = point4(p, tri[0]);
+    face[f & kFaceMask] = (point4(p, tri[1]) - a).cross3(point4(p, tri[2]) - a);
+  }
 }
 
 // Normalises count sums (4-float packets x, y, z, 0) into out (count x 3) as finishNormal does:
